@@ -1,0 +1,204 @@
+"""The one registry of variable names, units and CF attributes used by every flumekit dataset.
+
+Every variable or coordinate that flumekit writes has an entry here; :func:`annotate` applies the
+entries to a dataset and :func:`check` refuses a dataset with a variable lacking units or a long
+name. Units follow UDUNITS spelling; time units live in ``encoding`` (set by the netCDF writer),
+never in ``attrs``.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+from dataclasses import dataclass
+
+import xarray as xr
+
+CONVENTIONS = "CF-1.8"
+
+
+@dataclass(frozen=True)
+class Variable:
+    units: str
+    long_name: str
+    standard_name: str | None = None
+
+    def attrs(self) -> dict[str, str]:
+        out = {"units": self.units, "long_name": self.long_name}
+        if self.standard_name:
+            out["standard_name"] = self.standard_name
+        return out
+
+
+_V = Variable
+
+#: name -> attributes. Sections are per domain; add new names to the section of their domain.
+VARIABLES: dict[str, Variable] = {
+    # --- coordinates and run parameters ---
+    "time": _V("s", "time since start of record", "time"),
+    "probe": _V("1", "wave probe name"),
+    "channel": _V("1", "UVP channel index along the beam"),
+    "beam": _V("1", "UVP transducer name"),
+    "run": _V("1", "run identifier"),
+    "x": _V("m", "longitudinal position (x = 0 at the flap hinge, positive towards the beach)"),
+    "y": _V("m", "lateral position (y = 0 on the flume centre plane)"),
+    "z": _V("m", "elevation above the hinge axis (z = 0 at the hinge, 0.1 m above the bed)"),
+    "frequency": _V("Hz", "frequency"),
+    "angular_frequency": _V("rad s-1", "angular frequency"),
+    "phase": _V("1", "wave phase as a fraction of the period, t/T"),
+    "level": _V("m", "static calibration water level relative to the still-water level"),
+    "wave_period": _V("s", "target wave period"),
+    "wave_height": _V("m", "target wave height"),
+    "repeat": _V("1", "repeat number of the test condition"),
+    "uvp_elevation": _V("m", "elevation of the horizontal UVP transducer (UP2)"),
+    "sampling_rate": _V("Hz", "sampling rate"),
+    "polynomial_order": _V("1", "power of the calibration polynomial term"),
+    # --- raw instruments ---
+    "probe_voltage": _V("V", "wave probe output voltage"),
+    "encoder_counts": _V("1", "wire encoder count"),
+    "wire_shortening": _V("m", "shortening of the encoder measuring wire, Delta L7"),
+    "chamber_pressure": _V("Pa", "gauge pressure in the PTO cylinder chamber", "sea_water_pressure"),
+    "calibration_voltage": _V("V", "probe voltage at a static calibration level"),
+    # --- calibration ---
+    "calibration_coefficients": _V("m V-n", "calibration polynomial coefficients, eta = sum c_n V^n"),
+    "calibration_r2": _V("1", "coefficient of determination of the calibration fit"),
+    "calibration_residual": _V("m", "calibration fit residual"),
+    "calibration_rms_residual": _V("m", "root-mean-square calibration residual"),
+    "calibration_monotonic": _V("1", "1 if the calibration is monotonic over the recorded voltages"),
+    "gain": _V("m V-1", "probe gain"),
+    "offset": _V("m", "probe offset (elevation at zero volt)"),
+    "eta": _V("m", "water surface elevation above still water level",
+              "water_surface_height_above_reference_datum"),
+    "probe_x": _V("m", "wave probe position along the flume"),
+    # --- waves ---
+    "eta_incident": _V("m", "incident water surface elevation"),
+    "eta_reflected": _V("m", "reflected water surface elevation"),
+    "spectrum_incident": _V("m2 s", "variance density of the incident wave"),
+    "spectrum_reflected": _V("m2 s", "variance density of the reflected wave"),
+    "reflection_coefficient": _V("1", "reflection coefficient Kr"),
+    "incident_height": _V("m", "incident wave height"),
+    "reflected_height": _V("m", "reflected wave height"),
+    "masked": _V("1", "1 where the separation was ill-conditioned and masked"),
+    "masked_energy_fraction": _V("1", "fraction of the energy in the band held by masked bins"),
+    "condition_number": _V("1", "condition number of the least-squares system"),
+    "wave_number": _V("rad m-1", "wave number"),
+    "steady_start": _V("s", "start of the quasi-steady window"),
+    "steady_end": _V("s", "end of the quasi-steady window"),
+    "measured_period": _V("s", "mean wave period of the quasi-steady window"),
+    "measured_height": _V("m", "mean wave height of the quasi-steady window"),
+    "amplitude_scale": _V("m", "amplitude scale of the quasi-steady window"),
+    "energy_flux": _V("W m-1", "period-averaged incident energy flux per unit crest width"),
+    # --- flap ---
+    "theta": _V("rad", "flap rotation angle, positive towards the beach"),
+    "theta_dot": _V("rad s-1", "flap angular velocity"),
+    "theta_ddot": _V("rad s-2", "flap angular acceleration"),
+    "rod_length": _V("m", "PTO rod length between anchors"),
+    "rod_velocity": _V("m s-1", "PTO rod extension rate"),
+    "beta": _V("rad", "angle between the PTO rod and the flap"),
+    "lever_arm": _V("m", "lever arm of the PTO rod force about the hinge"),
+    "torque_hydrodynamic": _V("N m", "hydrodynamic torque on the flap about the hinge"),
+    "torque_gravity": _V("N m", "gravity and buoyancy torque about the hinge"),
+    "torque_pto": _V("N m", "torque of the PTO on the flap"),
+    "torque_pressure": _V("N m", "torque of the cylinder pressure force"),
+    "torque_friction": _V("N m", "torque of the cylinder friction force"),
+    "torque_inertia": _V("N m", "inertia torque I theta_ddot"),
+    "force_pressure": _V("N", "cylinder pressure force"),
+    "force_friction": _V("N", "cylinder friction force"),
+    "flow_rate": _V("m3 s-1", "flow rate through the PTO cylinder"),
+    "power": _V("W", "instantaneous PTO power P_int Q"),
+    "mean_power": _V("W", "mean PTO power over the quasi-steady window"),
+    "incident_power": _V("W", "incident energy flux times flap width, W_I"),
+    "capture_factor": _V("1", "power capture factor C_f"),
+    "pressure_loss_coefficient": _V("Pa s2 rad-2", "pressure loss coefficient K_p"),
+    "fluid_inertia": _V("Pa s2 rad-1", "fluid inertia coefficient I_p"),
+    "pressure_fit_r2": _V("1", "coefficient of determination of the pressure model fit"),
+    "theta_amplitude": _V("rad", "amplitude of the flap rotation"),
+    "torque_amplitude": _V("N m", "amplitude of the hydrodynamic torque"),
+    "domain_flag": _V("1", "1 where the encoder sample lies outside the domain of Eq. (1)"),
+    # --- uvp ---
+    "distance": _V("m", "distance from the transducer face along the beam"),
+    "beam_velocity": _V("m s-1", "velocity along the beam"),
+    "amplitude": _V("1", "echo amplitude (raw counts)"),
+    "u": _V("m s-1", "longitudinal velocity", "sea_water_x_velocity"),
+    "w": _V("m s-1", "vertical velocity", "sea_water_upward_velocity"),
+    "u_rms": _V("m s-1", "RMS of the longitudinal velocity fluctuation"),
+    "w_rms": _V("m s-1", "RMS of the vertical velocity fluctuation"),
+    "tke": _V("m2 s-2", "turbulent kinetic energy from the available components"),
+    "u_ci": _V("m s-1", "half-width of the 95 % confidence interval of <u>"),
+    "w_ci": _V("m s-1", "half-width of the 95 % confidence interval of <w>"),
+    "u_normalised": _V("1", "<u>/U0 with U0 = pi H/T"),
+    "w_normalised": _V("1", "<w>/U0 with U0 = pi H/T"),
+    # --- models ---
+    "added_inertia": _V("kg m2", "added moment of inertia about the hinge"),
+    "radiation_damping": _V("N m s", "radiation damping about the hinge"),
+    "excitation_torque": _V("N m m-1", "excitation torque per unit wave amplitude"),
+    "hydrostatic_stiffness": _V("N m rad-1", "net buoyancy (hydrostatic) stiffness about the hinge"),
+    "pto_damping": _V("N m s", "linear PTO damping"),
+    "theta_complex_amplitude": _V("rad m-1", "complex flap rotation amplitude per unit wave amplitude"),
+    "efficiency": _V("1", "efficiency"),
+    "temperature": _V("K", "temperature"),
+    "film_thickness": _V("m", "lubricant film thickness"),
+    "film_parameter": _V("1", "film parameter lambda = h_min / sigma"),
+    "friction_coefficient": _V("1", "friction coefficient"),
+    # --- truth of the virtual flume ---
+}
+
+
+def attrs(name: str) -> dict[str, str]:
+    """CF attributes of a registered variable name."""
+    try:
+        return VARIABLES[name].attrs()
+    except KeyError:
+        raise KeyError(f"'{name}' is not in flumekit.conventions.VARIABLES; register it") from None
+
+
+def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
+    """Attach registry attributes to every variable and coordinate whose name is registered.
+
+    Attributes already present are kept (a caller may refine a long name), but ``units`` always
+    comes from the registry so that one name means one unit everywhere.
+    """
+    obj = obj.copy()
+    names = list(obj.coords) + (list(obj.data_vars) if isinstance(obj, xr.Dataset) else [])
+    for name in names:
+        var = VARIABLES.get(str(name))
+        if var is None:
+            continue
+        target = obj[name] if name in getattr(obj, "data_vars", {}) else obj.coords[name]
+        new = {**var.attrs(), **{k: v for k, v in target.attrs.items() if k != "units"}}
+        new["units"] = var.units
+        if name == "time":  # time units belong in encoding
+            new.pop("units")
+        target.attrs.clear()
+        target.attrs.update(new)
+    if isinstance(obj, xr.DataArray) and obj.name in VARIABLES:
+        obj.attrs = {**VARIABLES[obj.name].attrs(), **obj.attrs}
+    return obj
+
+
+def check(ds: xr.Dataset) -> None:
+    """Raise ``ValueError`` naming every variable that lacks ``units`` or ``long_name``."""
+    missing = []
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        if var.dtype.kind in "OSU":  # labels
+            if "long_name" not in var.attrs:
+                missing.append(f"{name} (long_name)")
+            continue
+        need = ("long_name",) if name == "time" else ("units", "long_name")
+        missing += [f"{name} ({a})" for a in need if a not in var.attrs]
+    if missing:
+        raise ValueError("dataset variables lack CF attributes: " + ", ".join(missing))
+
+
+def global_attrs(title: str, source: str, parameters: dict | None = None) -> dict[str, str]:
+    """Global attributes: Conventions, title, source and a history line with version and parameters."""
+    from flumekit import __version__
+
+    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    params = json.dumps(parameters or {}, sort_keys=True, default=str)
+    return {
+        "Conventions": CONVENTIONS,
+        "title": title,
+        "source": source,
+        "history": f"{stamp} flumekit {__version__}: {title}; parameters {params}",
+    }

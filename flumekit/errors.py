@@ -1,0 +1,33 @@
+"""Errors that the command line turns into one clear message and a non-zero exit."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+
+class FlumekitError(Exception):
+    """Base class of the errors flumekit reports to users without a traceback."""
+
+
+class InputError(FlumekitError):
+    """Bad input: a missing, truncated or malformed file, or impossible parameters.
+
+    The message always names the file (and the line or field where known) and what was expected.
+    """
+
+    def __init__(self, path: str | Path | None, problem: str, *, line: int | None = None,
+                 field: str | None = None):
+        self.path = None if path is None else Path(path)
+        self.problem = problem
+        self.line = line
+        self.field = field
+        where = "" if path is None else str(path)
+        if line is not None:
+            where += f", line {line}"
+        if field is not None:
+            where += f", field '{field}'"
+        super().__init__(f"{where}: {problem}" if where else problem)
+
+
+class GeometryError(FlumekitError):
+    """Impossible geometry (rod shorter than its anchors allow, negative lengths, ...)."""

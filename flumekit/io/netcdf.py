@@ -1,0 +1,66 @@
+"""Atomic netCDF writing with explicit encoding and the CF checks of flumekit.conventions."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+
+
+def _encoding(ds: xr.Dataset) -> dict[str, dict]:
+    enc: dict[str, dict] = {}
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        e: dict = {}
+        if var.dtype.kind == "f":
+            e["dtype"] = "float64" if var.dtype == np.float64 else str(var.dtype)
+            e["_FillValue"] = np.nan
+            if var.ndim >= 1 and var.size > 4096:
+                e.update(zlib=True, complevel=1)
+        elif var.dtype.kind == "c":
+            raise TypeError(f"variable '{name}' is complex: store real and imaginary parts")
+        if name == "time":
+            if np.issubdtype(var.dtype, np.datetime64):
+                e.update(units="seconds since 1970-01-01T00:00:00", calendar="proleptic_gregorian")
+            else:
+                e["units"] = "s"
+                var.attrs.pop("units", None)
+        if e:
+            enc[str(name)] = e
+    return enc
+
+
+def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
+    """Check CF attributes and write ``ds`` to ``path`` atomically (temporary file, then rename).
+
+    A failure at any point leaves no file at ``path`` (nor a temporary one behind).
+    """
+    path = Path(path)
+    ds = conventions.annotate(ds)
+    for name in ("time",):
+        if name in ds.coords and not np.issubdtype(ds[name].dtype, np.datetime64):
+            ds[name].attrs.pop("units", None)
+    conventions.check(ds)
+    missing = [a for a in ("Conventions", "title", "source", "history") if a not in ds.attrs]
+    if missing:
+        raise ValueError(f"{path}: dataset lacks global attributes {missing}")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def read_dataset(path: str | Path) -> xr.Dataset:
+    """Open a flumekit netCDF file fully into memory (the file is closed on return)."""
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        return ds.load()
