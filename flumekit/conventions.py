@@ -2,8 +2,8 @@
 
 Every variable or coordinate that flumekit writes has an entry here; :func:`annotate` applies the
 entries to a dataset and :func:`check` refuses a dataset with a variable lacking units or a long
-name. Units follow UDUNITS spelling; time units live in ``encoding`` (set by the netCDF writer),
-never in ``attrs``.
+name. Units follow UDUNITS spelling. ``time`` is seconds since the start of a record (see
+:mod:`flumekit.io.netcdf`).
 """
 
 from __future__ import annotations
@@ -167,8 +167,6 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
         target = obj[name] if name in getattr(obj, "data_vars", {}) else obj.coords[name]
         new = {**var.attrs(), **{k: v for k, v in target.attrs.items() if k != "units"}}
         new["units"] = var.units
-        if name == "time":  # time units belong in encoding
-            new.pop("units")
         target.attrs.clear()
         target.attrs.update(new)
     if isinstance(obj, xr.DataArray) and obj.name in VARIABLES:
@@ -184,8 +182,7 @@ def check(ds: xr.Dataset) -> None:
             if "long_name" not in var.attrs:
                 missing.append(f"{name} (long_name)")
             continue
-        need = ("long_name",) if name == "time" else ("units", "long_name")
-        missing += [f"{name} ({a})" for a in need if a not in var.attrs]
+        missing += [f"{name} ({a})" for a in ("units", "long_name") if a not in var.attrs]
     if missing:
         raise ValueError("dataset variables lack CF attributes: " + ", ".join(missing))
 

@@ -1,4 +1,9 @@
-"""Atomic netCDF writing with explicit encoding and the CF checks of flumekit.conventions."""
+"""Atomic netCDF writing with explicit encoding and the CF checks of flumekit.conventions.
+
+Time coordinates are seconds since the start of the record (float64, ``units = "s"``), which
+analysts can use directly; absolute instants, where known, are datetime64 variables whose CF
+units are set in the encoding.
+"""
 
 from __future__ import annotations
 
@@ -23,12 +28,8 @@ def _encoding(ds: xr.Dataset) -> dict[str, dict]:
                 e.update(zlib=True, complevel=1)
         elif var.dtype.kind == "c":
             raise TypeError(f"variable '{name}' is complex: store real and imaginary parts")
-        if name == "time":
-            if np.issubdtype(var.dtype, np.datetime64):
-                e.update(units="seconds since 1970-01-01T00:00:00", calendar="proleptic_gregorian")
-            else:
-                e["units"] = "s"
-                var.attrs.pop("units", None)
+        if np.issubdtype(var.dtype, np.datetime64):
+            e.update(units="seconds since 1970-01-01T00:00:00", calendar="proleptic_gregorian")
         if e:
             enc[str(name)] = e
     return enc
@@ -41,9 +42,6 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     """
     path = Path(path)
     ds = conventions.annotate(ds)
-    for name in ("time",):
-        if name in ds.coords and not np.issubdtype(ds[name].dtype, np.datetime64):
-            ds[name].attrs.pop("units", None)
     conventions.check(ds)
     missing = [a for a in ("Conventions", "title", "source", "history") if a not in ds.attrs]
     if missing:
