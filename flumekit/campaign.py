@@ -121,6 +121,23 @@ class Flap:
 
 
 @dataclass(frozen=True)
+class Friction:
+    """Parameters of the modified LuGre friction model (Brito et al. 2020, Appendix B)."""
+
+    sigma0: float  # bristle stiffness [N m-1]
+    sigma1: float  # bristle micro-damping [N s m-1]
+    sigma2: float  # viscous friction coefficient [N s m-1]
+    coulomb_force: float  # F_c [N]
+    static_force: float  # F_s [N]
+    stribeck_velocity: float  # x_s [m s-1]
+    stribeck_exponent: float  # n [-]
+    minimum_friction_velocity: float  # x_b [m s-1]
+    tau_hp: float  # film time constant, acceleration [s]
+    tau_hm: float  # film time constant, deceleration [s]
+    tau_h0: float  # film time constant, dwell [s]
+
+
+@dataclass(frozen=True)
 class PTO:
     """Single-acting hydraulic cylinder between a bed anchor and a flap anchor (§2.2)."""
 
@@ -129,6 +146,7 @@ class PTO:
     bore_diameter: float  # [m]
     atmospheric_pressure: float  # [Pa]
     vapour_pressure: float  # [Pa], absolute
+    friction: Friction | None = None
 
     @property
     def bore_area(self) -> float:
@@ -260,6 +278,14 @@ def load_campaign(root: str | Path) -> Campaign:
     pto = PTO(p.point("bed_anchor"), p.point("flap_anchor"), p.number("bore_diameter", positive=True),
               p.number("atmospheric_pressure", positive=True, default=101325.0),
               p.number("vapour_pressure", positive=True, default=2339.0))
+    if p.has("friction"):
+        fr = p.sub("friction")
+        fields = Friction.__dataclass_fields__
+        pto = PTO(**{**pto.__dict__, "friction": Friction(
+            **{k: fr.number(k, nonnegative=True) for k in fields})})
+        if pto.friction.static_force < pto.friction.coulomb_force:
+            raise InputError(path, "static friction force below the Coulomb force",
+                             field="pto.friction.static_force")
     if math.dist(pto.bed_anchor, pto.flap_anchor) <= 0:
         raise InputError(path, "PTO anchors coincide", field="pto")
     e = t.sub("encoder")
