@@ -28,6 +28,15 @@ class InputError(FlumekitError):
             where += f", field '{field}'"
         super().__init__(f"{where}: {problem}" if where else problem)
 
+    def __reduce__(self):  # survive pickling across process and dask workers
+        return (_rebuild_input_error, (self.path, self.problem, self.line, self.field, self.args))
+
+
+def _rebuild_input_error(path, problem, line, field, args):
+    e = InputError(path, problem, line=line, field=field)
+    e.args = args
+    return e
+
 
 class GeometryError(FlumekitError):
     """Impossible geometry (rod shorter than its anchors allow, negative lengths, ...)."""

@@ -1,0 +1,103 @@
+"""Wave-probe calibration from static submersions (Brito et al. 2020, §2.3).
+
+A polynomial eta = sum_n c_n V^n (first order by default) is fitted by least squares to the
+voltages recorded at known still-water levels, per probe; R² and residuals are reported, and
+the fit is checked for monotonicity over the voltage range a run actually records.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+
+R2_WARNING = 0.999
+
+
+class CalibrationWarning(UserWarning):
+    """A probe calibration is poor (R² below 0.999) or not monotonic where it is used."""
+
+
+def fit(calibration: xr.Dataset, order: int = 1) -> xr.Dataset:
+    """Least-squares calibration polynomial per probe.
+
+    Parameters
+    ----------
+    calibration : Dataset from :func:`flumekit.io.instruments.read_calibration`, with
+        ``calibration_voltage`` (sample, probe) [V] and coordinate ``level`` (sample) [m].
+    order : Polynomial order (1 = gain and offset, as in the paper).
+
+    Returns
+    -------
+    Dataset with ``calibration_coefficients`` (probe, polynomial_order) [m V^-n], ``gain``
+    [m V-1] and ``offset`` [m] (first-order terms), ``calibration_r2``, ``calibration_residual``
+    (sample, probe) [m], ``calibration_rms_residual`` [m].
+    """
+    v = calibration["calibration_voltage"].transpose("sample", "probe").values
+    levels = calibration["level"].values
+    n_levels = np.unique(levels).size
+    if order < 1 or order >= n_levels:
+        raise ValueError(f"calibration order {order} needs at least {order + 1} distinct levels; "
+                         f"the calibration has {n_levels}")
+    # Vandermonde per probe, solved in one batched least-squares call: (probe, sample, order+1)
+    A = v.T[:, :, None] ** np.arange(order + 1)
+    # scale columns for conditioning
+    scale = np.max(np.abs(A), axis=1, keepdims=True)
+    scale[scale == 0] = 1.0
+    As = A / scale
+    coef = np.stack([np.linalg.lstsq(As[p], levels, rcond=None)[0] for p in range(A.shape[0])])
+    coef = coef / scale[:, 0, :]
+    fitted = np.einsum("psk,pk->sp", A, coef)
+    resid = levels[:, None] - fitted
+    ss_tot = np.sum((levels - levels.mean()) ** 2)
+    r2 = 1.0 - np.sum(resid**2, axis=0) / ss_tot
+    probes = calibration["probe"].values
+    ds = xr.Dataset(
+        {
+            "calibration_coefficients": (("probe", "polynomial_order"), coef),
+            "gain": ("probe", coef[:, 1]),
+            "offset": ("probe", coef[:, 0]),
+            "calibration_r2": ("probe", r2),
+            "calibration_residual": (("sample", "probe"), resid),
+            "calibration_rms_residual": ("probe", np.sqrt(np.mean(resid**2, axis=0))),
+        },
+        coords={"probe": probes, "polynomial_order": np.arange(order + 1),
+                "level": ("sample", levels)},
+        attrs={"calibration_order": order},
+    )
+    for p, r in zip(probes, r2):
+        if r < R2_WARNING:
+            warnings.warn(f"probe {p}: calibration R² = {r:.5f} < {R2_WARNING}", CalibrationWarning,
+                          stacklevel=2)
+    return conventions.annotate(ds)
+
+
+def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
+    """True if the calibration polynomial's derivative keeps one sign on [v_min, v_max]."""
+    deriv = np.polynomial.polynomial.polyder(coefficients)
+    vv = np.linspace(v_min, v_max, 201)
+    d = np.polynomial.polynomial.polyval(vv, deriv)
+    return bool(np.all(d > 0) or np.all(d < 0))
+
+
+def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
+    """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
+
+    Warns (:class:`CalibrationWarning`) when a polynomial is not monotonic over the voltage range
+    the record spans, where a voltage no longer maps to a unique level.
+    """
+    coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
+    powers = calibration["polynomial_order"]
+    eta = (coef * voltage ** powers).sum("polynomial_order")
+    vmin, vmax = voltage.min("time").values, voltage.max("time").values
+    for i, p in enumerate(voltage["probe"].values):
+        if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i])):
+            warnings.warn(f"probe {p}: calibration polynomial is not monotonic over the recorded "
+                          f"voltages [{vmin[i]:.4g}, {vmax[i]:.4g}] V", CalibrationWarning,
+                          stacklevel=2)
+    eta = eta.transpose("probe", "time").rename("eta")
+    eta.attrs = conventions.attrs("eta")
+    return eta

@@ -1,0 +1,51 @@
+"""Pipeline definitions (``pipelines/<campaign>.toml``): where the campaign lives, stage
+parameters, how to synthesise it when missing, and the scenes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from flumekit.campaign import _Table, read_toml
+from flumekit.errors import InputError
+
+
+@dataclass(frozen=True)
+class Pipeline:
+    path: Path
+    name: str
+    raw: Path
+    processed: Path
+    synth: dict[str, Any] | None
+    stages: dict[str, dict[str, Any]]
+    scenes: dict[str, list[str]] = field(default_factory=dict)
+
+    @property
+    def state_file(self) -> Path:
+        return self.processed / ".flumekit-state.json"
+
+
+def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipeline:
+    """Read a pipeline file; relative paths in it are relative to the file's folder."""
+    path = Path(path)
+    data = read_toml(path)
+    t = _Table(data, path)
+    p = t.sub("pipeline")
+    base = path.parent
+    raw = (base / p.text("raw")).resolve()
+    out = Path(processed).resolve() if processed else (base / p.text("processed")).resolve()
+    scenes = {}
+    for name, targets in data.get("scenes", {}).items():
+        if isinstance(targets, dict):
+            targets = targets.get("targets")
+        if not isinstance(targets, list) or not all(isinstance(x, str) for x in targets):
+            raise InputError(path, "a scene is a list of target names or patterns",
+                             field=f"scenes.{name}")
+        scenes[name] = targets
+    stages = data.get("stages", {})
+    if not isinstance(stages, dict) or not all(isinstance(v, dict) for v in stages.values()):
+        raise InputError(path, "expected [stages.<name>] tables", field="stages")
+    synth = data.get("synth")
+    return Pipeline(path=path, name=p.text("name"), raw=raw, processed=out, synth=synth,
+                    stages=stages, scenes=scenes)

@@ -1,0 +1,66 @@
+"""Rules: what a target is built from, by which action, with which parameters and code version.
+
+A rule's action is named as ``"module:function"`` and imported only when the rule runs, so that
+planning a build (and the no-op ``flumekit make``) never imports numpy, xarray or matplotlib.
+The action is called as ``action(inputs, outputs, params)`` with dicts of paths and parameters;
+it must write every output atomically.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable
+
+
+@dataclass(frozen=True)
+class Rule:
+    target: str  # unique name, e.g. "waves/T3.50_H0.250_r00"
+    action: str  # "module:function"
+    inputs: dict[str, Path]
+    outputs: dict[str, Path]
+    params: dict[str, Any] = field(default_factory=dict)
+    version: str = "1"  # bump when the action's results change
+    run: str | None = None  # run identifier, for messages
+
+    def params_hash(self) -> str:
+        return digest(json.dumps(self.params, sort_keys=True, default=str).encode())
+
+    def resolve(self) -> Callable[[dict, dict, dict], None]:
+        module, _, name = self.action.partition(":")
+        return getattr(importlib.import_module(module), name)
+
+
+def digest(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def file_digest(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def execute(rule: Rule) -> float:
+    """Run a rule's action (in whatever process the executor chose); return its run time [s].
+
+    A failing action leaves none of its outputs behind.
+    """
+    import time
+
+    t0 = time.perf_counter()
+    try:
+        rule.resolve()(dict(rule.inputs), dict(rule.outputs), dict(rule.params))
+        missing = [str(p) for p in rule.outputs.values() if not Path(p).exists()]
+        if missing:
+            raise RuntimeError(f"action did not write its outputs {missing}")
+    except BaseException:
+        for p in rule.outputs.values():
+            Path(p).unlink(missing_ok=True)
+        raise
+    return time.perf_counter() - t0

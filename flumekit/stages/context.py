@@ -1,0 +1,34 @@
+"""What every stage needs to declare its rules: the campaign, where things live, its parameters."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from flumekit.campaign import Campaign
+
+
+@dataclass(frozen=True)
+class Context:
+    campaign: Campaign
+    processed: Path
+    params: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+    def stage_params(self, stage: str, defaults: dict[str, Any]) -> dict[str, Any]:
+        """Defaults overridden by ``[stages.<stage>]`` of the pipeline file (unknown keys refused)."""
+        given = self.params.get(stage, {})
+        unknown = set(given) - set(defaults)
+        if unknown:
+            from flumekit.errors import FlumekitError
+
+            raise FlumekitError(f"pipeline: unknown parameter(s) {sorted(unknown)} for stage "
+                                f"'{stage}'; known: {sorted(defaults)}")
+        return {**defaults, **given}
+
+    def out(self, *parts: str) -> Path:
+        return self.processed.joinpath(*parts)
+
+    @property
+    def campaign_file(self) -> Path:
+        return self.campaign.root / "campaign.toml"

@@ -1,0 +1,57 @@
+"""Stage: calibrated surface elevation at every probe of a run."""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+
+VERSION = "1"
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    out = []
+    for run in c.runs:
+        params = {"probes": list(c.probes.names), "probe_x": run.probe_x,
+                  "sampling_rate": c.probes.sampling_rate, "period": run.period,
+                  "height": run.height, "repeat": run.repeat, "kind": run.kind,
+                  "uvp_elevation": run.uvp_elevation, "run": run.id}
+        out.append(Rule(f"eta/{run.id}", "flumekit.stages.eta:build",
+                        inputs={"probes": run.path / "probes.csv",
+                                "calibration": ctx.out("calibration.nc")},
+                        outputs={"dataset": ctx.out("eta", f"{run.id}.nc")},
+                        params=params, version=VERSION, run=run.id))
+    return out
+
+
+def run_coords(params: dict) -> dict:
+    """Run parameters as scalar coordinates, so runs concatenate along ``run``."""
+    coords = {"run": params["run"], "wave_period": params["period"],
+              "wave_height": params["height"], "repeat": params["repeat"]}
+    if params.get("uvp_elevation") is not None:
+        coords["uvp_elevation"] = params["uvp_elevation"]
+    return coords
+
+
+def build(inputs, outputs, params) -> None:
+    import warnings
+
+    import numpy as np
+
+    from flumekit import calibration, conventions
+    from flumekit.io.instruments import read_probes
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    raw = read_probes(inputs["probes"], tuple(params["probes"]), params["sampling_rate"])
+    cal = read_dataset(inputs["calibration"])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", calibration.CalibrationWarning)
+        eta = calibration.apply(raw["probe_voltage"], cal)
+    for w in caught:
+        print(f"warning: {inputs['probes']}: {w.message}")
+    x = np.array([params["probe_x"][p] for p in params["probes"]])
+    ds = eta.to_dataset().assign_coords(x=("probe", x), **run_coords(params))
+    ds.attrs.update(conventions.global_attrs(
+        "Calibrated surface elevation per probe",
+        f"flumekit eta stage from {inputs['probes']} and {inputs['calibration']}", params))
+    write_dataset(ds, outputs["dataset"])
