@@ -26,10 +26,28 @@ class Pipeline:
         return self.processed / ".flumekit-state.json"
 
 
+def _merge(base: dict, over: dict) -> dict:
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = _merge(out[k], v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def _read(path: Path, depth: int = 0) -> dict:
+    """A pipeline file, merged over the file it ``extends`` (tables merge key by key)."""
+    data = read_toml(path)
+    parent = data.pop("extends", None)
+    if parent is None:
+        return data
+    if depth > 8 or not isinstance(parent, str):
+        raise InputError(path, "'extends' must name one pipeline file (no cycles)", field="extends")
+    return _merge(_read(path.parent / parent, depth + 1), data)
+
+
 def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipeline:
     """Read a pipeline file; relative paths in it are relative to the file's folder."""
     path = Path(path)
-    data = read_toml(path)
+    data = _read(path)
     t = _Table(data, path)
     p = t.sub("pipeline")
     base = path.parent

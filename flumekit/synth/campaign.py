@@ -1,0 +1,209 @@
+"""The virtual flume: write a complete raw campaign from known physics, with its truth.
+
+The campaign reproduces the design of Brito et al. (2020): water depth 0.825 m, the flap and PTO
+of §2.2, the periods and heights of Table 1 with probes at x12 = L/10 and x23 = L/4 of the local
+wavelength, regular waves ramped up from the wavemaker, reflection from the flap, second-order
+bound harmonics, probe gains/offsets and noise, encoder quantisation, pressure sensor noise and,
+for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams.
+
+Layout written (raw/README.md): ``campaign.toml``, ``calibration/probes.csv``,
+``runs/<run>/{run.toml, probes.csv, flap.csv, UP1.mfprof, ...}`` and the truth in ``truth/``
+(``calibration.nc``, ``<run>/waves.nc``, ``<run>/flap.nc``, ``uvp_field.nc``). The same seed gives the same files.
+"""
+
+from __future__ import annotations
+
+import shutil
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.campaign import Campaign, load_campaign
+from flumekit.io.netcdf import write_dataset
+from flumekit.io.tables import write_table
+from flumekit.waves.theory import wavelength
+
+PERIODS = (2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0)  # Table 1 [s]
+HEIGHTS = (0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3)  # Table 1 [m]
+UVP_CONDITION = (3.5, 0.25)  # §2.4 [s], [m]
+UVP_ELEVATIONS = tuple(np.round(np.arange(0.20, 0.7201, 0.02), 3))  # §2.3 [m]
+CALIBRATION_LEVELS = (-0.10, -0.05, 0.0, 0.05, 0.10)  # static submersions [m]
+
+
+@dataclass(frozen=True)
+class Size:
+    wave_runs: tuple[tuple[float, float], ...]
+    uvp_elevations: tuple[float, ...]  # one UVP run per entry (repeats allowed)
+    n_steady_waves: int = 55  # steady waves after the ramp (>= 50 are averaged)
+
+
+def _size(name: str) -> Size:
+    if name == "small":
+        return Size(wave_runs=((2.0, 0.15), (3.5, 0.25)), uvp_elevations=(0.30, 0.50))
+    if name == "default":
+        return Size(wave_runs=tuple((t, h) for t in PERIODS for h in (0.15, 0.2, 0.25)),
+                    uvp_elevations=UVP_ELEVATIONS[::2])
+    if name == "paper":
+        # 78 repeats cycling through the 27 elevations of §2.3 (most elevations 3 times)
+        return Size(wave_runs=tuple((t, h) for t in PERIODS for h in HEIGHTS),
+                    uvp_elevations=tuple(UVP_ELEVATIONS[k % len(UVP_ELEVATIONS)]
+                                         for k in range(78)))
+    raise ValueError(f"unknown campaign size '{name}': small, default or paper")
+
+
+@dataclass(frozen=True)
+class Truth:
+    """Known physics of the virtual flume not written in the raw metadata."""
+
+    reflection: float = 0.20  # flap reflection coefficient (Brito et al. 2020, §2.4)
+    reflection_phase: float = 0.6  # [rad]
+    probe_noise: float = 0.5e-3  # probe noise, as elevation [m]
+    static_seconds: float = 30.0  # record length at each static level [s]
+    ramp_waves: float = 10.0  # wavemaker ramp (quasi-steady after ~35 waves at the flap)
+    x_wavemaker: float = -32.7  # [m]
+    x_wp3: float = -2.0  # WP3 position [m]; WP1, WP2 follow Table 1 spacings
+    x_wp4: float = -0.6  # [m]
+
+
+def probe_positions(period: float, depth: float, truth: Truth) -> dict[str, float]:
+    """Table 1 layout: x12 = L/10 and x23 = L/4 of the local wavelength, upstream of WP3."""
+    L = float(wavelength(period, depth))
+    x3 = truth.x_wp3
+    return {"WP1": round(x3 - L / 4 - L / 10, 4), "WP2": round(x3 - L / 4, 4), "WP3": x3,
+            "WP4": truth.x_wp4}
+
+
+def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
+    """True sensor law V = a + b eta per probe: b ~ 10 V/m, a ~ 2.5 V, each a few % apart."""
+    b = 10.0 * (1 + 0.05 * rng.standard_normal(len(names)))
+    a = 2.5 + 0.3 * rng.standard_normal(len(names))
+    return a, b
+
+
+def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
+                   truth: Truth = Truth()) -> Campaign:
+    """Write a virtual-flume campaign to ``root`` (replacing one there) and return it."""
+    root = Path(root)
+    spec = _size(size)
+    rng = np.random.default_rng(seed)
+    tmp = root.with_name(root.name + ".partial")
+    shutil.rmtree(tmp, ignore_errors=True)
+    (tmp / "calibration").mkdir(parents=True)
+    (tmp / "truth").mkdir()
+    template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
+    template = template.replace('name = "default"', f'name = "{root.name}"', 1)
+    (tmp / "campaign.toml").write_text(template)
+    campaign = load_campaign(tmp)
+    names = campaign.probes.names
+    a, b = _probe_gains(names, rng)
+    _write_calibration(tmp, names, a, b, campaign.probes.sampling_rate, truth, rng)
+
+    runs = [("waves", t, h, None) for t, h in spec.wave_runs]
+    runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
+    seen: dict[str, int] = {}
+    for kind, period, height, z in runs:
+        base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
+        repeat = seen.get(base, 0)
+        seen[base] = repeat + 1
+        run_id = f"{base}_r{repeat}"
+        _write_run(tmp, campaign, run_id, kind, period, height, repeat, z, a, b, truth,
+                   np.random.default_rng([seed, len(seen), repeat]))
+    if spec.uvp_elevations:
+        from flumekit.synth.uvp import true_field
+
+        field = true_field(campaign, period=UVP_CONDITION[0], height=UVP_CONDITION[1],
+                           reflection=truth.reflection, reflection_phase=truth.reflection_phase)
+        _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
+        write_dataset(field, tmp / "truth" / "uvp_field.nc")
+    shutil.rmtree(root, ignore_errors=True)
+    tmp.rename(root)
+    return load_campaign(root)
+
+
+def _finish(ds: xr.Dataset, title: str, size: str, seed: int) -> xr.Dataset:
+    ds.attrs.update(conventions.global_attrs(title, "flumekit virtual flume (flumekit.synth)",
+                                             {"size": size, "seed": seed}))
+    return ds
+
+
+def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
+    n = int(truth.static_seconds * rate)
+    levels = np.repeat(CALIBRATION_LEVELS, n)
+    volts = a + b * (levels[:, None] + truth.probe_noise * rng.standard_normal((levels.size, len(names))))
+    write_table(root / "calibration" / "probes.csv", [("level", "m")] + [(p, "V") for p in names],
+                np.column_stack([levels, volts]), fmt="%.6f")
+    ds = xr.Dataset({"gain": ("probe", 1.0 / b), "offset": ("probe", -a / b)},
+                    coords={"probe": list(names)})
+    write_dataset(_finish(ds, "Virtual flume truth: probe calibration", "", 0),
+                  root / "truth" / "calibration.nc")
+
+
+def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
+               truth: Truth, rng) -> None:
+    from flumekit.synth.flap import flap_record
+    from flumekit.synth.waves import regular_wave_field
+
+    depth = campaign.flume.water_depth
+    run_dir = root / "runs" / run_id
+    run_dir.mkdir(parents=True)
+    xp = probe_positions(period, depth, truth)
+    # record: travel time from the wavemaker + ramp + steady waves, rounded to whole seconds
+    n_waves = 35 + Size.__dataclass_fields__["n_steady_waves"].default + 10
+    duration = float(np.ceil(abs(truth.x_wavemaker) / (0.8 * depth**0.5 * 3.13) + n_waves * period))
+    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
+             f"repeat = {repeat}"]
+    if z is not None:
+        lines.append(f"uvp_elevation = {z}")
+    lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in xp.items()]
+    (run_dir / "run.toml").write_text("\n".join(lines) + "\n")
+
+    wave_kw = dict(period=period, height=height, depth=depth, reflection=truth.reflection,
+                   reflection_phase=truth.reflection_phase, x_reflector=0.0,
+                   ramp_waves=truth.ramp_waves, second_order=True, x_wavemaker=truth.x_wavemaker)
+    names = campaign.probes.names
+    t25 = np.arange(int(duration * campaign.probes.sampling_rate)) / campaign.probes.sampling_rate
+    field = regular_wave_field(t25, np.array([xp[p] for p in names] + [0.0]), **wave_kw)
+    eta = (field["eta_incident"] + field["eta_reflected"]).values  # (x, time)
+    noisy = eta[:-1] + truth.probe_noise * rng.standard_normal(eta[:-1].shape)
+    volts = a[:, None] + b[:, None] * noisy
+    write_table(run_dir / "probes.csv", [("time", "s")] + [(p, "V") for p in names],
+                np.column_stack([t25, volts.T]), fmt=["%.2f"] + ["%.6f"] * len(names))
+
+    enc = campaign.encoder
+    t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
+    at_flap = regular_wave_field(t100, np.array([0.0]), **wave_kw)
+    flap = flap_record(t100, at_flap["eta_incident"].values[0], period=period, campaign=campaign,
+                       rng=rng)
+    write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
+                np.column_stack([t100, flap["encoder_counts"].values,
+                                 flap["chamber_pressure"].values / 1e5]),
+                fmt=["%.2f", "%d", "%.6f"])
+
+    truth_dir = root / "truth" / run_id
+    waves_truth = xr.Dataset(
+        {"eta_incident": (("probe", "time"), field["eta_incident"].values[:-1]),
+         "eta_reflected": (("probe", "time"), field["eta_reflected"].values[:-1])},
+        coords={"probe": list(names), "time": t25, "x": ("probe", [xp[p] for p in names])},
+        attrs={k: v for k, v in field.attrs.items() if np.isscalar(v)})
+    write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
+                  truth_dir / "waves.nc")
+    flap_truth = flap.assign(eta_incident=("time", at_flap["eta_incident"].values[0]),
+                             eta_reflected=("time", at_flap["eta_reflected"].values[0]))
+    write_dataset(_finish(flap_truth, f"Virtual flume truth: flap of run {run_id}", "", 0),
+                  truth_dir / "flap.nc")
+
+    if kind == "uvp":
+        from flumekit.io.mfprof import write_mfprof
+        from flumekit.synth.uvp import uvp_beams
+
+        u = campaign.uvp
+        tu = np.arange(int(duration * u.sampling_rate)) / u.sampling_rate
+        beams = uvp_beams(tu, u, z, period=period, height=height, depth=depth,
+                          reflection=truth.reflection, reflection_phase=truth.reflection_phase,
+                          rng=rng)
+        for name, ds in beams.items():
+            write_mfprof(run_dir / f"{name}.mfprof", ds, u)
