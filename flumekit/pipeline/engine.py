@@ -86,6 +86,9 @@ def signature(rule: Rule, state: State) -> dict:
 
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Reason to rebuild ``rule`` (None when it is up to date)."""
+    for name, p in rule.inputs.items():
+        if not Path(p).exists() and Path(p).resolve() not in graph.producer:
+            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
     if force:
         return "forced"
     missing = [n for n, p in rule.outputs.items() if not Path(p).exists()]

@@ -1,0 +1,168 @@
+"""The make engine on a toy graph: what is rebuilt, what is not, and failures."""
+
+import os
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from flumekit.errors import FlumekitError
+from flumekit.pipeline.engine import Graph, make, plan
+from flumekit.pipeline.executors import PoolExecutor, SerialExecutor
+from flumekit.pipeline.rules import Rule
+from flumekit.pipeline.state import State
+
+TOY = textwrap.dedent('''
+    from pathlib import Path
+
+    def double(inputs, outputs, params):
+        v = float(Path(inputs["src"]).read_text()) * params["factor"]
+        if v < 0:
+            raise ValueError("negative value")
+        Path(outputs["out"]).write_text(str(v))
+
+    def total(inputs, outputs, params):
+        s = sum(float(Path(p).read_text()) for p in inputs.values())
+        Path(outputs["out"]).write_text(str(s))
+''')
+
+
+@pytest.fixture
+def toy(tmp_path, monkeypatch):
+    mod = tmp_path / "mods"
+    mod.mkdir()
+    (mod / "flumekit_toy_actions.py").write_text(TOY)
+    monkeypatch.syspath_prepend(str(mod))
+    monkeypatch.setenv("PYTHONPATH", str(mod) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    raw = tmp_path / "raw"
+    raw.mkdir()
+    for name, v in (("a", 1), ("b", 2)):
+        (raw / f"{name}.txt").write_text(str(v))
+    return tmp_path
+
+
+def graph(root: Path, factor_a: float = 2.0) -> Graph:
+    out = root / "processed"
+    rules = [
+        Rule("double/a", "flumekit_toy_actions:double", {"src": root / "raw/a.txt"},
+             {"out": out / "a.txt"}, {"factor": factor_a}),
+        Rule("double/b", "flumekit_toy_actions:double", {"src": root / "raw/b.txt"},
+             {"out": out / "b.txt"}, {"factor": 2.0}),
+        Rule("total", "flumekit_toy_actions:total", {"a": out / "a.txt", "b": out / "b.txt"},
+             {"out": out / "total.txt"}),
+    ]
+    out.mkdir(exist_ok=True)
+    return Graph(rules)
+
+
+def build(root, g=None, targets=("total",), ex=None, **kw):
+    g = g or graph(root)
+    state = State(root / "processed" / "state.json")
+    return make(g, list(targets), state, ex or SerialExecutor(), log=lambda s: None, **kw)
+
+
+def ran(report):
+    return sorted(t for t, _, _ in report.ran)
+
+
+def test_second_run_rebuilds_nothing(toy):
+    assert ran(build(toy)) == ["double/a", "double/b", "total"]
+    assert (toy / "processed/total.txt").read_text() == "6.0"
+    assert ran(build(toy)) == []
+
+
+def test_touch_without_change_rebuilds_nothing(toy):
+    build(toy)
+    st = (toy / "raw/a.txt").stat()
+    os.utime(toy / "raw/a.txt", ns=(st.st_atime_ns, st.st_mtime_ns + 10**9))
+    assert ran(build(toy)) == []
+
+
+def test_changed_input_rebuilds_only_its_chain(toy):
+    build(toy)
+    (toy / "raw/a.txt").write_text("5")
+    assert ran(build(toy)) == ["double/a", "total"]
+    assert (toy / "processed/total.txt").read_text() == "14.0"
+
+
+def test_changed_parameter_rebuilds_only_dependants(toy):
+    build(toy)
+    assert ran(build(toy, graph(toy, factor_a=3.0))) == ["double/a", "total"]
+
+
+def test_identical_rebuilt_output_stops_propagation(toy):
+    build(toy)
+    (toy / "processed/a.txt").unlink()  # rebuilt with the same content
+    assert ran(build(toy)) == ["double/a"]
+
+
+def test_scene_runs_only_what_it_needs(toy):
+    assert ran(build(toy, targets=["double/b"])) == ["double/b"]
+    assert not (toy / "processed/a.txt").exists()
+
+
+def test_dry_run_says_why(toy):
+    g = graph(toy)
+    state = State(toy / "processed" / "state.json")
+    steps = dict(plan(g, ["total"], state))
+    assert steps["double/a"].startswith("output")
+    build(toy)
+    (toy / "raw/b.txt").write_text("7")
+    steps = dict(plan(g, ["total"], State(toy / "processed" / "state.json")))
+    assert steps == {"double/b": "input src changed", "total": "input from double/b is rebuilt"}
+
+
+def test_failed_rule_leaves_no_output_and_names_the_rule(toy):
+    build(toy)
+    (toy / "raw/a.txt").write_text("-1")
+    with pytest.raises(FlumekitError, match=r"double/a.*negative value"):
+        build(toy)
+    assert not (toy / "processed/a.txt").exists()
+    assert (toy / "processed/b.txt").exists()
+
+
+def test_missing_raw_input_is_named(toy):
+    (toy / "raw/b.txt").unlink()
+    with pytest.raises(FlumekitError, match=r"raw/b\.txt.*missing"):
+        build(toy)
+
+
+def test_force_rebuilds(toy):
+    build(toy)
+    assert ran(build(toy, force=True)) == ["double/a", "double/b", "total"]
+
+
+@pytest.mark.parametrize("kind", ["threads", "processes"])
+def test_pool_executor_gives_the_same_result(toy, kind):
+    with PoolExecutor(2, kind) as ex:
+        assert ran(build(toy, ex=ex)) == ["double/a", "double/b", "total"]
+    assert (toy / "processed/total.txt").read_text() == "6.0"
+
+
+def test_dask_executor(toy):
+    distributed = pytest.importorskip("distributed")
+    from flumekit.pipeline.executors import DaskExecutor
+
+    with distributed.LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cl:
+        with DaskExecutor(cl.scheduler_address) as ex:
+            assert ran(build(toy, ex=ex)) == ["double/a", "double/b", "total"]
+    assert (toy / "processed/total.txt").read_text() == "6.0"
+
+
+def test_cycle_is_refused(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    g = Graph([Rule("x", "m:f", {"i": a}, {"o": b}), Rule("y", "m:f", {"i": b}, {"o": a})])
+    with pytest.raises(FlumekitError, match="cycle"):
+        g.closure(["x"])
+
+
+def test_no_heavy_imports_when_planning():
+    """Planning must not import numpy/xarray (the no-op make stays fast)."""
+    import subprocess
+
+    code = ("import sys; import flumekit.cli, flumekit.pipeline.engine, flumekit.campaign, "
+            "flumekit.stages; print(sorted(m for m in ('numpy', 'xarray', 'scipy', 'pandas', "
+            "'matplotlib') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
