@@ -47,3 +47,63 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
 def wavelength(period, depth, g: float = G) -> np.ndarray:
     """Wavelength L = 2π/k [m] of a wave of ``period`` [s] in ``depth`` [m]."""
     return 2 * np.pi / wavenumber(2 * np.pi / np.asarray(period, dtype=float), depth, g)
+
+
+def _two_kh_over_sinh(y: np.ndarray) -> np.ndarray:
+    """2kh / sinh(2kh) evaluated as 2y e^(-y) / (1 - e^(-2y)) with y = 2kh: no overflow, no
+    cancellation at small y (``expm1``)."""
+    return 2.0 * y * np.exp(-y) / -np.expm1(-2.0 * y)
+
+
+def phase_velocity(period, depth, g: float = G) -> np.ndarray:
+    """Phase velocity c = ω/k [m s-1] of a wave of ``period`` [s] in ``depth`` [m]."""
+    omega = 2 * np.pi / np.asarray(period, dtype=float)
+    return omega / wavenumber(omega, depth, g)
+
+
+def group_velocity(period, depth, g: float = G) -> np.ndarray:
+    """Group velocity c_g = (ω / 2k) (1 + 2kh / sinh 2kh) [m s-1].
+
+    Parameters
+    ----------
+    period : Wave period [s], array-like, > 0.
+    depth : Water depth [m], broadcastable with ``period``, > 0.
+    g : Gravitational acceleration [m s-2].
+    """
+    omega = 2 * np.pi / np.asarray(period, dtype=float)
+    depth = np.asarray(depth, dtype=float)
+    k = wavenumber(omega, depth, g)
+    return omega / (2 * k) * (1 + _two_kh_over_sinh(2 * k * depth))
+
+
+def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.ndarray:
+    """Period-averaged energy flux of a linear wave per unit crest width [W m-1].
+
+    Eq. (A2) in Brito et al. 2020 without the flap width:
+    P = (1/8) ρ g H² (ω / 2k) (1 + 2kh / sinh 2kh) = E c_g.
+
+    Parameters
+    ----------
+    height : Wave height H (crest to trough) [m].
+    period : Wave period T [s].
+    depth : Water depth h [m].
+    rho : Water density [kg m-3].
+    g : Gravitational acceleration [m s-2].
+    """
+    height = np.asarray(height, dtype=float)
+    if np.any(~(height >= 0)):
+        raise ValueError("energy_flux needs a finite wave height >= 0")
+    # Eq. (A2) in Brito et al. 2020 (divided by the flap width L)
+    return rho * g * height**2 / 8.0 * group_velocity(period, depth, g)
+
+
+def stokes2_coefficient(k, depth) -> np.ndarray:
+    """Second-order Stokes coefficient B with η₂ = B k a² cos 2θ for η₁ = a cos θ [-].
+
+    B = cosh kh (2 + cosh 2kh) / (4 sinh³ kh) (Dean & Dalrymple 1991, Eq. 11.33, written with
+    a = H/2), evaluated overflow-free as (1 + q)(1 + 4q + q²) / (2 (1 - q)³), q = e^(-2kh);
+    B → 1/2 in deep water. The second-order crest-to-trough height equals 2a exactly.
+    """
+    kh = np.asarray(k, dtype=float) * np.asarray(depth, dtype=float)
+    q = np.exp(-2.0 * kh)
+    return (1 + q) * (1 + 4 * q + q * q) / (2.0 * (-np.expm1(-2.0 * kh)) ** 3)

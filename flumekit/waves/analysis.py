@@ -1,0 +1,125 @@
+"""Wave statistics of one regular-wave run: quasi-steady window, separation at the flap, Kr, H_I, T.
+
+This is the pure function behind the pipeline's per-run waves stage.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.signal import quasi_steady_window
+from flumekit.waves.layout import MAX_CONDITION
+from flumekit.waves.separation import _as_probe_time, separate
+from flumekit.waves.theory import G, energy_flux
+
+
+def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0.0, *,
+                method: str = "mansard_funke", separation_probes=None, n_harmonics: int = 4,
+                bound_harmonics: bool = True, tolerance: float = 0.02,
+                max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
+    """Analyse the probe records of one regular-wave run.
+
+    Parameters
+    ----------
+    eta : Calibrated surface elevation [m], dims ("probe", "time"), coordinate ``x`` [m] on
+        ``probe``, ``time`` [s] since the start of the record (uniform sampling).
+    depth : Still water depth [m].
+    period : Target wave period [s] (used to merge noisy zero crossings closer than T/2 and as
+        the starting guess; the analysis uses the measured period).
+    x_ref : Position where the incident and reflected waves are returned [m] (the flap hinge,
+        x = 0, for the comparison with the flap).
+    method : Separation method (see :func:`flumekit.waves.separate`).
+    separation_probes : Names of the probes used for the separation; default all.
+    n_harmonics : Harmonics of the measured frequency included in the analysis band [-].
+    bound_harmonics : Solve harmonics n ≥ 2 as bound waves (wavenumber n k1).
+    tolerance : Quasi-steady criterion: relative deviation of each cycle's crest from the
+        amplitude scale (Brito et al. 2020, §2.5: 2 %).
+    max_condition : Largest condition number of the separation accepted per bin [-].
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    xr.Dataset with
+        ``eta`` (probe, time) : the input records (for figures 5a and 6a);
+        ``eta_incident``, ``eta_reflected`` (time) : separated at ``x_ref`` from the steady
+        window cut to a whole number of periods; NaN (documented fill) outside that window,
+        where a regular-wave separation is not defined (ramp-up, reflections still arriving);
+        ``amplitude_scale``, ``measured_height`` (probe) : per-probe quasi-steady statistics;
+        scalars ``steady_start``, ``steady_end`` [s] (the window where every probe is
+        quasi-steady), ``steady_cycles``, ``measured_period`` [s] and, from the separation of that
+        window cut to a whole number of periods, ``reflection_coefficient`` (first harmonic),
+        ``incident_height`` / ``reflected_height`` (crest-to-trough of the separated harmonic
+        waves), ``incident_amplitude``, ``incident_phase``, ``energy_flux`` (Eq. A2 per metre of
+        crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes and
+        spectra over ``harmonic`` and ``frequency``.
+    """
+    v, t, x, probes = _as_probe_time(eta)
+    if not period > 0:
+        raise ValueError(f"period must be positive, got {period}")
+    if n_harmonics < 1:
+        raise ValueError(f"n_harmonics must be at least 1, got {n_harmonics}")
+    eta = eta.transpose("probe", "time")
+    sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
+
+    # quasi-steady window of every probe (Brito et al. 2020, §2.5); loop over a handful of probes
+    windows = [quasi_steady_window(v[p], t, tolerance=tolerance, min_period=0.5 * period)
+               for p in range(v.shape[0])]
+    start = max(w.start for w in windows)
+    end = min(w.end for w in windows)
+    t_meas = float(np.mean([w.period for w in windows]))
+    n_per = int(np.floor((end - start) / t_meas + 1e-9))
+    if n_per < 2:
+        raise ValueError(
+            f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
+            f"than two periods of {t_meas:.3g} s (windows: "
+            + ", ".join(f"{p}: {w.start:.1f}-{w.end:.1f} s" for p, w in zip(probes, windows))
+            + ")")
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    i0 = int(np.ceil((start - t[0]) / dt - 1e-9))
+    # whole number of periods spanning (nearly) a whole number of samples: of the last ten
+    # candidate counts keep the one with the smallest sample misfit (less spectral leakage)
+    cand = np.arange(max(2, n_per - 9), n_per + 1)
+    misfit = np.abs(cand * t_meas / dt - np.rint(cand * t_meas / dt))
+    n_per = int(cand[misfit <= misfit.min() + 0.02][-1])  # the longest of the best
+    n = min(int(round(n_per * t_meas / dt)), t.size - i0)
+
+    f1 = 1.0 / t_meas
+    band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
+    kw = dict(method=method, band=band, x_ref=x_ref, regular=True, period=t_meas,
+              bound_harmonics=bound_harmonics, max_condition=max_condition, g=g)
+    steady = separate(sep.isel(time=slice(i0, i0 + n)), depth, **kw)
+    # separated series on the full time axis, defined (not NaN) over the steady window only
+    inc = np.full(t.size, np.nan)
+    ref = np.full(t.size, np.nan)
+    inc[i0:i0 + n] = steady.eta_incident.values
+    ref[i0:i0 + n] = steady.eta_reflected.values
+    fill = {"comment": "NaN outside the quasi-steady window [steady_start, steady_end), where "
+                       "the regular-wave separation is not defined"}
+
+    h_lin = 2.0 * float(steady.incident_amplitude)
+    ds = xr.Dataset(
+        {"eta": (("probe", "time"), v),
+         "eta_incident": ("time", inc, fill), "eta_reflected": ("time", ref, fill),
+         "amplitude_scale": ("probe", [w.amplitude_scale for w in windows]),
+         "measured_height": ("probe", [w.height for w in windows]),
+         "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
+         "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
+         "energy_flux": ((), float(energy_flux(h_lin, t_meas, depth, g=g)),
+                         {"definition": "Eq. (A2) of Brito et al. 2020 per unit crest width, "
+                                        "H = 2 a1 (first-harmonic incident height)"}),
+         **{name: steady[name] for name in (
+             "reflection_coefficient", "incident_height", "reflected_height",
+             "incident_amplitude", "incident_phase", "masked_energy_fraction",
+             "incident_harmonic_amplitude", "reflected_harmonic_amplitude",
+             "harmonic_reflection_coefficient", "spectrum_incident", "spectrum_reflected",
+             "condition_number", "masked")}},
+        coords={"probe": eta.probe.values, "x": ("probe", x), "time": t,
+                "frequency": steady.frequency.values, "harmonic": steady.harmonic.values},
+        attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
+               "wave_period": float(period), "separation_probes": steady.attrs["probes"],
+               "n_harmonics": n_harmonics, "bound_harmonics": int(bound_harmonics),
+               "tolerance": tolerance, "band": steady.attrs["band"],
+               "max_condition": max_condition})
+    return conventions.annotate(ds)

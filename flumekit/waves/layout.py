@@ -1,0 +1,124 @@
+"""Wave-probe layout for incident/reflected separation: spacing advice and conditioning check.
+
+The separation of incident and reflected waves solves, per frequency, the least-squares system
+B_p = A_I e^(-i k x_p) + A_R e^(+i k x_p) over the probes p (see :mod:`flumekit.waves.separation`).
+Its two columns become parallel, and the system singular, when every probe spacing is a multiple
+of half a wavelength (k Δx = nπ for all pairs). Near such frequencies noise is amplified by the
+condition number computed here.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.waves.theory import G, wavelength, wavenumber
+
+#: Default largest condition number accepted: that of a two-probe layout at the Goda & Suzuki
+#: (1976) limits Δx/L = 0.05 and 0.45, cot(π/20) ≈ 6.31.
+MAX_CONDITION = float(1.0 / np.tan(np.pi / 20))
+
+
+def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
+    """Probe spacings x12 = L/10 and x23 = L/4 of Table 1 in Brito et al. 2020 [m].
+
+    Parameters
+    ----------
+    period : Design wave period [s].
+    depth : Water depth [m].
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    (x12, x23) : Spacing between probes 1 and 2, and between probes 2 and 3 [m].
+
+    Notes
+    -----
+    Table 1 of Brito et al. (2020) lists x12 = 0.49 ... 1.10 m and x23 = 1.23 ... 2.75 m for
+    T = 2 ... 4 s in h = 0.825 m, which are L/10 and L/4 of the local linear wavelength. The
+    method they cite (Mansard & Funke 1980) recommends x12 = L/10 and L/6 < x13 < L/3 with
+    x13 ≠ L/5, 3L/10; the paper's x13 = 0.35 L lies just beyond L/3, which is still
+    well-conditioned at the design period (condition number √2, see :func:`condition_number`).
+    """
+    L = wavelength(period, depth, g)
+    return L / 10.0, L / 4.0
+
+
+def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
+    """2-norm condition number of the separation matrix [e^(-ikx_p), e^(+ikx_p)] [-].
+
+    Parameters
+    ----------
+    x : Probe positions [m], shape (P,), P ≥ 2.
+    frequency : Frequencies [Hz], any shape, > 0.
+    depth : Water depth [m].
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    Condition number, shape of ``frequency``; ``inf`` where the layout is exactly singular.
+
+    Notes
+    -----
+    With M = [a, conj(a)], a_p = e^(-ikx_p), the Gram matrix MᴴM = [[P, S], [S*, P]] with
+    S = Σ_p e^(2ikx_p) has eigenvalues P ± |S|, so cond(M) = sqrt((P + |S|) / (P - |S|)).
+    For three probes P² - |S|² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
+    """
+    x = np.asarray(x, dtype=float)
+    f = np.asarray(frequency, dtype=float)
+    k = wavenumber(2 * np.pi * f, depth, g)
+    s = np.abs(np.exp(2j * k[..., None] * x).sum(axis=-1))
+    p = x.size
+    with np.errstate(divide="ignore"):
+        return np.sqrt((p + s) / np.maximum(p - s, 0.0))
+
+
+def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX_CONDITION,
+                 n_frequencies: int = 200, g: float = G) -> xr.Dataset:
+    """Condition number of a probe layout over an analysis band and the ill-conditioned bins.
+
+    Parameters
+    ----------
+    x : Probe positions [m], shape (P,), P ≥ 2, distinct.
+    depth : Water depth [m].
+    band : (f_min, f_max) analysis band [Hz].
+    max_condition : Largest acceptable condition number [-] (default: two-probe Goda–Suzuki limits).
+    n_frequencies : Number of frequencies sampled uniformly across the band.
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    Dataset over ``frequency`` with ``condition_number``, ``masked`` (1 where the condition
+    number exceeds ``max_condition``), ``wave_number`` and, over ``pair``, the spacing of each probe
+    pair; attrs ``ill_conditioned_fraction`` (fraction of the band that would be masked) and a
+    human-readable ``advice``.
+    """
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or x.size < 2:
+        raise ValueError("a probe layout needs at least two probe positions")
+    if np.unique(x).size != x.size:
+        raise ValueError(f"probe positions must be distinct, got {x.tolist()}")
+    f0, f1 = (float(b) for b in band)
+    if not 0 < f0 < f1:
+        raise ValueError(f"band must satisfy 0 < f_min < f_max, got {band}")
+    f = np.linspace(f0, f1, n_frequencies)
+    cond = condition_number(x, f, depth, g)
+    bad = cond > max_condition
+    k = wavenumber(2 * np.pi * f, depth, g)
+    i, j = np.triu_indices(x.size, 1)
+    dx = np.abs(x[j] - x[i])
+    worst = ""
+    if bad.any():
+        fb = f[bad]
+        kdx = k[bad][:, None] * dx / np.pi
+        worst = (f"ill-conditioned between {fb.min():.3g} and {fb.max():.3g} Hz "
+                 f"(k·Δx/π of the pairs near {np.round(kdx[np.argmax(cond[bad])], 2).tolist()}); "
+                 "move a probe so that not all spacings are near multiples of L/2")
+    ds = xr.Dataset(
+        {"condition_number": ("frequency", cond), "masked": ("frequency", bad.astype(np.int8)),
+         "wave_number": ("frequency", k), "probe_spacing": ("pair", dx)},
+        coords={"frequency": f, "pair": [f"{a}-{b}" for a, b in zip(i, j)]},
+        attrs={"ill_conditioned_fraction": float(bad.mean()), "max_condition": max_condition,
+               "advice": worst or "well-conditioned over the whole band"})
+    return conventions.annotate(ds)

@@ -1,0 +1,348 @@
+"""Separation of incident and reflected waves from an array of wave probes.
+
+One least-squares core serves the three classical methods: Goda & Suzuki (1976, two probes),
+Mansard & Funke (1980, three probes) and Zelt & Skjelbreia (1992, any number ≥ 2 of probes,
+here without their frequency-dependent pair weights). Per frequency bin f the Fourier
+coefficients B_p of the probe records are fitted, in the least-squares sense, by
+
+    B_p = A_I e^(-i k_I x_p) + A_R e^(+i k_R x_p),
+
+and the normal equations of all bins are solved at once (batched, no loop over bins).
+
+Sign convention (pinned by a test): numpy's forward FFT has kernel e^(-iωt), so a record
+a cos(ωt - kx + φ) has coefficient (N/2) a e^(iφ) e^(-ikx). A wave travelling towards +x
+(towards the flap and the beach, the flume's x axis) therefore has the column e^(-ikx) and is
+called *incident*; a wave travelling towards -x has e^(+ikx) and is *reflected*.
+
+Bound harmonics: the second-order harmonics of a steep regular wave are phase-locked to the
+primary wave and travel with its phase speed, i.e. with wavenumber n·k1 at frequency n·f1,
+not with the free wavenumber k(n f1). Fitted with free waves they leak into the "reflected"
+part; with ``bound_harmonics=True`` the bins of harmonic n ≥ 2 are solved with n·k1.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import xarray as xr
+from scipy import signal as _sig
+
+from flumekit import conventions
+from flumekit.waves.layout import MAX_CONDITION
+from flumekit.waves.theory import G, wavenumber
+
+METHODS = {"mansard_funke": (3, 3), "goda_suzuki": (2, 2), "zelt_skjelbreia": (2, None)}
+
+
+class SeparationWarning(UserWarning):
+    """The probe layout is ill-conditioned for part of the wave energy (bins were masked)."""
+
+
+def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Batched complex least squares by the normal equations, with ill-conditioned systems masked.
+
+    Parameters
+    ----------
+    columns : Design matrices, shape (F, P, K): F independent systems of P equations in K
+        unknowns.
+    rhs : Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
+    max_condition : Systems whose 2-norm condition number exceeds this are masked [-].
+
+    Returns
+    -------
+    solution : shape (F, K, R); zero for masked systems.
+    condition : 2-norm condition number of each design matrix, shape (F,); inf if singular.
+    masked : bool, shape (F,).
+    """
+    mc = np.conj(columns)
+    # Gram matrices MᴴM (F, K, K) and Mᴴb (F, K, R) by broadcasting (faster than batched matmul
+    # of tiny matrices)
+    gram = (mc[:, :, :, None] * columns[:, :, None, :]).sum(axis=1)
+    r = (mc[:, :, :, None] * rhs[:, :, None, :]).sum(axis=1)
+    if gram.shape[-1] == 2:
+        # closed form for 2 unknowns: eigenvalues m ± q of [[a, b], [b*, d]] and Cramer's rule
+        a, b, d = gram[:, 0, 0].real, gram[:, 0, 1], gram[:, 1, 1].real
+        m, q = 0.5 * (a + d), np.hypot(0.5 * (a - d), np.abs(b))
+        lo, hi = m - q, m + q
+    else:
+        eig = np.linalg.eigvalsh(gram)  # ascending, (F, K)
+        lo, hi = eig[:, 0], eig[:, -1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cond = np.where(lo > 1e-14 * hi, np.sqrt(hi / lo), np.inf)
+    masked = ~(cond <= max_condition)
+    if gram.shape[-1] == 2:
+        det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
+        sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
+                        a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1) / det[:, None]
+        sol[masked] = 0.0
+        return sol, cond, masked
+    if masked.any():  # replace masked systems by identity / zero so the batch solve stays finite
+        eye = np.eye(gram.shape[-1], dtype=gram.dtype)
+        gram = np.where(masked[:, None, None], eye, gram)
+        r = np.where(masked[:, None, None], 0.0, r)
+    return np.linalg.solve(gram, r), cond, masked
+
+
+def _as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+    if not isinstance(eta, xr.DataArray):
+        raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
+                        f"{type(eta).__name__}")
+    if set(eta.dims) != {"probe", "time"}:
+        raise ValueError(f"eta must have dims ('probe', 'time'), got {eta.dims}")
+    if "x" not in eta.coords or eta.coords["x"].dims != ("probe",):
+        raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions)")
+    eta = eta.transpose("probe", "time")
+    x = np.asarray(eta.coords["x"].values, dtype=float)
+    t = np.asarray(eta.coords["time"].values, dtype=float)
+    v = np.asarray(eta.values, dtype=float)
+    if not np.all(np.isfinite(x)) or np.unique(x).size != x.size:
+        raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
+    if t.size < 8:
+        raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    if not dt > 0 or not np.allclose(np.diff(t), dt, rtol=1e-6, atol=1e-9 * dt):
+        raise ValueError("eta must be sampled uniformly in increasing time")
+    bad = ~np.isfinite(v)
+    if bad.any():
+        p = int(np.flatnonzero(bad.any(axis=1))[0])
+        raise ValueError(f"eta holds {int(bad.sum())} non-finite samples (first in probe "
+                         f"{eta.probe.values[p]!r}); fill or cut gaps before separating")
+    return v, t, x, eta.probe.values.tolist()
+
+
+def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
+             band: tuple[float, float] | None = None, x_ref: float | None = None, *,
+             regular: bool = False, period: float | None = None, bound_harmonics: bool = False,
+             window: str | None = None, max_condition: float = MAX_CONDITION,
+             warn_fraction: float = 0.01, g: float = G) -> xr.Dataset:
+    """Separate incident and reflected waves from simultaneous probe records.
+
+    Parameters
+    ----------
+    eta : Surface elevation [m], dims ("probe", "time"), coordinate ``x`` on ``probe``
+        (probe positions [m], x positive in the direction of the incident wave) and ``time`` [s]
+        (uniform sampling).
+    depth : Still water depth [m].
+    method : "mansard_funke" (exactly 3 probes), "goda_suzuki" (exactly 2) or
+        "zelt_skjelbreia" (2 or more); all use the same least-squares core.
+    band : (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
+        frequency (both excluded).
+    x_ref : Position [m] where the incident and reflected elevations are returned; default the
+        first probe.
+    regular : Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
+        every bin within f1/2 of harmonic n·f1 is fitted with the wavenumber of that harmonic
+        (so spectral leakage does not bias the fit), heights are crest-to-trough heights of the
+        separated harmonic wave, and harmonic-resolved amplitudes are returned.
+    period : Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
+    bound_harmonics : Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
+        instead of free waves (implies ``regular``).
+    window : Optional taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra,
+        heights and reflection coefficient; the elevation time series always use the untapered
+        transform. The taper is normalised to unit mean square so variances are preserved.
+    max_condition : Bins whose least-squares matrix has a larger condition number are masked
+        (excluded) [-]. Default cot(π/20) ≈ 6.3, the Goda–Suzuki two-probe limits.
+    warn_fraction : Warn (:class:`SeparationWarning`) when masked bins hold more than this
+        fraction of the measured energy in the band [-].
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    xr.Dataset with
+        ``eta_incident``, ``eta_reflected`` (time) [m] : separated elevations at ``x_ref``;
+        ``spectrum_incident``, ``spectrum_reflected`` (frequency) [m2 s] : one-sided variance
+        densities (periodogram) of the band bins;
+        ``condition_number``, ``masked``, ``wave_number`` (frequency);
+        ``reflection_coefficient`` [-] : irregular waves: Kr = sqrt(m0_R / m0_I) over the
+        unmasked band bins (the energy ratio of Mansard & Funke 1980); ``regular``: the
+        first-harmonic ratio |A_R1| / |A_I1| (bound harmonics are not reflection; see
+        ``harmonic_reflection_coefficient`` for the others);
+        ``incident_height``, ``reflected_height`` [m] : Hm0 = 4 sqrt(m0) for irregular waves;
+        for ``regular`` the crest-to-trough height of the sum of the separated harmonics over
+        one period (equal to 2|a1| for a linear wave), see the ``definition`` attribute;
+        ``masked_energy_fraction`` [-] : measured energy of the masked bins / energy of the band;
+        for ``regular`` also, over ``harmonic``: ``incident_harmonic_amplitude``,
+        ``reflected_harmonic_amplitude`` [m] and ``harmonic_reflection_coefficient`` [-]
+        (NaN where the incident harmonic amplitude is below 1e-3 of the first harmonic's, i.e.
+        where the ratio is undefined); ``incident_amplitude`` a1 [m] and ``incident_phase`` [rad]
+        of the first harmonic at x_ref, η_I1 = a1 cos(2π f t + phase) in the record's time.
+
+    Raises
+    ------
+    ValueError : bad arguments, non-finite samples, an empty band, or no separable incident
+        energy at all (every bin holding energy masked).
+    """
+    if method not in METHODS:
+        raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
+    if not depth > 0 or not np.isfinite(depth):
+        raise ValueError(f"depth must be positive and finite, got {depth}")
+    if not max_condition > 1:
+        raise ValueError(f"max_condition must exceed 1, got {max_condition}")
+    v, t, x, probes = _as_probe_time(eta)
+    n_min, n_max = METHODS[method]
+    if x.size < n_min or (n_max is not None and x.size > n_max):
+        need = f"exactly {n_min}" if n_min == n_max else f"at least {n_min}"
+        raise ValueError(f"method {method!r} needs {need} probes, got {x.size} ({probes})")
+    regular = regular or bound_harmonics
+    x_ref = float(x[0]) if x_ref is None else float(x_ref)
+
+    n = t.size
+    dt = (t[-1] - t[0]) / (n - 1)
+    freq = np.fft.rfftfreq(n, dt)
+    nyq = 0.5 / dt
+    f_lo, f_hi = (0.0, nyq) if band is None else (float(band[0]), float(band[1]))
+    if not 0 <= f_lo < f_hi:
+        raise ValueError(f"band must satisfy 0 <= f_min < f_max, got {band}")
+    sel = np.flatnonzero((freq > 0) & (freq < nyq) & (freq >= f_lo) & (freq <= f_hi))
+    if sel.size == 0:
+        raise ValueError(f"no frequency bin of this record ({freq[1]:.3g} Hz apart, Nyquist "
+                         f"{nyq:.3g} Hz) lies in the band {band}")
+    f = freq[sel]
+    df = freq[1]
+
+    v = v - v.mean(axis=1, keepdims=True)
+    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
+    c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
+    rhs = [c.T]
+    if window is not None:
+        w = _sig.get_window(window, n)
+        w = w / np.sqrt(np.mean(w * w))
+        rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
+
+    # wavenumbers of the incident and reflected columns, per bin
+    harmonic = None
+    if regular:
+        if period is None:
+            f1 = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
+        else:
+            if not period > 0:
+                raise ValueError(f"period must be positive, got {period}")
+            f1 = 1.0 / float(period)
+        harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
+        k1 = float(wavenumber(2 * np.pi * f1, depth, g))
+        hmax = max(int(harmonic.max()), 1)
+        kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
+        if bound_harmonics:
+            kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
+        k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
+                     wavenumber(2 * np.pi * f, depth, g))
+    else:
+        k = wavenumber(2 * np.pi * f, depth, g)
+
+    phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
+    columns = np.stack([phase, np.conj(phase)], axis=-1)  # (F, P, 2)
+    sol, cond, masked = lstsq_normal(columns, np.stack(rhs, axis=-1), max_condition)
+    a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
+
+    # energy bookkeeping on the (tapered) spectrum used for statistics
+    s = -1
+    e_meas = 0.5 * np.mean(np.abs(rhs[s]) ** 2, axis=1)  # measured variance per bin
+    e_total = float(e_meas.sum())
+    masked_fraction = float(e_meas[masked].sum() / e_total) if e_total > 0 else 0.0
+    e_inc = 0.5 * np.abs(a_inc[:, s]) ** 2
+    e_ref = 0.5 * np.abs(a_ref[:, s]) ** 2
+    m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
+    if not m0_i > 0:
+        raise ValueError(
+            f"no incident energy could be separated: the {int(masked.sum())} masked bins (of "
+            f"{f.size}) hold {masked_fraction:.1%} of the energy in the band. The probe layout "
+            f"x = {x.tolist()} m is singular or ill-conditioned (condition number > "
+            f"{max_condition:.3g}) where the waves are; change the spacing or max_condition")
+    if masked_fraction > warn_fraction:
+        worst = int(np.argmax(np.where(masked, e_meas, -1.0)))
+        dxs = np.abs(x[:, None] - x[None, :])[np.triu_indices(x.size, 1)]
+        warnings.warn(
+            f"separation: {masked_fraction:.1%} of the wave energy in the band lies in "
+            f"{int(masked.sum())} of {f.size} bins where the probe layout x = {x.tolist()} m "
+            f"is ill-conditioned (condition number > {max_condition:.3g}; worst at "
+            f"f = {f[worst]:.4g} Hz, k·Δx/π = {np.round(k[worst] * dxs / np.pi, 3).tolist()}). "
+            "These bins are excluded from the incident and reflected waves; change the probe "
+            "spacing or narrow the band.", SeparationWarning, stacklevel=2)
+    kr = float(np.sqrt(m0_r / m0_i))  # energy ratio; replaced by the first harmonic's if regular
+
+    # time series at x_ref from the untapered solution
+    shift_i = np.exp(-1j * k * x_ref)
+    spec_i = np.zeros(freq.size, complex)
+    spec_r = np.zeros(freq.size, complex)
+    spec_i[sel] = a_inc[:, 0] * shift_i * (n / 2.0)
+    spec_r[sel] = a_ref[:, 0] * np.conj(shift_i) * (n / 2.0)
+    eta_i = np.fft.irfft(spec_i, n)
+    eta_r = np.fft.irfft(spec_r, n)
+
+    data = {
+        "eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r),
+        "spectrum_incident": ("frequency", e_inc / df),
+        "spectrum_reflected": ("frequency", e_ref / df),
+        "condition_number": ("frequency", cond), "masked": ("frequency", masked.astype(np.int8)),
+        "wave_number": ("frequency", k),
+        "masked_energy_fraction": ((), masked_fraction),
+    }
+    coords = {"time": t, "frequency": f}
+    if regular:
+        (hi, amp_i, ph_i, peak_i), (hr, amp_r, _, _) = _harmonic_waves(
+            a_inc[:, s] * shift_i, a_ref[:, s] * np.conj(shift_i), harmonic)
+        definition = ("crest-to-trough height over one period of the sum of the separated "
+                      "harmonics at x_ref")
+        # a harmonic's Kr is meaningless where it holds no incident wave: NaN below 1e-3 a1
+        resolved = amp_i > 1e-3 * amp_i[0]
+        kr_n = np.where(resolved, amp_r / np.where(resolved, amp_i, 1.0), np.nan)
+        if not amp_i[0] > 0:
+            raise ValueError(
+                f"the first harmonic ({f1:.4g} Hz) was masked or lies outside the band: the probe layout "
+                f"x = {x.tolist()} m may be ill-conditioned at the wave frequency")
+        kr = float(kr_n[0])
+        # phase of a cos(ωt + phase) in the record's time: the bin phase refers to t[0]
+        phase_1 = float(np.angle(np.exp(1j * (ph_i[0] - 2 * np.pi * f[peak_i[0]] * t[0]))))
+        kr_definition = "first-harmonic amplitude ratio |A_R1| / |A_I1|"
+        data.update({
+            "incident_harmonic_amplitude": ("harmonic", amp_i),
+            "reflected_harmonic_amplitude": ("harmonic", amp_r),
+            "harmonic_reflection_coefficient": ("harmonic", kr_n),
+            "incident_amplitude": ((), float(amp_i[0])),
+            "incident_phase": ((), phase_1)})
+        coords["harmonic"] = np.arange(1, amp_i.size + 1)
+    else:
+        hi, hr = 4.0 * np.sqrt(m0_i), 4.0 * np.sqrt(m0_r)  # Hm0 = 4 sqrt(m0)
+        definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
+        kr_definition = "energy ratio sqrt(m0_R / m0_I) over the unmasked band (Mansard & Funke 1980)"
+    data["reflection_coefficient"] = ((), kr, {"definition": kr_definition})
+    data["incident_height"] = ((), float(hi), {"definition": definition})
+    data["reflected_height"] = ((), float(hr), {"definition": definition})
+
+    ds = xr.Dataset(data, coords=coords, attrs={
+        "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
+        "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
+        "regular": int(regular), "bound_harmonics": int(bound_harmonics),
+        "max_condition": max_condition, "depth": float(depth),
+        "fundamental_frequency": f1 if regular else np.nan,
+        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
+    return conventions.annotate(ds)
+
+
+def _harmonic_waves(c_inc: np.ndarray, c_ref: np.ndarray, harmonic: np.ndarray,
+                    n_phase: int = 512) -> list[tuple[float, np.ndarray, np.ndarray, np.ndarray]]:
+    """Heights, amplitudes and phases of regular incident and reflected waves.
+
+    ``c_*`` are complex one-sided bin amplitudes at x_ref; ``harmonic`` the harmonic number of
+    each bin (0 below f1/2). The amplitude of harmonic n is the root of the summed bin energies
+    of its neighbourhood (|f - n f1| < f1/2, robust to leakage); its phase is that of the
+    strongest bin. The height is max - min of Σ_n a_n cos(2π n φ + ψ_n) over one period.
+    Returns, per wave, (height, amplitude[n], phase[n], index of the strongest bin[n]).
+    """
+    nh = max(int(harmonic.max()), 1)
+    idx = np.clip(harmonic, 0, nh)
+    phi = np.arange(n_phase) / n_phase
+    out = []
+    for cc in (c_inc, c_ref):  # two waves
+        amp = np.sqrt(np.bincount(idx, np.abs(cc) ** 2, minlength=nh + 1))[1:]
+        # strongest bin of each harmonic: sort by (harmonic, power), take the last of each run
+        order = np.lexsort((np.abs(cc), idx))
+        last = order[np.flatnonzero(np.r_[idx[order][1:] != idx[order][:-1], True])]
+        peak = np.zeros(nh + 1, int)
+        peak[idx[last]] = last
+        ph = np.angle(cc[peak[1:]])
+        wave = (amp[:, None] * np.cos(2 * np.pi * np.arange(1, nh + 1)[:, None] * phi
+                                      + ph[:, None])).sum(axis=0)
+        out.append((float(wave.max() - wave.min()), amp, ph, peak[1:]))
+    return out
