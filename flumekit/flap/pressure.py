@@ -1,0 +1,136 @@
+"""Chamber pressure of the single-acting PTO cylinder (Brito et al. 2020, Eqs. 13-14).
+
+The cylinder's lower (full-bore) chamber is connected to the hydraulic circuit; its upper
+chamber is open to the atmosphere, so the net pressure force pushing the rod out is
+F_p = A P_int with P_int the chamber's gauge pressure and A the bore area.
+
+Eq. (13) models the chamber pressure as K_p θ̇² + I_p θ̈ (pressure loss in the circuit plus the
+inertia of the fluid), clamped at the vapour pressure when the Thoma coefficient
+σ = (P_atm + P_int − P_v)/P_atm (Eq. 14) falls below σ_c = 0. As printed, K_p θ̇² has the same
+sign whichever way the flap moves. For a single-acting cylinder that is not physical: when the
+rod is pushed in (compression; θ̇ > 0 for our anchors, the flap leaning to the beach) the fluid
+is driven out through the circuit and the chamber pressure rises above the atmosphere; when the
+rod is pulled out (extension) the chamber sucks fluid in and its pressure falls below the
+atmosphere, towards the vapour pressure. The loss term therefore takes the sign of the flow:
+we implement
+
+    P_int = K_p θ̇ |θ̇| + I_p θ̈                    (σ ≥ 0, no cavitation)
+    P_int = P_v − P_atm                            (σ < 0, cavitation)
+
+with P_int a gauge pressure and θ̇ > 0 the compression direction (pass ``compression_sign=-1``
+for a cylinder mounted the other way). The cavitation branch as printed, P_v + I_p θ̈, adds the
+fluid inertia to an absolute vapour pressure: while the chamber cavitates its vapour cavity
+decouples the piston from the fluid column, so the chamber pressure is the vapour pressure
+(P_v − P_atm in gauge terms) and the inertia term does not act on the piston.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+#: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
+VAPOUR_PRESSURE = 2339.0
+ATMOSPHERIC_PRESSURE = 101325.0
+
+
+def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
+                      vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
+    """Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm [-] (Eq. 14); P_int gauge [Pa]."""
+    if not atmospheric_pressure > 0:
+        raise ValueError(f"atmospheric pressure must be > 0, got {atmospheric_pressure}")
+    return (atmospheric_pressure + np.asarray(chamber_pressure, dtype=float)
+            - vapour_pressure) / atmospheric_pressure
+
+
+def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: float,
+                           fluid_inertia: float, *,
+                           atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
+                           vapour_pressure: float = VAPOUR_PRESSURE,
+                           compression_sign: int = 1) -> np.ndarray:
+    """Chamber gauge pressure [Pa] from the flap motion (Eq. 13 in the signed form, σ_c = 0).
+
+    Parameters
+    ----------
+    theta_dot : Flap angular velocity [rad s-1].
+    theta_ddot : Flap angular acceleration [rad s-2].
+    pressure_loss_coefficient : K_p [Pa s2 rad-2], ≥ 0.
+    fluid_inertia : I_p [Pa s2 rad-1].
+    atmospheric_pressure : P_atm [Pa].
+    vapour_pressure : P_v, absolute [Pa].
+    compression_sign : +1 if θ̇ > 0 compresses the chamber (the default anchors), −1 otherwise.
+    """
+    w = compression_sign * np.asarray(theta_dot, dtype=float)
+    a = compression_sign * np.asarray(theta_ddot, dtype=float)
+    p = pressure_loss_coefficient * w * np.abs(w) + fluid_inertia * a
+    # Eq. (14) with σ_c = 0: σ < 0  <=>  P_int < P_v − P_atm
+    return np.maximum(p, vapour_pressure - atmospheric_pressure)
+
+
+class PressureFit(NamedTuple):
+    """Least-squares fit of Eq. (13)."""
+
+    pressure_loss_coefficient: float  # K_p [Pa s2 rad-2]
+    fluid_inertia: float  # I_p [Pa s2 rad-1]
+    r2: float  # coefficient of determination over all samples used
+    cavitating: np.ndarray  # bool, samples on the cavitation branch of the fitted model
+    fitted: np.ndarray  # fitted chamber pressure [Pa]
+
+
+def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
+                       atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
+                       vapour_pressure: float = VAPOUR_PRESSURE, compression_sign: int = 1,
+                       max_iterations: int = 20) -> PressureFit:
+    """Fit K_p and I_p of Eq. (13) to a measured chamber pressure by least squares.
+
+    The model is linear in (K_p, I_p) off the cavitation branch and constant on it, so the fit
+    alternates a linear least-squares solve on the samples where the current model is above the
+    vapour clamp with a re-classification of the samples (an active-set iteration), starting
+    from the samples whose measured pressure is above the clamp. The iteration stops when the
+    set no longer changes. R² is that of the full piecewise model over all samples.
+
+    Parameters
+    ----------
+    chamber_pressure : Measured gauge pressure [Pa].
+    theta_dot, theta_ddot : Flap angular velocity [rad s-1] and acceleration [rad s-2].
+
+    Raises
+    ------
+    ValueError : Non-finite input, mismatched shapes, or too few non-cavitating samples.
+    """
+    p = np.asarray(chamber_pressure, dtype=float).ravel()
+    w = compression_sign * np.asarray(theta_dot, dtype=float).ravel()
+    a = compression_sign * np.asarray(theta_ddot, dtype=float).ravel()
+    if not (p.shape == w.shape == a.shape):
+        raise ValueError(f"pressure fit: shapes differ ({p.shape}, {w.shape}, {a.shape})")
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(w)) and np.all(np.isfinite(a))):
+        raise ValueError("pressure fit: non-finite samples in the pressure or the motion")
+    clamp = vapour_pressure - atmospheric_pressure
+    design = np.column_stack([w * np.abs(w), a])
+    # start from the samples clearly above the clamp (noise scale from the data)
+    spread = np.std(p) if p.size > 1 else 0.0
+    active = p > clamp + 1e-3 * spread
+    coef = np.zeros(2)
+    for _ in range(max_iterations):
+        if active.sum() < 3:
+            raise ValueError("pressure fit: fewer than three samples off the cavitation branch")
+        coef, *_ = np.linalg.lstsq(design[active], p[active], rcond=None)
+        new = design @ coef > clamp
+        if np.array_equal(new, active):
+            break
+        active = new
+    fitted = np.maximum(design @ coef, clamp)
+    ss_res = float(np.sum((p - fitted) ** 2))
+    ss_tot = float(np.sum((p - p.mean()) ** 2))
+    if not ss_tot > 0:
+        raise ValueError("pressure fit: the measured chamber pressure is constant (R² undefined)")
+    r2 = 1.0 - ss_res / ss_tot
+    return PressureFit(float(coef[0]), float(coef[1]), r2, ~active, fitted)
+
+
+def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
+    """Pressure force pushing the rod out, F_p = A P_int [N] (Eq. 13); P_int gauge [Pa], A [m2]."""
+    if not bore_area > 0:
+        raise ValueError(f"bore area must be > 0, got {bore_area}")
+    return bore_area * np.asarray(chamber_pressure, dtype=float)

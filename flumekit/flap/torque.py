@@ -1,0 +1,85 @@
+"""Torque balance about the hinge (Brito et al. 2020, Eqs. 11-12).
+
+    T_h = I θ̈ + T_g + T_PTO,     T_PTO = T_p + T_f                    Eqs. (11)-(12)
+
+All torques are about the hinge axis. T_h is the hydrodynamic torque acting on the flap
+(positive towards the beach); T_g and T_PTO are *resisting* torques, positive when they oppose a
+positive θ (that is how they enter Eq. 11, I θ̈ = T_h − T_g − T_PTO).
+
+Gravity and buoyancy. The flap's weight m g at the centre of mass (height z_g = 0.33 m above the
+hinge) and the buoyancy ρ g V at the centre of buoyancy (height z_b) rotate rigidly with the
+flap, so for a rigid, fully submerged body both torques are exactly proportional to sin θ:
+
+    T_g = (ρ g V z_b − m g z_g) sin θ = C sin θ,
+
+with C the net buoyancy stiffness, C = 605 N m rad-1 for this flap (Appendix A; with
+m g z_g = 234 N m the buoyancy moment ρ g V z_b is 839 N m). The flap pierces the surface, so its
+submerged volume and z_b change with θ; that correction is of relative order θ²/2 on the
+buoyancy part (under 2 % at 0.2 rad) and is neglected, as in the linear model of Appendix A.
+
+PTO torques. F_p = A P_int pushes the rod out, the LuGre friction force F_f resists the rod's
+extension rate, so the net extending force is F_p − F_f and its torque on the flap is
+m (F_p − F_f) with m the signed lever arm of :mod:`flumekit.flap.geometry` (|m| = r sin β,
+the lever arm that Eq. 12 omits). As resisting torques: T_p = −m F_p, T_f = +m F_f.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
+    """Net gravity-buoyancy resisting torque T_g = C sin θ [N m].
+
+    Parameters
+    ----------
+    theta : Flap angle [rad].
+    buoyancy_stiffness : Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
+    """
+    return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
+
+
+def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
+    """Inertia torque I θ̈ [N m]; I is the flap's moment of inertia about the hinge [kg m2]."""
+    if not inertia > 0:
+        raise ValueError(f"moment of inertia must be > 0, got {inertia}")
+    return inertia * np.asarray(theta_ddot, dtype=float)
+
+
+def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
+    """Resisting torque of the cylinder pressure force, T_p = −m F_p [N m] (Eq. 12 with lever arm).
+
+    Parameters
+    ----------
+    force_pressure : Pressure force pushing the rod out, A P_int [N].
+    lever_arm : Signed lever arm m of the rod about the hinge [m], |m| = r sin β.
+    """
+    return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
+
+
+def friction_torque(force_friction, lever_arm) -> np.ndarray:
+    """Resisting torque of the cylinder friction force, T_f = m F_f [N m] (Eq. 12 with lever arm).
+
+    Parameters
+    ----------
+    force_friction : Friction force resisting the rod's extension (> 0 while extending) [N].
+    lever_arm : Signed lever arm m of the rod about the hinge [m].
+    """
+    return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
+
+
+def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
+                        buoyancy_stiffness: float) -> np.ndarray:
+    """Hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO [N m] (Eq. 11).
+
+    Parameters
+    ----------
+    theta : Flap angle [rad].
+    theta_ddot : Angular acceleration [rad s-2].
+    torque_pto : Resisting PTO torque T_p + T_f [N m].
+    inertia : Moment of inertia about the hinge [kg m2].
+    buoyancy_stiffness : Net buoyancy stiffness C [N m rad-1].
+    """
+    # Eq. (11) in Brito et al. 2020
+    return (inertia_torque(theta_ddot, inertia) + gravity_torque(theta, buoyancy_stiffness)
+            + np.asarray(torque_pto, dtype=float))
