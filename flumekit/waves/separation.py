@@ -133,14 +133,18 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
         first probe.
     regular : Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
         every bin within f1/2 of harmonic n·f1 is fitted with the wavenumber of that harmonic
-        (so spectral leakage does not bias the fit), heights are crest-to-trough heights of the
-        separated harmonic wave, and harmonic-resolved amplitudes are returned.
+        (spectral leakage keeps its spatial structure). The statistics (harmonic amplitudes,
+        Kr, heights, phase) come from a least-squares fit of the harmonics n·f1 in the band to
+        each probe record at their exact frequencies, separated with the same core, so they
+        are unbiased for any record length; the time series still come from the bins and show
+        edge transients unless the record holds a whole number of periods.
     period : Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
     bound_harmonics : Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
         instead of free waves (implies ``regular``).
-    window : Optional taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra,
-        heights and reflection coefficient; the elevation time series always use the untapered
-        transform. The taper is normalised to unit mean square so variances are preserved.
+    window : Optional taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
+        and the irregular-wave statistics (Kr, Hm0, masked energy); the elevation time series
+        and the regular-wave statistics never use it. The taper is normalised to unit mean
+        square so variances are preserved.
     max_condition : Bins whose least-squares matrix has a larger condition number are masked
         (excluded) [-]. Default cot(π/20) ≈ 6.3, the Goda–Suzuki two-probe limits.
     warn_fraction : Warn (:class:`SeparationWarning`) when masked bins hold more than this
@@ -280,20 +284,33 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     }
     coords = {"time": t, "frequency": f}
     if regular:
-        (hi, amp_i, ph_i, peak_i), (hr, amp_r, _, _) = _harmonic_waves(
-            a_inc[:, s] * shift_i, a_ref[:, s] * np.conj(shift_i), harmonic)
+        # statistics from the harmonics at their exact frequencies (leakage-free for any record
+        # length): least-squares harmonic fit per probe, then the same separation core
+        nh = max(int(harmonic.max()), 1)
+        coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
+        ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
+        sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, np.conj(ph_h)], axis=-1),
+                                               coef.T[:, :, None], max_condition)
+        if masked_h[0]:
+            raise ValueError(
+                f"the probe layout x = {x.tolist()} m is ill-conditioned at the wave frequency "
+                f"{f1:.4g} Hz (condition number {cond_h[0]:.3g} > {max_condition:.3g}): the "
+                "incident and reflected waves cannot be separated; change the spacing")
+        n_h = np.arange(1, nh + 1)
+        z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
+                      sol_h[:, 1, 0] * np.exp(1j * kh * x_ref)])  # (2, nh) at x_ref
+        amp_i, amp_r = np.abs(z)
+        psi = 2 * np.pi * np.arange(512) / 512
+        wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)
+        hi, hr = wave.max(axis=1) - wave.min(axis=1)
         definition = ("crest-to-trough height over one period of the sum of the separated "
                       "harmonics at x_ref")
         # a harmonic's Kr is meaningless where it holds no incident wave: NaN below 1e-3 a1
-        resolved = amp_i > 1e-3 * amp_i[0]
+        resolved = (amp_i > 1e-3 * amp_i[0]) & ~masked_h
         kr_n = np.where(resolved, amp_r / np.where(resolved, amp_i, 1.0), np.nan)
-        if not amp_i[0] > 0:
-            raise ValueError(
-                f"the first harmonic ({f1:.4g} Hz) was masked or lies outside the band: the probe layout "
-                f"x = {x.tolist()} m may be ill-conditioned at the wave frequency")
         kr = float(kr_n[0])
-        # phase of a cos(ωt + phase) in the record's time: the bin phase refers to t[0]
-        phase_1 = float(np.angle(np.exp(1j * (ph_i[0] - 2 * np.pi * f[peak_i[0]] * t[0]))))
+        # phase in the record's time: a cos(2π f1 t + phase)
+        phase_1 = float(np.angle(z[0, 0] * np.exp(-2j * np.pi * f1 * t[0])))
         kr_definition = "first-harmonic amplitude ratio |A_R1| / |A_I1|"
         data.update({
             "incident_harmonic_amplitude": ("harmonic", amp_i),
@@ -320,29 +337,15 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     return conventions.annotate(ds)
 
 
-def _harmonic_waves(c_inc: np.ndarray, c_ref: np.ndarray, harmonic: np.ndarray,
-                    n_phase: int = 512) -> list[tuple[float, np.ndarray, np.ndarray, np.ndarray]]:
-    """Heights, amplitudes and phases of regular incident and reflected waves.
+def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int) -> np.ndarray:
+    """Least-squares fit of Σ_n Re{z_n e^(2πi n f1 (t - t0))} to each row of ``series``.
 
-    ``c_*`` are complex one-sided bin amplitudes at x_ref; ``harmonic`` the harmonic number of
-    each bin (0 below f1/2). The amplitude of harmonic n is the root of the summed bin energies
-    of its neighbourhood (|f - n f1| < f1/2, robust to leakage); its phase is that of the
-    strongest bin. The height is max - min of Σ_n a_n cos(2π n φ + ψ_n) over one period.
-    Returns, per wave, (height, amplitude[n], phase[n], index of the strongest bin[n]).
+    A fit at the exact harmonic frequencies, unlike FFT bins, is unbiased for a record holding a
+    non-whole number of periods. Returns z (rows, n_harmonics) complex [m]: amplitude |z_n| and
+    phase arg z_n relative to the first sample t0.
     """
-    nh = max(int(harmonic.max()), 1)
-    idx = np.clip(harmonic, 0, nh)
-    phi = np.arange(n_phase) / n_phase
-    out = []
-    for cc in (c_inc, c_ref):  # two waves
-        amp = np.sqrt(np.bincount(idx, np.abs(cc) ** 2, minlength=nh + 1))[1:]
-        # strongest bin of each harmonic: sort by (harmonic, power), take the last of each run
-        order = np.lexsort((np.abs(cc), idx))
-        last = order[np.flatnonzero(np.r_[idx[order][1:] != idx[order][:-1], True])]
-        peak = np.zeros(nh + 1, int)
-        peak[idx[last]] = last
-        ph = np.angle(cc[peak[1:]])
-        wave = (amp[:, None] * np.cos(2 * np.pi * np.arange(1, nh + 1)[:, None] * phi
-                                      + ph[:, None])).sum(axis=0)
-        out.append((float(wave.max() - wave.min()), amp, ph, peak[1:]))
-    return out
+    n = np.arange(1, n_harmonics + 1)
+    arg = 2 * np.pi * f1 * (t - t[0])[:, None] * n  # (N, n)
+    basis = np.concatenate([np.cos(arg), np.sin(arg), np.ones((t.size, 1))], axis=1)
+    coef = np.linalg.solve(basis.T @ basis, basis.T @ series.T)  # (2n + 1, rows)
+    return (coef[:n_harmonics] - 1j * coef[n_harmonics:2 * n_harmonics]).T

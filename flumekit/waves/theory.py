@@ -33,8 +33,8 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
     """
     omega = np.asarray(omega, dtype=float)
     depth = np.asarray(depth, dtype=float)
-    if np.any(~(omega > 0)) or np.any(~(depth > 0)):
-        raise ValueError("wavenumber needs omega > 0 and depth > 0 (finite)")
+    if not (np.all(np.isfinite(omega) & (omega > 0)) and np.all(np.isfinite(depth) & (depth > 0))):
+        raise ValueError("wavenumber needs finite omega > 0 and finite depth > 0")
     x = omega**2 * depth / g
     y = x / np.tanh(x**0.75) ** (2.0 / 3.0)
     for _ in range(6):
