@@ -17,7 +17,7 @@ from flumekit.waves.theory import G, energy_flux
 
 def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0.0, *,
                 method: str = "mansard_funke", separation_probes=None, n_harmonics: int = 4,
-                bound_harmonics: bool = True, tolerance: float = 0.02,
+                bound_harmonics: bool = True, tolerance: float = 0.02, min_cycles: int = 10,
                 max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
@@ -26,7 +26,7 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     eta : Calibrated surface elevation [m], dims ("probe", "time"), coordinate ``x`` [m] on
         ``probe``, ``time`` [s] since the start of the record (uniform sampling).
     depth : Still water depth [m].
-    period : Target wave period [s] (used to merge noisy zero crossings closer than T/2 and as
+    period : Target wave period [s] (used to merge noisy zero crossings closer than 0.75 T and as
         the starting guess; the analysis uses the measured period).
     x_ref : Position where the incident and reflected waves are returned [m] (the flap hinge,
         x = 0, for the comparison with the flap).
@@ -36,6 +36,7 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     bound_harmonics : Solve harmonics n ≥ 2 as bound waves (wavenumber n k1).
     tolerance : Quasi-steady criterion: relative deviation of each cycle's crest from the
         amplitude scale (Brito et al. 2020, §2.5: 2 %).
+    min_cycles : Fewest whole periods the common quasi-steady window must hold [-].
     max_condition : Largest condition number of the separation accepted per bin [-].
     g : Gravitational acceleration [m s-2].
 
@@ -64,16 +65,16 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
 
     # quasi-steady window of every probe (Brito et al. 2020, §2.5); loop over a handful of probes
-    windows = [quasi_steady_window(v[p], t, tolerance=tolerance, min_period=0.5 * period)
+    windows = [quasi_steady_window(v[p], t, tolerance=tolerance, min_period=0.75 * period)
                for p in range(v.shape[0])]
     start = max(w.start for w in windows)
     end = min(w.end for w in windows)
     t_meas = float(np.mean([w.period for w in windows]))
     n_per = int(np.floor((end - start) / t_meas + 1e-9))
-    if n_per < 2:
+    if n_per < max(min_cycles, 2):
         raise ValueError(
             f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
-            f"than two periods of {t_meas:.3g} s (windows: "
+            f"than {max(min_cycles, 2)} periods of {t_meas:.3g} s (windows: "
             + ", ".join(f"{p}: {w.start:.1f}-{w.end:.1f} s" for p, w in zip(probes, windows))
             + ")")
     dt = (t[-1] - t[0]) / (t.size - 1)
@@ -120,6 +121,6 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
         attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
                "wave_period": float(period), "separation_probes": steady.attrs["probes"],
                "n_harmonics": n_harmonics, "bound_harmonics": int(bound_harmonics),
-               "tolerance": tolerance, "band": steady.attrs["band"],
+               "tolerance": tolerance, "min_cycles": min_cycles, "band": steady.attrs["band"],
                "max_condition": max_condition})
     return conventions.annotate(ds)

@@ -1,0 +1,118 @@
+"""Shared signal tools: cycles, quasi-steady window, phase averaging, against analytic truths."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+from scipy import stats
+
+from flumekit.signal import (cycles, lowpass, phase_average, quasi_steady_window,
+                             resample_cycles, zero_upcrossings)
+
+FS = 100.0
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.5, 5.0), st.floats(0.01, 2.0), st.floats(0.0, 2 * np.pi))
+def test_cycles_of_a_sine(period, amplitude, phase):
+    t = np.arange(0, 20 * period, 1 / FS)
+    x = amplitude * np.sin(2 * np.pi * t / period + phase)
+    c = cycles(x, t)
+    # truth: up-crossings at t = (k - phase/2π) T; linear interpolation of a sine near its zero
+    # is exact to O((ω dt)³), periods exact to rounding of the differences
+    np.testing.assert_allclose(c.period, period, rtol=1e-5)
+    first = (-phase / (2 * np.pi)) % 1.0 * period
+    first = first if first > t[0] else first + period
+    assert c.start[0] == pytest.approx(first, abs=2e-4 * period)
+    # sampled extrema lie within A (1 - cos(π dt / T)) of the true ±A
+    tol = amplitude * (1 - np.cos(np.pi / (FS * period))) + 1e-12
+    assert np.all(np.abs(c.crest - amplitude) <= tol)
+    assert np.all(np.abs(c.trough + amplitude) <= tol)
+    np.testing.assert_allclose(c.height, 2 * amplitude, atol=2 * tol)
+    np.testing.assert_allclose(zero_upcrossings(x, t)[: c.start.size], c.start, atol=1e-12)
+
+
+def test_cycles_merges_noisy_crossings_closer_than_min_period():
+    T = 2.0
+    t = np.arange(0, 30 * T, 1 / FS)
+    rng = np.random.default_rng(0)
+    # the record starts rising from below zero, so its first noisy cluster of up-crossings is
+    # a true one. (Merging is anchored at the first crossing: had the record started just
+    # before a down-crossing, noise there could make the first kept crossing a spurious one.)
+    x = np.sin(2 * np.pi * t / T - 0.5) + rng.normal(0, 0.1, t.size)
+    raw = cycles(x, t)
+    # noise also makes up-crossings near the down-crossings, T/2 away: merge below 0.75 T
+    merged = cycles(x, t, min_period=0.75 * T)
+    assert raw.period.size > 29  # noise adds spurious crossings
+    assert merged.period.size == 29  # up-crossings near 0.16 + 2k s, k = 0..29: 29 cycles
+    # kept crossing: the first of each noisy cluster, within a few noise/slope = 0.03 s
+    np.testing.assert_allclose(merged.period, T, atol=0.15)
+    assert abs(np.mean(merged.period) - T) < 0.01
+    assert cycles(np.ones(10), np.arange(10.0)).period.size == 0
+
+
+def test_quasi_steady_window_of_an_exponential_ramp():
+    # x = (1 - e^(-t/τ)) sin ωt: cycle n (from nT) has its crest near nT + T/4 with value
+    # e(nT + T/4); the 2 % criterion starts at the first n with e >= 0.98 (scale -> 1)
+    T, tau = 2.0, 15.0
+    t = np.arange(0, 120 * T, 1 / FS)
+    x = (1 - np.exp(-t / tau)) * np.sin(2 * np.pi * t / T)
+    w = quasi_steady_window(x, t)
+    n0 = int(np.ceil((tau * np.log(50) - T / 4) / T))
+    assert w.start == pytest.approx(n0 * T, abs=1e-3)
+    assert w.amplitude_scale == pytest.approx(1.0, abs=1e-3)
+    assert w.period == pytest.approx(T, rel=1e-5)
+    assert w.height == pytest.approx(2.0, rel=5e-3)
+    assert w.end == pytest.approx(119 * T, abs=1e-3)  # last complete cycle
+    assert w.n_cycles == 119 - n0
+    # a 5 % criterion starts earlier
+    assert quasi_steady_window(x, t, tolerance=0.05).start < w.start
+
+
+def test_quasi_steady_window_errors():
+    t = np.arange(0, 5, 1 / FS)
+    with pytest.raises(ValueError, match="fewer than four"):
+        quasi_steady_window(np.sin(2 * np.pi * t / 2.0), t)
+
+
+def test_resample_cycles_is_exact_for_a_linear_signal_and_checks_range():
+    t = np.arange(0, 50, 0.1)
+    x = np.stack([t, 2 * t])
+    out = resample_cycles(x, t, period=3.0, start=5.0, n_cycles=4, n_phase=10)
+    truth = 5.0 + (np.arange(4)[:, None] + np.arange(10)[None, :] / 10) * 3.0
+    np.testing.assert_allclose(out[0], truth, atol=1e-12)
+    np.testing.assert_allclose(out[1], 2 * truth, atol=1e-12)
+    with pytest.raises(ValueError, match="beyond the record"):
+        resample_cycles(x, t, period=3.0, start=45.0, n_cycles=4)
+    with pytest.raises(ValueError, match="uniformly"):
+        resample_cycles(x, t**1.1, period=3.0, start=5.0, n_cycles=4)
+
+
+def test_phase_average_mean_std_and_confidence_interval():
+    T, n_cyc, sigma = 2.0, 200, 0.05
+    t = np.arange(0, (n_cyc + 2) * T, 1 / FS)
+    wave = lambda ph: np.sin(2 * np.pi * ph) + 0.3 * np.cos(4 * np.pi * ph)  # noqa: E731
+    rng = np.random.default_rng(1)
+    clean = wave(t / T)
+    x = np.stack([clean + rng.normal(0, sigma, t.size), 3 * clean])
+    pa = phase_average(x, t, T, start=T, n_cycles=n_cyc, n_phase=50)
+    assert pa.mean.shape == (2, 50) and pa.n_cycles == n_cyc
+    truth = wave(pa.phase)
+    # noiseless channel: exact up to linear interpolation between samples (dt/T = 0.005)
+    np.testing.assert_allclose(pa.mean[1], 3 * truth, atol=3 * (2 * np.pi * 0.005) ** 2 / 8 * 2)
+    # noisy channel: std ≈ σ (relative standard error 1/sqrt(2N) = 5 %), CI formula, coverage
+    assert np.mean(pa.std[0]) == pytest.approx(sigma, rel=0.03)
+    np.testing.assert_allclose(pa.ci95[0], stats.t.ppf(0.975, n_cyc - 1) * pa.std[0]
+                               / np.sqrt(n_cyc), rtol=1e-12)
+    covered = np.mean(np.abs(pa.mean[0] - truth) <= pa.ci95[0])
+    assert 0.85 <= covered <= 1.0
+    with pytest.raises(ValueError, match="two cycles"):
+        phase_average(x, t, T, start=T, n_cycles=1)
+
+
+def test_lowpass_keeps_the_band_and_removes_the_rest():
+    t = np.arange(0, 100, 1 / FS)
+    slow = np.sin(2 * np.pi * 0.3 * t)
+    y = lowpass(slow + 0.5 * np.sin(2 * np.pi * 20 * t), FS, cutoff=2.0)
+    # Butterworth order 4 run forward-backward: |H|² = 1/(1 + (f/fc)^8)
+    gain = 1 / (1 + (0.3 / 2.0) ** 8)
+    np.testing.assert_allclose(y[500:-500], gain * slow[500:-500], atol=1e-4)

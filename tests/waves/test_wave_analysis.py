@@ -1,0 +1,61 @@
+"""analyse_run on virtual-flume runs against the generator's truth."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.synth.waves import regular_wave_field
+from flumekit.waves import analyse_run, energy_flux, probe_spacing, wavenumber
+
+H = 0.825
+FS = 25.0
+
+
+def run(period, height, kr=0.2, phase=0.6, n_periods=110, noise=5e-4, seed=0):
+    x12, x23 = probe_spacing(period, H)
+    x = np.array([-7.0, -7.0 + x12, -7.0 + x12 + x23, -1.0])
+    t = np.arange(int(n_periods * period * FS)) / FS
+    field = regular_wave_field(t, x, period=period, height=height, depth=H, reflection=kr,
+                               reflection_phase=phase)
+    eta = field.eta.values + np.random.default_rng(seed).normal(0, noise, field.eta.shape)
+    da = xr.DataArray(eta, dims=("probe", "time"),
+                      coords={"probe": ["WP1", "WP2", "WP3", "WP4"], "x": ("probe", x), "time": t})
+    return da, field
+
+
+@pytest.mark.parametrize("period, height, kr", [(2.0, 0.15, 0.2), (3.5, 0.25, 0.2),
+                                                (4.0, 0.3, 0.08), (2.75, 0.2, 0.35)])
+def test_virtual_flume_run_kr_height_period_within_acceptance(period, height, kr):
+    da, field = run(period, height, kr)
+    ds = analyse_run(da, H, period, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+    # acceptance: Kr ±0.005, H_I within 0.5 % of the generator's target height
+    assert abs(float(ds.reflection_coefficient) - kr) < 0.005
+    assert float(ds.incident_height) == pytest.approx(height, rel=0.005)
+    a1 = field.attrs["incident_amplitude"]
+    assert float(ds.incident_amplitude) == pytest.approx(a1, rel=0.005)
+    assert float(ds.measured_period) == pytest.approx(period, rel=1e-3)
+    # phase of the incident wave at the flap: θ = ωt - k (0 - x_wavemaker)
+    k = wavenumber(2 * np.pi / period, H)
+    assert abs(np.angle(np.exp(1j * (float(ds.incident_phase) + k * 32.7)))) < 0.01
+    # quasi-steady window after ~35 waves, a whole number of periods long
+    assert 30 <= float(ds.steady_start) / period <= 42
+    n = (float(ds.steady_end) - float(ds.steady_start)) / float(ds.measured_period)
+    assert n == pytest.approx(int(ds.steady_cycles), abs=0.02)
+    assert float(ds.energy_flux) == pytest.approx(
+        float(energy_flux(2 * float(ds.incident_amplitude), float(ds.measured_period), H)))
+    # separated series at the flap within the window, against the truth (noise 0.5 mm)
+    truth = regular_wave_field(da.time.values, [0.0], period=period, height=height, depth=H,
+                               reflection=kr, reflection_phase=0.6)
+    ok = np.isfinite(ds.eta_incident.values)
+    assert ok.sum() == int(round((float(ds.steady_end) - float(ds.steady_start)) * FS))
+    err = ds.eta_incident.values[ok] - truth.eta_incident.values[0][ok]
+    assert np.sqrt(np.mean(err**2)) < 0.005 * a1
+    conventions.check(ds)
+    assert ds.eta_incident.attrs["units"] == "m"
+
+
+def test_record_without_a_steady_part_is_an_error():
+    da, _ = run(3.5, 0.2, n_periods=30)
+    with pytest.raises(ValueError):
+        analyse_run(da, H, 3.5)
