@@ -52,7 +52,8 @@ def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
         raise GeometryError("the bed anchor of the PTO rod is at the hinge: the rod line "
                             "always passes through the hinge and exerts no torque")
     if np.hypot(*(p - b)) <= _MIN_LEVER:
-        raise GeometryError(f"the PTO anchors coincide at {tuple(b)} m: the rod has no length")
+        raise GeometryError(f"the PTO anchors coincide at ({b[0]:g}, {b[1]:g}) m: the rod has no "
+                            "length")
     return b, p
 
 

@@ -1,0 +1,56 @@
+"""Fixtures of the flap tests: the default campaign and virtual-flume flap records."""
+
+from __future__ import annotations
+
+import functools
+import shutil
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from flumekit.campaign import load_campaign
+from flumekit.waves.theory import stokes2_coefficient, wavenumber
+
+DEPTH = 0.825
+
+
+@pytest.fixture(scope="session")
+def campaign(tmp_path_factory):
+    root = tmp_path_factory.mktemp("flapcampaign")
+    src = resources.files("flumekit.data").joinpath("default_campaign.toml")
+    with resources.as_file(src) as path:
+        shutil.copy(path, root / "campaign.toml")
+    return load_campaign(root)
+
+
+def ramped_wave(time: np.ndarray, period: float, height: float, ramp_periods: float = 8.0,
+                delay: float = 5.0) -> np.ndarray:
+    """Second-order Stokes wave at x = 0 with a half-cosine ramp starting at ``delay`` [s]."""
+    omega = 2 * np.pi / period
+    k = float(wavenumber(omega, DEPTH))
+    a = height / 2
+    tau = np.clip((time - delay) / (ramp_periods * period), 0.0, 1.0)
+    env = 0.5 - 0.5 * np.cos(np.pi * tau)
+    ph = omega * (time - delay)
+    return env * (a * np.cos(ph) + float(stokes2_coefficient(k, DEPTH)) * k * a**2 * np.cos(2 * ph))
+
+
+@functools.lru_cache(maxsize=4)
+def _record(campaign, period: float, height: float, n_waves: int, seed: int):
+    from flumekit.synth.flap import flap_record
+
+    time = np.arange(int((5.0 + n_waves * period) * 100)) / 100.0
+    eta = ramped_wave(time, period, height)
+    return time, eta, flap_record(time, eta, period=period, campaign=campaign,
+                                  rng=np.random.default_rng(seed), height=height)
+
+
+@pytest.fixture(scope="session")
+def record(campaign):
+    """record(period, height, n_waves=45, seed=7) -> (time, eta, truth dataset); cached."""
+
+    def make(period: float, height: float, n_waves: int = 45, seed: int = 7):
+        return _record(campaign, period, height, n_waves, seed)
+
+    return make
