@@ -154,6 +154,8 @@ VARIABLES: dict[str, Variable] = {
     "w_normalised": _V("1", "<w>/U0 with U0 = pi H/T"),
     "record": _V("1", "index of the profile record in the instrument file"),
     "beam_angle": _V("rad", "UVP beam angle above the horizontal, towards +x"),
+    "beam_x": _V("m", "x of the UVP transducer face"),
+    "beam_dz": _V("m", "elevation of the UVP transducer face relative to the run's UVP elevation"),
     "beam_velocity_std": _V("m s-1", "RMS of the along-beam velocity fluctuation about its phase average"),
     "beam_velocity_ci": _V("m s-1", "half-width of the 95 % confidence interval of the phase-averaged beam velocity"),
     "n_cycles": _V("1", "number of wave cycles phase-averaged"),

@@ -155,12 +155,18 @@ class PhaseAverage:
 
 
 def resample_cycles(x: np.ndarray, time: np.ndarray, period: float, start: float,
-                    n_cycles: int, n_phase: int = 100) -> np.ndarray:
+                    n_cycles: int, n_phase: int = 100, kind: str = "linear") -> np.ndarray:
     """Values of ``x`` at t = start + (i + p) T for i < n_cycles and p on a phase grid.
 
     Returns an array of shape ``x.shape[:-1] + (n_cycles, n_phase)`` by linear interpolation on
-    the uniform time grid (vectorised over all leading axes).
+    the uniform time grid (vectorised over all leading axes). ``kind="cubic"`` uses Keys' cubic
+    convolution (a = -1/2) instead: linear interpolation, averaged over the cycles' random
+    sub-sample offsets, acts as a triangle filter and biases a phase average by about
+    -(ω dt)²/12 of each harmonic's amplitude (0.2 % at 3.5 s and 11.6 Hz); cubic convolution
+    reduces this to O((ω dt)⁴).
     """
+    if kind not in ("linear", "cubic"):
+        raise ValueError(f"kind must be 'linear' or 'cubic', got {kind!r}")
     time = np.asarray(time, dtype=float)
     dt = (time[-1] - time[0]) / (time.size - 1)
     if not np.allclose(np.diff(time), dt, rtol=1e-6, atol=1e-9 * dt):
@@ -176,20 +182,29 @@ def resample_cycles(x: np.ndarray, time: np.ndarray, period: float, start: float
     i0 = np.floor(pos).astype(int)
     w = pos - i0
     x = np.asarray(x, dtype=float)
-    return x[..., i0] * (1 - w) + x[..., i0 + 1] * w
+    if kind == "linear":
+        return x[..., i0] * (1 - w) + x[..., i0 + 1] * w
+    # Keys (1981) cubic convolution weights for the samples i0-1 .. i0+2 (clamped at the ends)
+    w2, w3 = w * w, w * w * w
+    last = time.size - 1
+    return (x[..., np.maximum(i0 - 1, 0)] * (0.5 * (-w3 + 2 * w2 - w))
+            + x[..., i0] * (0.5 * (3 * w3 - 5 * w2 + 2))
+            + x[..., i0 + 1] * (0.5 * (-3 * w3 + 4 * w2 + w))
+            + x[..., np.minimum(i0 + 2, last)] * (0.5 * (w3 - w2)))
 
 
 def phase_average(x: np.ndarray, time: np.ndarray, period: float, start: float, n_cycles: int,
-                  n_phase: int = 100) -> PhaseAverage:
+                  n_phase: int = 100, kind: str = "linear") -> PhaseAverage:
     """Phase average of ``x`` over ``n_cycles`` periods from ``start`` (Brito et al. 2020, Eq. 2).
 
     ``std`` is the RMS of the fluctuation x - <x> over the cycles at each phase (the
     phase-resolved turbulence intensity for velocities); ``ci95`` the Student-t half-width of the
-    95 % confidence interval of the mean, treating cycles as independent.
+    95 % confidence interval of the mean, treating cycles as independent. ``kind`` selects the
+    interpolation between samples (:func:`resample_cycles`).
     """
     if n_cycles < 2:
         raise ValueError("phase averaging needs at least two cycles")
-    cyc = resample_cycles(x, time, period, start, n_cycles, n_phase)
+    cyc = resample_cycles(x, time, period, start, n_cycles, n_phase, kind=kind)
     mean = cyc.mean(axis=-2)
     std = cyc.std(axis=-2, ddof=1)
     ci = _stats.t.ppf(0.975, n_cycles - 1) * std / np.sqrt(n_cycles)

@@ -29,6 +29,7 @@ import xarray as xr
 from xarray.backends import BackendEntrypoint
 
 from flumekit import conventions
+from flumekit.campaign import UVP
 from flumekit.errors import InputError
 
 HEADER_SIZE = 104
@@ -414,6 +415,23 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
 # writer
 # --------------------------------------------------------------------------------------------
 
+def campaign_parameters(uvp: UVP) -> dict[str, object]:
+    """File parameters (key names and units of FORMAT.md §4.2) of campaign UVP settings.
+
+    ``MaximumDepth`` is not a campaign setting: the writer keeps the data's value or uses the
+    smallest depth covering every channel.
+    """
+    return {"Frequency": int(round(uvp.frequency)), "SoundSpeed": _plain(uvp.sound_speed),
+            "StartChannel": round(uvp.start_channel * 1e3, 9),
+            "ChannelDistance": round(uvp.channel_distance * 1e3, 9),
+            "ChannelWidth": round(uvp.channel_width * 1e3, 9),
+            "SampleTime": int(round(1e3 / uvp.sampling_rate))}
+
+
+def _plain(v: float) -> int | float:
+    return int(v) if float(v).is_integer() else float(v)
+
+
 def _params_from_attrs(attrs: Mapping[str, object]) -> dict[str, object]:
     skip = {"mfprof_start_time_filetime", "mfprof_records_stored"}
     return {k[len(ATTR_PREFIX):]: v for k, v in attrs.items()
@@ -421,7 +439,7 @@ def _params_from_attrs(attrs: Mapping[str, object]) -> dict[str, object]:
 
 
 def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
-                 params: Mapping[str, object] | None = None, *, start_time: int | None = None,
+                 params: Mapping[str, object] | UVP | None = None, *, start_time: int | None = None,
                  n_records: int | None = None, encoding: str = "cp1252") -> Path:
     """Write a ``.mfprof`` file atomically (temporary file in the same folder, then rename).
 
@@ -431,7 +449,9 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     data : A dataset as returned by :func:`read_mfprof` (``time``, ``beam_velocity`` and
         optionally ``amplitude``), or a mapping with arrays ``time`` [s] (n,) and
         ``beam_velocity`` [m s-1] (n, n_channels), optionally ``amplitude`` [counts].
-    params : File parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
+    params : A :class:`flumekit.campaign.UVP` (its settings replace the acoustic and channel
+        parameters of ``data``'s attributes, see :func:`campaign_parameters`), or
+        file parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
         [m s-1], ``MaximumDepth`` [mm], ``StartChannel`` [mm], ``ChannelDistance`` [mm],
         ``ChannelWidth`` [mm], ``SampleTime`` [ms], ..., and the MUX keys). Default: the
         ``mfprof_*`` attributes of ``data``; keys not given come from the UVP Monitor template.
@@ -446,7 +466,10 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     """
     path = Path(path)
     attrs = dict(data.attrs) if isinstance(data, xr.Dataset) else {}
-    given = dict(_params_from_attrs(attrs) if params is None else params)
+    if isinstance(params, UVP):
+        given = {**_params_from_attrs(attrs), **campaign_parameters(params)}
+    else:
+        given = dict(_params_from_attrs(attrs) if params is None else params)
     if start_time is None:
         start_time = int(attrs.get("mfprof_start_time_filetime",
                                    FILETIME_UNIX_EPOCH + 1_577_836_800 * 10_000_000))
@@ -472,7 +495,7 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     uvp.update({k: v for k, v in given.items() if k not in _MUX_KEYS})
     mux = {k: given.get(k, v) for k, v in _MUX_TEMPLATE.items()}
     missing = [k for k in ("Frequency", "StartChannel", "ChannelDistance", "ChannelWidth",
-                           "MaximumDepth", "SoundSpeed") if uvp.get(k) is None]
+                           "SoundSpeed") if uvp.get(k) is None]
     if missing:
         raise ValueError(f"write_mfprof needs the parameters {missing}")
     total = n if n_records is None else int(n_records)
@@ -486,6 +509,9 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
                        ("LastValidChannel", n_channels - 1)):
         if uvp.get(key) is None:
             uvp[key] = value
+    if uvp.get("MaximumDepth") is None:  # the smallest d_max that covers every channel [mm]
+        last = float(uvp["StartChannel"]) + (n_channels - 1) * float(uvp["ChannelDistance"])
+        uvp["MaximumDepth"] = float(np.ceil((last + float(uvp["ChannelWidth"])) * 100) / 100)
     dv = velocity_resolution(uvp)
     counts = np.rint(vel / dv)
     lo, hi = int(uvp["RawDataMin"]), int(uvp["RawDataMax"])

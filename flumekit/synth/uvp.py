@@ -1,0 +1,383 @@
+"""The virtual flume's UVP: along-beam velocities of a known wave field, and the true field.
+
+Kinematics (potential flow) of the incident and reflected regular waves of
+:func:`flumekit.synth.waves.regular_wave_field`, with the same phase convention, ramp-up and
+second-order Stokes bound harmonic, so that the UVP records and the wave-probe/flap records of a
+virtual run describe one flow. With θ_I = ωt - k(x - x_wm), θ_R = ωt - k(2x_r - x - x_wm) + φ,
+z_b = z + hinge_height the elevation above the bed, C_n = cosh(n k z_b)/sinh^n... (below):
+
+    u = a ω C1 cos θ_I + (3/4) a² ω k C2 cos 2θ_I  -  [same with Kr a, θ_R]
+    w = -(a ω S1 sin θ_I + (3/4) a² ω k S2 sin 2θ_I)  -  [same with Kr a, θ_R]
+
+with C1 = cosh(k z_b)/sinh(kh), S1 = sinh(k z_b)/sinh(kh), C2 = cosh(2k z_b)/sinh⁴(kh),
+S2 = sinh(2k z_b)/sinh⁴(kh) (second-order Stokes velocities, Dean & Dalrymple 1991, §11.3;
+the linear part alone when ``second_order=False``). The envelopes multiply first-order terms
+once and second-order terms squared, as in the elevation.
+
+The instrument: each beam's channels (see :mod:`flumekit.uvp.geometry`) sample the velocity
+projected on the beam (positive away from the transducer, the label the reader uses by default),
+plus white Doppler noise, quantised to the counts of ΔV and wrapped into the raw range (aliasing).
+A channel is seen only while the transducer and the whole path to it are under the free surface
+and in front of the flap: beyond the free surface the echo is noise with a low amplitude; inside
+or behind the flap the channel sees the flap's rigid-body velocity with a high amplitude.
+
+Reference phase of the truth: phase p = t/T is measured from a zero up-crossing t_up of the
+steady incident elevation at the flap, η_I(x = 0, t) (first and, if enabled, second order),
+i.e. t = t_up + p T (:func:`incident_upcrossing`). The pipeline phase-averages the measured
+velocities from the up-crossings of the (separated) incident wave at x = 0; the two agree.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.campaign import UVP, Campaign
+from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, campaign_parameters, velocity_range
+from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.waves.theory import G, group_velocity, stokes2_coefficient, wavenumber
+
+X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the wavemaker)
+
+
+def _wave(period: float, height: float, depth: float, second_order: bool, g: float = G):
+    from flumekit.synth.waves import first_harmonic_amplitude
+
+    if not (period > 0 and height > 0 and depth > 0):
+        raise ValueError("period, height and depth must be positive")
+    omega = 2 * np.pi / period
+    k = float(wavenumber(omega, depth, g))
+    a1 = first_harmonic_amplitude(height, k, depth, second_order)
+    a2 = float(stokes2_coefficient(k, depth)) * k * a1**2 if second_order else 0.0
+    return omega, k, a1, a2
+
+
+def _depth_functions(k: float, depth: float, zb):
+    """C1, S1, C2, S2 of the module notes, overflow-free (exponential form)."""
+    zb = np.asarray(zb, dtype=float)
+    kh = k * depth
+    den = -np.expm1(-2 * kh)  # (1 - e^{-2kh}); sinh(kh) = e^{kh} den / 2
+    e1p, e1m = np.exp(k * zb - kh), np.exp(-k * zb - kh)
+    c1 = (e1p + e1m) / den
+    s1 = (e1p - e1m) / den
+    # cosh(2k zb)/sinh^4(kh) = 8 (e^{2k zb - 4kh} + e^{-2k zb - 4kh}) / den^4
+    e2p, e2m = np.exp(2 * k * zb - 4 * kh), np.exp(-2 * k * zb - 4 * kh)
+    c2 = 8 * (e2p + e2m) / den**4
+    s2 = 8 * (e2p - e2m) / den**4
+    return c1, s1, c2, s2
+
+
+def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
+                    hinge_height: float = 0.10, reflection: float = 0.2,
+                    reflection_phase: float = 0.0, x_reflector: float = 0.0,
+                    x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = 10.0,
+                    second_order: bool = True, g: float = G
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Velocity and free surface of incident + reflected regular waves (module notes).
+
+    Parameters
+    ----------
+    x, z, time : Position [m] (z above the hinge) and time since wave generation started [s],
+        broadcast together (``eta`` uses x and time only).
+    period : Wave period T [s].
+    height : Incident wave height H [m].
+    depth : Still water depth h [m].
+    hinge_height : Hinge above the bed [m] (z = 0 at the hinge).
+    reflection : Reflection coefficient Kr [-].
+    reflection_phase : Phase φ of the reflected wave at the reflector [rad].
+    x_reflector, x_wavemaker : Reflector (flap) and wavemaker positions [m].
+    ramp_waves : Ramp length in periods as in :func:`flumekit.synth.waves.regular_wave_field`;
+        ``None`` for the steady state (no ramp, no travel).
+    second_order : Include the second-order Stokes bound harmonic.
+
+    Returns
+    -------
+    u, w : Longitudinal and vertical velocity [m s-1].
+    eta : Free-surface elevation [m].
+    """
+    from flumekit.synth.waves import ramp_envelope
+
+    if not 0 <= reflection <= 1:
+        raise ValueError(f"reflection coefficient must lie in [0, 1], got {reflection}")
+    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
+    x = np.asarray(x, dtype=float)
+    t = np.asarray(time, dtype=float)
+    d_inc = x - x_wavemaker
+    d_ref = 2 * x_reflector - x - x_wavemaker
+    if ramp_waves is None:
+        e_i = e_r = 1.0
+    else:
+        cg = float(group_velocity(period, depth, g))
+        ramp_time = ramp_waves * period / 2.0
+        e_i = ramp_envelope(t - d_inc / cg, ramp_time)
+        e_r = ramp_envelope(t - d_ref / cg, ramp_time)
+    # cos/sin of θ = ωt - kd by the angle-addition rule: trigonometric functions of t and of x
+    # only, then products (the 2-D arrays need no transcendental function)
+    cwt, swt = np.cos(omega * t), np.sin(omega * t)
+    ci, si = np.cos(k * d_inc), np.sin(k * d_inc)
+    cr, sr = np.cos(k * d_ref - reflection_phase), np.sin(k * d_ref - reflection_phase)
+    cos_i, sin_i = cwt * ci + swt * si, swt * ci - cwt * si
+    cos_r, sin_r = cwt * cr + swt * sr, swt * cr - cwt * sr
+    c1, s1, c2, s2 = _depth_functions(k, depth, np.asarray(z, dtype=float) + hinge_height)
+    b1 = reflection * a1
+    ai, ar = a1 * e_i, b1 * e_r  # first-order amplitudes with their envelopes
+    u = omega * c1 * (ai * cos_i - ar * cos_r)
+    w = -omega * s1 * (ai * sin_i + ar * sin_r)
+    eta = ai * cos_i + ar * cos_r
+    if second_order:
+        # cos 2θ = 2cos²θ - 1, sin 2θ = 2 sinθ cosθ; second-order terms carry envelope²
+        c2i, s2i = 2 * cos_i**2 - 1, 2 * sin_i * cos_i
+        c2r, s2r = 2 * cos_r**2 - 1, 2 * sin_r * cos_r
+        qi, qr = 0.75 * omega * k * ai**2, 0.75 * omega * k * ar**2
+        u = u + c2 * (qi * c2i - qr * c2r)
+        w = w - s2 * (qi * s2i + qr * s2r)
+        eta = eta + a2 * (np.square(e_i) * c2i + reflection**2 * np.square(e_r) * c2r)
+    return u, w, eta
+
+
+def incident_upcrossing(*, period: float, height: float, depth: float,
+                        x_wavemaker: float = X_WAVEMAKER, second_order: bool = True,
+                        g: float = G) -> float:
+    """Time in [0, T) of a zero up-crossing of the steady incident elevation at x = 0 [s].
+
+    Solves a1 cos θ + a2 cos 2θ = 0 with a rising slope for θ = ωt + k x_wm (the up-crossing
+    nearest θ = -π/2, the linear one), by Newton steps.
+    """
+    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
+    th = -np.pi / 2
+    for _ in range(50):  # Newton on a smooth scalar function: a handful of iterations
+        f = a1 * np.cos(th) + a2 * np.cos(2 * th)
+        df = -a1 * np.sin(th) - 2 * a2 * np.sin(2 * th)
+        step = f / df
+        th -= step
+        if abs(step) < 1e-14:
+            break
+    if not (-a1 * np.sin(th) - 2 * a2 * np.sin(2 * th)) > 0:
+        raise ValueError("no rising zero crossing near the linear one (wave too steep)")
+    return float(((th + k * x_wavemaker) / omega) % period)
+
+
+def maximum_speed(*, period: float, height: float, depth: float, reflection: float,
+                  second_order: bool = True, g: float = G) -> float:
+    """Upper bound of the flow speed up to the highest crest [m s-1] (for the velocity range)."""
+    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
+    zb = depth + (1 + reflection) * (a1 + a2)
+    c1, _, c2, _ = _depth_functions(k, depth, zb)
+    return float((1 + reflection) * (a1 * omega * c1)
+                 + (1 + reflection**2) * (0.75 * a1**2 * omega * k * c2 if second_order else 0))
+
+
+def instrument_parameters(uvp: UVP, *, max_speed: float | None = None,
+                          maximum_depth: float | None = None, margin: float = 1.2
+                          ) -> dict[str, object]:
+    """``.mfprof`` parameters of the virtual UVP (file key names and units, FORMAT.md §4.2).
+
+    The maximum depth d_max [m] sets the velocity range V_range = c² / (4 f0 d_max). By default
+    it is chosen so that ±V_range/2 covers ``margin`` x ``max_speed``. With the paper's set-up
+    (2 MHz, channels up to 0.29 m) the Nyquist limit at a d_max covering the channels would be
+    ±0.48 m/s, below the near-surface speeds of the T = 3.5 s, H = 0.25 m wave; the virtual
+    instrument does not model range ambiguity, so a smaller d_max is used.
+    """
+    if maximum_depth is None:
+        if max_speed is None:
+            raise ValueError("give max_speed or maximum_depth")
+        maximum_depth = uvp.sound_speed**2 / (4 * uvp.frequency * 2 * margin * max_speed)
+        maximum_depth = np.floor(maximum_depth * 1e5) / 1e5  # 0.01 mm
+    return {**campaign_parameters(uvp), "MaximumDepth": round(float(maximum_depth) * 1e3, 6),
+            "Angle": 90, "CyclesPerPulse": 2, "RawDataMin": -128, "RawDataMax": 127,
+            "RawDataRange": 256, "Comment": "flumekit virtual flume"}
+
+
+def _band_limited(rng: np.random.Generator, shape: tuple[int, ...], dt: float,
+                  band: tuple[float, float]) -> np.ndarray:
+    """Unit-variance Gaussian noise band-limited to ``band`` [Hz] along axis 0."""
+    n = shape[0]
+    spec = rng.standard_normal((n // 2 + 1, *shape[1:])) + 1j * rng.standard_normal(
+        (n // 2 + 1, *shape[1:]))
+    f = np.fft.rfftfreq(n, dt)
+    spec[(f < band[0]) | (f > band[1])] = 0.0
+    x = np.fft.irfft(spec, n=n, axis=0)
+    return x / x.std(axis=0, keepdims=True)
+
+
+def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: float,
+              depth: float, hinge_height: float = 0.10, reflection: float = 0.2,
+              reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
+              ramp_waves: float | None = 10.0, second_order: bool = True,
+              noise: float = 0.005, turbulence: tuple[float, float, float] | None = None,
+              theta=None, flap_thickness: float = 0.17, maximum_depth: float | None = None,
+              rng: np.random.Generator | int | None = None) -> dict[str, xr.Dataset]:
+    """Virtual UVP records of one run, one dataset per beam (as :func:`read_mfprof` returns).
+
+    Parameters
+    ----------
+    time : Profile times since wave generation started [s], 1-D increasing.
+    uvp : Campaign UVP settings (channels, beams).
+    uvp_elevation : Elevation of the run's UVP mounting above the hinge [m].
+    period, height, depth, hinge_height, reflection, reflection_phase, x_wavemaker,
+    ramp_waves, second_order : The wave field, see :func:`wave_kinematics`.
+    noise : Standard deviation of the white Doppler noise along the beam [m s-1].
+    turbulence : Optional (σ_u [m s-1], σ_w [m s-1], correlation ρ_uw [-]) of Gaussian velocity
+        fluctuations band-limited to 0.05-1.5 Hz, independent between channels and beams (a
+        known truth for the turbulence statistics).
+    theta : Flap angle at ``time`` [rad] (positive towards the beach); default 0 (fixed flap).
+    flap_thickness : [m] (the seaward face is at x = -thickness/2 for θ = 0).
+    maximum_depth : Instrument d_max [m]; default: chosen to cover the flow speed
+        (:func:`instrument_parameters`); faster velocities alias.
+    rng : Random generator or seed.
+
+    Returns
+    -------
+    ``{beam name: Dataset}``, each with dims (time, channel): ``beam_velocity`` [m s-1]
+    (quantised, ``positive="away_from_transducer"``), ``amplitude`` [counts]; coordinates
+    ``time``, ``channel``, ``distance``; ``.mfprof`` parameters as ``mfprof_*`` attributes
+    (ready for :func:`flumekit.io.mfprof.write_mfprof`).
+    """
+    rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
+    time = np.asarray(time, dtype=float)
+    if time.ndim != 1 or time.size < 2 or np.any(np.diff(time) <= 0):
+        raise ValueError("time must be 1-D and strictly increasing")
+    if turbulence is not None and not (turbulence[0] >= 0 and turbulence[1] >= 0
+                                       and -1 <= turbulence[2] <= 1):
+        raise ValueError(f"turbulence must be (sigma_u >= 0, sigma_w >= 0, |rho| <= 1), "
+                         f"got {turbulence}")
+    theta = np.zeros_like(time) if theta is None else np.asarray(theta, dtype=float)
+    if theta.shape != time.shape:
+        raise ValueError(f"theta must be sampled at time: shape {theta.shape} != {time.shape}")
+    theta_dot = np.gradient(theta, time)
+    wave = dict(period=period, height=height, depth=depth, hinge_height=hinge_height,
+                reflection=reflection, reflection_phase=reflection_phase,
+                x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order)
+    params = instrument_parameters(
+        uvp, maximum_depth=maximum_depth,
+        max_speed=maximum_speed(period=period, height=height, depth=depth,
+                                reflection=reflection, second_order=second_order))
+    dv = velocity_range(params["SoundSpeed"], params["Frequency"],
+                        params["MaximumDepth"] * 1e-3) / params["RawDataRange"]
+    lo, n_counts = params["RawDataMin"], params["RawDataRange"]
+    geo = beam_geometry(uvp, uvp_elevation)
+    t = time[:, None]
+    dt = float(np.median(np.diff(time)))
+    out = {}
+    for b in uvp.beams:  # three beams: a loop over instruments, each fully vectorised
+        g = geo.sel(beam=b.name)
+        x, z = g["x"].values[None, :], g["z"].values[None, :]
+        xf, zf = b.x, uvp_elevation + b.dz
+        u, w, eta = wave_kinematics(x, z, t, **wave)
+        if turbulence is not None:
+            su, sw, rho = turbulence
+            n1, n2 = _band_limited(rng, (time.size, x.size, 2), dt, (0.05, 1.5)).transpose(2, 0, 1)
+            u = u + su * n1
+            w = w + sw * (rho * n1 + np.sqrt(1 - rho**2) * n2)
+        v = u * np.cos(b.angle) + w * np.sin(b.angle)
+        # the echo path: transducer face and every channel up to this one under the surface
+        _, _, eta_face = wave_kinematics(np.array([[xf]]), np.array([[zf]]), t, **wave)
+        swl = depth - hinge_height  # still water level above the hinge [m]
+        wet = np.logical_and.accumulate((z < swl + eta) & (zf < swl + eta_face), axis=1)
+        flap = np.logical_or.accumulate(inside_flap(x, z, theta[:, None], flap_thickness), axis=1)
+        v_flap = theta_dot[:, None] * (z * np.cos(b.angle) - x * np.sin(b.angle))
+        v = np.where(flap, v_flap, v) + noise * rng.standard_normal(v.shape)
+        counts = np.rint(v / dv)
+        dry = ~wet
+        counts[dry] = rng.integers(lo, lo + n_counts, size=int(dry.sum()))  # no echo: noise
+        counts = (counts - lo) % n_counts + lo  # aliasing into the raw range
+        # echo amplitude [counts]: water ~400 +- 40, flap surface ~2000 +- 100, no echo ~8 +- 3
+        level = np.where(dry, 8.0, np.where(flap, 2000.0, 400.0))
+        amp = level + np.where(dry, 3.0, 0.1 * level) * rng.standard_normal(v.shape)
+        ds = xr.Dataset(
+            {"beam_velocity": (("time", "channel"), counts * dv,
+                               {"positive": "away_from_transducer",
+                                "sign_convention": "virtual flume: velocity projected on the "
+                                "unit vector from the transducer into the beam"}),
+             "amplitude": (("time", "channel"), np.rint(amp).astype(np.int16))},
+            coords={"time": time, "channel": g["channel"].values,
+                    "distance": ("channel", g["distance"].values)},
+            attrs={**{f"mfprof_{k}": v for k, v in params.items()},
+                   "mfprof_start_time_filetime": FILETIME_UNIX_EPOCH + 1_577_836_800 * 10**7,
+                   "velocity_resolution": dv, "beam": b.name,
+                   "uvp_elevation": float(uvp_elevation)})
+        out[b.name] = conventions.annotate(ds)
+    return out
+
+
+def true_field(campaign: Campaign, *, period: float, height: float, reflection: float = 0.2,
+               reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
+               second_order: bool = True, x=None, z=None, n_phase: int = 100,
+               theta=None, elevations=None) -> xr.Dataset:
+    """The true phase-averaged velocity field on the (phase, z, x) grid of the processed field.
+
+    Parameters
+    ----------
+    campaign : Campaign (water depth, hinge height, flap thickness, UVP beams).
+    period, height, reflection, reflection_phase, x_wavemaker, second_order : The wave field.
+    x, z : Grid [m]; default :func:`flumekit.uvp.field.default_grid` of the campaign's beams
+        and ``elevations`` (default 0.20, 0.22, ..., 0.72 m, Brito et al. 2020, §2.3).
+    n_phase : Number of phases t/T = 0, 1/n_phase, ...
+    theta : Optional phase-averaged flap angle over the phase grid [rad]: points inside the
+        flap at a phase are masked.
+
+    Returns
+    -------
+    Dataset over (phase, z, x): ``u``, ``w`` [m s-1] (NaN above the free surface and inside
+    the flap), ``u_normalised``, ``w_normalised`` (by U0 = πH/T), ``eta`` (phase, x) [m];
+    scalar ``velocity_scale`` [m s-1] and ``phase_reference`` [s]. Phase 0 is the zero
+    up-crossing of the steady incident elevation at x = 0 (:func:`incident_upcrossing`);
+    the steady phase average equals the instantaneous steady field at that phase.
+    """
+    from flumekit.uvp.field import default_grid
+
+    depth, hinge = campaign.flume.water_depth, campaign.flap.hinge_height
+    if x is None or z is None:
+        if campaign.uvp is None:
+            raise ValueError("the campaign has no UVP: give the grid x, z")
+        elev = np.round(np.arange(0.20, 0.7201, 0.02), 3) if elevations is None else elevations
+        gx, gz = default_grid(campaign.uvp, elev)
+        x = gx if x is None else x
+        z = gz if z is None else z
+    x, z = np.asarray(x, dtype=float), np.asarray(z, dtype=float)
+    phase = np.arange(n_phase) / n_phase
+    t_up = incident_upcrossing(period=period, height=height, depth=depth,
+                               x_wavemaker=x_wavemaker, second_order=second_order)
+    t = (t_up + phase * period)[:, None, None]
+    u, w, eta = wave_kinematics(x[None, None, :], z[None, :, None], t, period=period,
+                                height=height, depth=depth, hinge_height=hinge,
+                                reflection=reflection, reflection_phase=reflection_phase,
+                                x_wavemaker=x_wavemaker, ramp_waves=None,
+                                second_order=second_order)
+    eta = np.broadcast_to(eta, (n_phase, 1, x.size))[:, 0, :]
+    hidden = z[None, :, None] > (eta[:, None, :] + depth - hinge)
+    if theta is not None:
+        theta = np.asarray(theta, dtype=float)
+        if theta.shape != phase.shape:
+            raise ValueError(f"theta must be given on the {n_phase} phases")
+        flap = inside_flap(x[None, None, :], z[None, :, None], theta[:, None, None],
+                           campaign.flap.thickness)
+    else:
+        flap = np.zeros(hidden.shape, dtype=bool)
+    mask = hidden | flap
+    u, w = np.where(mask, np.nan, u), np.where(mask, np.nan, w)
+    u0 = np.pi * height / period
+    ds = xr.Dataset(
+        {"u": (("phase", "z", "x"), u), "w": (("phase", "z", "x"), w),
+         "u_normalised": (("phase", "z", "x"), u / u0),
+         "w_normalised": (("phase", "z", "x"), w / u0),
+         "eta": (("phase", "x"), eta + 0.0),
+         "inside_flap": (("phase", "z", "x"), flap.astype(np.int8))},
+        coords={"phase": phase, "z": z, "x": x, "velocity_scale": u0,
+                "phase_reference": t_up, "wave_period": period, "wave_height": height},
+        attrs={"water_depth": depth, "reflection_coefficient": reflection,
+               "reflection_phase": reflection_phase, "second_order": int(second_order),
+               "phase_reference_definition": "t/T = 0 at a zero up-crossing of the steady "
+               "incident elevation at x = 0"})
+    return conventions.annotate(ds)
+
+
+def write_uvp_run(directory: str | Path, beams: dict[str, xr.Dataset]) -> list[Path]:
+    """Write one ``<beam>.mfprof`` per beam into ``directory`` (raw/README.md layout)."""
+    from flumekit.io.mfprof import write_mfprof
+
+    directory = Path(directory)
+    return [write_mfprof(directory / f"{name}.mfprof", ds) for name, ds in beams.items()]
