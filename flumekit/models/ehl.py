@@ -174,7 +174,7 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
         raise ValueError(f"method must be 'exact' or 'hamrock', got {method!r}")
     # k < α_r for α_r > 1 (k ~ α_r^(2/π)); the ratio is monotonic in k
     lo = np.zeros_like(ar)
-    hi = np.log(np.maximum(ar, 1.0)) + 1e-9
+    hi = np.log(ar)  # ratio(k = α_r) > α_r for α_r > 1; α_r = 1 gives k = 1 exactly
     for _ in range(60):  # bisection iterations, not a loop over samples
         mid = 0.5 * (lo + hi)
         above = _curvature_ratio(np.exp(mid)) > ar
