@@ -57,10 +57,12 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
     masked : bool, shape (F,).
     """
     mc = np.conj(columns)
-    # Gram matrices MᴴM (F, K, K) and Mᴴb (F, K, R) by broadcasting (faster than batched matmul
-    # of tiny matrices)
-    gram = (mc[:, :, :, None] * columns[:, :, None, :]).sum(axis=1)
-    r = (mc[:, :, :, None] * rhs[:, :, None, :]).sum(axis=1)
+    # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than a
+    # batched matmul or einsum of tiny matrices), and Mᴴb (F, K, R)
+    gram = mc[:, 0, :, None] * columns[:, 0, None, :]
+    for p in range(1, columns.shape[1]):
+        gram += mc[:, p, :, None] * columns[:, p, None, :]
+    r = np.einsum("fpk,fpr->fkr", mc, rhs)
     if gram.shape[-1] == 2:
         # closed form for 2 unknowns: eigenvalues m ± q of [[a, b], [b*, d]] and Cramer's rule
         a, b, d = gram[:, 0, 0].real, gram[:, 0, 1], gram[:, 1, 1].real
@@ -344,8 +346,10 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
     non-whole number of periods. Returns z (rows, n_harmonics) complex [m]: amplitude |z_n| and
     phase arg z_n relative to the first sample t0.
     """
-    n = np.arange(1, n_harmonics + 1)
-    arg = 2 * np.pi * f1 * (t - t[0])[:, None] * n  # (N, n)
-    basis = np.concatenate([np.cos(arg), np.sin(arg), np.ones((t.size, 1))], axis=1)
-    coef = np.linalg.solve(basis.T @ basis, basis.T @ series.T)  # (2n + 1, rows)
-    return (coef[:n_harmonics] - 1j * coef[n_harmonics:2 * n_harmonics]).T
+    nh = n_harmonics
+    e1 = np.exp(2j * np.pi * f1 * (t - t[0]))
+    e = np.cumprod(np.broadcast_to(e1[:, None], (t.size, nh)), axis=1)  # e^(i n ω1 t), (N, nh)
+    basis = np.empty((2 * nh + 1, t.size))  # rows: cos, sin, constant
+    basis[:nh], basis[nh:2 * nh], basis[-1] = e.real.T, e.imag.T, 1.0
+    coef = np.linalg.solve(basis @ basis.T, basis @ series.T)  # (2 nh + 1, rows)
+    return (coef[:nh] - 1j * coef[nh:2 * nh]).T
