@@ -234,6 +234,13 @@ VARIABLES: dict[str, Variable] = {
     "control_temperature": _V("K", "temperature at a control point"),
     "control_radius": _V("m", "radial coordinate of the control point"),
     "control_axial": _V("m", "axial coordinate of the control point"),
+    # time-domain hydrodynamics and simulator (models/hydro.py, radiation.py, simulator.py)
+    "added_inertia_infinite": _V("kg m2", "infinite-frequency added moment of inertia about the hinge"),
+    "added_inertia_infinite_estimate": _V("kg m2", "Ogilvie (1964) estimate of the infinite-frequency added inertia at each frequency"),
+    "lag": _V("s", "time lag of the radiation impulse response"),
+    "radiation_irf": _V("N m", "radiation impulse response K(t): memory torque per unit angular velocity per unit time"),
+    "torque_radiation": _V("N m", "radiation torque acting on the flap, -A_inf theta_ddot - int K theta_dot"),
+    "torque_drag": _V("N m", "quadratic viscous drag torque acting on the flap"),
     # --- truth of the virtual flume ---
 }
 

@@ -1,0 +1,411 @@
+"""Hydrodynamic coefficients of one rotational degree of freedom about a hinge, as data.
+
+One container, an ``xr.Dataset`` over ``angular_frequency`` [rad s-1] (ascending, > 0):
+
+* ``added_inertia`` A(ω) [kg m2] and ``radiation_damping`` B(ω) [N m s];
+* ``excitation_torque`` F(ω) [N m m-1], complex, per unit amplitude of the incident wave at the
+  hinge line x = 0 (in memory; :func:`split_complex` / :func:`merge_complex` give the
+  ``excitation_torque_real`` / ``excitation_torque_imag`` pair for netCDF);
+* ``hydrostatic_stiffness`` C [N m rad-1] (scalar);
+* optionally ``added_inertia_infinite`` A∞ [kg m2] (scalar) once checked.
+
+Conventions. Complex amplitudes use the time factor e^{-iωt}, as Renzi & Dias (2012) and
+Capytaine do: θ(t) = Re{Θ e^{-iωt}}, η(x=0, t) = Re{a e^{-iωt}}, T_exc = Re{F a e^{-iωt}}, so
+that (Eq. A1 in Brito et al. 2020)
+
+    Θ = F a / [−ω²(I + A) + C − iω(B + ν_pto)].
+
+Brito et al. (2020, App. A) write θ̇ = iωθ, which belongs to the opposite time factor; with
+e^{-iωt} the physically correct derivative is θ̇ = −iωΘ. θ is positive when the top of the
+flap moves towards the beach (+x), the direction the incident waves travel.
+
+Checks before use (DESIGN.md §5): passivity (B ≥ 0, :func:`check_passive`, explicit fix
+:func:`make_passive`) and the infinite-frequency inertia from the Ogilvie (1964) relation at
+every frequency with its spread (:func:`infinite_frequency_inertia`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+from flumekit.errors import FlumekitError
+
+DIM = "angular_frequency"
+
+
+class HydroError(FlumekitError, ValueError):
+    """Hydrodynamic coefficients that cannot be used as they are (with a report of why)."""
+
+
+def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitation_torque,
+                  hydrostatic_stiffness: float, *, source: str = "") -> xr.Dataset:
+    """Build the coefficient container (sorted by frequency, checked for shape and finiteness).
+
+    Parameters
+    ----------
+    angular_frequency : Angular frequencies ω [rad s-1], > 0, distinct.
+    added_inertia : A(ω) [kg m2].
+    radiation_damping : B(ω) [N m s].
+    excitation_torque : F(ω) [N m m-1], complex, per unit incident amplitude at x = 0
+        (time factor e^{-iωt}).
+    hydrostatic_stiffness : C [N m rad-1], net buoyancy (gravity + buoyancy) stiffness.
+    source : Where the coefficients come from (kept in ``attrs``).
+    """
+    w = np.asarray(angular_frequency, dtype=float).ravel()
+    arrays = {"added_inertia": np.asarray(added_inertia, dtype=float).ravel(),
+              "radiation_damping": np.asarray(radiation_damping, dtype=float).ravel(),
+              "excitation_torque": np.asarray(excitation_torque, dtype=complex).ravel()}
+    if w.size < 2:
+        raise HydroError("hydrodynamic coefficients need at least two frequencies")
+    if not np.all(np.isfinite(w)) or np.any(w <= 0):
+        raise HydroError("angular frequencies must be finite and > 0")
+    for name, a in arrays.items():
+        if a.shape != w.shape:
+            raise HydroError(f"{name} has {a.size} values for {w.size} frequencies")
+        if not np.all(np.isfinite(a)):
+            bad = w[~np.isfinite(a)]
+            raise HydroError(f"{name} is not finite at omega = {np.round(bad, 4).tolist()} rad/s")
+    if not np.isfinite(hydrostatic_stiffness):
+        raise HydroError(f"hydrostatic stiffness must be finite, got {hydrostatic_stiffness}")
+    order = np.argsort(w)
+    if np.any(np.diff(w[order]) <= 0):
+        raise HydroError("angular frequencies are not distinct")
+    ds = xr.Dataset({k: (DIM, v[order]) for k, v in arrays.items()},
+                    coords={DIM: w[order]})
+    ds["hydrostatic_stiffness"] = float(hydrostatic_stiffness)
+    ds.attrs["source"] = source
+    ds.attrs["time_convention"] = "exp(-i omega t)"
+    return conventions.annotate(ds)
+
+
+def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
+    """K̂(ω) = ∫₀^∞ K(t) e^{iωt} dt [N m s] of K(t) = Σ a_j e^{−α_j t} cos(β_j t).
+
+    Each term gives a_j (α_j − iω)/((α_j − iω)² + β_j²) (time factor e^{-iωt}); a_j [N m],
+    α_j > 0 [s-1], β_j ≥ 0 [rad s-1], broadcast against each other.
+    """
+    w = np.asarray(omega, dtype=float)[..., None]
+    a, al, be = (np.atleast_1d(np.asarray(v, dtype=float)) for v in
+                 (amplitude, decay_rate, frequency))
+    z = al - 1j * w
+    return np.sum(a * z / (z * z + be * be), axis=-1)
+
+
+def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
+                added_inertia_infinite: float, excitation_torque,
+                hydrostatic_stiffness: float) -> xr.Dataset:
+    """Exactly causal coefficients of a body whose radiation kernel is a sum of damped cosines.
+
+    K(t) = Σ a_j e^{−α_j t} cos(β_j t) gives (Ogilvie 1964) B(ω) = Re K̂(ω) and
+    A(ω) = A∞ − Im K̂(ω)/ω with K̂ of :func:`kernel_response`: a Kramers-Kronig pair with a
+    known impulse response and a finite-order state-space model, used as the truth in tests
+    and benchmarks. The caller chooses the terms so that B ≥ 0 (checked by
+    :func:`check_passive`).
+
+    Parameters
+    ----------
+    angular_frequency : ω [rad s-1].
+    amplitude, decay_rate, frequency : a_j [N m], α_j [s-1], β_j [rad s-1].
+    added_inertia_infinite : A∞ [kg m2] (stored as ``added_inertia_infinite``).
+    excitation_torque : F(ω) [N m m-1], complex, per unit amplitude at x = 0.
+    hydrostatic_stiffness : C [N m rad-1].
+    """
+    w = np.asarray(angular_frequency, dtype=float)
+    kh = kernel_response(w, amplitude, decay_rate, frequency)
+    ds = hydro_dataset(w, added_inertia_infinite - kh.imag / w, kh.real, excitation_torque,
+                       hydrostatic_stiffness, source="analytic damped-cosine radiation kernel")
+    ds["added_inertia_infinite"] = float(added_inertia_infinite)
+    ds.attrs["kernel"] = str({"amplitude": np.atleast_1d(amplitude).tolist(),
+                              "decay_rate": np.atleast_1d(decay_rate).tolist(),
+                              "frequency": np.atleast_1d(frequency).tolist()})
+    return conventions.annotate(ds)
+
+
+def split_complex(hydro: xr.Dataset) -> xr.Dataset:
+    """Replace every complex variable X by ``X_real`` and ``X_imag`` (for netCDF)."""
+    out = hydro.copy()
+    for name in [n for n in hydro.data_vars if hydro[n].dtype.kind == "c"]:
+        da = out.pop(name)
+        for part, values in (("real", da.real), ("imag", da.imag)):
+            out[f"{name}_{part}"] = values.assign_attrs(
+                {**da.attrs, "long_name": f"{da.attrs.get('long_name', name)} ({part} part)"})
+    return conventions.annotate(out)
+
+
+def merge_complex(ds: xr.Dataset) -> xr.Dataset:
+    """Inverse of :func:`split_complex`: join ``X_real``/``X_imag`` (or ``_re``/``_im``) pairs."""
+    out = ds.copy()
+    for name in list(ds.data_vars):
+        for re_s, im_s in (("_real", "_imag"), ("_re", "_im")):
+            if name.endswith(re_s) and name[: -len(re_s)] + im_s in ds:
+                base = name[: -len(re_s)]
+                re, im = out.pop(name), out.pop(base + im_s)
+                attrs = {k: v for k, v in re.attrs.items() if k != "long_name"}
+                out[base] = (re + 1j * im).assign_attrs(attrs)
+    return conventions.annotate(out)
+
+
+def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
+    merged = merge_complex(ds)
+    for name in names:
+        if name in merged:
+            return merged[name]
+    raise HydroError(f"no excitation torque among the variables {sorted(ds.data_vars)}; "
+                     f"expected one of {list(names)} (complex, or _real/_imag parts)")
+
+
+def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
+    """Container from :func:`flumekit.models.renzi_dias.coefficients` (a dataset over ``period``).
+
+    Parameters
+    ----------
+    coefficients : Dataset over ``period`` [s] with ``added_inertia`` [kg m2],
+        ``radiation_damping`` [N m s] and the excitation torque per unit amplitude, complex or as
+        real/imaginary parts (``excitation_torque_real``/``_imag``), time factor e^{-iωt}.
+    hydrostatic_stiffness : C [N m rad-1] (the campaign's ``flap.buoyancy_stiffness``).
+    """
+    dim = "period" if "period" in coefficients.dims else DIM
+    if dim not in coefficients.dims:
+        raise HydroError("Renzi-Dias coefficients need a 'period' or 'angular_frequency' dim")
+    x = coefficients[dim].values.astype(float)
+    omega = 2 * np.pi / x if dim == "period" else x
+    exc = _excitation_from(coefficients, ("excitation_torque", "excitation"))
+    return hydro_dataset(omega, coefficients["added_inertia"].values,
+                         coefficients["radiation_damping"].values, exc.values,
+                         hydrostatic_stiffness,
+                         source=coefficients.attrs.get("source", "Renzi & Dias (2012)"))
+
+
+_FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
+
+
+def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
+                   hydrostatic_stiffness: float | None = None) -> xr.Dataset:
+    """Container from a Capytaine result (``cpt.assemble_dataset`` or its netCDF file).
+
+    The degree of freedom must be a rotation about the hinge axis, e.g.
+    ``body.add_rotation_dof(rotation_center=(0, 0, z_hinge), direction=(0, 1, 0))``: with waves
+    travelling towards +x (``wave_direction = 0``) a positive rotation about +y moves the top of
+    the flap towards +x, which is flumekit's positive θ. Capytaine references the excitation to
+    the incident elevation at its origin, so the hinge line must lie at x = 0 of the mesh.
+
+    Parameters
+    ----------
+    bem : Capytaine dataset: ``added_mass``, ``radiation_damping`` over (frequency,
+        ``influenced_dof``, ``radiating_dof``) and ``excitation_force`` or
+        ``diffraction_force`` + ``Froude_Krylov_force`` over (frequency, ``wave_direction``,
+        ``influenced_dof``); complex values either complex or split along a ``complex`` dim
+        ("re", "im") as ``cpt.io.xarray.separate_complex_values`` writes them. The frequency
+        dim may be ``omega`` or another of Capytaine's (then ``omega`` must be a coordinate).
+        ω = 0 and ω = ∞ entries are dropped from the frequency axis; the ω = ∞ added inertia is
+        kept as ``added_inertia_infinite``.
+    dof : Name of the rotation dof; by default the only radiating dof.
+    wave_direction : Incident wave direction [rad], 0 for waves towards +x.
+    hydrostatic_stiffness : C [N m rad-1]; by default the dataset's ``hydrostatic_stiffness``
+        (which must then be about the hinge and include the flap's weight).
+    """
+    ds = bem
+    if "complex" in ds.dims:
+        ds = ds.copy()
+        for name in [n for n in ds.data_vars if "complex" in ds[n].dims]:
+            ds[name] = ds[name].sel(complex="re") + 1j * ds[name].sel(complex="im")
+        ds = ds.drop_dims("complex", errors="ignore").drop_vars("complex", errors="ignore")
+    fdim = next((d for d in _FREQ_DIMS if d in ds.dims), None)
+    if fdim is None:
+        raise HydroError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one of "
+                         f"{list(_FREQ_DIMS)}")
+    if "omega" not in ds.coords:
+        raise HydroError(f"the Capytaine dataset has frequency dim '{fdim}' but no 'omega' "
+                         "coordinate")
+    for name in ("added_mass", "radiation_damping"):
+        if name not in ds:
+            raise HydroError(f"the Capytaine dataset has no '{name}' (radiation problems)")
+    dofs = [str(d) for d in ds["radiating_dof"].values]
+    if dof is None:
+        if len(dofs) != 1:
+            raise HydroError(f"several radiating dofs {dofs}: name the hinge rotation with dof=")
+        dof = dofs[0]
+    if dof not in dofs:
+        raise HydroError(f"dof '{dof}' is not among the radiating dofs {dofs}")
+
+    def pick(da):
+        sel = {}
+        for d in ("radiating_dof", "influenced_dof"):
+            if d in da.dims:
+                sel[d] = da[d].values[[str(v) for v in da[d].values].index(dof)]
+        da = da.sel(sel)
+        if "wave_direction" in da.dims:
+            dirs = da["wave_direction"].values.astype(float)
+            j = int(np.argmin(np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))))
+            if abs(np.angle(np.exp(1j * (dirs[j] - wave_direction)))) > 1e-6:
+                raise HydroError(f"wave direction {wave_direction} rad not computed; "
+                                 f"available: {dirs.tolist()}")
+            da = da.isel(wave_direction=j)
+        extra = [d for d in da.dims if d != fdim]
+        if extra:
+            if any(da.sizes[d] != 1 for d in extra):
+                raise HydroError(f"'{da.name}' varies along {extra}: select one value first")
+            da = da.squeeze(extra, drop=True)
+        return da
+
+    if "excitation_force" in ds:
+        exc = pick(ds["excitation_force"])
+    elif "diffraction_force" in ds and "Froude_Krylov_force" in ds:
+        exc = pick(ds["diffraction_force"] + ds["Froude_Krylov_force"])
+    else:
+        raise HydroError("the Capytaine dataset has neither 'excitation_force' nor "
+                         "'diffraction_force' + 'Froude_Krylov_force'")
+    a, b = pick(ds["added_mass"]), pick(ds["radiation_damping"])
+    omega = np.asarray(ds["omega"].values, dtype=float).ravel()
+    if omega.size != ds.sizes[fdim]:
+        raise HydroError("the 'omega' coordinate does not run along the frequency dimension")
+    finite = np.isfinite(omega) & (omega > 0)
+    a_inf = None
+    if np.any(np.isinf(omega)):
+        a_inf = float(np.real(a.values[np.isinf(omega)][0]))
+    if hydrostatic_stiffness is None:
+        if "hydrostatic_stiffness" not in ds:
+            raise HydroError("no hydrostatic_stiffness in the Capytaine dataset: pass "
+                             "hydrostatic_stiffness= (the campaign's flap.buoyancy_stiffness)")
+        hydrostatic_stiffness = float(np.real(pick(ds["hydrostatic_stiffness"]).values))
+    out = hydro_dataset(omega[finite], np.real(a.values[finite]), np.real(b.values[finite]),
+                        exc.values[finite], hydrostatic_stiffness,
+                        source=f"Capytaine {bem.attrs.get('capytaine_version', '')}, dof "
+                               f"'{dof}', wave direction {wave_direction} rad".replace("  ", " "))
+    if a_inf is not None:
+        out["added_inertia_infinite"] = a_inf
+    return conventions.annotate(out)
+
+
+# --- checks -------------------------------------------------------------------------------
+
+def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
+    """Frequencies where the radiation damping is negative (below −rtol·max B).
+
+    A passive body cannot give energy to the waves on average, so B(ω) ≥ 0; negative values come
+    from irregular frequencies or under-resolved meshes in BEM results, or from interpolation.
+
+    Returns
+    -------
+    Dataset over the offending ``angular_frequency`` values with their ``radiation_damping``;
+    ``attrs``: ``n_negative``, ``min_damping`` [N m s], ``max_damping`` [N m s].
+    """
+    b = hydro["radiation_damping"]
+    bmax = float(b.max())
+    bad = b < -rtol * max(bmax, 0.0) if bmax > 0 else b < 0
+    rep = b.where(bad, drop=True).to_dataset()
+    rep.attrs.update(n_negative=int(bad.sum()), min_damping=float(b.min()), max_damping=bmax)
+    return rep
+
+
+def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
+    """Raise :class:`HydroError` listing the frequencies where B(ω) < −rtol·max B.
+
+    The fix is explicit: :func:`make_passive` (clip to zero, recorded in ``attrs``) or better
+    coefficients (finer mesh, irregular-frequency removal).
+    """
+    rep = passivity_report(hydro, rtol)
+    n = rep.attrs["n_negative"]
+    if n:
+        pairs = ", ".join(f"{w:.3f} rad/s: {v:.4g} N m s" for w, v in
+                          zip(rep[DIM].values[:8], rep["radiation_damping"].values[:8]))
+        more = f" (and {n - 8} more)" if n > 8 else ""
+        raise HydroError(
+            f"radiation damping is negative at {n} of {hydro.sizes[DIM]} frequencies: "
+            f"{pairs}{more}; minimum {rep.attrs['min_damping']:.4g} N m s against a maximum "
+            f"{rep.attrs['max_damping']:.4g} N m s. A passive body has B >= 0; use "
+            "flumekit.models.hydro.make_passive(hydro) to clip it to zero, or better coefficients.")
+
+
+def make_passive(hydro: xr.Dataset) -> xr.Dataset:
+    """Explicit passivity fix: negative radiation damping clipped to zero (recorded in attrs)."""
+    b = hydro["radiation_damping"]
+    neg = b < 0
+    out = hydro.copy()
+    out["radiation_damping"] = b.where(~neg, 0.0).assign_attrs(b.attrs)
+    out.attrs["passivity_fix"] = (f"radiation damping clipped to 0 at {int(neg.sum())} "
+                                  f"frequencies (minimum was {float(b.min()):.4g} N m s)")
+    return out
+
+
+def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
+                               dt: float | None = None, **irf_options) -> xr.Dataset:
+    """Infinite-frequency added inertia from the Ogilvie (1964) relation at every frequency.
+
+        A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt        Ogilvie (1964), Eq. (A.5)-type relation
+
+    with K(t) the radiation impulse response of :func:`flumekit.models.radiation.impulse_response`
+    (same options). For coefficients that obey the Kramers-Kronig relations and a well-resolved
+    K(t) the estimate is the same at every frequency; its spread measures how far they are from
+    that (truncated frequency range, a thin-plate model, interpolation, a constant added inertia
+    paired with frequency-dependent damping, ...).
+
+    The sine transform is evaluated exactly for piecewise-linear K between its samples.
+
+    Returns
+    -------
+    Dataset with ``added_inertia_infinite_estimate`` over ``angular_frequency`` [kg m2] and the
+    scalar ``added_inertia_infinite`` (median of the estimates) [kg m2]; ``attrs``:
+    ``spread`` = (max − min)/|median| of the estimates, ``rms_spread`` = std/|median|.
+    """
+    from flumekit.models.radiation import impulse_response, sine_transform
+
+    irf = impulse_response(hydro, duration=duration, dt=dt, **irf_options)
+    w = hydro[DIM].values
+    est = hydro["added_inertia"].values + sine_transform(irf, w) / w
+    med = float(np.median(est))
+    scale = abs(med) if med != 0 else 1.0
+    out = xr.Dataset({"added_inertia_infinite_estimate": (DIM, est),
+                      "added_inertia_infinite": med}, coords={DIM: w})
+    out.attrs.update(spread=float((est.max() - est.min()) / scale),
+                     rms_spread=float(est.std() / scale),
+                     method="Ogilvie (1964): A_inf = A(w) + (1/w) int_0^inf K(t) sin(wt) dt, "
+                            "median over frequencies")
+    return conventions.annotate(out)
+
+
+def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
+                                    at_frequency: float | None = None,
+                                    **irf_options) -> xr.Dataset:
+    """Container with ``added_inertia_infinite`` set from the Ogilvie relation, after checks.
+
+    Parameters
+    ----------
+    hydro : Coefficient container (passivity is checked first).
+    max_spread : Largest accepted (max − min)/|median| of the per-frequency estimates; a larger
+        spread raises :class:`HydroError` with the numbers. ``None`` skips the check.
+    at_frequency : Instead of the median, take the estimate at this angular frequency
+        [rad s-1] (interpolated): the time-domain model then reproduces A and B exactly at that
+        frequency even if the coefficients are not causal (e.g. a constant added inertia), which
+        is what a regular-wave comparison needs. The spread is still reported.
+    **irf_options : Passed to :func:`flumekit.models.radiation.impulse_response`.
+    """
+    check_passive(hydro)
+    est = infinite_frequency_inertia(hydro, **irf_options)
+    spread = est.attrs["spread"]
+    if max_spread is not None and spread > max_spread:
+        e = est["added_inertia_infinite_estimate"]
+        raise HydroError(
+            f"the Ogilvie estimates of the infinite-frequency added inertia spread by "
+            f"{spread:.1%} (from {float(e.min()):.4g} to {float(e.max()):.4g} kg m2, median "
+            f"{float(est['added_inertia_infinite']):.4g}) over the frequencies, more than "
+            f"{max_spread:.1%}: the added inertia and damping are not consistent (Kramers-Kronig), "
+            "or the frequency range is too short. Widen the range, check the data, pass "
+            "at_frequency= to match one frequency, or max_spread=None to accept it.")
+    if at_frequency is not None:
+        w = hydro[DIM].values
+        if not w[0] <= at_frequency <= w[-1]:
+            raise HydroError(f"at_frequency {at_frequency} rad/s is outside the coefficients' "
+                             f"range [{w[0]:.4g}, {w[-1]:.4g}] rad/s")
+        value = float(np.interp(at_frequency, w, est["added_inertia_infinite_estimate"].values))
+    else:
+        value = float(est["added_inertia_infinite"])
+    out = hydro.copy()
+    out["added_inertia_infinite"] = value
+    out["added_inertia_infinite_estimate"] = est["added_inertia_infinite_estimate"]
+    where = f"at omega = {at_frequency:.4g} rad/s" if at_frequency is not None else "median"
+    out.attrs.update(added_inertia_infinite_spread=spread,
+                     added_inertia_infinite_method=f"Ogilvie (1964), {where}")
+    return conventions.annotate(out)

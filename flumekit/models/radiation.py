@@ -1,0 +1,336 @@
+"""Radiation memory of the Cummins (1962) equation: impulse response and state-space model.
+
+Cummins (1962) writes the radiation torque on a body as
+
+    T_rad(t) = −A∞ θ̈(t) − ∫₀ᵗ K(t − τ) θ̇(τ) dτ,
+
+K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω            (Ogilvie 1964; Cummins 1962)
+
+with A∞ the infinite-frequency added inertia, kept on the left-hand side of the equation of
+motion by the simulator (implicit: the effective inertia is I + A∞). The memory term has the
+frequency response (time factor e^{-iωt} of :mod:`flumekit.models.hydro`)
+
+    K̂(ω) = ∫₀^∞ K(t) e^{iωt} dt = C(ω) + i S(ω),
+    C(ω) = ∫ K cos ωt dt = B(ω),   S(ω) = ∫ K sin ωt dt = ω (A∞ − A(ω))   (Ogilvie 1964),
+
+so that the memory torque of a motion θ̇ = Re{V e^{-iωt}} is Re{K̂ V e^{-iωt}}.
+
+Numerics
+--------
+* Cosine/sine transforms of piecewise-linear data are evaluated exactly on each interval
+  (Filon-type rule), so K(t) at long lags does not alias however coarse the frequency grid.
+* High-frequency tail: beyond the last frequency ω_N the damping is continued as
+  B(ω) = B(ω_N)(ω_N/ω)^p, p fitted to the last points on a log-log scale (clipped to
+  [1.5, 8]; p = 3 is the usual decay of a surface-piercing body's damping), up to
+  ``tail_factor``·ω_N; the part of ∫B dω beyond that is reported as ``tail_truncation``
+  (a fraction of the whole). Below the first frequency B is held at B(ω₁) (``low="hold"``) or
+  ramped linearly to zero (``low="zero"``).
+* State space: Kung's (1978) SVD realisation of the sampled K(t) (the eigensystem realisation
+  algorithm) gives a discrete system K(kΔ) = C A_dᵏ B; its eigen-decomposition
+  A_d = V diag(μ) V⁻¹ gives continuous poles λ = ln μ / Δ and residues, so that
+  K(t) ≈ Re Σ c_k e^{λ_k t} with one state per complex-conjugate pair (c_k doubled) or real pole.
+  The order is the smallest that meets the requested relative L2 error on K(t); the fitting
+  errors in time and in frequency are stored on the model. Unstable poles are reflected into
+  the left half-plane (reported).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import xarray as xr
+
+from flumekit import conventions
+
+DIM = "angular_frequency"
+
+
+def _sinc(d: np.ndarray) -> np.ndarray:
+    return np.sinc(d / np.pi)
+
+
+def _g(d: np.ndarray) -> np.ndarray:
+    """(sin d − d cos d)/(2 d²), series below |d| = 1e-2 (value ≈ d/6)."""
+    d = np.asarray(d, dtype=float)
+    out = np.empty_like(d)
+    small = np.abs(d) < 1e-2
+    ds = d[small]
+    out[small] = ds / 6 - ds**3 / 60
+    dl = d[~small]
+    out[~small] = (np.sin(dl) - dl * np.cos(dl)) / (2 * dl * dl)
+    return out
+
+
+def filon(x, f, y, kind: str) -> np.ndarray:
+    """∫ f(x) cos(y x) dx or ∫ f(x) sin(y x) dx over [x₀, x_N], exact for piecewise-linear f.
+
+    Parameters
+    ----------
+    x : Nodes, increasing, shape (N+1,).
+    f : Values at the nodes, shape (N+1,).
+    y : Transform variable(s), any shape.
+    kind : "cos" or "sin".
+
+    On [x_j, x_{j+1}] with centre x̄, half-width Δ/2, mean f̄ and increment Δf, c = y x̄ and
+    d = yΔ/2:  ∫ f cos = Δ[f̄ cos c sinc d − Δf sin c g(d)],  ∫ f sin = Δ[f̄ sin c sinc d +
+    Δf cos c g(d)], g(d) = (sin d − d cos d)/(2d²).
+    """
+    x = np.asarray(x, dtype=float)
+    f = np.asarray(f, dtype=float)
+    y = np.asarray(y, dtype=float)
+    dx = np.diff(x)
+    xm = 0.5 * (x[1:] + x[:-1])
+    fm = 0.5 * (f[1:] + f[:-1])
+    df = np.diff(f)
+    yy = y.reshape(-1, 1)
+    c = yy * xm
+    d = 0.5 * yy * dx
+    s, g = _sinc(d), _g(d)
+    if kind == "cos":
+        val = dx * (fm * np.cos(c) * s - df * np.sin(c) * g)
+    elif kind == "sin":
+        val = dx * (fm * np.sin(c) * s + df * np.cos(c) * g)
+    else:
+        raise ValueError(f"kind must be 'cos' or 'sin', got {kind!r}")
+    return val.sum(axis=1).reshape(y.shape)
+
+
+def _tail_exponent(w: np.ndarray, b: np.ndarray, n_fit: int = 5) -> float:
+    ww, bb = w[-n_fit:], b[-n_fit:]
+    ok = bb > 0
+    if ok.sum() < 2:
+        return 3.0
+    slope = np.polyfit(np.log(ww[ok]), np.log(bb[ok]), 1)[0]
+    return float(np.clip(-slope, 1.5, 8.0))
+
+
+def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: float | None = None,
+                     tail_factor: float = 20.0, low: str = "hold",
+                     n_tail: int = 400) -> tuple[np.ndarray, np.ndarray, dict]:
+    """Damping on [0, tail_factor·ω_N] with the low- and high-frequency extensions.
+
+    Returns ω nodes [rad s-1], B nodes [N m s] and a dict of what was done (exponent, fractions).
+    """
+    w = hydro[DIM].values.astype(float)
+    b = hydro["radiation_damping"].values.astype(float)
+    if low == "hold":
+        w0, b0 = [0.0], [b[0]]
+    elif low == "zero":
+        w0, b0 = [0.0], [0.0]
+    else:
+        raise ValueError(f"low must be 'hold' or 'zero', got {low!r}")
+    ww, bb = np.concatenate([w0, w]), np.concatenate([b0, b])
+    info = {"omega_min": float(w[0]), "omega_max": float(w[-1]), "low": low, "tail": tail}
+    total_data = float(np.trapezoid(bb, ww))
+    if tail == "none" or b[-1] <= 0:
+        info.update(tail_exponent=np.nan, tail_fraction=0.0,
+                    tail_truncation=float(max(b[-1], 0) * w[-1] / max(abs(total_data), 1e-300)))
+        return ww, bb, info
+    if tail != "power":
+        raise ValueError(f"tail must be 'power' or 'none', got {tail!r}")
+    p = _tail_exponent(w, b) if tail_exponent is None else float(tail_exponent)
+    if not p > 1:
+        raise ValueError(f"the tail exponent must be > 1 for a finite K(0), got {p}")
+    wt = w[-1] * np.geomspace(1.0, tail_factor, n_tail + 1)[1:]
+    bt = b[-1] * (w[-1] / wt) ** p
+    tail_int = b[-1] * w[-1] / (p - 1) * (1 - tail_factor ** (1 - p))
+    beyond = b[-1] * w[-1] / (p - 1) * tail_factor ** (1 - p)
+    total = total_data + tail_int + beyond
+    info.update(tail_exponent=p, tail_fraction=float(tail_int / total),
+                tail_truncation=float(beyond / total))
+    return np.concatenate([ww, wt]), np.concatenate([bb, bt]), info
+
+
+def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
+                     tail: str = "power", tail_exponent: float | None = None,
+                     tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
+    """Radiation impulse response K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω [N m] (Cummins 1962).
+
+    Parameters
+    ----------
+    hydro : Coefficient container (:mod:`flumekit.models.hydro`).
+    duration : Longest lag [s]; default 30 s.
+    dt : Lag step [s]; default π/(8 ω_N) capped at 0.05 s.
+    tail, tail_exponent, tail_factor, low : High- and low-frequency extension of B (module notes).
+
+    Returns
+    -------
+    DataArray ``radiation_irf`` over ``lag`` [s]; attrs describe the extension
+    (``tail_exponent``, ``tail_fraction``, ``tail_truncation``, ``omega_min``, ``omega_max``).
+    """
+    w_n = float(hydro[DIM].values[-1])
+    duration = 30.0 if duration is None else float(duration)
+    dt = min(0.05, np.pi / (8 * w_n)) if dt is None else float(dt)
+    if not (duration > 0 and dt > 0):
+        raise ValueError("impulse_response needs duration > 0 and dt > 0")
+    n = round(duration / dt)
+    t = np.arange(n + 1) * dt
+    ww, bb, info = extended_damping(hydro, tail=tail, tail_exponent=tail_exponent,
+                                    tail_factor=tail_factor, low=low)
+    k = 2.0 / np.pi * filon(ww, bb, t, "cos")
+    da = xr.DataArray(k, dims="lag", coords={"lag": t}, name="radiation_irf",
+                      attrs={k_: v for k_, v in info.items()})
+    return conventions.annotate(da)
+
+
+def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
+    """C(ω) = ∫₀^L K(t) cos(ωt) dt [N m s] (equals B(ω) for an exact K)."""
+    return filon(irf["lag"].values, irf.values, omega, "cos")
+
+
+def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
+    """S(ω) = ∫₀^L K(t) sin(ωt) dt [N m] (equals ω(A∞ − A(ω)) for an exact K, Ogilvie 1964)."""
+    return filon(irf["lag"].values, irf.values, omega, "sin")
+
+
+def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
+    """K̂(ω) = C(ω) + i S(ω) [N m s]: memory torque per unit θ̇ amplitude (time factor e^{-iωt})."""
+    return cosine_transform(irf, omega) + 1j * sine_transform(irf, omega)
+
+
+# --- state space -----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class StateSpace:
+    """Modal state-space model of the radiation memory.
+
+    States x_k (complex, one per pole kept): ẋ_k = λ_k x_k + θ̇; memory torque
+    μ(t) = Re Σ c_k x_k, so that K(t) ≈ Re Σ c_k e^{λ_k t}. Conjugate pairs are represented by
+    the member with Im λ > 0 and a doubled residue; real poles by themselves.
+    """
+
+    poles: np.ndarray  # λ_k [s-1], complex, Re λ < 0
+    residues: np.ndarray  # c_k [N m], complex
+    fit_error_time: float = np.nan  # relative L2 error on K(t) over the fitted lags
+    fit_error_frequency: float = np.nan  # max |K̂_ss − K̂| / max |K̂| over the hydro band
+    fit_dt: float = np.nan  # sampling interval of the realisation [s]
+    n_reflected: int = 0  # unstable poles reflected into the left half-plane
+    hankel_singular_values: np.ndarray = field(default_factory=lambda: np.empty(0))
+
+    @property
+    def order(self) -> int:
+        """Number of real states (2 per complex pair, 1 per real pole)."""
+        return int(sum(2 if abs(p.imag) > 0 else 1 for p in self.poles))
+
+    def impulse(self, t) -> np.ndarray:
+        """K_ss(t) [N m]."""
+        t = np.asarray(t, dtype=float)
+        return np.real(np.exp(np.multiply.outer(t, self.poles)) @ self.residues)
+
+    def frequency_response(self, omega) -> np.ndarray:
+        """K̂_ss(ω) [N m s] in the convention of :func:`memory_response`."""
+        w = np.asarray(omega, dtype=float)
+        out = np.zeros(w.shape, dtype=complex)
+        iw = 1j * w
+        # ∫₀^∞ r e^{λt} e^{iωt} dt = r / (−iω − λ), Re λ < 0
+        for lam, c in zip(self.poles, self.residues):
+            if abs(lam.imag) > 0:  # pair: c/2 at λ and at its conjugate
+                out += 0.5 * c / (-iw - lam) + 0.5 * np.conj(c) / (-iw - np.conj(lam))
+            else:
+                out += c.real / (-iw - lam.real)
+        return out
+
+    def matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Real (A, B, C) with ẋ = A x + B θ̇, μ = C x (2×2 blocks for pairs)."""
+        n = self.order
+        a, b, c = np.zeros((n, n)), np.zeros(n), np.zeros(n)
+        i = 0
+        for lam, res in zip(self.poles, self.residues):
+            if abs(lam.imag) > 0:
+                # x = u + i v: u' = σu − ωv + θ̇, v' = ωu + σv; μ = Re(c x) = c_r u − c_i v
+                a[i:i + 2, i:i + 2] = [[lam.real, -lam.imag], [lam.imag, lam.real]]
+                b[i] = 1.0
+                c[i], c[i + 1] = res.real, -res.imag
+                i += 2
+            else:
+                a[i, i], b[i], c[i] = lam.real, 1.0, res.real
+                i += 1
+        return a, b, c
+
+
+def _realise(k: np.ndarray, dt: float, u: np.ndarray, s: np.ndarray, vt: np.ndarray,
+             h1: np.ndarray, n: int):
+    sq = np.sqrt(s[:n])
+    ad = (u[:, :n].T @ h1 @ vt[:n].T) / np.outer(sq, sq)
+    bd = sq * vt[:n, 0]
+    cd = u[0, :n] * sq
+    mu, v = np.linalg.eig(ad)
+    res = (cd @ v) * np.linalg.solve(v, bd.astype(complex))
+    lam = np.log(mu.astype(complex)) / dt
+    n_refl = int(np.sum(lam.real >= 0))
+    lam = np.where(lam.real >= 0, -np.abs(lam.real) - 1e-9 / dt + 1j * lam.imag, lam)
+    keep_p, keep_c = [], []
+    for lm, r in zip(lam, res):
+        if lm.imag > 1e-9 / dt:
+            keep_p.append(lm)
+            keep_c.append(2 * r)
+        elif abs(lm.imag) <= 1e-9 / dt:
+            keep_p.append(complex(lm.real, 0.0))
+            keep_c.append(complex(r.real, 0.0))
+    return np.array(keep_p, dtype=complex), np.array(keep_c, dtype=complex), n_refl
+
+
+def fit_state_space(irf: xr.DataArray, order: int | None = None, *, rtol: float = 0.01,
+                    max_order: int = 24, fit_dt: float | None = None,
+                    omega=None) -> StateSpace:
+    """State-space approximation of K(t) by Kung's (1978) SVD realisation (module notes).
+
+    Parameters
+    ----------
+    irf : K(t) from :func:`impulse_response`.
+    order : Number of Hankel singular values kept (real state dimension); by default the
+        smallest that reaches ``rtol``.
+    rtol : Target relative L2 error of K_ss(t) against K(t) over the IRF lags.
+    max_order : Largest order tried.
+    fit_dt : Sampling interval used for the realisation [s] (a multiple of the IRF step);
+        default the multiple nearest to π/(4 ω_max) of the coefficients, at least the IRF step.
+    omega : Angular frequencies [rad s-1] for the frequency-domain error; default 200 points
+        over the coefficients' band (``omega_min``/``omega_max`` attrs of ``irf``).
+
+    Returns
+    -------
+    :class:`StateSpace` with ``fit_error_time`` and ``fit_error_frequency``.
+    """
+    t = irf["lag"].values
+    k = irf.values.astype(float)
+    dt0 = float(t[1] - t[0])
+    w_max = float(irf.attrs.get("omega_max", np.pi / (4 * dt0)))
+    if fit_dt is None:
+        fit_dt = max(dt0, np.pi / (4 * w_max))
+    step = max(1, round(fit_dt / dt0))
+    ks = k[::step]
+    d = dt0 * step
+    n_s = ks.size
+    if n_s < 8:
+        raise ValueError("the impulse response is too short for a realisation (< 8 samples)")
+    rows = (n_s - 1) // 2
+    cols = n_s - 1 - rows
+    idx = np.arange(rows)[:, None] + np.arange(cols)[None, :]
+    h0, h1 = ks[idx], ks[idx + 1]
+    u, s, vt = np.linalg.svd(h0, full_matrices=False)
+    if omega is None:
+        omega = np.linspace(float(irf.attrs.get("omega_min", w_max / 20)), w_max, 200)
+    ref = memory_response(irf, omega)
+    norm_t = float(np.sqrt(np.sum(k**2)))
+    norm_f = float(np.max(np.abs(ref)))
+
+    def build(n):
+        poles, res, nr = _realise(ks, d, u, s, vt, h1, n)
+        ss = StateSpace(poles, res, fit_dt=d, n_reflected=nr, hankel_singular_values=s[:n])
+        e_t = float(np.sqrt(np.sum((ss.impulse(t) - k) ** 2)) / norm_t)
+        e_f = float(np.max(np.abs(ss.frequency_response(omega) - ref)) / norm_f)
+        return StateSpace(poles, res, e_t, e_f, d, nr, s[:n])
+
+    if order is not None:
+        if not 1 <= order <= min(rows, cols):
+            raise ValueError(f"order must be between 1 and {min(rows, cols)}, got {order}")
+        return build(int(order))
+    best = None
+    for n in range(1, min(max_order, rows, cols) + 1):
+        ss = build(n)
+        if best is None or ss.fit_error_time < best.fit_error_time:
+            best = ss
+        if ss.fit_error_time <= rtol:
+            return ss
+    return best
