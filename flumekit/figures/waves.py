@@ -62,7 +62,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         ax.set_xlim(tt[0], tt[-1])
         ax.set_xlabel("t/T")
         ax.set_ylabel(r"$\eta/A_s$")
-        ax.legend(loc="lower right", ncols=3, fontsize=7)
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=7)
     return fig
 
 
@@ -79,7 +79,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
 
     Returns
     -------
-    matplotlib.figure.Figure with the amplitude scale as dash-dotted lines at η/A_s = ±1.
+    matplotlib.figure.Figure with the amplitude scale as a dash-dotted line at η/A_s = 1.
     """
     p, tt, eta, _ = _normalised(waves, probe)
     stop = start + n_waves
@@ -90,8 +90,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     fig, ax = _axes(ax)
     with style():
         ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"{p}")
-        for level in (1.0, -1.0):
-            ax.axhline(level, color="0.3", ls="-.", lw=0.9)
+        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9)
         ax.set_xlim(start, stop)
         ax.set_xlabel("t/T")
         ax.set_ylabel(r"$\eta/A_s$")

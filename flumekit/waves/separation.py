@@ -334,7 +334,7 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
         "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
         "regular": int(regular), "bound_harmonics": int(bound_harmonics),
         "max_condition": max_condition, "depth": float(depth),
-        "fundamental_frequency": f1 if regular else np.nan,
+        **({"fundamental_frequency": f1} if regular else {}),
         "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
     return conventions.annotate(ds)
 

@@ -59,3 +59,15 @@ def test_record_without_a_steady_part_is_an_error():
     da, _ = run(3.5, 0.2, n_periods=30)
     with pytest.raises(ValueError):
         analyse_run(da, H, 3.5)
+
+
+def test_processed_dataset_round_trips_through_netcdf(tmp_path):
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    da, _ = run(2.0, 0.15, n_periods=80)
+    ds = analyse_run(da, H, 2.0, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+    ds.attrs.update(conventions.global_attrs("waves", "virtual flume", {"run": "test"}))
+    back = read_dataset(write_dataset(ds, tmp_path / "waves.nc"))
+    assert float(back.reflection_coefficient) == float(ds.reflection_coefficient)
+    np.testing.assert_array_equal(back.eta_incident.values, ds.eta_incident.values)  # NaN fill
+    assert back.harmonic_reflection_coefficient.attrs["units"] == "1"
