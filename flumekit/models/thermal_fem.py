@@ -369,7 +369,7 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
     radial_cell_size, axial_cell_size : Mesh size [m].
     order : Element order (1 or 2).
     snapshot_times : Times [s] of the stored temperature fields (Fig. 17: 641, 1840, 3225,
-        6000 s), rounded to the FEM step.
+        6000 s), linearly interpolated between the bracketing FEM steps.
 
     Returns
     -------
@@ -387,24 +387,27 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
               if g in system.unit_loads}
     n = next(iter(powers.values())).size
     times = np.arange(n + 1) * time_step
-    snap = [int(round(s / time_step)) for s in snapshot_times]
-    if any(s < 0 or s > n for s in snap):
+    snap_t = np.asarray(snapshot_times, float)
+    if np.any(snap_t < 0) or np.any(snap_t > times[-1]):
         raise ValueError(f"snapshot times must lie within 0..{times[-1]} s")
+    lo = np.minimum(np.floor(snap_t / time_step + 1e-9).astype(int), n - 1)
+    weight = snap_t / time_step - lo  # linear interpolation between the two bracketing steps
     pts = np.array([[p[1], p[2]] for p in geometry.control_points]).T
     probes = system.basis.probes(pts)
     t0 = float(lumped.attrs.get("initial_temperature", geometry.air_temperature))
     series, fields = solve_transient(system, time_step, t0, powers, probes=probes,
-                                     keep_steps=snap)
+                                     keep_steps=np.concatenate([lo, lo + 1]))
+    snapshots = np.array([(1 - w) * fields[i] + w * fields[i + 1] for i, w in zip(lo, weight)])
     mesh = system.basis.mesh
     vert = system.basis.nodal_dofs[0]
     ds = xr.Dataset(
         {"control_temperature": (("time", "control_point"), series),
-         "temperature_field": (("snapshot_time", "node"), np.array([fields[s][vert] for s in snap])),
+         "temperature_field": (("snapshot_time", "node"), snapshots[:, vert]),
          "radial_coordinate": ("node", mesh.p[0]), "axial_coordinate": ("node", mesh.p[1]),
          "cell_nodes": (("cell", "corner"), mesh.t.T.astype(np.int32)),
          "cell_region": ("cell", region.astype(np.int32)),
          "control_radius": ("control_point", pts[0]), "control_axial": ("control_point", pts[1])},
-        coords={"time": times, "snapshot_time": np.array(snap) * time_step,
+        coords={"time": times, "snapshot_time": snap_t,
                 "control_point": [p[0] for p in geometry.control_points],
                 "region": [g.name for g in geometry.regions]},
         attrs=conventions.global_attrs(

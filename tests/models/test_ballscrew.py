@@ -133,3 +133,16 @@ def test_bad_parameters_raise(reference):
         ballscrew.BallScrew(preload_per_ball=0.0)
     with pytest.raises(ValueError, match="friction"):
         ballscrew.Lubricant(friction_full_film=0.2, friction_boundary=0.1)
+
+
+def test_figures_11_to_15(reference):
+    from matplotlib.figure import Figure
+
+    from flumekit.figures import ballscrew as figures
+
+    _, eff = reference
+    for number in (11, 12, 13, 14, 15):
+        fig = figures.FIGURES[number](eff)
+        assert isinstance(fig, Figure) and len(fig.axes) >= 1
+    line = figures.figure_15(eff).axes[0].lines[0]
+    assert line.get_ydata() == pytest.approx(100 * eff["ballscrew_efficiency"].values)

@@ -171,10 +171,16 @@ def test_nafems_axisymmetric_benchmark_and_convergence_order():
     assert q2[-1] == pytest.approx(332.97, abs=0.005)  # reference given to 0.01 K
 
 
-def test_fem_scenario_dataset(scenario):
+@pytest.fixture(scope="module")
+def fem(scenario):
     _, th = scenario
-    fe = thermal_fem.thermal_fem(th, time_step=20.0, radial_cell_size=0.01, axial_cell_size=0.04,
-                                 snapshot_times=(640.0, 6000.0))
+    return thermal_fem.thermal_fem(th, time_step=20.0, radial_cell_size=0.01,
+                                   axial_cell_size=0.04, snapshot_times=(641.0, 6000.0))
+
+
+def test_fem_scenario_dataset(scenario, fem):
+    _, th = scenario
+    fe = fem
     conventions.check(fe)
     rise = fe["control_temperature"].isel(time=-1) - 293.15
     assert 25.0 < float(rise.sel(control_point="nut")) < 60.0  # order of 40 °C, as the lumped
@@ -182,3 +188,24 @@ def test_fem_scenario_dataset(scenario):
     assert np.all(fe["temperature_field"].values >= 293.15 - 1e-6)  # heating only
     with pytest.raises(ValueError, match="multiple"):
         thermal_fem.thermal_fem(th, time_step=2.5)
+
+
+def test_fem_snapshot_is_interpolated_between_steps(scenario):
+    # 641 s lies between the 640 s and 660 s steps: its field is their linear blend
+    _, th = scenario
+    fe = thermal_fem.thermal_fem(th, time_step=20.0, radial_cell_size=0.01, axial_cell_size=0.04,
+                                 snapshot_times=(640.0, 660.0, 641.0))
+    f = fe["temperature_field"].values
+    assert f[2] == pytest.approx(0.95 * f[0] + 0.05 * f[1], rel=1e-12)
+    assert np.max(f[1] - f[0]) > 0.1  # the blend is not trivially equal
+
+
+def test_figures_10_and_16_to_18(scenario, fem):
+    from matplotlib.figure import Figure
+
+    from flumekit.figures import ballscrew as figures
+
+    _, th = scenario
+    for number, ds in ((10, fem), (16, th), (17, fem), (18, fem)):
+        fig = figures.FIGURES[number](ds)
+        assert isinstance(fig, Figure) and len(fig.axes) >= 1
