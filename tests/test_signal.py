@@ -2,11 +2,18 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import stats
 
-from flumekit.signal import (cycles, lowpass, phase_average, quasi_steady_window,
-                             resample_cycles, zero_upcrossings)
+from flumekit.signal import (
+    cycles,
+    lowpass,
+    phase_average,
+    quasi_steady_window,
+    resample_cycles,
+    zero_upcrossings,
+)
 
 FS = 100.0
 
@@ -90,7 +97,9 @@ def test_resample_cycles_is_exact_for_a_linear_signal_and_checks_range():
 def test_phase_average_mean_std_and_confidence_interval():
     T, n_cyc, sigma = 2.0, 200, 0.05
     t = np.arange(0, (n_cyc + 2) * T, 1 / FS)
-    wave = lambda ph: np.sin(2 * np.pi * ph) + 0.3 * np.cos(4 * np.pi * ph)  # noqa: E731
+    def wave(ph):
+        return np.sin(2 * np.pi * ph) + 0.3 * np.cos(4 * np.pi * ph)
+
     rng = np.random.default_rng(1)
     clean = wave(t / T)
     x = np.stack([clean + rng.normal(0, sigma, t.size), 3 * clean])

@@ -56,9 +56,10 @@ def run(quick: bool = False) -> str:
                 res = [separate(d, DEPTH, **kw) for d in data]
                 e_kr = np.sqrt(np.mean([(float(r.reflection_coefficient) - kr) ** 2 for r in res]))
                 e_h = np.sqrt(np.mean([(float(r.incident_height) / hm0 - 1) ** 2 for r in res]))
-                dt = _time(lambda: separate(data[0], DEPTH, **kw), repeats)
-                rows.append(("JONSWAP", length, "all" if band is None else f"{band[0]}-{band[1]} Hz",
-                             window or "none", dt[0] * 1e3, dt[1] * 1e3, e_kr, 100 * e_h))
+                dt = _time(lambda d=data[0], kw=kw: separate(d, DEPTH, **kw), repeats)
+                label = "all" if band is None else f"{band[0]}-{band[1]} Hz"
+                rows.append(("JONSWAP", length, label, window or "none", dt[0] * 1e3,
+                             dt[1] * 1e3, e_kr, 100 * e_h))
     # regular second-order waves, Kr = 0.1, statistics from the harmonic fit
     for length in ([10.0] if quick else [2.5, 10.0]):
         period = 3.5
@@ -72,7 +73,7 @@ def run(quick: bool = False) -> str:
             kw = dict(regular=True, period=period, bound_harmonics=bound,
                       band=(0.5 / period, 4.5 / period), x_ref=0.0)
             r = separate(d, DEPTH, **kw)
-            dt = _time(lambda: separate(d, DEPTH, **kw), repeats)
+            dt = _time(lambda d=d, kw=kw: separate(d, DEPTH, **kw), repeats)
             rows.append((f"regular{' bound' if bound else ''}", length, "4 harmonics", "none",
                          dt[0] * 1e3, dt[1] * 1e3, abs(float(r.reflection_coefficient) - 0.1),
                          100 * abs(float(r.incident_height) / 0.2 - 1)))

@@ -14,7 +14,8 @@ from flumekit.figures.style import COLOURS, new_figure, style
 def _probe(waves: xr.Dataset, probe) -> str:
     if probe is not None:
         if probe not in waves.probe.values:
-            raise ValueError(f"probe {probe!r} is not in the dataset ({waves.probe.values.tolist()})")
+            raise ValueError(f"probe {probe!r} is not in the dataset "
+                             f"({waves.probe.values.tolist()})")
         return probe
     x_ref = float(waves.attrs.get("x_ref", 0.0))
     return waves.probe.values[int(np.argmin(np.abs(waves.x.values - x_ref)))]

@@ -142,7 +142,8 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
                "ursell_number": height * L**2 / depth**3, "x_reflector": x_reflector,
                "x_wavemaker": x_wavemaker, "ramp_waves": ramp_waves,
                "second_order": int(second_order),
-               "phase_reference": "incident phase zero at the wavemaker: theta = w t - k (x - x_wavemaker)"})
+               "phase_reference": "incident phase zero at the wavemaker: "
+                                  "theta = w t - k (x - x_wavemaker)"})
     return conventions.annotate(ds)
 
 

@@ -75,7 +75,8 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
         raise ValueError(
             f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
             f"than {max(min_cycles, 2)} periods of {t_meas:.3g} s (windows: "
-            + ", ".join(f"{p}: {w.start:.1f}-{w.end:.1f} s" for p, w in zip(probes, windows))
+            + ", ".join(f"{p}: {w.start:.1f}-{w.end:.1f} s"
+                        for p, w in zip(probes, windows, strict=True))
             + ")")
     dt = (t[-1] - t[0]) / (t.size - 1)
     i0 = int(np.ceil((start - t[0]) / dt - 1e-9))

@@ -118,7 +118,7 @@ def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX
     ds = xr.Dataset(
         {"condition_number": ("frequency", cond), "masked": ("frequency", bad.astype(np.int8)),
          "wave_number": ("frequency", k), "probe_spacing": ("pair", dx)},
-        coords={"frequency": f, "pair": [f"{a}-{b}" for a, b in zip(i, j)]},
+        coords={"frequency": f, "pair": [f"{a}-{b}" for a, b in zip(i, j, strict=True)]},
         attrs={"ill_conditioned_fraction": float(bad.mean()), "max_condition": max_condition,
                "advice": worst or "well-conditioned over the whole band"})
     return conventions.annotate(ds)

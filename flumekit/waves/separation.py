@@ -77,7 +77,8 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
     if gram.shape[-1] == 2:
         det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
         sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
-                        a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1) / det[:, None]
+                        a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1)
+        sol /= det[:, None]
         sol[masked] = 0.0
         return sol, cond, masked
     if masked.any():  # replace masked systems by identity / zero so the batch solve stays finite
@@ -324,7 +325,8 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     else:
         hi, hr = 4.0 * np.sqrt(m0_i), 4.0 * np.sqrt(m0_r)  # Hm0 = 4 sqrt(m0)
         definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
-        kr_definition = "energy ratio sqrt(m0_R / m0_I) over the unmasked band (Mansard & Funke 1980)"
+        kr_definition = ("energy ratio sqrt(m0_R / m0_I) over the unmasked band "
+                         "(Mansard & Funke 1980)")
     data["reflection_coefficient"] = ((), kr, {"definition": kr_definition})
     data["incident_height"] = ((), float(hi), {"definition": definition})
     data["reflected_height"] = ((), float(hr), {"definition": definition})

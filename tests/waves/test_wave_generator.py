@@ -4,8 +4,13 @@ import numpy as np
 import pytest
 
 from flumekit.signal import cycles, quasi_steady_window
-from flumekit.synth.waves import (first_harmonic_amplitude, irregular_wave_field, jonswap,
-                                  ramp_envelope, regular_wave_field)
+from flumekit.synth.waves import (
+    first_harmonic_amplitude,
+    irregular_wave_field,
+    jonswap,
+    ramp_envelope,
+    regular_wave_field,
+)
 from flumekit.waves import group_velocity, stokes2_coefficient, wavenumber
 
 H = 0.825
@@ -58,7 +63,8 @@ def test_incident_travels_towards_plus_x_with_the_phase_speed_and_reflected_back
     # at the reflector the reflected wave is Kr × incident shifted by the reflection phase
     at = regular_wave_field(t, [0.0], period=T, height=0.1, depth=H, reflection=0.3,
                             reflection_phase=0.8, second_order=False)
-    ratio = _harmonic(at.eta_reflected.values[0], t, 1 / T) / _harmonic(at.eta_incident.values[0], t, 1 / T)
+    ratio = (_harmonic(at.eta_reflected.values[0], t, 1 / T)
+             / _harmonic(at.eta_incident.values[0], t, 1 / T))
     assert ratio == pytest.approx(0.3 * np.exp(0.8j), abs=1e-9)
 
 

@@ -5,11 +5,19 @@ import warnings
 import numpy as np
 import pytest
 import xarray as xr
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from flumekit.synth.waves import irregular_wave_field, regular_wave_field
-from flumekit.waves import (MAX_CONDITION, SeparationWarning, condition_number, probe_spacing,
-                            separate, wavelength, wavenumber)
+from flumekit.waves import (
+    MAX_CONDITION,
+    SeparationWarning,
+    condition_number,
+    probe_spacing,
+    separate,
+    wavelength,
+    wavenumber,
+)
 
 H = 0.825
 FS = 25.0
@@ -171,7 +179,8 @@ def _masked_fraction_truth(da, x, max_condition=MAX_CONDITION):
     return e[bad].sum() / e.sum()
 
 
-@pytest.mark.parametrize("method, spacing", [("goda_suzuki", (0.5,)), ("mansard_funke", (0.5, 1.0))])
+@pytest.mark.parametrize("method, spacing", [("goda_suzuki", (0.5,)),
+                                             ("mansard_funke", (0.5, 1.0))])
 def test_singular_layout_warns_masks_and_reports_lost_energy(method, spacing):
     Tp = 2.5
     Lp = float(wavelength(Tp, H))
@@ -201,10 +210,9 @@ def test_regular_wave_on_a_singular_layout_is_an_error_not_a_wrong_answer():
     x = np.array([-9.0, -9.0 + L / 2, -9.0 + L])
     field = regular_wave_field(steady_time(T), x, period=T, height=0.1, depth=H,
                                second_order=False)
-    with pytest.raises(ValueError, match="ill-conditioned"):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", SeparationWarning)
-            separate(probes(field), H, regular=True, period=T, band=(0.2, 0.6))
+    with pytest.raises(ValueError, match="ill-conditioned"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", SeparationWarning)
+        separate(probes(field), H, regular=True, period=T, band=(0.2, 0.6))
 
 
 # --- bad input -------------------------------------------------------------------------------
@@ -230,7 +238,7 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="band"):
         separate(da, H, band=(20.0, 30.0))
     with pytest.raises(ValueError, match="uniformly"):
-        separate(da.assign_coords(time=np.r_[0.0, np.cumsum(np.full(da.time.size - 1, 0.04))] ** 1.01), H)
+        separate(da.assign_coords(time=da.time.values ** 1.01), H)
     with pytest.raises(ValueError, match="depth"):
         separate(da, -1.0)
 

@@ -5,8 +5,15 @@ import warnings
 import numpy as np
 import pytest
 
-from flumekit.waves import (energy_flux, group_velocity, phase_velocity, probe_spacing,
-                            stokes2_coefficient, wavelength, wavenumber)
+from flumekit.waves import (
+    energy_flux,
+    group_velocity,
+    phase_velocity,
+    probe_spacing,
+    stokes2_coefficient,
+    wavelength,
+    wavenumber,
+)
 
 G = 9.81
 
@@ -50,7 +57,9 @@ def test_group_velocity_equals_dω_dk_and_limits():
     k = wavenumber(2 * np.pi / period, h)
     # truth: central difference of ω(k) = sqrt(g k tanh kh), step 1e-6 k (error ~1e-12)
     dk = 1e-6 * k
-    w = lambda kk: np.sqrt(G * kk * np.tanh(kk * h))  # noqa: E731
+    def w(kk):
+        return np.sqrt(G * kk * np.tanh(kk * h))
+
     cg_fd = (w(k + dk) - w(k - dk)) / (2 * dk)
     np.testing.assert_allclose(group_velocity(period, h), cg_fd, rtol=1e-8)
     # deep water c/2, shallow water sqrt(g h)
