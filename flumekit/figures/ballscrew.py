@@ -1,9 +1,9 @@
-"""Figures 10-18 of Senatore & De Simone 2022 (ball-screw WEC), from processed datasets only.
+"""Figures 9-18 of Senatore & De Simone 2022 (ball-screw WEC), from processed datasets only.
 
 Each function takes the scenario dataset(s) and returns a matplotlib Figure (no pyplot):
 
 - efficiency dataset (:func:`flumekit.models.ballscrew.efficiency`): Figs. 11-15;
-- lumped thermal dataset (:func:`flumekit.models.thermal_lumped.thermal_lumped`): Fig. 16;
+- lumped thermal dataset (:func:`flumekit.models.thermal_lumped.thermal_lumped`): Figs. 9, 16;
 - FEM dataset (:func:`flumekit.models.thermal_fem.thermal_fem`): Figs. 10, 17, 18.
 """
 
@@ -77,6 +77,24 @@ def figure_15(eff: xr.Dataset):
     eta = eff["ballscrew_efficiency"].values * 100
     fig.axes[0].text(0.02, 0.05, f"range {eta.min():.0f}-{eta.max():.0f} %",
                      transform=fig.axes[0].transAxes)
+    return fig
+
+
+def figure_9(lumped: xr.Dataset):
+    """Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle."""
+    cycle = float(lumped.attrs.get("cycle_duration", 600.0))
+    one = lumped.sel(time=slice(0.0, cycle))
+    with style():
+        fig, axes = new_figure(figsize=(5.5, 3.2))
+        ax = axes[0, 0]
+        ax.plot(one["time"].values, one["mechanical_power_loss"].values, color="k",
+                label="mechanical losses $Q_{mecc}$")
+        ax.plot(one["time"].values, one["electrical_power_loss"].values, color="tab:red",
+                label="electrical losses $Q_{el}$")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("power loss [W]")
+        ax.set_title("Power losses in one operating cycle")
+        ax.legend(fontsize=7)
     return fig
 
 
@@ -170,5 +188,5 @@ def figure_18(fem: xr.Dataset):
     return fig
 
 
-FIGURES = {10: figure_10, 11: figure_11, 12: figure_12, 13: figure_13, 14: figure_14,
+FIGURES = {9: figure_9, 10: figure_10, 11: figure_11, 12: figure_12, 13: figure_13, 14: figure_14,
            15: figure_15, 16: figure_16, 17: figure_17, 18: figure_18}

@@ -134,8 +134,9 @@ class PTOCoefficients:
     """Coefficients of Eq. (3) in physical form.
 
     damping : K_damp [N s m-1], the generator's electromagnetic damping reflected to the nut.
-        60 kN s/m gives a mean generator power of ≈ 6 kW in the reference scenario, the order of
-        the wave energy flux on a 5 m float in T = 3.8 s, H ≈ 1.5 m waves.
+        60 kN s/m gives a mean generator power of ≈ 4.6 kW in the reference scenario, the order
+        of the wave energy brought to the 5 m float by T = 3.8 s, H ≈ 1.5 m waves (the energy
+        balance algorithm gives h ≈ 1 m for H = 1.5 m with these defaults).
     viscous : K_visc [N s m-1], viscous losses of seals and grease churning (≈ 1 % of K_damp).
     rotor_inertia : J [kg m2] of the EMRG rotor and screw shaft; reflected to the nut as
         J (2π/lead)² (≈ 1000 kg for 0.01 kg m², lead 20 mm).

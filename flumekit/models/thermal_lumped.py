@@ -209,6 +209,10 @@ def operating_cycle(eff: xr.Dataset, params: LumpedThermal = LumpedThermal(),
         raise ValueError(f"time step {time_step} s must divide the cycle {cycle_duration} s")
     t = eff["time"].values
     period = float(t[-1] - t[0] + (t[1] - t[0]))
+    wave = float(eff.attrs.get("wave_period", period))
+    if abs(period / wave - round(period / wave)) > 1e-6 or round(period / wave) < 1:
+        raise ValueError(f"the efficiency record ({period:.6g} s) must hold whole wave periods "
+                         f"({wave:.6g} s) to be repeated over the operating cycle")
     edges = np.arange(n + 1) * time_step
     qm = step_means(t, eff["mechanical_power_loss"].values, period, edges)
     qe = step_means(t, electrical_loss(eff["generator_power"].values,

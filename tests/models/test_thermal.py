@@ -74,6 +74,18 @@ def test_operating_cycle_conserves_the_loss_energy(scenario):
         assert cyc[name].values.sum() * 7.5 == pytest.approx(energy, rel=1e-10)
 
 
+def test_bad_thermal_inputs_raise(scenario):
+    eff, _ = scenario
+    with pytest.raises(ValueError, match="whole wave periods"):
+        thermal_lumped.operating_cycle(eff.isel(time=slice(0, 500)))
+    with pytest.raises(ValueError, match="divide"):
+        thermal_lumped.operating_cycle(eff, P, 600.0, 7.0)
+    with pytest.raises(ValueError, match="must be positive"):
+        thermal_lumped.LumpedThermal(conductance_nut_air=0.0)
+    with pytest.raises(ValueError, match="finite"):
+        thermal_lumped.integrate(1.0, np.full((3, 3), np.nan), P)
+
+
 def test_reference_nut_warms_by_about_40_degrees(scenario):
     _, th = scenario
     rise = th["temperature"].isel(time=-1) - P.initial_temperature
@@ -200,12 +212,12 @@ def test_fem_snapshot_is_interpolated_between_steps(scenario):
     assert np.max(f[1] - f[0]) > 0.1  # the blend is not trivially equal
 
 
-def test_figures_10_and_16_to_18(scenario, fem):
+def test_figures_9_10_and_16_to_18(scenario, fem):
     from matplotlib.figure import Figure
 
     from flumekit.figures import ballscrew as figures
 
     _, th = scenario
-    for number, ds in ((10, fem), (16, th), (17, fem), (18, fem)):
+    for number, ds in ((9, th), (10, fem), (16, th), (17, fem), (18, fem)):
         fig = figures.FIGURES[number](ds)
         assert isinstance(fig, Figure) and len(fig.axes) >= 1
