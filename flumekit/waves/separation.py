@@ -289,8 +289,9 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     if regular:
         # statistics from the harmonics at their exact frequencies (leakage-free for any record
         # length): least-squares harmonic fit per probe, then the same separation core
-        nh = max(int(harmonic.max()), 1)
+        nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
         coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
+        kh = kh[:nh]
         ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
         sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, np.conj(ph_h)], axis=-1),
                                                coef.T[:, :, None], max_condition)
