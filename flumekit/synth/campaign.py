@@ -25,7 +25,7 @@ from flumekit import conventions
 from flumekit.campaign import Campaign, load_campaign
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
-from flumekit.waves.theory import wavelength
+from flumekit.waves.theory import group_velocity, wavelength
 
 PERIODS = (2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0)  # Table 1 [s]
 HEIGHTS = (0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3)  # Table 1 [m]
@@ -111,12 +111,13 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
         seen[base] = repeat + 1
         run_id = f"{base}_r{repeat}"
         _write_run(tmp, campaign, run_id, kind, period, height, repeat, z, a, b, truth,
-                   np.random.default_rng([seed, len(seen), repeat]))
+                   np.random.default_rng([seed, len(seen), repeat]), spec.n_steady_waves)
     if spec.uvp_elevations:
         from flumekit.synth.uvp import true_field
 
         field = true_field(campaign, period=UVP_CONDITION[0], height=UVP_CONDITION[1],
-                           reflection=truth.reflection, reflection_phase=truth.reflection_phase)
+                           reflection=truth.reflection, reflection_phase=truth.reflection_phase,
+                           x_wavemaker=truth.x_wavemaker)
         _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
         write_dataset(field, tmp / "truth" / "uvp_field.nc")
     shutil.rmtree(root, ignore_errors=True)
@@ -143,7 +144,7 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
 
 
 def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
-               truth: Truth, rng) -> None:
+               truth: Truth, rng, n_steady: int) -> None:
     from flumekit.synth.flap import flap_record
     from flumekit.synth.waves import regular_wave_field
 
@@ -152,8 +153,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     run_dir.mkdir(parents=True)
     xp = probe_positions(period, depth, truth)
     # record: travel time from the wavemaker + ramp + steady waves, rounded to whole seconds
-    n_waves = 35 + Size.__dataclass_fields__["n_steady_waves"].default + 10
-    duration = float(np.ceil(abs(truth.x_wavemaker) / (0.8 * depth**0.5 * 3.13) + n_waves * period))
+    travel = abs(truth.x_wavemaker) / float(group_velocity(period, depth))
+    duration = float(np.ceil(travel + (35 + n_steady + 10) * period))
     lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
              f"repeat = {repeat}"]
     if z is not None:
@@ -177,7 +178,7 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
     at_flap = regular_wave_field(t100, np.array([0.0]), **wave_kw)
     flap = flap_record(t100, at_flap["eta_incident"].values[0], period=period, campaign=campaign,
-                       rng=rng)
+                       rng=rng, height=height)
     write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
                 np.column_stack([t100, flap["encoder_counts"].values,
                                  flap["chamber_pressure"].values / 1e5]),
@@ -197,13 +198,14 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
                   truth_dir / "flap.nc")
 
     if kind == "uvp":
-        from flumekit.io.mfprof import write_mfprof
-        from flumekit.synth.uvp import uvp_beams
+        from flumekit.synth.uvp import uvp_beams, write_uvp_run
 
         u = campaign.uvp
         tu = np.arange(int(duration * u.sampling_rate)) / u.sampling_rate
         beams = uvp_beams(tu, u, z, period=period, height=height, depth=depth,
-                          reflection=truth.reflection, reflection_phase=truth.reflection_phase,
-                          rng=rng)
-        for name, ds in beams.items():
-            write_mfprof(run_dir / f"{name}.mfprof", ds, u)
+                          hinge_height=campaign.flap.hinge_height, reflection=truth.reflection,
+                          reflection_phase=truth.reflection_phase,
+                          x_wavemaker=truth.x_wavemaker, ramp_waves=truth.ramp_waves,
+                          theta=np.interp(tu, t100, flap["theta"].values),
+                          flap_thickness=campaign.flap.thickness, rng=rng)
+        write_uvp_run(run_dir, beams)

@@ -1,0 +1,128 @@
+"""`flumekit make` end to end on the small virtual-flume campaign (issue 2 acceptance)."""
+
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def flumekit(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "flumekit.cli", *args], cwd=cwd,
+                          capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def small_raw(tmp_path_factory):
+    from flumekit.synth.campaign import write_campaign
+
+    raw = tmp_path_factory.mktemp("raw") / "small"
+    write_campaign(raw, size="small", seed=7)
+    return raw
+
+
+@pytest.fixture
+def project(tmp_path, small_raw):
+    (tmp_path / "pipelines").mkdir()
+    for name in ("default.toml", "small.toml"):
+        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
+    shutil.copytree(small_raw, tmp_path / "raw" / "small")
+    return tmp_path
+
+
+def make(project, *args):
+    return flumekit("make", "--pipeline", "pipelines/small.toml", *args, cwd=project)
+
+
+def raw_hashes(project):
+    return {p: hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted((project / "raw").rglob("*")) if p.is_file()}
+
+
+def built(result):
+    return sorted(line.split("] ", 1)[1].split(":")[0] for line in result.stderr.splitlines()
+                  if line.startswith("["))
+
+
+def test_make_builds_then_rebuilds_nothing(project):
+    before = raw_hashes(project)
+    first = make(project)
+    assert first.returncode == 0, first.stderr
+    assert "calibration" in built(first)
+    second = make(project)
+    assert second.returncode == 0
+    assert built(second) == []
+    assert "nothing to do" in second.stderr
+    assert raw_hashes(project) == before  # raw data untouched
+
+
+def test_every_dataset_has_units_long_names_and_history(project):
+    assert make(project).returncode == 0
+    files = sorted((project / "processed" / "small").rglob("*.nc"))
+    assert files
+    for f in files:
+        with xr.open_dataset(f) as ds:
+            assert {"history", "source", "Conventions", "title"} <= set(ds.attrs), f
+            for name, var in {**ds.coords, **ds.data_vars}.items():
+                assert "long_name" in var.attrs, (f, name)
+                if var.dtype.kind not in "OSU":
+                    assert "units" in var.attrs, (f, name)
+
+
+def test_touch_rebuilds_nothing_and_change_rebuilds_one_run(project):
+    assert make(project).returncode == 0
+    run_dir = sorted((project / "raw/small/runs").iterdir())[0]
+    probes = run_dir / "probes.csv"
+    os.utime(probes)  # touched, unchanged
+    assert built(make(project)) == []
+    lines = probes.read_text().splitlines()
+    lines[5] = lines[5][:-1] + ("1" if lines[5][-1] != "1" else "2")  # change one voltage digit
+    probes.write_text("\n".join(lines) + "\n")
+    rebuilt = built(make(project))
+    assert rebuilt, "a changed run must rebuild"
+    other_runs = [d.name for d in (project / "raw/small/runs").iterdir() if d != run_dir]
+    assert not any(r in t for t in rebuilt for r in other_runs), rebuilt
+    assert any(run_dir.name in t for t in rebuilt)
+
+
+def test_changing_a_stage_parameter_rebuilds_only_its_dependants(project):
+    assert make(project).returncode == 0
+    pipe = project / "pipelines" / "small.toml"
+    pipe.write_text(pipe.read_text() + "\n[stages.calibration]\norder = 2\n")
+    rebuilt = built(make(project))
+    assert "calibration" in rebuilt
+    assert all(t == "calibration" or not t.startswith(("uvp/",)) for t in rebuilt)
+
+
+def test_dry_run_lists_reasons_and_builds_nothing(project):
+    result = make(project, "-n")
+    assert result.returncode == 0
+    assert "would build calibration: output dataset missing" in result.stdout
+    assert not (project / "processed" / "small" / "calibration.nc").exists()
+
+
+def test_malformed_input_is_a_clear_error_without_output(project):
+    run_dir = sorted((project / "raw/small/runs").iterdir())[0]
+    probes = run_dir / "probes.csv"
+    text = probes.read_text()
+    probes.write_text(text[: len(text) // 2].rsplit(",", 1)[0])  # truncated mid-line
+    result = make(project, f"eta/{run_dir.name}")
+    assert result.returncode == 1
+    assert "Traceback" not in result.stderr
+    assert str(probes) in result.stderr and "truncated" in result.stderr
+    assert not (project / "processed/small/eta" / f"{run_dir.name}.nc").exists()
+    debug = flumekit("--debug", "make", "--pipeline", "pipelines/small.toml",
+                     f"eta/{run_dir.name}", cwd=project)
+    assert "Traceback" in debug.stderr
+
+
+def test_list_shows_scenes_and_state(project):
+    result = flumekit("list", "--pipeline", "pipelines/small.toml", cwd=project)
+    assert result.returncode == 0, result.stderr
+    assert "1 of 1 to build" in result.stdout and "output dataset missing" in result.stdout
