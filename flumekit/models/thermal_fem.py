@@ -350,8 +350,10 @@ def _lumped_sources(th: xr.Dataset) -> dict[str, np.ndarray]:
 
 
 def _mean_over_steps(x: np.ndarray, factor: int) -> np.ndarray:
-    n = x.size // factor
-    return x[: n * factor].reshape(n, factor).mean(axis=1)
+    if x.size % factor:
+        raise ValueError(f"the FEM step ({factor} lumped steps) must divide the simulated "
+                         f"time ({x.size} lumped steps)")
+    return x.reshape(x.size // factor, factor).mean(axis=1)
 
 
 def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
