@@ -413,3 +413,20 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     if "wave_period" in kin.attrs:
         ds.attrs["wave_period"] = kin.attrs["wave_period"]
     return conventions.annotate(ds)
+
+
+def sea_state_motion(wave_height: float, wave_period: float,
+                     geometry: buoy.BuoyGeometry = buoy.BuoyGeometry(),
+                     screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
+                     pto: PTOCoefficients = PTOCoefficients(), n_periods: int = 1,
+                     samples_per_period: int = 760) -> xr.Dataset:
+    """Scenario step 0 from a sea state: kinematic input z(t) = h sin(2π t/T) with the lift h of
+    the energy balance algorithm (Fig. 4) and the full PTO model of this module.
+
+    Returns the :func:`buoy.reference_motion` dataset with attrs ``wave_height`` and ``lift``.
+    """
+    h = buoy.lift_from_energy_balance(wave_height, wave_period, geometry,
+                                      pto_force_function(screw, lubricant, pto), screw.lead)
+    motion = buoy.reference_motion(h, wave_period, n_periods, samples_per_period)
+    motion.attrs.update(wave_height=float(wave_height), lift=h)
+    return motion

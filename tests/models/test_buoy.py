@@ -117,3 +117,10 @@ def test_energy_balance_with_ballscrew_pto_closes():
     assert buoy.lift_from_energy_balance(1.8, 3.8, G, force) > h
     with pytest.raises(ValueError, match="range of motion"):  # beyond the float's reach
         buoy.lift_from_energy_balance(2.5, 3.8, G, force)
+
+
+def test_sea_state_motion_uses_the_energy_balance_lift():
+    motion = ballscrew.sea_state_motion(1.5, 3.8, n_periods=1, samples_per_period=64)
+    h = buoy.lift_from_energy_balance(1.5, 3.8, G, ballscrew.pto_force_function())
+    assert motion.attrs["lift"] == pytest.approx(h, rel=1e-12)
+    assert float(motion["buoy_heave"].max()) == pytest.approx(h, rel=1e-12)  # sample at T/4
