@@ -5,7 +5,7 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "1"
+VERSION = "2"
 
 
 def rules(ctx: Context) -> list[Rule]:
@@ -25,12 +25,14 @@ def rules(ctx: Context) -> list[Rule]:
 
 
 def run_coords(params: dict) -> dict:
-    """Run parameters as scalar coordinates, so runs concatenate along ``run``."""
-    coords = {"run": params["run"], "wave_period": params["period"],
-              "wave_height": params["height"], "repeat": params["repeat"]}
-    if params.get("uvp_elevation") is not None:
-        coords["uvp_elevation"] = params["uvp_elevation"]
-    return coords
+    """Run parameters as scalar coordinates, so runs concatenate along ``run``.
+
+    ``uvp_elevation`` is NaN for runs without UVP, so every run has the same coordinates.
+    """
+    z = params.get("uvp_elevation")
+    return {"run": params["run"], "wave_period": params["period"],
+            "wave_height": params["height"], "repeat": params["repeat"],
+            "uvp_elevation": float("nan") if z is None else z}
 
 
 def build(inputs, outputs, params) -> None:

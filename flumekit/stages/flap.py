@@ -1,0 +1,70 @@
+"""Stage: flap angle, PTO forces, torque-balance inversion and power per run, and their summary."""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+from flumekit.stages.eta import run_coords
+
+VERSION = "1"
+DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    params = ctx.stage_params("flap", DEFAULTS)
+    out = []
+    for run in c.runs:
+        p = {**params, "period": run.period, "run": run.id, "height": run.height,
+             "repeat": run.repeat, "uvp_elevation": run.uvp_elevation,
+             "sampling_rate": c.encoder.sampling_rate}
+        out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
+                        inputs={"flap": run.path / "flap.csv", "campaign": ctx.campaign_file,
+                                "waves": ctx.out("waves", f"{run.id}.nc")},
+                        outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
+                        params=p, version=VERSION, run=run.id))
+    out.append(Rule("flap_summary", "flumekit.stages.flap:summary",
+                    inputs={r.id: ctx.out("flap", f"{r.id}.nc") for r in c.runs},
+                    outputs={"dataset": ctx.out("flap_summary.nc")}, version=VERSION))
+    return out
+
+
+def build(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    from flumekit import conventions
+    from flumekit.campaign import load_campaign
+    from flumekit.flap import analyse_run
+    from flumekit.io.instruments import read_flap
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    raw = read_flap(inputs["flap"], params["sampling_rate"])
+    waves = read_dataset(inputs["waves"])
+    ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
+                     raw["chamber_pressure"].values, campaign=campaign, period=params["period"],
+                     incident_height=float(waves["incident_height"]), cutoff=params["cutoff"],
+                     tolerance=params["tolerance"], n_phase=params["n_phase"],
+                     max_flagged_fraction=params["max_flagged_fraction"])
+    ds = ds.assign_coords(run_coords(params))
+    ds.attrs.update(conventions.global_attrs(
+        f"Flap dynamics, PTO and power of run {params['run']}",
+        f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", params))
+    write_dataset(ds, outputs["dataset"])
+
+
+def summary(inputs, outputs, params) -> None:
+    import xarray as xr
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    rows = []
+    for name in sorted(inputs):
+        ds = read_dataset(inputs[name])
+        scalars = [v for v in ds.data_vars if ds[v].ndim == 0]
+        rows.append(ds[scalars].expand_dims("run"))
+    out = xr.concat(rows, dim="run", coords="all", compat="override")
+    out.attrs = conventions.global_attrs("Flap amplitudes, torques and power of every run",
+                                         "flumekit flap_summary stage", {"runs": len(rows)})
+    write_dataset(out, outputs["dataset"])

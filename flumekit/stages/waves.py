@@ -1,0 +1,77 @@
+"""Stage: incident/reflected separation and wave statistics per run, and their campaign summary."""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+from flumekit.stages.eta import run_coords
+
+VERSION = "1"
+DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
+            "tolerance": 0.02, "min_cycles": 10}
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    params = ctx.stage_params("waves", DEFAULTS)
+    out = []
+    for run in c.runs:
+        p = {**params, "depth": c.flume.water_depth, "period": run.period,
+             "separation_probes": list(c.probes.separation), "run": run.id,
+             "height": run.height, "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+        out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
+                        inputs={"eta": ctx.out("eta", f"{run.id}.nc")},
+                        outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
+                        params=p, version=VERSION, run=run.id))
+    out.append(Rule("waves_summary", "flumekit.stages.waves:summary",
+                    inputs={r.id: ctx.out("waves", f"{r.id}.nc") for r in c.runs},
+                    outputs={"dataset": ctx.out("waves_summary.nc")}, version=VERSION))
+    return out
+
+
+def build(inputs, outputs, params) -> None:
+    import warnings
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.waves import analyse_run
+
+    eta = read_dataset(inputs["eta"])["eta"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = analyse_run(eta, params["depth"], params["period"], params["x_ref"],
+                         method=params["method"], separation_probes=params["separation_probes"],
+                         n_harmonics=params["n_harmonics"],
+                         bound_harmonics=params["bound_harmonics"],
+                         tolerance=params["tolerance"], min_cycles=params["min_cycles"])
+    for w in caught:
+        if issubclass(w.category, UserWarning):
+            print(f"warning: run {params['run']}: {w.message}")
+    ds = ds.assign_coords(run_coords(params))
+    ds.attrs.update(conventions.global_attrs(
+        f"Incident and reflected waves of run {params['run']}",
+        f"flumekit waves stage from {inputs['eta']}", params))
+    write_dataset(ds, outputs["dataset"])
+
+
+SUMMARY_VARIABLES = ("reflection_coefficient", "incident_height", "reflected_height",
+                     "measured_period", "steady_start", "steady_end", "energy_flux",
+                     "masked_energy_fraction")
+
+
+def summary(inputs, outputs, params) -> None:
+    import xarray as xr
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    rows = []
+    for name in sorted(inputs):
+        ds = read_dataset(inputs[name])
+        keep = [v for v in SUMMARY_VARIABLES if v in ds]
+        rows.append(ds[keep].drop_dims([d for d in ds.dims], errors="ignore")
+                    .expand_dims("run"))
+    out = xr.concat(rows, dim="run", coords="all", compat="override")
+    out.attrs = conventions.global_attrs("Wave statistics of every run",
+                                         "flumekit waves_summary stage", {"runs": len(rows)})
+    write_dataset(out, outputs["dataset"])
