@@ -175,9 +175,13 @@ def velocity_range(sound_speed: float, frequency: float, maximum_depth: float) -
 
 
 def velocity_resolution(params: Mapping[str, object]) -> float:
-    """ΔV = V_range / RawDataRange [m s-1 per count] from file parameters (FORMAT.md §5.1)."""
+    """ΔV = V_range / RawDataRange [m s-1 per count] from file parameters (FORMAT.md §5.1).
+
+    ``RawDataRange`` defaults to the writer's template value (256) when absent.
+    """
     return velocity_range(float(params["SoundSpeed"]), float(params["Frequency"]),
-                          float(params["MaximumDepth"]) * 1e-3) / float(params["RawDataRange"])
+                          float(params["MaximumDepth"]) * 1e-3) / float(
+        params.get("RawDataRange", _UVP_TEMPLATE["RawDataRange"]))
 
 
 def channel_distance(params: Mapping[str, object], n_channels: int) -> np.ndarray:
