@@ -1,0 +1,85 @@
+"""Stage: the ball-screw WEC of Senatore & De Simone (2022), step by step.
+
+kinematics -> efficiency -> thermal_lumped -> thermal_fem, each its own rule, so that a scene
+asking only for the efficiency never runs the thermal finite-element model.
+"""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+
+VERSION = "1"
+DEFAULTS = {"amplitude": 1.0, "period": 3.8, "samples_per_period": 380, "lead": 0.02,
+            "cycle_duration": 600.0, "total_duration": 6000.0, "lumped_time_step": 1.0,
+            "fem_time_step": 10.0, "radial_cell_size": 0.005, "axial_cell_size": 0.02,
+            "fem_order": 1}
+STEPS = ("kinematics", "efficiency", "thermal_lumped", "thermal_fem")
+#: which step's dataset each figure of the paper is drawn from
+FIGURE_SOURCES = {9: "thermal_lumped", 10: "thermal_fem", 11: "efficiency", 12: "efficiency",
+                  13: "efficiency", 14: "efficiency", 15: "efficiency", 16: "thermal_lumped",
+                  17: "thermal_fem", 18: "thermal_fem"}
+
+
+def rules(ctx: Context) -> list[Rule]:
+    p = ctx.stage_params("ballscrew", DEFAULTS)
+    keys = {"kinematics": ("amplitude", "period", "samples_per_period", "lead"),
+            "efficiency": (),
+            "thermal_lumped": ("cycle_duration", "total_duration", "lumped_time_step"),
+            "thermal_fem": ("fem_time_step", "radial_cell_size", "axial_cell_size", "fem_order")}
+    out, previous = [], None
+    for step in STEPS:
+        inputs = {} if previous is None else {"previous": ctx.out("ballscrew", f"{previous}.nc")}
+        out.append(Rule(f"ballscrew/{step}", f"flumekit.stages.ballscrew:{step}", inputs=inputs,
+                        outputs={"dataset": ctx.out("ballscrew", f"{step}.nc")},
+                        params={k: p[k] for k in keys[step]}, version=VERSION))
+        previous = step
+    return out
+
+
+def _write(ds, outputs, title, params):
+    from flumekit import conventions
+    from flumekit.io.netcdf import write_dataset
+
+    ds.attrs.update(conventions.global_attrs(
+        title, "flumekit ballscrew stage (Senatore & De Simone 2022 models)", params))
+    write_dataset(ds, outputs["dataset"])
+
+
+def _previous(inputs):
+    from flumekit.io.netcdf import read_dataset
+
+    return read_dataset(inputs["previous"])
+
+
+def kinematics(inputs, outputs, params) -> None:
+    from flumekit.models import buoy
+
+    motion = buoy.reference_motion(params["amplitude"], params["period"],
+                                   samples_per_period=params["samples_per_period"])
+    _write(buoy.kinematics(motion, lead=params["lead"]), outputs,
+           "Ball-screw WEC: buoy motion and linkage kinematics", params)
+
+
+def efficiency(inputs, outputs, params) -> None:
+    from flumekit.models import ballscrew
+
+    _write(ballscrew.efficiency(_previous(inputs)), outputs,
+           "Ball-screw WEC: PTO force, lubrication and efficiency", params)
+
+
+def thermal_lumped(inputs, outputs, params) -> None:
+    from flumekit.models.thermal_lumped import thermal_lumped as run
+
+    _write(run(_previous(inputs), cycle_duration=params["cycle_duration"],
+               total_duration=params["total_duration"], time_step=params["lumped_time_step"]),
+           outputs, "Ball-screw WEC: lumped thermal model", params)
+
+
+def thermal_fem(inputs, outputs, params) -> None:
+    from flumekit.models.thermal_fem import thermal_fem as run
+
+    _write(run(_previous(inputs), time_step=params["fem_time_step"],
+               radial_cell_size=params["radial_cell_size"],
+               axial_cell_size=params["axial_cell_size"], order=params["fem_order"]),
+           outputs, "Ball-screw WEC: axisymmetric finite-element thermal model", params)

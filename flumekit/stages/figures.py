@@ -1,0 +1,89 @@
+"""Stage: every figure, drawn from processed datasets only, one rule per figure.
+
+``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
+those of Senatore & De Simone (2022). Single-run figures use the run named by
+``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m).
+"""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+
+VERSION = "1"
+DEFAULTS = {"run": "auto", "format": "png", "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
+
+
+def _figure_run(ctx: Context, wanted: str) -> str | None:
+    runs = ctx.campaign.runs
+    if not runs:
+        return None
+    if wanted != "auto":
+        ctx.campaign.run(wanted)  # KeyError names the campaign and the run
+        return wanted
+    paper = [r for r in runs if (r.period, r.height) == (3.5, 0.25)]
+    return (paper or list(runs))[0].id
+
+
+def rules(ctx: Context) -> list[Rule]:
+    from flumekit.stages.ballscrew import FIGURE_SOURCES
+
+    p = ctx.stage_params("figures", DEFAULTS)
+    fmt = p["format"]
+    out: list[Rule] = []
+
+    def fig(name: str, draw: str, inputs: dict, **params) -> None:
+        out.append(Rule(f"figure/{name}", "flumekit.stages.figures:draw", inputs=inputs,
+                        outputs={"figure": ctx.out("figures", f"{name}.{fmt}")},
+                        params={"draw": draw, **params}, version=VERSION))
+
+    run = _figure_run(ctx, p["run"])
+    if run is not None:
+        waves, flap = ctx.out("waves", f"{run}.nc"), ctx.out("flap", f"{run}.nc")
+        fig("fig05a", "waves:figure_5a", {"waves": waves})
+        fig("fig05b", "flap:figure_5b", {"flap": flap})
+        fig("fig06a", "waves:figure_6a", {"waves": waves})
+        fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
+        fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves})
+        pressure = [r.id for r in ctx.campaign.runs
+                    if [r.period, r.height] in p["pressure_runs"] and r.repeat == 0]
+        fig("fig07", "flap:figure_7",
+            {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
+        every = {r.id: ctx.out("flap", f"{r.id}.nc") for r in ctx.campaign.runs}
+        fig("fig08", "flap:figure_8", every)
+        fig("fig09", "flap:figure_9", every)
+    if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
+        fig("fig11", "uvp:fig11", {"field": ctx.out("uvp_field.nc")})
+        fig("fig12", "uvp:fig12", {"field": ctx.out("uvp_field.nc")})
+    for n, step in FIGURE_SOURCES.items():
+        fig(f"bs_fig{n:02d}", f"ballscrew:FIGURES[{n}]",
+            {step: ctx.out("ballscrew", f"{step}.nc")})
+    return out
+
+
+def _function(draw: str):
+    import importlib
+
+    module, _, name = draw.partition(":")
+    mod = importlib.import_module(f"flumekit.figures.{module}")
+    if "[" in name:  # a registry entry such as FIGURES[11]
+        table, key = name.rstrip("]").split("[")
+        return getattr(mod, table)[int(key)]
+    return getattr(mod, name)
+
+
+def draw(inputs, outputs, params) -> None:
+    from flumekit.figures.style import save, style
+    from flumekit.io.netcdf import read_dataset
+
+    data = {k: read_dataset(v) for k, v in inputs.items()}
+    fn = _function(params["draw"])
+    with style():
+        if params["draw"] == "flap:figure_10":
+            fig = fn(data["flap"], eta=data["waves"]["eta_incident"])
+        elif params["draw"] in ("flap:figure_7", "flap:figure_8", "flap:figure_9"):
+            fig = fn([data[k] for k in sorted(data)])
+        else:
+            (ds,) = data.values()
+            fig = fn(ds)
+    save(fig, outputs["figure"])

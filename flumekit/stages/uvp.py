@@ -1,0 +1,103 @@
+"""Stage: UVP beam records -> per-run phase averages -> the campaign's (phase, z, x) field.
+
+The phase reference of every run is the first zero up-crossing of the separated incident wave
+at the flap (x = 0) in the quasi-steady window (Brito et al. 2020, §2.5-2.6); the instruments are
+taken to share one clock (the virtual flume's do; a real campaign must synchronise them).
+"""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+from flumekit.stages.eta import run_coords
+
+VERSION = "1"
+DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
+            "method": "least_squares", "dx": 0.01}
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    if c.uvp is None:
+        return []
+    params = ctx.stage_params("uvp", DEFAULTS)
+    runs = [r for r in c.runs if r.kind == "uvp"]
+    out = []
+    for run in runs:
+        inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
+        inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
+                      flap=ctx.out("flap", f"{run.id}.nc"))
+        p = {**params, "run": run.id, "period": run.period, "height": run.height,
+             "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+        out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
+                        outputs={"dataset": ctx.out("uvp", f"{run.id}.nc")}, params=p,
+                        version=VERSION, run=run.id))
+    if runs:
+        inputs = {r.id: ctx.out("uvp", f"{r.id}.nc") for r in runs}
+        inputs["campaign"] = ctx.campaign_file
+        out.append(Rule("uvp_field", "flumekit.stages.uvp:field", inputs=inputs,
+                        outputs={"dataset": ctx.out("uvp_field.nc")},
+                        params={**params, "height": runs[0].height, "period": runs[0].period},
+                        version=VERSION))
+    return out
+
+
+def phase_reference(waves) -> tuple[float, float]:
+    """(start, period): first up-crossing of the incident wave at the flap in the steady window."""
+    import numpy as np
+
+    from flumekit.signal import zero_upcrossings
+
+    t = waves["time"].values
+    inside = (t >= float(waves["steady_start"])) & (t <= float(waves["steady_end"]))
+    eta = waves["eta_incident"].values[inside]
+    if not np.all(np.isfinite(eta)):
+        eta = np.nan_to_num(eta)
+    ups = zero_upcrossings(eta, t[inside])
+    if ups.size == 0:
+        raise ValueError("no zero up-crossing of the incident wave in the quasi-steady window")
+    return float(ups[0]), float(waves["measured_period"])
+
+
+def build(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    from flumekit import conventions
+    from flumekit.campaign import load_campaign
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.uvp import phase_average_beams
+
+    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    beams = {b.name: read_mfprof(inputs[b.name]) for b in campaign.uvp.beams}
+    start, period = phase_reference(read_dataset(inputs["waves"]))
+    theta = read_dataset(inputs["flap"])["theta"]
+    ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
+                             start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
+                             cutoff=params["cutoff"], order=params["order"], theta=theta,
+                             flap_thickness=campaign.flap.thickness, margin=params["margin"])
+    ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
+    ds.attrs.update(conventions.global_attrs(
+        f"Phase-averaged UVP beam velocities of run {params['run']}",
+        f"flumekit uvp stage from {', '.join(str(inputs[b.name]) for b in campaign.uvp.beams)}",
+        params))
+    write_dataset(ds, outputs["dataset"])
+
+
+def field(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    from flumekit import conventions
+    from flumekit.campaign import load_campaign
+    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.uvp import velocity_field
+
+    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    runs = [read_dataset(p) for name, p in sorted(inputs.items()) if name != "campaign"]
+    ds = velocity_field(runs, campaign.uvp, height=params["height"], period=params["period"],
+                        method=params["method"], dx=params["dx"],
+                        water_depth=campaign.flume.water_depth)
+    ds.attrs.update(conventions.global_attrs(
+        "Phase-averaged velocity field in front of the flap",
+        f"flumekit uvp_field stage from {len(runs)} UVP runs", params))
+    write_dataset(ds, outputs["dataset"])
