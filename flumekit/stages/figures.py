@@ -10,7 +10,7 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "1"
+VERSION = "2"
 DEFAULTS = {"run": "auto", "format": "png", "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
 
 
@@ -80,7 +80,10 @@ def draw(inputs, outputs, params) -> None:
     fn = _function(params["draw"])
     with style():
         if params["draw"] == "flap:figure_10":
-            fig = fn(data["flap"], eta=data["waves"]["eta_incident"])
+            # the measured elevation at the probe nearest the flap, over the whole record
+            # (the separated incident wave exists only in the waves' own steady window)
+            eta = data["waves"]["eta"]
+            fig = fn(data["flap"], eta=eta.isel(probe=int(abs(eta["x"]).argmin())))
         elif params["draw"] in ("flap:figure_7", "flap:figure_8", "flap:figure_9"):
             fig = fn([data[k] for k in sorted(data)])
         else:
