@@ -98,9 +98,9 @@ def _truncation(width, channel_width, kappa2, options) -> dict:
         t["quadrature_nodes"] = (24 if channel_width is None or t["lattice"] == "direct"
                                  else hypersingular.channel_quadrature_nodes(width, channel_width))
     if channel_width is not None and t["lattice_modes"] is None:
-        # Bessel decay of the density transform (λ_Q = πQw/b ≥ 40) and |β_Q| ≥ 2 max|κ_n|
+        # Bessel decay of the density transform (λ_Q = πQw/b ≥ 80) and |β_Q| ≥ 2 max|κ_n|
         kmax = float(np.sqrt(np.max(np.abs(kappa2))))
-        t["lattice_modes"] = int(max(16, np.ceil(40 * channel_width / (np.pi * width)),
+        t["lattice_modes"] = int(max(16, np.ceil(80 * channel_width / (np.pi * width)),
                                      np.ceil(kmax * channel_width / np.pi)))
     for key in ("chebyshev_terms", "evanescent_modes", "quadrature_nodes", "images"):
         if int(t[key]) != t[key] or t[key] < (1 if key != "evanescent_modes" else 0):
@@ -174,7 +174,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
         - ``evanescent_modes`` N, evanescent vertical modes (default 8; error ∝ N^{-3.5},
           2e-6 at 8);
         - ``lattice_modes`` Q, transverse modes of the Kummer-accelerated modal lattice sum
-          (default max(16, 40 b/(πw), max|κ_n| b/π); terms fall like q^{-9/2});
+          (default max(16, 80 b/(πw), max|κ_n| b/π); terms fall like q^{-9/2});
         - ``quadrature_nodes``: Gauss nodes for the smooth channel kernels (default from the
           Bernstein ellipse of w/b, 1e-14) or, in open water, Gauss–Legendre nodes per side of
           each collocation point (default 24);
@@ -223,7 +223,9 @@ def dataset(sol: Solution, depth: float, hinge_height: float, rho: float = 1000.
     attrs = {"depth": float(depth), "flap_width": w, "hinge_height": float(hinge_height),
              "rho": float(rho), "g": float(g),
              **{f"truncation_{k}": (v if isinstance(v, str) else int(v))
-                for k, v in sol.truncation.items()}}
+                for k, v in sol.truncation.items()
+                if v is not None and (sol.channel_width is not None
+                                      or k not in ("lattice", "lattice_modes", "images"))}}
     if sol.channel_width is not None:
         b = sol.channel_width
         refl = -1j * np.pi * w * m.wavenumber / (8 * b) * sol.alpha[:, 0, 0] / m.f[:, 0]
