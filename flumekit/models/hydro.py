@@ -127,7 +127,8 @@ def split_complex(hydro: xr.Dataset) -> xr.Dataset:
     """Replace every complex variable X by ``X_real`` and ``X_imag`` (for netCDF)."""
     out = hydro.copy()
     for name in [n for n in hydro.data_vars if hydro[n].dtype.kind == "c"]:
-        da = out.pop(name)
+        da = out[name]
+        out = out.drop_vars(name)
         for part, values in (("real", da.real), ("imag", da.imag)):
             out[f"{name}_{part}"] = values.assign_attrs(
                 {**da.attrs, "long_name": f"{da.attrs.get('long_name', name)} ({part} part)"})
@@ -141,7 +142,8 @@ def merge_complex(ds: xr.Dataset) -> xr.Dataset:
         for re_s, im_s in (("_real", "_imag"), ("_re", "_im")):
             if name.endswith(re_s) and name[: -len(re_s)] + im_s in ds:
                 base = name[: -len(re_s)]
-                re, im = out.pop(name), out.pop(base + im_s)
+                re, im = out[name], out[base + im_s]
+                out = out.drop_vars([name, base + im_s])
                 attrs = {k: v for k, v in re.attrs.items() if k != "long_name"}
                 out[base] = (re + 1j * im).assign_attrs(attrs)
     return conventions.annotate(out)
@@ -348,7 +350,9 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     -------
     Dataset with ``added_inertia_infinite_estimate`` over ``angular_frequency`` [kg m2] and the
     scalar ``added_inertia_infinite`` (median of the estimates) [kg m2]; ``attrs``:
-    ``spread`` = (max − min)/|median| of the estimates, ``rms_spread`` = std/|median|.
+    ``spread`` = (90th − 10th percentile)/|median| of the estimates (robust to the lowest
+    frequencies, where the 1/ω factor amplifies the error of the low-frequency extension of B),
+    ``full_spread`` = (max − min)/|median|, ``rms_spread`` = std/|median|.
     """
     from flumekit.models.radiation import impulse_response, sine_transform
 
@@ -359,7 +363,9 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     scale = abs(med) if med != 0 else 1.0
     out = xr.Dataset({"added_inertia_infinite_estimate": (DIM, est),
                       "added_inertia_infinite": med}, coords={DIM: w})
-    out.attrs.update(spread=float((est.max() - est.min()) / scale),
+    p10, p90 = np.percentile(est, [10, 90])
+    out.attrs.update(spread=float((p90 - p10) / scale),
+                     full_spread=float((est.max() - est.min()) / scale),
                      rms_spread=float(est.std() / scale),
                      method="Ogilvie (1964): A_inf = A(w) + (1/w) int_0^inf K(t) sin(wt) dt, "
                             "median over frequencies")
@@ -374,7 +380,8 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
     Parameters
     ----------
     hydro : Coefficient container (passivity is checked first).
-    max_spread : Largest accepted (max − min)/|median| of the per-frequency estimates; a larger
+    max_spread : Largest accepted robust spread (``spread`` of
+        :func:`infinite_frequency_inertia`) of the per-frequency estimates; a larger
         spread raises :class:`HydroError` with the numbers. ``None`` skips the check.
     at_frequency : Instead of the median, take the estimate at this angular frequency
         [rad s-1] (interpolated): the time-domain model then reproduces A and B exactly at that
@@ -389,7 +396,8 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         e = est["added_inertia_infinite_estimate"]
         raise HydroError(
             f"the Ogilvie estimates of the infinite-frequency added inertia spread by "
-            f"{spread:.1%} (from {float(e.min()):.4g} to {float(e.max()):.4g} kg m2, median "
+            f"{spread:.1%} between their 10th and 90th percentiles (all from "
+            f"{float(e.min()):.4g} to {float(e.max()):.4g} kg m2, median "
             f"{float(est['added_inertia_infinite']):.4g}) over the frequencies, more than "
             f"{max_spread:.1%}: the added inertia and damping are not consistent (Kramers-Kronig), "
             "or the frequency range is too short. Widen the range, check the data, pass "

@@ -304,7 +304,9 @@ def fit_state_space(irf: xr.DataArray, order: int | None = None, *, rtol: float 
     n_s = ks.size
     if n_s < 8:
         raise ValueError("the impulse response is too short for a realisation (< 8 samples)")
-    rows = (n_s - 1) // 2
+    # a wide Hankel matrix with at most 120 block rows: every sample is used, the SVD stays
+    # cheap (O(rows² cols)) and 120 rows leave room for any order tried
+    rows = min((n_s - 1) // 2, 120)
     cols = n_s - 1 - rows
     idx = np.arange(rows)[:, None] + np.arange(cols)[None, :]
     h0, h1 = ks[idx], ks[idx + 1]
