@@ -53,6 +53,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from operator import mul
 
 import numpy as np
 import xarray as xr
@@ -71,23 +72,35 @@ class SimulationError(FlumekitError, RuntimeError):
 
 
 def _friction_kernels(model: LuGre):
-    """Scalar stepping and force functions of :mod:`flumekit.flap.friction` for the inner loop.
+    """Scalar stepping and force functions of the modified LuGre model for the inner loop.
 
     Adapter: the flap package's public ``friction_step``/``friction_advance``/``friction_force``
-    validate and convert their arguments (numpy) on every call, several microseconds each, which
-    is most of a simulator step; its scalar kernels are used when present, the public functions
-    otherwise. Returns step(z, h, v, dt), advance(z, h, v0, v1, dt) -> (z, h), force(z, h, v).
+    validate and convert their arguments (numpy) on every call, several microseconds each, more
+    than the rest of a simulator step. Its scalar kernels ``_step``/``_advance`` are used when
+    present (the public functions otherwise); the force is Eq. (A3) with the corrected Eq. (A5)
+    of :mod:`flumekit.flap.friction`, evaluated on floats (tested against
+    :func:`flumekit.flap.friction.friction_force`).
+
+    Returns step(z, h, v, dt) -> (z, h), advance(z, h, v0, v1, dt) -> (z, h), force(z, h, v).
     """
-    c = _friction._constants(model) if hasattr(_friction, "_constants") else None
-    if c is not None and all(hasattr(_friction, f) for f in ("_step", "_advance", "_force_at")):
-        s_, a_, f_ = _friction._step, _friction._advance, _friction._force_at
+    s0, s1, s2 = model.sigma0, model.sigma1, model.sigma2
+    fc, fs, ivs, n_exp = (model.coulomb_force, model.static_force, 1.0 / model.stribeck_velocity,
+                          model.stribeck_exponent)
+    exp = math.exp
+
+    def force(z, h, v):
+        x = abs(v) * ivs
+        g = fc + ((1.0 - h) * fs - fc) * exp(-(x if n_exp == 1.0 else x**n_exp))  # Eq. (A5)
+        return s0 * z + s1 * (v - s0 * abs(v) * z / g) + s2 * v  # Eqs. (A3)-(A4)
+
+    if all(hasattr(_friction, f) for f in ("_constants", "_step", "_advance")):
+        c = _friction._constants(model)
+        s_, a_ = _friction._step, _friction._advance
         return ((lambda z, h, v, dt: s_(z, h, v, dt, c)),
-                (lambda z, h, v0, v1, dt: a_(z, h, v0, v1, dt, c)),
-                (lambda z, h, v: f_(z, h, v, c)))
+                (lambda z, h, v0, v1, dt: a_(z, h, v0, v1, dt, c)), force)
     return ((lambda z, h, v, dt: tuple(_friction.friction_step(FrictionState(z, h), v, dt, model))),
             (lambda z, h, v0, v1, dt: tuple(_friction.friction_advance(
-                FrictionState(z, h), v0, v1, dt, model))),
-            (lambda z, h, v: float(_friction.friction_force((z, h), v, model))))
+                FrictionState(z, h), v0, v1, dt, model))), force)
 
 
 @dataclass(frozen=True)
@@ -186,8 +199,6 @@ class _ModalCoefficients:
     qa: list  # final update weights for u0, um, u1
     qm: list
     qb: list
-    c_half: list  # c e^{λh/2}
-    c_full: list  # c e^{λh}
     c: list
     g2: float  # Re Σ c (h/2) φ1(z/2): stage memory per unit stage velocity
     g4a: float  # Re Σ c e^{z/2} (h/2) φ1(z/2)
@@ -213,7 +224,7 @@ def _modal(ss: StateSpace, h: float) -> _ModalCoefficients:
     # scalar multiples of the stage velocities
     return _ModalCoefficients(
         e0=e.tolist(), eh=eh.tolist(), qa=qa.tolist(), qm=qm.tolist(), qb=qb.tolist(),
-        c_half=(c * eh).tolist(), c_full=(c * e).tolist(), c=c.tolist(),
+        c=c.tolist(),
         g2=re(h / 2 * q1), g4a=re(eh * h / 2 * q1))
 
 
@@ -289,9 +300,12 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
     conv = isinstance(radiation, xr.DataArray)
     if ss:
         mc = _modal(radiation, h)
-        x = [0j] * len(mc.c)
-        cnow, chalf, cfull = mc.c, mc.c_half, mc.c_full
-        e0, qa, qm, qb = mc.e0, mc.qa, mc.qm, mc.qb
+        # scaled modal states y_k = c_k x_k: μ = Re Σ y_k; the update weights carry c_k
+        y = [0j] * len(mc.c)
+        e0, eh = mc.e0, mc.eh
+        qa = [c * q for c, q in zip(mc.c, mc.qa)]
+        qm = [c * q for c, q in zip(mc.c, mc.qm)]
+        qb = [c * q for c, q in zip(mc.c, mc.qb)]
         g2, g4a = mc.g2, mc.g4a
     if conv:
         # K at half-step lags, zero beyond the impulse response's last lag L
@@ -356,9 +370,10 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
         last = n == n_steps
         # memory torque now, and the parts of the later stages known at the step start
         if ss:
-            mu1 = sum([(ci * xi).real for ci, xi in zip(cnow, x)])
-            ph = sum([(ci * xi).real for ci, xi in zip(chalf, x)])
-            pf = sum([(ci * xi).real for ci, xi in zip(cfull, x)])
+            mu1 = sum(y).real
+            ph = sum(map(mul, eh, y)).real
+            ey = list(map(mul, e0, y))
+            pf = sum(ey).real
         elif conv:
             # trapezoidal rule on the step grid (module notes)
             hist[n] = om
@@ -404,8 +419,7 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
         a4 = accel(th + h * om3, om4, mu4, te_f, ze, he)[0]
         if ss:  # exponential update with Simpson's quadratic θ̇ over the step
             um = 0.5 * (om2 + om3)
-            x = [e * xi + a_ * om + b_ * um + c_ * om4
-                 for e, xi, a_, b_, c_ in zip(e0, x, qa, qm, qb)]
+            y = [e + a_ * om + b_ * um + c_ * om4 for e, a_, b_, c_ in zip(ey, qa, qm, qb)]
         elif conv:
             S1prev = S1
         th_new = th + h6 * (om + 2.0 * (om2 + om3) + om4)

@@ -11,7 +11,7 @@ from flumekit.io.netcdf import read_dataset, write_dataset
 from flumekit.models import hydro as H
 
 #: analytic radiation kernel K(t) = Σ a e^{-αt} cos βt (a Kramers-Kronig pair with A∞ = 25)
-KERNEL = dict(amplitude=[400.0, 300.0], decay_rate=[1.0, 3.0], frequency=[2.5, 6.0])
+KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
 A_INF = 25.0
 
 

@@ -9,7 +9,7 @@ from scipy import integrate, linalg
 from flumekit.models import hydro as H
 from flumekit.models import radiation as R
 
-KERNEL = dict(amplitude=[400.0, 300.0], decay_rate=[1.0, 3.0], frequency=[2.5, 6.0])
+KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
 A_INF = 25.0
 
 

@@ -17,7 +17,7 @@ from flumekit.models import radiation as R
 from flumekit.models import simulator as S
 from flumekit.models.excitation import excitation_torque
 
-KERNEL = dict(amplitude=[400.0, 300.0], decay_rate=[1.0, 3.0], frequency=[2.5, 6.0])
+KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
 A_INF, C, I_FLAP = 25.0, 605.0, 14.74
 
 
@@ -269,7 +269,7 @@ def test_hydraulic_pto_uses_the_flap_models(campaign, ss):
     from flumekit.flap.pressure import chamber_pressure_model
     from flumekit.flap.torque import hydrodynamic_torque
 
-    ds, flap = hydraulic_run(campaign, ss, 0.02, restoring="sine")
+    ds, _flap = hydraulic_run(campaign, ss, 0.02, restoring="sine")
     pto = campaign.pto
     p = chamber_pressure_model(ds["theta_dot"], ds["theta_ddot"], 2e6, 2.4e4,
                                atmospheric_pressure=pto.atmospheric_pressure,
@@ -385,3 +385,56 @@ def test_against_the_virtual_flume(campaign):
     ref = np.interp(ds["time"].values[sel], t, theta_true)
     amp = np.max(np.abs(ref))
     assert np.sqrt(np.mean((ds["theta"].values[sel] - ref) ** 2)) < 0.02 * amp
+
+
+def test_friction_adapter_matches_the_flap_package(campaign):
+    from flumekit.flap import friction as fr
+
+    model = fr.LuGre.from_campaign(campaign.pto.friction)
+    step, advance, force = S._friction_kernels(model)
+    rng = np.random.default_rng(7)
+    z = rng.uniform(-1, 1, 50) * model.static_force / model.sigma0
+    h = rng.uniform(0, model.film_max, 50)
+    v = rng.normal(0, 0.1, 50)
+    np.testing.assert_allclose([force(*a) for a in zip(z, h, v)],
+                               fr.friction_force((z, h), v, model), rtol=1e-12, atol=1e-12)
+    for a in zip(z[:10], h[:10], v[:10]):
+        assert step(*a, 0.03) == pytest.approx(tuple(fr.friction_step(a[:2], a[2], 0.03, model)),
+                                               rel=1e-12)
+        assert advance(a[0], a[1], a[2], -a[2], 0.03) == pytest.approx(
+            tuple(fr.friction_advance(a[:2], a[2], -a[2], 0.03, model)), rel=1e-12)
+
+
+def test_summary_and_figure_helpers(campaign, ss):
+    from flumekit.figures.simulator import add_figure_8, add_figure_9, add_figure_10
+    from flumekit.figures.style import new_figure
+    from flumekit.models.simulator_summary import summarise_run
+
+    w, a, nu = 2 * np.pi / 2.5, 0.1, 150.0
+    flap = S.FlapDynamics(I_FLAP, A_INF, C)
+    ds = S.simulate(regular_torque(w, a, 80.0), flap, ss, S.LinearDamper(nu), dt=0.02,
+                    duration=80.0)
+    ds["eta_incident"] = ("time", a * np.cos(w * ds["time"].values))
+    summ = summarise_run(ds, period=2.5, incident_height=2 * a, depth=0.825, flap_width=1.31)
+    truth = eq_a1(w, a, nu)
+    # amplitude per cycle and mean power ½ ν ω² |Θ|² of the frequency-domain solution
+    assert float(summ["theta_amplitude"]) == pytest.approx(abs(truth), rel=5e-3)
+    assert float(summ["mean_power"]) == pytest.approx(0.5 * nu * w**2 * abs(truth) ** 2,
+                                                      rel=1e-2)
+    assert float(summ["capture_factor"]) == pytest.approx(
+        float(summ["mean_power"]) / float(summ["incident_power"]))
+    conventions.check(summ)
+    runs = [summ.assign_coords(wave_height=0.2),
+            summarise_run(ds, period=2.5, incident_height=2 * a, depth=0.825,
+                          flap_width=1.31).assign_coords(wave_period=3.0, wave_height=0.2)]
+    _, axes = new_figure(1, 2)
+    add_figure_8(axes[0, 0], runs)
+    np.testing.assert_allclose(axes[0, 0].lines[0].get_ydata(),
+                               [float(r["torque_amplitude"]) for r in runs])
+    add_figure_9(axes[0, :], runs)
+    np.testing.assert_allclose(axes[0, 0].lines[-1].get_ydata(),
+                               [float(r["theta_amplitude"]) / np.pi for r in runs])
+    _, axes = new_figure(2, 2)
+    add_figure_10(axes, summ, sim=ds)
+    eta_line = axes[0, 0].lines[0].get_ydata()
+    assert np.max(eta_line) == pytest.approx(0.5, rel=0.01)  # ⟨η⟩/H peaks at 1/2
