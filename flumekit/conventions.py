@@ -161,6 +161,8 @@ VARIABLES: dict[str, Variable] = {
     "n_cycles": _V("1", "number of wave cycles phase-averaged"),
     "n_repeats": _V("1", "number of repeated runs averaged"),
     "n_beams": _V("1", "number of UVP beams that see the point"),
+    "uu": _V("m2 s-2", "variance of the longitudinal velocity fluctuation <u'u'> (unclipped estimate)"),
+    "ww": _V("m2 s-2", "variance of the vertical velocity fluctuation <w'w'> (unclipped estimate)"),
     "uw": _V("m2 s-2", "covariance of the longitudinal and vertical velocity fluctuations <u'w'>"),
     "velocity_scale": _V("m s-1", "velocity scale U0 = pi H/T"),
     "inside_flap": _V("1", "1 where the point lies inside the flap (masked)"),

@@ -157,7 +157,7 @@ def incident_upcrossing(*, period: float, height: float, depth: float,
             break
     if not (-a1 * np.sin(th) - 2 * a2 * np.sin(2 * th)) > 0:
         raise ValueError("no rising zero crossing near the linear one (wave too steep)")
-    return float(((th + k * x_wavemaker) / omega) % period)
+    return float(((th - k * x_wavemaker) / omega) % period)
 
 
 def maximum_speed(*, period: float, height: float, depth: float, reflection: float,

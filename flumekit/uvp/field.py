@@ -202,7 +202,9 @@ def velocity_field(runs: Iterable[xr.Dataset] | xr.Dataset, uvp: UVP, *, height:
     Returns
     -------
     Dataset over (phase, z, x): ``u``, ``w`` [m s-1], ``u_ci``, ``w_ci`` (95 % CI half-widths),
-    ``u_rms``, ``w_rms`` [m s-1], ``uw``, ``tke`` [m2 s-2], ``u_normalised``, ``w_normalised``,
+    ``u_rms``, ``w_rms`` [m s-1] (from variances clipped at 0), ``uu``, ``ww``, ``uw``,
+    ``tke`` [m2 s-2] (unclipped: sampling noise makes single estimates of a small variance
+    negative, and clipping would bias averages), ``u_normalised``, ``w_normalised``,
     ``n_beams``; scalar coordinates ``velocity_scale`` (U0), ``wave_period``, ``wave_height``.
     """
     if method not in ("least_squares", "paired"):
@@ -229,11 +231,15 @@ def velocity_field(runs: Iterable[xr.Dataset] | xr.Dataset, uvp: UVP, *, height:
     if method == "least_squares":
         nb = len(b["names"])
         V = np.stack([grid("beam_velocity", k) for k in range(nb)], axis=-1)
-        S = np.stack([grid("beam_velocity_std", k) for k in range(nb)], axis=-1)
+        # variances (not RMS values) are interpolated: linear interpolation of an unbiased
+        # variance estimate stays unbiased, while squaring interpolated RMS values biases
+        # them low, and ⟨w'²⟩, a small difference of beam variances, amplifies that ~8 times
+        S2 = np.stack([grid(None, k, values=vals["beam_velocity_std"][:, k] ** 2)
+                       for k in range(nb)], axis=-1)
         C = np.stack([grid("beam_velocity_ci", k) for k in range(nb)], axis=-1)
         u, w, cu, cw = least_squares_velocity(V, b["angle"])
         u_ci, w_ci = combine_ci(cu, C), combine_ci(cw, C)
-        uu, ww, uw = reynolds_stresses(S**2, b["angle"])
+        uu, ww, uw = reynolds_stresses(S2, b["angle"])
         n_beams = np.isfinite(V).sum(-1)
     else:
         names = b["names"]
@@ -254,7 +260,7 @@ def velocity_field(runs: Iterable[xr.Dataset] | xr.Dataset, uvp: UVP, *, height:
         w_ci = mid(np.sqrt(c1**2 + c3**2) / (2 * np.sin(alpha)))
         horizontal = [k for k, a in enumerate(b["angle"]) if np.isclose(a, 0.0)]
         if horizontal:
-            uu = grid("beam_velocity_std", horizontal[0]) ** 2
+            uu = grid(None, horizontal[0], values=vals["beam_velocity_std"][:, horizontal[0]] ** 2)
         else:
             uu = np.full(u.shape, np.nan)
         ww = (mid(s1 + s3) - 2 * np.cos(alpha) ** 2 * uu) / (2 * np.sin(alpha) ** 2)
@@ -282,6 +288,7 @@ def velocity_field(runs: Iterable[xr.Dataset] | xr.Dataset, uvp: UVP, *, height:
         {"u": (dims, out(u)), "w": (dims, out(w)), "u_ci": (dims, out(u_ci)),
          "w_ci": (dims, out(w_ci)), "u_rms": (dims, out(np.sqrt(np.clip(uu, 0, None)))),
          "w_rms": (dims, out(np.sqrt(np.clip(ww, 0, None)))), "uw": (dims, out(uw)),
+         "uu": (dims, out(uu)), "ww": (dims, out(ww)),
          "tke": (dims, out(turbulent_kinetic_energy(uu, ww))),
          "u_normalised": (dims, out(u) / u0), "w_normalised": (dims, out(w) / u0),
          "n_beams": (dims, np.moveaxis(np.where(flap, 0, n_beams), -1, 0).astype(np.int8)),
