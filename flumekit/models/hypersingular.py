@@ -121,21 +121,22 @@ def regular_kernel(s: np.ndarray, kappa2: np.ndarray) -> np.ndarray:
     if np.any(small):
         ss, k2, ka = s[small], kappa2[small], kabs[small]
         t = -k2 * ss * ss / 4
-        tp = t[..., None] ** np.arange(_E_COEF.size)
-        e = tp @ _E_COEF
-        em1 = tp[..., 1:] @ _E_COEF[1:]
-        c = tp @ _C_COEF
+        em1 = np.zeros_like(t)  # Horner: E - 1 = t (e_1 + t (e_2 + ...)), C likewise
+        c = np.zeros_like(t)
+        for j in range(_E_COEF.size - 1, 0, -1):
+            em1 = (em1 + _E_COEF[j]) * t
+            c = c * t + _C_COEF[j]
+        e = em1 + 1.0
+        c = c * t + _C_COEF[0]
         with np.errstate(divide="ignore", invalid="ignore"):
             lnterm = np.where(ss > 0, np.log(ss) * em1, 0.0)
         val = k2 / (4 * np.pi) * (np.log(ka / 2) * e + lnterm) - k2 / (8 * np.pi) * c
         out[small] = val - 1j * np.where(k2 > 0, k2 / 8 * e, 0.0)
     big = ~small
     if np.any(big):
-        sb, k2, ka = s[big], kappa2[big], kabs[big]
-        prop = k2 > 0
-        kern = np.where(prop, -0.25j * ka * hankel1(1, np.where(prop, ka * sb, 1.0)) / sb,
-                        -ka / (2 * np.pi) * k1(np.where(prop, 1.0, ka * sb)) / sb)
-        out[big] = kern + 1 / (2 * np.pi * sb**2) - k2 / (4 * np.pi) * np.log(sb)
+        sb, k2 = s[big], kappa2[big]
+        out[big] = (full_kernel(sb, k2) + 1 / (2 * np.pi * sb**2)
+                    - k2 / (4 * np.pi) * np.log(sb))
     return out
 
 
@@ -146,8 +147,12 @@ def full_kernel(s: np.ndarray, kappa2: np.ndarray) -> np.ndarray:
     s, kappa2 = np.broadcast_arrays(s, kappa2)
     ka = np.sqrt(np.abs(kappa2))
     prop = kappa2 > 0
-    return np.where(prop, -0.25j * ka * hankel1(1, np.where(prop, ka * s, 1.0)) / s,
-                    -ka / (2 * np.pi) * k1(np.where(prop, 1.0, ka * s)) / s)
+    out = np.empty(s.shape, dtype=complex)
+    x, kp = ka[prop] * s[prop], ka[prop]
+    out[prop] = -0.25j * kp * hankel1(1, x) / s[prop]
+    ke = ka[~prop]
+    out[~prop] = -ke / (2 * np.pi) * k1(ke * s[~prop]) / s[~prop]
+    return out
 
 
 def _graded_nodes(n_terms: int, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
