@@ -41,7 +41,7 @@ def _knob_table(title, channel, ref_opts, knob, values, repeat) -> list[str]:
     rows = [f"  {title}: {knob} (others at the reference {ref_opts})",
             f"    {knob:>18} {'error':>9} {'next':>9} {'time ms':>8}"]
     results = [_timed(repeat, channel_width=channel, **{**ref_opts, knob: v}) for v in values]
-    for i, (v, (ds, t)) in enumerate(zip(values, results)):
+    for i, (v, (ds, t)) in enumerate(zip(values, results, strict=True)):
         nxt = f"{_err(ds, results[i + 1][0]):9.1e}" if i + 1 < len(values) else " " * 9
         rows.append(f"    {v:>18} {_err(ds, ref):9.1e} {nxt} {t * 1e3:8.2f}")
     return rows

@@ -169,7 +169,10 @@ def _graded_nodes(n_terms: int, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
 
 def _graded_integrals(kernel_values: np.ndarray, theta: np.ndarray, weight: np.ndarray,
                       n_terms: int) -> np.ndarray:
-    """∫ (1-u²)^{1/2} U_p(u) F(v_j, u) du with u = cos θ: (1-u²)^{1/2} U_p du = sin θ sin((p+1)θ) dθ."""
+    """∫ (1-u²)^{1/2} U_p(u) F(v_j, u) du, with u = cos θ.
+
+    (1-u²)^{1/2} U_p(u) du = sin θ sin((p+1)θ) dθ.
+    """
     basis = np.sin(theta)[..., None] * np.sin(np.arange(1, n_terms + 1) * theta[..., None])
     return np.einsum("...jk,jkp->...jp", kernel_values, weight[..., None] * basis)
 

@@ -64,13 +64,16 @@ class Solution(NamedTuple):
 def _check(period, depth, flap_width, hinge_height, channel_width, rho, g):
     period = np.atleast_1d(np.asarray(period, dtype=float))
     if period.ndim != 1 or period.size == 0 or np.any(~np.isfinite(period)) or np.any(period <= 0):
-        raise ValueError(f"period must be a non-empty 1-D array of finite values > 0 s, got {period}")
+        raise ValueError("period must be a non-empty 1-D array of finite values > 0 s, "
+                         f"got {period}")
     for name, val in (("depth", depth), ("flap_width", flap_width), ("rho", rho), ("g", g)):
         if not (np.isfinite(val) and val > 0):
             raise GeometryError(f"{name} must be finite and > 0, got {val}")
     if not (np.isfinite(hinge_height) and 0 <= hinge_height < depth):
-        raise GeometryError(f"hinge_height must lie in [0, depth) = [0, {depth}) m, got {hinge_height}")
-    if channel_width is not None and not (np.isfinite(channel_width) and channel_width > flap_width):
+        raise GeometryError(
+            f"hinge_height must lie in [0, depth) = [0, {depth}) m, got {hinge_height}")
+    if channel_width is not None and not (np.isfinite(channel_width)
+                                          and channel_width > flap_width):
         raise GeometryError(
             f"channel_width must exceed flap_width = {flap_width} m (a flap spanning the channel "
             f"is the 2-D problem, see two_dimensional()), got {channel_width}")

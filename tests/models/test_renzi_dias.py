@@ -77,9 +77,9 @@ def test_vertical_modes_match_their_integral_definitions(period):
 
     for i in range(4):
         for j in range(4):
-            val = quad(lambda z: z_n(i, z) * z_n(j, z), -H, 0, limit=200)[0]
+            val = quad(lambda z, i=i, j=j: z_n(i, z) * z_n(j, z), -H, 0, limit=200)[0]
             assert val == pytest.approx(float(i == j), abs=1e-10)
-        f = quad(lambda z: (z + H - C) * z_n(i, z), -H + C, 0, limit=200)[0]
+        f = quad(lambda z, i=i: (z + H - C) * z_n(i, z), -H + C, 0, limit=200)[0]
         assert m.f[0, i] == pytest.approx(f, rel=1e-10)
     k = kap[0]
     # x-derivative of phi_I = -(i g/omega) cosh k(z+h)/cosh kh e^{-ikx} at x = 0 is
@@ -109,7 +109,7 @@ def test_log_matrix_matches_quadrature():
     lm = hypersingular.log_matrix(n)
     for j in (0, 3, 6):
         for p in range(n):  # u = cos θ: (1-u²)^{1/2} U_p du = sin θ sin((p+1)θ) dθ
-            val = quad(lambda th: np.sin(th) * np.sin((p + 1) * th)
+            val = quad(lambda th, p=p, j=j: np.sin(th) * np.sin((p + 1) * th)
                        * np.log(abs(v[j] - np.cos(th))), 0, np.pi, points=[np.arccos(v[j])],
                        limit=400, epsabs=1e-13)[0]
             assert lm[j, p] == pytest.approx(val, abs=1e-11)
@@ -131,8 +131,8 @@ def test_chebyshev_fourier_transform_used_by_the_lattice_sum():
     """∫(1-u²)^{1/2} U_p(u) e^{iλu} du = π(p+1) i^p J_{p+1}(λ)/λ (1e-9)."""
     for p in range(5):
         for lam in (0.3, 2.0, 7.5):
-            f = lambda u, c: np.sqrt(1 - u * u) * np.sin((p + 1) * np.arccos(u)) / np.sqrt(  # noqa
-                1 - u * u) * c(lam * u)
+            def f(u, c, p=p, lam=lam):
+                return np.sin((p + 1) * np.arccos(u)) * c(lam * u)  # (1-u²)^{1/2} U_p(u) c(λu)
             val = quad(f, -1, 1, args=(np.cos,), limit=200)[0] + 1j * quad(
                 f, -1, 1, args=(np.sin,), limit=200)[0]
             assert val == pytest.approx(np.pi * (p + 1) * 1j**p * jv(p + 1, lam) / lam, abs=1e-9)
@@ -384,7 +384,7 @@ def test_convergence_over_truncation_orders_and_defaults_reach_1e4(channel, flum
     for knob, values in knobs.items():
         errs = [_max_rel(rd.coefficients(T_TABLE1, H, W, C, channel,
                                          **{**ref_opts, knob: v}), ref) for v in values]
-        assert all(e1 > e2 for e1, e2 in zip(errs, errs[1:])), (knob, errs)
+        assert all(e1 > e2 for e1, e2 in zip(errs, errs[1:], strict=False)), (knob, errs)
 
 
 # --- dataset and errors ---------------------------------------------------------------------

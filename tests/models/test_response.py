@@ -42,10 +42,11 @@ def test_power_balance_excitation_work_equals_absorbed_plus_radiated(flume):
 def test_optimal_pto_damping_maximises_power(flume):
     """RD12 Eq. (2.40) against a numerical maximisation per period (1e-6)."""
     nopt = rs.optimal_pto_damping(flume, INERTIA, STIFFNESS)
-    for i, period in enumerate(T_TABLE1):
+    for i in range(T_TABLE1.size):
         one = flume.isel(period=[i])
         res = minimize_scalar(
-            lambda nu: -float(rs.response(one, 0.1, INERTIA, STIFFNESS, nu).mean_power[0]),
+            lambda nu, one=one: -float(rs.response(one, 0.1, INERTIA, STIFFNESS,
+                                                   nu).mean_power[0]),
             bounds=(1.0, 5000.0), method="bounded", options={"xatol": 1e-8})
         assert nopt.values[i] == pytest.approx(res.x, rel=1e-6)
 
