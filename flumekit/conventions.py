@@ -40,6 +40,7 @@ VARIABLES: dict[str, Variable] = {
     "channel": _V("1", "UVP channel index along the beam"),
     "beam": _V("1", "UVP transducer name"),
     "run": _V("1", "run identifier"),
+    "source": _V("1", "origin of the values: experiment, analytical (linear) model or simulator"),
     "x": _V("m", "longitudinal position (x = 0 at the flap hinge, positive towards the beach)"),
     "y": _V("m", "lateral position (y = 0 on the flume centre plane)"),
     "z": _V("m", "elevation above the hinge axis (z = 0 at the hinge, 0.1 m above the bed)"),
@@ -179,6 +180,13 @@ VARIABLES: dict[str, Variable] = {
     "film_thickness": _V("m", "lubricant film thickness"),
     "film_parameter": _V("1", "film parameter lambda = h_min / sigma"),
     "friction_coefficient": _V("1", "friction coefficient"),
+    # time-domain hydrodynamics and simulator (models/hydro.py, radiation.py, simulator.py)
+    "added_inertia_infinite": _V("kg m2", "infinite-frequency added moment of inertia about the hinge"),
+    "added_inertia_infinite_estimate": _V("kg m2", "Ogilvie (1964) estimate of the infinite-frequency added inertia at each frequency"),
+    "lag": _V("s", "time lag of the radiation impulse response"),
+    "radiation_irf": _V("N m", "radiation impulse response K(t): memory torque per unit angular velocity per unit time"),
+    "torque_radiation": _V("N m", "radiation torque acting on the flap, -A_inf theta_ddot - int K theta_dot"),
+    "torque_drag": _V("N m", "quadratic viscous drag torque acting on the flap"),
     # Renzi-Dias linear model and frequency-domain response (models/renzi_dias.py, response.py)
     "period": _V("s", "wave period"),
     "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit wave amplitude at the hinge line"),
@@ -250,13 +258,6 @@ VARIABLES: dict[str, Variable] = {
     "control_temperature": _V("K", "temperature at a control point"),
     "control_radius": _V("m", "radial coordinate of the control point"),
     "control_axial": _V("m", "axial coordinate of the control point"),
-    # time-domain hydrodynamics and simulator (models/hydro.py, radiation.py, simulator.py)
-    "added_inertia_infinite": _V("kg m2", "infinite-frequency added moment of inertia about the hinge"),
-    "added_inertia_infinite_estimate": _V("kg m2", "Ogilvie (1964) estimate of the infinite-frequency added inertia at each frequency"),
-    "lag": _V("s", "time lag of the radiation impulse response"),
-    "radiation_irf": _V("N m", "radiation impulse response K(t): memory torque per unit angular velocity per unit time"),
-    "torque_radiation": _V("N m", "radiation torque acting on the flap, -A_inf theta_ddot - int K theta_dot"),
-    "torque_drag": _V("N m", "quadratic viscous drag torque acting on the flap"),
     # --- truth of the virtual flume ---
 }
 

@@ -19,6 +19,11 @@ from flumekit.figures.style import COLOURS, style
 _LINES = ("-", "--", "-.", ":")
 
 
+def _colour(label: str) -> str:
+    """The role colour for a label ("simulator", "analytical", ...): one look in every figure."""
+    return COLOURS.get(label, COLOURS["simulator"])
+
+
 def _runs(summaries) -> list[xr.Dataset]:
     if isinstance(summaries, xr.Dataset):
         if "run" in summaries.dims:
@@ -61,7 +66,7 @@ def add_figure_8(ax, summaries, label: str = "simulator"):
     with style():
         for (h, (periods, v)), ls in zip(_group(summaries, "torque_amplitude").items(),
                                          _LINES * 3):
-            ax.plot(periods, v["torque_amplitude"], ls, color=COLOURS["simulator"],
+            ax.plot(periods, v["torque_amplitude"], ls, color=_colour(label),
                     label=f"H = {h:g} m ({label})")
         ax.legend(fontsize=7)
     return ax
@@ -81,7 +86,7 @@ def add_figure_9(axes, summaries, label: str = "simulator"):
     groups = _group(summaries, "theta_amplitude", "capture_factor")
     with style():
         for (h, (periods, v)), ls in zip(groups.items(), _LINES * 3):
-            kw = {"color": COLOURS["simulator"], "label": f"H = {h:g} m ({label})"}
+            kw = {"color": _colour(label), "label": f"H = {h:g} m ({label})"}
             axes[0].plot(periods, v["theta_amplitude"] / np.pi, ls, **kw)
             axes[1].plot(periods, v["capture_factor"], ls, **kw)
         axes[0].legend(fontsize=7)
@@ -115,7 +120,7 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
             raise ValueError(f"the simulated summary lacks '{name}'")
     phase = summary["phase"].values
     period = float(summary["measured_period"])
-    kw = {"color": COLOURS["simulator"], "label": label}
+    kw = {"color": _colour(label), "label": label}
     with style():
         if sim is not None and "eta_incident" in sim:
             pa = sig.phase_average(sim["eta_incident"].values, sim["time"].values, period,
@@ -125,11 +130,12 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
         axes[1].plot(phase, summary["theta_phase_mean"].values / np.pi, **kw)
         w_i = float(summary["incident_power"])
         axes[2].plot(phase, summary["power_phase_mean"].values / w_i, **kw)
-        axes[2].axhline(float(summary["mean_power"]) / w_i, color=COLOURS["simulator"], ls=":",
+        axes[2].axhline(float(summary["mean_power"]) / w_i, color=_colour(label), ls=":",
                         lw=0.9, label=rf"{label}: $\overline{{W}}_{{out}}/W_I$ = "
                                       rf"{float(summary['mean_power']) / w_i:.2f}")
         omega = 2 * np.pi / period
         axes[3].plot(phase, summary["theta_dot_phase_mean"].values / (np.pi * omega), **kw)
         for ax in axes:
-            ax.legend(fontsize=7)
+            if ax.get_legend_handles_labels()[0]:
+                ax.legend(fontsize=7)
     return axes

@@ -10,7 +10,7 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "2"
+VERSION = "3"
 DEFAULTS = {"run": "auto", "format": "png", "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
 
 
@@ -44,12 +44,13 @@ def rules(ctx: Context) -> list[Rule]:
         fig("fig05b", "flap:figure_5b", {"flap": flap})
         fig("fig06a", "waves:figure_6a", {"waves": waves})
         fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
-        fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves})
+        fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves,
+                                        "comparison": ctx.out("comparison", f"{run}.nc")})
         pressure = [r.id for r in ctx.campaign.runs
                     if [r.period, r.height] in p["pressure_runs"] and r.repeat == 0]
         fig("fig07", "flap:figure_7",
             {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
-        every = {r.id: ctx.out("flap", f"{r.id}.nc") for r in ctx.campaign.runs}
+        every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs}
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
@@ -76,15 +77,31 @@ def draw(inputs, outputs, params) -> None:
     from flumekit.figures.style import save, style
     from flumekit.io.netcdf import read_dataset
 
+    import numpy as np
+
+    from flumekit.figures import simulator as models
+
     data = {k: read_dataset(v) for k, v in inputs.items()}
     fn = _function(params["draw"])
+    draw = params["draw"]
     with style():
-        if params["draw"] == "flap:figure_10":
+        if draw == "flap:figure_10":
             # the measured elevation at the probe nearest the flap, over the whole record
             # (the separated incident wave exists only in the waves' own steady window)
             eta = data["waves"]["eta"]
-            fig = fn(data["flap"], eta=eta.isel(probe=int(abs(eta["x"]).argmin())))
-        elif params["draw"] in ("flap:figure_7", "flap:figure_8", "flap:figure_9"):
+            fig = fn(data["flap"], eta=eta.isel(probe=int(np.argmin(np.abs(eta["x"].values)))))
+            comp = data["comparison"]
+            for source in comp["source"].values[1:]:
+                models.add_figure_10(fig.axes, comp.sel(source=source), label=str(source))
+        elif draw in ("flap:figure_8", "flap:figure_9"):
+            comps = [data[k] for k in sorted(data)]
+            fig = fn([c.sel(source="experiment") for c in comps])
+            add = models.add_figure_8 if draw.endswith("8") else models.add_figure_9
+            for source in comps[0]["source"].values[1:]:
+                runs = [c.sel(source=source) for c in comps]
+                add(fig.axes[0] if draw.endswith("8") else fig.axes[:2], runs,
+                    label=str(source))
+        elif draw == "flap:figure_7":
             fig = fn([data[k] for k in sorted(data)])
         else:
             (ds,) = data.values()

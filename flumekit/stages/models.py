@@ -1,0 +1,171 @@
+"""Stage: the flume's runs against the Renzi–Dias linear model and the time-domain simulator.
+
+``models/hydro``: the Renzi–Dias coefficients of the campaign's flap in its channel over a
+frequency grid, as the simulator's coefficient container (with A∞ from the Ogilvie relation).
+``comparison/<run>``: the experiment, the linear model (Eq. A1) and the simulator side by side
+along a ``source`` dimension. The linear model's PTO damping is set from the measured PTO by
+energy equivalence over the steady window, ν_pto = W̄_out / mean(θ̇²), so that it absorbs the
+same mean power at the measured motion; the simulator uses the fitted hydraulic model
+(K_p, I_p) and the campaign's LuGre friction, driven by the separated incident wave at x = 0.
+"""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+from flumekit.stages.eta import run_coords
+
+VERSION = "1"
+DEFAULTS = {"omega_min": 0.4, "omega_max": 25.0, "n_omega": 400, "dt": 0.04,
+            "simulator": True, "friction": True}
+SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
+PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    p = ctx.stage_params("models", DEFAULTS)
+    geometry = {"depth": c.flume.water_depth, "flap_width": c.flap.width,
+                "hinge_height": c.flap.hinge_height, "channel_width": c.flume.width,
+                "stiffness": c.flap.buoyancy_stiffness, "inertia": c.flap.inertia}
+    hydro = ctx.out("models", "hydro.nc")
+    out = [Rule("models/hydro", "flumekit.stages.models:hydro", inputs={},
+                outputs={"dataset": hydro},
+                params={**geometry, **{k: p[k] for k in ("omega_min", "omega_max", "n_omega")}},
+                version=VERSION)]
+    for run in c.runs:
+        params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
+                  "friction": p["friction"], "run": run.id, "period": run.period,
+                  "height": run.height, "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+        out.append(Rule(f"comparison/{run.id}", "flumekit.stages.models:compare",
+                        inputs={"flap": ctx.out("flap", f"{run.id}.nc"),
+                                "waves": ctx.out("waves", f"{run.id}.nc"),
+                                "hydro": hydro, "campaign": ctx.campaign_file},
+                        outputs={"dataset": ctx.out("comparison", f"{run.id}.nc")},
+                        params=params, version=VERSION, run=run.id))
+    out.append(Rule("comparison_summary", "flumekit.stages.models:summary",
+                    inputs={r.id: ctx.out("comparison", f"{r.id}.nc") for r in c.runs},
+                    outputs={"dataset": ctx.out("comparison_summary.nc")}, version=VERSION))
+    return out
+
+
+def hydro(inputs, outputs, params) -> None:
+    import numpy as np
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import write_dataset
+    from flumekit.models import hydro as hy
+    from flumekit.models.renzi_dias import coefficients
+
+    omega = np.linspace(params["omega_min"], params["omega_max"], params["n_omega"])
+    rd = coefficients(2 * np.pi / omega[::-1], params["depth"], params["flap_width"],
+                      params["hinge_height"], channel_width=params["channel_width"])
+    ds = hy.with_infinite_frequency_inertia(hy.from_renzi_dias(rd, params["stiffness"]),
+                                            max_spread=None)
+    ds = hy.split_complex(ds)
+    ds.attrs.update(conventions.global_attrs(
+        "Renzi-Dias hydrodynamic coefficients of the flap in the flume (channel, RD12)",
+        "flumekit models/hydro stage", params))
+    write_dataset(ds, outputs["dataset"])
+
+
+def energy_equivalent_damping(flap) -> float:
+    """ν_pto [N m s] absorbing the measured mean power at the measured θ̇ (steady window)."""
+    import numpy as np
+
+    t = flap["time"].values
+    inside = (t >= float(flap["steady_start"])) & (t <= float(flap["steady_end"]))
+    return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
+
+
+def _analytical(params, flap, waves):
+    """Eq. (A1) response at the run's period with the energy-equivalent PTO damping."""
+    import numpy as np
+    import xarray as xr
+
+    from flumekit.models.renzi_dias import coefficients
+    from flumekit.models.response import response
+
+    period = float(waves["measured_period"])
+    rd = coefficients([period], params["depth"], params["flap_width"], params["hinge_height"],
+                      channel_width=params["channel_width"])
+    nu = energy_equivalent_damping(flap)
+    r = response(rd, float(waves["incident_height"]) / 2, params["inertia"], params["stiffness"],
+                 nu).isel(period=0)
+    # phase averages with t/T = 0 at the up-crossing of θ, as for the experiment
+    phase = flap["phase"].values
+    amp = float(r["theta_amplitude"])
+    omega = 2 * np.pi / period
+    out = {name: float(r[name]) for name in SCALARS}
+    out["theta_phase_mean"] = amp * np.sin(2 * np.pi * phase)
+    out["theta_dot_phase_mean"] = amp * omega * np.cos(2 * np.pi * phase)
+    out["power_phase_mean"] = nu * out["theta_dot_phase_mean"] ** 2
+    return out, xr.Dataset({"pto_damping": nu})
+
+
+def _simulated(inputs, params, flap, waves, campaign):
+    import numpy as np
+
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.models.hydro import merge_complex
+    from flumekit.models.simulator import simulate_run
+    from flumekit.models.simulator_summary import summarise_run
+
+    eta = waves["eta_incident"]
+    eta = eta.isel(time=np.flatnonzero(np.isfinite(eta.values)))
+    sim = simulate_run(merge_complex(read_dataset(inputs["hydro"])), eta, campaign,
+                       pressure_loss_coefficient=float(flap["pressure_loss_coefficient"]),
+                       fluid_inertia=float(flap["fluid_inertia"]), friction=params["friction"],
+                       dt=params["dt"])
+    s = summarise_run(sim, period=float(waves["measured_period"]),
+                      incident_height=float(waves["incident_height"]), depth=params["depth"],
+                      flap_width=params["flap_width"], n_phase=flap.sizes["phase"])
+    return {name: s[name].values for name in (*SCALARS, *PHASED)}
+
+
+def compare(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    import numpy as np
+    import xarray as xr
+
+    from flumekit import conventions
+    from flumekit.campaign import load_campaign
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    flap, waves = read_dataset(inputs["flap"]), read_dataset(inputs["waves"])
+    sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
+    sources["analytical"], extra = _analytical(params, flap, waves)
+    if params["simulator"]:
+        campaign = load_campaign(Path(inputs["campaign"]).parent)
+        sources["simulator"] = _simulated(inputs, params, flap, waves, campaign)
+    names = list(sources)
+    data = {n: ("source", np.array([float(sources[s][n]) for s in names])) for n in SCALARS}
+    data.update({n: (("source", "phase"), np.stack([np.asarray(sources[s][n], dtype=float)
+                                                    for s in names])) for n in PHASED})
+    ds = xr.Dataset(data, coords={"source": names, "phase": flap["phase"].values,
+                                  "incident_height": float(waves["incident_height"]),
+                                  "measured_period": float(waves["measured_period"]),
+                                  "incident_power": float(flap["incident_power"])})
+    ds = ds.merge(extra).assign_coords(run_coords(params))
+    ds["pto_damping"].attrs["comment"] = ("linear-model PTO damping from the measured PTO by "
+                                          "energy equivalence: mean power / mean(theta_dot^2)")
+    ds.attrs.update(conventions.global_attrs(
+        f"Experiment, linear model and simulator for run {params['run']}",
+        f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}", params))
+    write_dataset(ds, outputs["dataset"])
+
+
+def summary(inputs, outputs, params) -> None:
+    import xarray as xr
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    runs = [read_dataset(inputs[k]).drop_dims("phase") for k in sorted(inputs)]
+    out = xr.concat([r.expand_dims("run") for r in runs], dim="run", coords="all",
+                    compat="override")
+    out.attrs = conventions.global_attrs("Experiment, linear model and simulator for every run",
+                                         "flumekit comparison_summary stage",
+                                         {"runs": len(runs)})
+    write_dataset(out, outputs["dataset"])
