@@ -184,13 +184,19 @@ def resample_cycles(x: np.ndarray, time: np.ndarray, period: float, start: float
     x = np.asarray(x, dtype=float)
     if kind == "linear":
         return x[..., i0] * (1 - w) + x[..., i0 + 1] * w
-    # Keys (1981) cubic convolution weights for the samples i0-1 .. i0+2 (clamped at the ends)
+    # Keys (1981) cubic convolution weights for the samples i0-1 .. i0+2 (clamped at the ends),
+    # accumulated in place (the cost is memory traffic over the (..., cycle, phase) arrays)
     w2, w3 = w * w, w * w * w
     last = time.size - 1
-    return (x[..., np.maximum(i0 - 1, 0)] * (0.5 * (-w3 + 2 * w2 - w))
-            + x[..., i0] * (0.5 * (3 * w3 - 5 * w2 + 2))
-            + x[..., i0 + 1] * (0.5 * (-3 * w3 + 4 * w2 + w))
-            + x[..., np.minimum(i0 + 2, last)] * (0.5 * (w3 - w2)))
+    taps = ((np.maximum(i0 - 1, 0), 0.5 * (-w3 + 2 * w2 - w)), (i0, 0.5 * (3 * w3 - 5 * w2 + 2)),
+            (i0 + 1, 0.5 * (-3 * w3 + 4 * w2 + w)), (np.minimum(i0 + 2, last), 0.5 * (w3 - w2)))
+    out = np.take(x, taps[0][0], axis=-1)
+    out *= taps[0][1]
+    for idx, weight in taps[1:]:  # three more taps
+        term = np.take(x, idx, axis=-1)
+        term *= weight
+        out += term
+    return out
 
 
 def phase_average(x: np.ndarray, time: np.ndarray, period: float, start: float, n_cycles: int,

@@ -3,8 +3,8 @@
 Kinematics (potential flow) of the incident and reflected regular waves of
 :func:`flumekit.synth.waves.regular_wave_field`, with the same phase convention, ramp-up and
 second-order Stokes bound harmonic, so that the UVP records and the wave-probe/flap records of a
-virtual run describe one flow. With θ_I = ωt - k(x - x_wm), θ_R = ωt - k(2x_r - x - x_wm) + φ,
-z_b = z + hinge_height the elevation above the bed, C_n = cosh(n k z_b)/sinh^n... (below):
+virtual run describe one flow. With θ_I = ωt - k(x - x_wm), θ_R = ωt - k(2x_r - x - x_wm) + φ
+and z_b = z + hinge_height the elevation above the bed:
 
     u = a ω C1 cos θ_I + (3/4) a² ω k C2 cos 2θ_I  -  [same with Kr a, θ_R]
     w = -(a ω S1 sin θ_I + (3/4) a² ω k S2 sin 2θ_I)  -  [same with Kr a, θ_R]
@@ -306,7 +306,7 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
 def true_field(campaign: Campaign, *, period: float, height: float, reflection: float = 0.2,
                reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
                second_order: bool = True, x=None, z=None, n_phase: int = 100,
-               theta=None, elevations=None) -> xr.Dataset:
+               theta=None, elevations=None, reference: str = "incident") -> xr.Dataset:
     """The true phase-averaged velocity field on the (phase, z, x) grid of the processed field.
 
     Parameters
@@ -318,6 +318,11 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
     n_phase : Number of phases t/T = 0, 1/n_phase, ...
     theta : Optional phase-averaged flap angle over the phase grid [rad]: points inside the
         flap at a phase are masked.
+    reference : Phase 0 at the zero up-crossing of the steady incident elevation at x = 0,
+        ``"incident"`` (first + second order, as a zero-crossing analysis of the separated
+        incident wave sees it) or ``"first_harmonic"`` (of its first harmonic only). With
+        H = 0.25 m, T = 3.5 s the bound harmonic is 0.43 of the first and the two references
+        differ by 0.054 T: the pipeline and the truth must use the same one.
 
     Returns
     -------
@@ -339,8 +344,11 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
         z = gz if z is None else z
     x, z = np.asarray(x, dtype=float), np.asarray(z, dtype=float)
     phase = np.arange(n_phase) / n_phase
+    if reference not in ("incident", "first_harmonic"):
+        raise ValueError(f"reference must be 'incident' or 'first_harmonic', got {reference!r}")
     t_up = incident_upcrossing(period=period, height=height, depth=depth,
-                               x_wavemaker=x_wavemaker, second_order=second_order)
+                               x_wavemaker=x_wavemaker,
+                               second_order=second_order and reference == "incident")
     t = (t_up + phase * period)[:, None, None]
     u, w, eta = wave_kinematics(x[None, None, :], z[None, :, None], t, period=period,
                                 height=height, depth=depth, hinge_height=hinge,
@@ -371,7 +379,8 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
         attrs={"water_depth": depth, "reflection_coefficient": reflection,
                "reflection_phase": reflection_phase, "second_order": int(second_order),
                "phase_reference_definition": "t/T = 0 at a zero up-crossing of the steady "
-               "incident elevation at x = 0"})
+               + ("incident elevation" if reference == "incident" else
+                  "first harmonic of the incident elevation") + " at x = 0"})
     return conventions.annotate(ds)
 
 
