@@ -6,8 +6,13 @@ Pipeline shape: per run, :func:`phase_average_beams` (raw beam records -> small 
 
 from flumekit.uvp.decomposition import combine_ci, least_squares_velocity, paired_velocity
 from flumekit.uvp.field import beam_to_grid, combine_repeats, default_grid, velocity_field
-from flumekit.uvp.geometry import (beam_geometry, channel_distances, channel_positions,
-                                   flap_face_x, inside_flap)
+from flumekit.uvp.geometry import (
+                                   beam_geometry,
+                                   channel_distances,
+                                   channel_positions,
+                                   flap_face_x,
+                                   inside_flap,
+)
 from flumekit.uvp.phase import phase_average_beams
 from flumekit.uvp.turbulence import reynolds_stresses, turbulent_kinetic_energy
 

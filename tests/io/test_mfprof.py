@@ -13,8 +13,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from flumekit.errors import InputError
-from flumekit.io.mfprof import (MfprofBackendEntrypoint, parse_parameters, read_mfprof,
-                                velocity_resolution, write_mfprof)
+from flumekit.io.mfprof import (
+    MfprofBackendEntrypoint,
+    parse_parameters,
+    read_mfprof,
+    velocity_resolution,
+    write_mfprof,
+)
 
 SAMPLE = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "metflow" / \
     "data_sample.mfprof"

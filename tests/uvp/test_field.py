@@ -8,8 +8,13 @@ import pytest
 import xarray as xr
 
 from flumekit.synth.uvp import incident_upcrossing, true_field, uvp_beams
-from flumekit.uvp import (beam_to_grid, combine_repeats, default_grid, phase_average_beams,
-                          velocity_field)
+from flumekit.uvp import (
+    beam_to_grid,
+    combine_repeats,
+    default_grid,
+    phase_average_beams,
+    velocity_field,
+)
 
 T, H, DEPTH, KR, PHI = 3.5, 0.25, 0.825, 0.2, 0.6
 ELEVATIONS = np.round(np.arange(0.20, 0.7201, 0.02), 3)

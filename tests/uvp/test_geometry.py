@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from flumekit.uvp.geometry import (beam_geometry, channel_positions, flap_face_x, inside_flap)
+from flumekit.uvp.geometry import beam_geometry, channel_positions, flap_face_x, inside_flap
 
 
 def test_channel_positions_analytic():

@@ -129,3 +129,20 @@ def test_masks_no_echo_and_flap(campaign):
         if name != "UP2":
             far = far & (ch < 300)[:, None]
         assert far.any() and np.all(np.isfinite(m[far]))
+
+
+def test_uniform_and_fill_gaps():
+    t = np.arange(100) / 11.6
+    jitter = np.rint(t * 1e7) / 1e7  # 100 ns ticks
+    g, v = uniform(jitter, np.sin(jitter))
+    np.testing.assert_allclose(g, np.linspace(t[0], t[-1], 100))
+    irregular = np.sort(np.random.default_rng(0).uniform(0, 10, 50))
+    g, v = uniform(irregular, 3 * irregular + 1)  # linear: interpolation is exact
+    np.testing.assert_allclose(v, 3 * g + 1, atol=1e-12)
+    x = np.arange(10.0)[None, :] * np.array([[1.0], [2.0]])
+    valid = np.ones_like(x, bool)
+    valid[:, [0, 4, 5, 9]] = False
+    f = fill_gaps(np.where(valid, x, 99.0), valid)
+    np.testing.assert_allclose(f[:, 1:9], x[:, 1:9])  # interior gaps: exact for a line
+    np.testing.assert_allclose(f[:, 0], x[:, 1])  # ends: held
+    np.testing.assert_allclose(f[:, 9], x[:, 8])

@@ -77,7 +77,8 @@ def test_virtual_beams_are_quantised_projections(campaign, tmp_path):
     # the lead's call: write with the campaign UVP settings, read back exactly
     p = write_mfprof(tmp_path / "UP1.mfprof", beams["UP1"], u)
     back = read_mfprof(p)
-    np.testing.assert_array_equal(back["beam_velocity"].values, beams["UP1"]["beam_velocity"].values)
+    np.testing.assert_array_equal(back["beam_velocity"].values,
+                                  beams["UP1"]["beam_velocity"].values)
     np.testing.assert_allclose(back["time"].values, t, atol=5e-8)  # 100 ns ticks
     np.testing.assert_allclose(back["distance"].values, beams["UP1"]["distance"].values, atol=1e-15)
 
