@@ -12,6 +12,10 @@ from flumekit.errors import FlumekitError
 DEFAULT_PIPELINE = Path("pipelines") / "default.toml"
 
 
+def _progress(i: int, n: int, run_id: str) -> None:
+    print(f"    [{i + 1}/{n}] {run_id}", file=sys.stderr)
+
+
 def _pipeline(args):
     from flumekit.pipeline.config import load_pipeline
 
@@ -37,7 +41,7 @@ def _graph(pipe, synthesise: bool):
         print(f"synthesising the '{size}' virtual-flume campaign into {pipe.raw} ...",
               file=sys.stderr)
         t0 = time.perf_counter()
-        write_campaign(pipe.raw, size=size, seed=seed)
+        write_campaign(pipe.raw, size=size, seed=seed, progress=_progress)
         print(f"    done in {time.perf_counter() - t0:.1f} s", file=sys.stderr)
     campaign = load_campaign(pipe.raw)
     ctx = Context(campaign=campaign, processed=pipe.processed, params=pipe.stages)
@@ -102,7 +106,7 @@ def cmd_synth(args) -> int:
     if (out / "campaign.toml").exists() and not args.force:
         raise FlumekitError(f"{out}: a campaign exists there; use --force to overwrite it")
     t0 = time.perf_counter()
-    write_campaign(out, size=args.size, seed=args.seed)
+    write_campaign(out, size=args.size, seed=args.seed, progress=_progress)
     print(f"wrote the '{args.size}' virtual-flume campaign to {out} in "
           f"{time.perf_counter() - t0:.1f} s")
     return 0

@@ -27,22 +27,43 @@ def small_raw(tmp_path_factory):
     return raw
 
 
+def _project(path, small_raw):
+    (path / "pipelines").mkdir()
+    for name in ("default.toml", "small.toml"):
+        shutil.copy(ROOT / "pipelines" / name, path / "pipelines" / name)
+    shutil.copytree(small_raw, path / "raw" / "small")
+    return path
+
+
 @pytest.fixture
 def project(tmp_path, small_raw):
-    (tmp_path / "pipelines").mkdir()
-    for name in ("default.toml", "small.toml"):
-        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
-    shutil.copytree(small_raw, tmp_path / "raw" / "small")
-    return tmp_path
+    """A project with the small raw campaign and nothing built."""
+    return _project(tmp_path, small_raw)
+
+
+@pytest.fixture(scope="module")
+def built_once(tmp_path_factory, small_raw):
+    path = _project(tmp_path_factory.mktemp("built"), small_raw)
+    first = make(path)
+    assert first.returncode == 0, first.stderr
+    assert "calibration" in built(first)
+    return path
+
+
+@pytest.fixture
+def built_project(tmp_path, built_once):
+    """A copy of a project on which `flumekit make` has run (the build state copies along)."""
+    shutil.copytree(built_once, tmp_path / "p")
+    return tmp_path / "p"
 
 
 def make(project, *args):
     return flumekit("make", "--pipeline", "pipelines/small.toml", *args, cwd=project)
 
 
-def raw_hashes(project):
+def raw_hashes_of(folder):
     return {p: hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted((project / "raw").rglob("*")) if p.is_file()}
+            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def built(result):
@@ -50,21 +71,19 @@ def built(result):
                   if line.startswith("["))
 
 
-def test_make_builds_then_rebuilds_nothing(project):
-    before = raw_hashes(project)
-    first = make(project)
-    assert first.returncode == 0, first.stderr
-    assert "calibration" in built(first)
-    second = make(project)
+def test_make_builds_then_rebuilds_nothing(built_once, small_raw):
+    second = make(built_once)
     assert second.returncode == 0
     assert built(second) == []
     assert "nothing to do" in second.stderr
-    assert raw_hashes(project) == before  # raw data untouched
+    fresh = {p.relative_to(small_raw): h for p, h in raw_hashes_of(small_raw).items()}
+    after = {p.relative_to(built_once / "raw" / "small"): h
+             for p, h in raw_hashes_of(built_once / "raw" / "small").items()}
+    assert after == fresh  # raw data untouched by the builds
 
 
-def test_every_dataset_has_units_long_names_and_history(project):
-    assert make(project).returncode == 0
-    files = sorted((project / "processed" / "small").rglob("*.nc"))
+def test_every_dataset_has_units_long_names_and_history(built_once):
+    files = sorted((built_once / "processed" / "small").rglob("*.nc"))
     assert files
     for f in files:
         with xr.open_dataset(f) as ds:
@@ -75,8 +94,8 @@ def test_every_dataset_has_units_long_names_and_history(project):
                     assert "units" in var.attrs, (f, name)
 
 
-def test_touch_rebuilds_nothing_and_change_rebuilds_one_run(project):
-    assert make(project).returncode == 0
+def test_touch_rebuilds_nothing_and_change_rebuilds_one_run(built_project):
+    project = built_project
     run_dir = sorted((project / "raw/small/runs").iterdir())[0]
     probes = run_dir / "probes.csv"
     os.utime(probes)  # touched, unchanged
@@ -91,8 +110,8 @@ def test_touch_rebuilds_nothing_and_change_rebuilds_one_run(project):
     assert any(run_dir.name in t for t in rebuilt)
 
 
-def test_changing_a_stage_parameter_rebuilds_only_its_dependants(project):
-    assert make(project).returncode == 0
+def test_changing_a_stage_parameter_rebuilds_only_its_dependants(built_project):
+    project = built_project
     pipe = project / "pipelines" / "small.toml"
     pipe.write_text(pipe.read_text() + "\n[stages.flap]\ncutoff = 3.0\n")
     rebuilt = built(make(project))
@@ -122,6 +141,16 @@ def test_malformed_input_is_a_clear_error_without_output(project):
     debug = flumekit("--debug", "make", "--pipeline", "pipelines/small.toml",
                      f"eta/{run_dir.name}", cwd=project)
     assert "Traceback" in debug.stderr
+
+
+def test_scene_runs_only_what_it_needs(project):
+    fig10 = built(make(project, "fig10"))
+    runs = {t.split("/", 1)[1] for t in fig10
+            if t.startswith(("eta/", "waves/", "flap/", "comparison/"))}
+    assert len(runs) == 1, fig10  # figure 10 processes one run, not the campaign
+    efficiency = built(make(project, "ballscrew_efficiency"))
+    assert "ballscrew/efficiency" in efficiency
+    assert "ballscrew/thermal_fem" not in efficiency and "ballscrew/thermal_lumped" not in efficiency
 
 
 def test_list_shows_scenes_and_state(project):

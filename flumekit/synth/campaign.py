@@ -85,8 +85,13 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
 
 
 def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
-                   truth: Truth = Truth()) -> Campaign:
-    """Write a virtual-flume campaign to ``root`` (replacing one there) and return it."""
+                   truth: Truth = Truth(), progress=None) -> Campaign:
+    """Write a virtual-flume campaign to ``root`` (replacing one there) and return it.
+
+    The campaign is written to a sibling folder and renamed into place at the end, so an
+    interrupted synthesis leaves no half campaign at ``root``. ``progress(i, n, run_id)`` is
+    called before each run.
+    """
     root = Path(root)
     spec = _size(size)
     rng = np.random.default_rng(seed)
@@ -105,11 +110,13 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
     runs = [("waves", t, h, None) for t, h in spec.wave_runs]
     runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
     seen: dict[str, int] = {}
-    for kind, period, height, z in runs:
+    for i, (kind, period, height, z) in enumerate(runs):
         base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
         repeat = seen.get(base, 0)
         seen[base] = repeat + 1
         run_id = f"{base}_r{repeat}"
+        if progress is not None:
+            progress(i, len(runs), run_id)
         _write_run(tmp, campaign, run_id, kind, period, height, repeat, z, a, b, truth,
                    np.random.default_rng([seed, len(seen), repeat]), spec.n_steady_waves)
     if spec.uvp_elevations:
