@@ -13,7 +13,7 @@ from flumekit.stages.eta import run_coords
 
 VERSION = "1"
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
-            "method": "least_squares", "dx": 0.01}
+            "method": "least_squares", "dx": 0.01, "min_amplitude": None}
 
 
 def rules(ctx: Context) -> list[Rule]:
@@ -75,7 +75,8 @@ def build(inputs, outputs, params) -> None:
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
                              start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
                              cutoff=params["cutoff"], order=params["order"], theta=theta,
-                             flap_thickness=campaign.flap.thickness, margin=params["margin"])
+                             flap_thickness=campaign.flap.thickness, margin=params["margin"],
+                             min_amplitude=params["min_amplitude"])
     ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
     ds.attrs.update(conventions.global_attrs(
         f"Phase-averaged UVP beam velocities of run {params['run']}",
