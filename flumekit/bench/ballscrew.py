@@ -10,10 +10,9 @@ Run: ``python -m flumekit.bench.ballscrew`` (``run(quick=True)`` for a short tab
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from flumekit.bench import best_time
 from flumekit.models import ballscrew, buoy, thermal_lumped
 
 
@@ -22,14 +21,6 @@ def _state(samples: int, iterations: int):
     return ballscrew.pto_state(kin["nut_velocity"].values, kin["nut_acceleration"].values,
                                iterations=iterations, tolerance=0.0 if iterations < 50 else 1e-12)
 
-
-def _timed(fn, repeats=3):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def run(quick: bool = False) -> str:
@@ -44,7 +35,7 @@ def run(quick: bool = False) -> str:
     iterations = [1, 2, 4] if quick else [1, 2, 3, 4, 8]
     for n in samples:
         for it in iterations:
-            sec, st = _timed(lambda: _state(n, it))
+            sec, st = best_time(lambda: _state(n, it))
             err_l = 100 * abs(st["mechanical_power_loss"].mean() / loss_ref - 1)
             err_e = abs(st["ballscrew_efficiency"].mean() - eta_ref)
             rows.append(f"{n:>7} {it:>4} {err_l:>14.4f} {err_e:>14.2e} {sec * 1e3:>9.2f}")
@@ -57,7 +48,7 @@ def run(quick: bool = False) -> str:
     fine, _ = thermal_lumped.integrate(0.01, np.tile(src, (600000, 1)), p)
     for dt in ([60.0, 10.0] if quick else [600.0, 60.0, 10.0, 1.0]):
         n = int(6000 / dt)
-        sec, (temp, _) = _timed(lambda: thermal_lumped.integrate(dt, np.tile(src, (n, 1)), p))
+        sec, (temp, _) = best_time(lambda: thermal_lumped.integrate(dt, np.tile(src, (n, 1)), p))
         x = np.full(3, p.initial_temperature)
         for _ in range(n):  # the explicit scheme, for comparison only
             x = x + dt * (src + air - k @ x) / c

@@ -9,10 +9,9 @@ the next order in the table. Run times are the best of several calls of
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
+from flumekit.bench import best_time
 from flumekit.models import renzi_dias as rd
 
 H, W, C, B = 0.825, 1.31, 0.10, 1.5
@@ -20,11 +19,7 @@ PERIODS = np.arange(2.0, 4.001, 0.25)
 
 
 def _timed(repeat: int, **kw):
-    best = np.inf
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        ds = rd.coefficients(PERIODS, H, W, C, **kw)
-        best = min(best, time.perf_counter() - t0)
+    best, ds = best_time(lambda: rd.coefficients(PERIODS, H, W, C, **kw), repeat)
     return ds, best
 
 

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from flumekit.bench import best_time
 from flumekit.campaign import load_campaign
 from flumekit.models import hydro as H
 from flumekit.models import radiation as R
@@ -56,14 +57,6 @@ def _coefficients(campaign, n: int):
         source = "analytic kernel"
     return H.with_infinite_frequency_inertia(hy, max_spread=None), source
 
-
-def _best(fn, repeat: int):
-    best, out = np.inf, None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def _err(ds: xr.Dataset, ref: xr.Dataset) -> tuple[float, float]:
@@ -112,7 +105,7 @@ def run(quick: bool = False) -> str:
     runs = {}
     for dt in sorted({*steps, *(d / 10 for d in steps)}):
         rep = repeat if dt in steps else 1
-        runs[dt] = _best(lambda dt=dt: S.simulate(exc, flap, ss, cyl, dt=dt, duration=duration),
+        runs[dt] = best_time(lambda dt=dt: S.simulate(exc, flap, ss, cyl, dt=dt, duration=duration),
                          rep)
     finest = runs[min(runs)][1]
     rows = []
@@ -130,11 +123,11 @@ def run(quick: bool = False) -> str:
 
     # 2. IRF length: convolution, linear PTO (so that radiation dominates the error)
     lin = S.LinearDamper(500.0)
-    ref_sec, ref = _best(lambda: S.simulate(exc, flap, irf40, lin, dt=0.02, duration=duration), 1)
+    ref_sec, ref = best_time(lambda: S.simulate(exc, flap, irf40, lin, dt=0.02, duration=duration), 1)
     rows = []
     for length in ([2.5, 5.0, 10.0, 20.0] if not quick else [5.0, 20.0]):
         k = irf40.sel(lag=slice(0, length))
-        sec, ds = _best(lambda k=k: S.simulate(exc, flap, k, lin, dt=0.02, duration=duration),
+        sec, ds = best_time(lambda k=k: S.simulate(exc, flap, k, lin, dt=0.02, duration=duration),
                         repeat)
         e, p = _err(ds, ref)
         rows.append([f"{length:g}", f"{sec:.3f}", f"{(duration / 0.02) / sec:.0f}", f"{e:.2e}",
@@ -148,13 +141,13 @@ def run(quick: bool = False) -> str:
     rows = []
     for order in ([2, 4, 6, 8, 10, 14] if not quick else [4, 8]):
         model = R.fit_state_space(irf40, order=order)
-        sec, ds = _best(lambda m=model: S.simulate(exc, flap, m, lin, dt=0.02,
+        sec, ds = best_time(lambda m=model: S.simulate(exc, flap, m, lin, dt=0.02,
                                                    duration=duration), repeat)
         e, p = _err(ds, ref)
         rows.append([f"{model.order}", f"{model.fit_error_time:.2%}",
                      f"{model.fit_error_frequency:.2%}", f"{sec:.3f}",
                      f"{(duration / 0.02) / sec:.0f}", f"{e:.2e}", f"{p:+.2e}"])
-    sec, ds = _best(lambda: S.simulate(exc, flap, ss, lin, dt=0.02, duration=duration), repeat)
+    sec, ds = best_time(lambda: S.simulate(exc, flap, ss, lin, dt=0.02, duration=duration), repeat)
     e, p = _err(ds, ref)
     rows.append([f"auto {ss.order}", f"{ss.fit_error_time:.2%}", f"{ss.fit_error_frequency:.2%}",
                  f"{sec:.3f}", f"{(duration / 0.02) / sec:.0f}", f"{e:.2e}", f"{p:+.2e}"])

@@ -15,11 +15,10 @@ Run: ``python -m flumekit.bench.thermal`` (``run(quick=True)`` for a short table
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 from scipy.sparse import linalg as spla
 
+from flumekit.bench import best_time
 from flumekit.models import ballscrew, buoy, thermal_fem, thermal_lumped
 
 
@@ -28,14 +27,6 @@ def _scenario():
     eff = ballscrew.efficiency(kin)
     return thermal_lumped.thermal_lumped(eff, total_duration=600.0, time_step=1.0)
 
-
-def _timed(fn, repeats: int):
-    best, out = np.inf, None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 def _error(fe, ref, t0: float) -> float:
@@ -65,7 +56,7 @@ def run(quick: bool = False) -> str:
     lumped = _scenario()
     t0 = float(lumped.attrs["initial_temperature"])
     ref_cell = (0.0025, 0.01) if quick else (0.00125, 0.005)
-    ref_t, ref = _timed(lambda: thermal_fem.thermal_fem(
+    ref_t, ref = best_time(lambda: thermal_fem.thermal_fem(
         lumped, time_step=1.0, radial_cell_size=ref_cell[0], axial_cell_size=ref_cell[1],
         order=2, snapshot_times=(600.0,)), 1)
     meshes = [(0.01, 0.04), (0.005, 0.02)] if quick else [(0.01, 0.04), (0.005, 0.02),
@@ -79,7 +70,7 @@ def run(quick: bool = False) -> str:
     for order in orders:
         for cr, cz in meshes:
             for dt in steps:
-                sec, fe = _timed(lambda: thermal_fem.thermal_fem(
+                sec, fe = best_time(lambda: thermal_fem.thermal_fem(
                     lumped, time_step=dt, radial_cell_size=cr, axial_cell_size=cz, order=order,
                     snapshot_times=(600.0,)), 1 if quick else 2)
                 err = 100 * _error(fe, ref, t0)
@@ -88,10 +79,10 @@ def run(quick: bool = False) -> str:
                             f"{dt:>6.0f} {err:>9.3f} {sec:>8.3f} {ok:>6}")
     rows.append("")
     rows.append("factorise once vs solve every step (Q1, 2.5 x 10 mm, dt = 2 s, 300 steps):")
-    sec_fast, _ = _timed(lambda: thermal_fem.thermal_fem(
+    sec_fast, _ = best_time(lambda: thermal_fem.thermal_fem(
         lumped, time_step=2.0, radial_cell_size=0.0025, axial_cell_size=0.01, order=1,
         snapshot_times=(600.0,)), 2)
-    sec_slow, _ = _timed(lambda: _naive(lumped, 2.0, 0.0025, 0.01), 1)
+    sec_slow, _ = best_time(lambda: _naive(lumped, 2.0, 0.0025, 0.01), 1)
     rows.append(f"  splu once + triangular solves: {sec_fast:.3f} s;  spsolve per step: "
                 f"{sec_slow:.3f} s  (x{sec_slow / sec_fast:.1f})")
     return "\n".join(rows)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -43,14 +41,8 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kw):
 
 def save(fig, path: str | Path) -> Path:
     """Write a figure atomically (temporary file in the same folder, then rename)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
+    from flumekit.io.atomic import atomic_path
+
+    with atomic_path(path) as tmp:
         fig.savefig(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    return Path(path)

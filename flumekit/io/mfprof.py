@@ -19,7 +19,6 @@ from __future__ import annotations
 import datetime as _dt
 import os
 import re
-import tempfile
 import warnings
 from collections.abc import Mapping
 from pathlib import Path
@@ -31,6 +30,7 @@ from xarray.backends import BackendEntrypoint
 from flumekit import conventions
 from flumekit.campaign import UVP
 from flumekit.errors import InputError
+from flumekit.io.atomic import atomic_path
 
 HEADER_SIZE = 104
 RECORD_HEADER_SIZE = 16
@@ -544,17 +544,10 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     header["n_channels"] = n_channels
     header["start_time"] = start_time
     block = format_parameters(uvp, mux, encoding)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(header.tobytes())
-            f.write(rec.tobytes())
-            f.write(block)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(path) as tmp, open(tmp, "wb") as f:
+        f.write(header.tobytes())
+        f.write(rec.tobytes())
+        f.write(block)
     return path
 
 

@@ -7,14 +7,13 @@ units are set in the encoding.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.io.atomic import atomic_path
 
 
 def _encoding(ds: xr.Dataset) -> dict[str, dict]:
@@ -46,15 +45,8 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     missing = [a for a in ("Conventions", "title", "source", "history") if a not in ds.attrs]
     if missing:
         raise ValueError(f"{path}: dataset lacks global attributes {missing}")
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+    with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
     return path
 
 

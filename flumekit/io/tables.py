@@ -8,9 +8,7 @@ file thoroughly, naming the file, line and column of any problem.
 from __future__ import annotations
 
 import io
-import os
 import re
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -18,6 +16,7 @@ import numpy as np
 import pandas as pd
 
 from flumekit.errors import InputError
+from flumekit.io.atomic import atomic_path
 
 #: unit -> (quantity, factor to SI)
 UNITS: dict[str, tuple[str, float]] = {
@@ -125,14 +124,7 @@ def write_table(path: str | Path, columns: list[tuple[str, str]], data: np.ndarr
                 fmt: str | list[str] = "%.6f") -> Path:
     """Write an instrument CSV atomically. ``columns`` are (name, unit); ``data`` is in those units."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
     header = ",".join(f"{n} [{u}]" for n, u in columns)
-    fd, tmp = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as f:
-            np.savetxt(f, data, delimiter=",", header=header, comments="", fmt=fmt)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    with atomic_path(path) as tmp:
+        np.savetxt(tmp, data, delimiter=",", header=header, comments="", fmt=fmt)
     return path

@@ -16,7 +16,7 @@ class Context:
     params: dict[str, dict[str, Any]] = field(default_factory=dict)
 
     def stage_params(self, stage: str, defaults: dict[str, Any]) -> dict[str, Any]:
-        """Defaults overridden by ``[stages.<stage>]`` of the pipeline file (unknown keys refused)."""
+        """Defaults overridden by ``[stages.<stage>]`` of the pipeline file (unknown keys fail)."""
         given = self.params.get(stage, {})
         unknown = set(given) - set(defaults)
         if unknown:

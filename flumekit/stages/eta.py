@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
+from flumekit.stages.runs import run_coords
 
 VERSION = "2"
 
@@ -22,17 +23,6 @@ def rules(ctx: Context) -> list[Rule]:
                         outputs={"dataset": ctx.out("eta", f"{run.id}.nc")},
                         params=params, version=VERSION, run=run.id))
     return out
-
-
-def run_coords(params: dict) -> dict:
-    """Run parameters as scalar coordinates, so runs concatenate along ``run``.
-
-    ``uvp_elevation`` is NaN for runs without UVP, so every run has the same coordinates.
-    """
-    z = params.get("uvp_elevation")
-    return {"run": params["run"], "wave_period": params["period"],
-            "wave_height": params["height"], "repeat": params["repeat"],
-            "uvp_elevation": float("nan") if z is None else z}
 
 
 def build(inputs, outputs, params) -> None:

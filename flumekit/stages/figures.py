@@ -74,12 +74,11 @@ def _function(draw: str):
 
 
 def draw(inputs, outputs, params) -> None:
-    from flumekit.figures.style import save, style
-    from flumekit.io.netcdf import read_dataset
-
     import numpy as np
 
     from flumekit.figures import simulator as models
+    from flumekit.figures.style import save, style
+    from flumekit.io.netcdf import read_dataset
 
     data = {k: read_dataset(v) for k, v in inputs.items()}
     fn = _function(params["draw"])

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.eta import run_coords
+from flumekit.stages.runs import run_coords, stack_runs
 
-VERSION = "1"
+VERSION = "2"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
 
 
@@ -54,17 +54,4 @@ def build(inputs, outputs, params) -> None:
 
 
 def summary(inputs, outputs, params) -> None:
-    import xarray as xr
-
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
-
-    rows = []
-    for name in sorted(inputs):
-        ds = read_dataset(inputs[name])
-        scalars = [v for v in ds.data_vars if ds[v].ndim == 0]
-        rows.append(ds[scalars].expand_dims("run"))
-    out = xr.concat(rows, dim="run", coords="all", compat="override")
-    out.attrs = conventions.global_attrs("Flap amplitudes, torques and power of every run",
-                                         "flumekit flap_summary stage", {"runs": len(rows)})
-    write_dataset(out, outputs["dataset"])
+    stack_runs(inputs, outputs, "Flap amplitudes, torques and power of every run")

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.eta import run_coords
+from flumekit.stages.runs import run_coords, stack_runs
 
-VERSION = "1"
+VERSION = "2"
 DEFAULTS = {"omega_min": 0.4, "omega_max": 25.0, "n_omega": 400, "dt": 0.04,
             "simulator": True, "friction": True}
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
@@ -157,15 +157,5 @@ def compare(inputs, outputs, params) -> None:
 
 
 def summary(inputs, outputs, params) -> None:
-    import xarray as xr
-
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
-
-    runs = [read_dataset(inputs[k]).drop_dims("phase") for k in sorted(inputs)]
-    out = xr.concat([r.expand_dims("run") for r in runs], dim="run", coords="all",
-                    compat="override")
-    out.attrs = conventions.global_attrs("Experiment, linear model and simulator for every run",
-                                         "flumekit comparison_summary stage",
-                                         {"runs": len(runs)})
-    write_dataset(out, outputs["dataset"])
+    stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
+               keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.eta import run_coords
+from flumekit.stages.runs import run_coords, stack_runs
 
-VERSION = "1"
+VERSION = "2"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
             "tolerance": 0.02, "min_cycles": 10}
 
@@ -54,24 +54,5 @@ def build(inputs, outputs, params) -> None:
     write_dataset(ds, outputs["dataset"])
 
 
-SUMMARY_VARIABLES = ("reflection_coefficient", "incident_height", "reflected_height",
-                     "measured_period", "steady_start", "steady_end", "energy_flux",
-                     "masked_energy_fraction")
-
-
 def summary(inputs, outputs, params) -> None:
-    import xarray as xr
-
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
-
-    rows = []
-    for name in sorted(inputs):
-        ds = read_dataset(inputs[name])
-        keep = [v for v in SUMMARY_VARIABLES if v in ds]
-        rows.append(ds[keep].drop_dims([d for d in ds.dims], errors="ignore")
-                    .expand_dims("run"))
-    out = xr.concat(rows, dim="run", coords="all", compat="override")
-    out.attrs = conventions.global_attrs("Wave statistics of every run",
-                                         "flumekit waves_summary stage", {"runs": len(rows)})
-    write_dataset(out, outputs["dataset"])
+    stack_runs(inputs, outputs, "Wave statistics of every run")

@@ -1,0 +1,36 @@
+"""What every per-run stage shares: run parameters as coordinates, and stacking runs."""
+
+from __future__ import annotations
+
+
+def run_coords(params: dict) -> dict:
+    """Run parameters as scalar coordinates, so runs concatenate along ``run``.
+
+    ``uvp_elevation`` is NaN for runs without UVP, so every run has the same coordinates.
+    """
+    z = params.get("uvp_elevation")
+    return {"run": params["run"], "wave_period": params["period"],
+            "wave_height": params["height"], "repeat": params["repeat"],
+            "uvp_elevation": float("nan") if z is None else z}
+
+
+def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> None:
+    """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
+
+    ``keep(ds)`` names the variables to keep (default: every scalar); ``drop_dims`` are dropped
+    first.
+    """
+    import xarray as xr
+
+    from flumekit import conventions
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    rows = []
+    for name in sorted(inputs):
+        ds = read_dataset(inputs[name]).drop_dims(list(drop_dims), errors="ignore")
+        names = keep(ds) if keep else [v for v in ds.data_vars if ds[v].ndim == 0]
+        rows.append(ds[list(names)].expand_dims("run"))
+    out = xr.concat(rows, dim="run", coords="all", compat="override")
+    out.attrs = conventions.global_attrs(title, "flumekit campaign summary of "
+                                         f"{len(rows)} runs", {"runs": sorted(inputs)})
+    write_dataset(out, outputs["dataset"])
