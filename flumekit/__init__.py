@@ -2,4 +2,4 @@
 
 __version__ = "0.1.0"
 
-from flumekit.errors import FlumekitError, InputError  # noqa: E402,F401
+from flumekit.errors import FlumekitError, InputError  # noqa: F401 - public re-export

@@ -275,7 +275,8 @@ def load_campaign(root: str | Path) -> Campaign:
     if flap.hinge_height >= flume.water_depth:
         raise InputError(path, "hinge above the still water level", field="flap.hinge_height")
     p = t.sub("pto")
-    pto = PTO(p.point("bed_anchor"), p.point("flap_anchor"), p.number("bore_diameter", positive=True),
+    pto = PTO(p.point("bed_anchor"), p.point("flap_anchor"),
+              p.number("bore_diameter", positive=True),
               p.number("atmospheric_pressure", positive=True, default=101325.0),
               p.number("vapour_pressure", positive=True, default=2339.0))
     if p.has("friction"):
@@ -290,7 +291,8 @@ def load_campaign(root: str | Path) -> Campaign:
         raise InputError(path, "PTO anchors coincide", field="pto")
     e = t.sub("encoder")
     enc = Encoder(e.number("L5", positive=True), e.number("L7", positive=True),
-                  e.number("counts_per_metre", positive=True), e.number("sampling_rate", positive=True))
+                  e.number("counts_per_metre", positive=True),
+                  e.number("sampling_rate", positive=True))
     pr = t.sub("probes")
     names = pr.names("names")
     sep = pr.names("separation") if pr.has("separation") else names
@@ -304,10 +306,12 @@ def load_campaign(root: str | Path) -> Campaign:
         beams = []
         for name in u.names("beams"):
             b = u.sub(name)
-            beams.append(Beam(name, b.number("x"), b.number("dz"), math.radians(b.number("angle_deg"))))
+            beams.append(Beam(name, b.number("x"), b.number("dz"),
+                              math.radians(b.number("angle_deg"))))
         uvp = UVP(u.number("frequency", positive=True), u.number("sampling_rate", positive=True),
                   u.integer("n_channels"), u.number("start_channel", nonnegative=True),
-                  u.number("channel_distance", positive=True), u.number("channel_width", positive=True),
+                  u.number("channel_distance", positive=True),
+                  u.number("channel_width", positive=True),
                   u.number("sound_speed", positive=True), tuple(beams))
     runs_dir = root / "runs"
     run_files = sorted(runs_dir.glob("*/run.toml")) if runs_dir.is_dir() else []

@@ -58,14 +58,17 @@ VARIABLES: dict[str, Variable] = {
     "probe_voltage": _V("V", "wave probe output voltage"),
     "encoder_counts": _V("1", "wire encoder count"),
     "wire_shortening": _V("m", "shortening of the encoder measuring wire, Delta L7"),
-    "chamber_pressure": _V("Pa", "gauge pressure in the PTO cylinder chamber", "sea_water_pressure"),
+    "chamber_pressure": _V("Pa", "gauge pressure in the PTO cylinder chamber",
+                           "sea_water_pressure"),
     "calibration_voltage": _V("V", "probe voltage at a static calibration level"),
     # --- calibration ---
-    "calibration_coefficients": _V("m V-n", "calibration polynomial coefficients, eta = sum c_n V^n"),
+    "calibration_coefficients": _V("m V-n",
+                                   "calibration polynomial coefficients, eta = sum c_n V^n"),
     "calibration_r2": _V("1", "coefficient of determination of the calibration fit"),
     "calibration_residual": _V("m", "calibration fit residual"),
     "calibration_rms_residual": _V("m", "root-mean-square calibration residual"),
-    "calibration_monotonic": _V("1", "1 if the calibration is monotonic over the recorded voltages"),
+    "calibration_monotonic": _V("1",
+                                "1 if the calibration is monotonic over the recorded voltages"),
     "gain": _V("m V-1", "probe gain"),
     "offset": _V("m", "probe offset (elevation at zero volt)"),
     "eta": _V("m", "water surface elevation above still water level",
@@ -96,7 +99,8 @@ VARIABLES: dict[str, Variable] = {
     "reflected_harmonic_amplitude": _V("m", "amplitude of the reflected wave at harmonic n"),
     "harmonic_reflection_coefficient": _V("1", "reflection coefficient at harmonic n"),
     "incident_amplitude": _V("m", "first-harmonic amplitude of the incident wave"),
-    "incident_phase": _V("rad", "phase of the first-harmonic incident wave, eta = a cos(omega t + phase)"),
+    "incident_phase": _V("rad",
+                         "phase of the first-harmonic incident wave, eta = a cos(omega t + phase)"),
     "steady_cycles": _V("1", "number of wave cycles in the quasi-steady window"),
     # --- flap ---
     "theta": _V("rad", "flap rotation angle, positive towards the beach"),
@@ -125,20 +129,24 @@ VARIABLES: dict[str, Variable] = {
     "theta_amplitude": _V("rad", "amplitude of the flap rotation"),
     "torque_amplitude": _V("N m", "amplitude of the hydrodynamic torque"),
     "domain_flag": _V("1", "1 where the encoder sample lies outside the domain of Eq. (1)"),
-    "chamber_pressure_true": _V("Pa", "noise-free gauge pressure in the PTO cylinder chamber (virtual flume truth)", "sea_water_pressure"),
+    "chamber_pressure_true": _V("Pa", "noise-free gauge pressure in the PTO cylinder chamber "
+                                "(virtual flume truth)", "sea_water_pressure"),
     "chamber_pressure_fitted": _V("Pa", "chamber gauge pressure of the fitted model, Eq. (13)"),
     "torque_pressure_fitted": _V("N m", "torque of the fitted cylinder pressure force"),
     "cavitating": _V("1", "1 where the chamber is on the cavitation branch of the pressure model"),
     "bristle_deflection": _V("m", "mean bristle deflection z of the LuGre friction model"),
-    "film_thickness_parameter": _V("1", "dimensionless lubricant film thickness h_l of the friction model"),
+    "film_thickness_parameter": _V("1", "dimensionless lubricant film thickness h_l of the "
+                                   "friction model"),
     "torque_excitation": _V("N m", "wave excitation torque on the flap about the hinge"),
     "theta_phase_mean": _V("rad", "phase-averaged flap rotation angle"),
-    "theta_phase_ci95": _V("rad", "half-width of the 95 % confidence interval of the phase-averaged flap angle"),
+    "theta_phase_ci95": _V("rad", "half-width of the 95 % confidence interval of the "
+                           "phase-averaged flap angle"),
     "theta_dot_phase_mean": _V("rad s-1", "phase-averaged flap angular velocity"),
     "power_phase_mean": _V("W", "phase-averaged PTO power"),
     "chamber_pressure_phase_mean": _V("Pa", "phase-averaged chamber gauge pressure"),
     "torque_hydrodynamic_phase_mean": _V("N m", "phase-averaged hydrodynamic torque"),
-    "torque_hydrodynamic_phase_ci95": _V("N m", "half-width of the 95 % confidence interval of the phase-averaged hydrodynamic torque"),
+    "torque_hydrodynamic_phase_ci95": _V("N m", "half-width of the 95 % confidence interval of the "
+                                         "phase-averaged hydrodynamic torque"),
     "domain_flagged_fraction": _V("1", "fraction of encoder samples outside the domain of Eq. (1)"),
     # --- uvp ---
     "distance": _V("m", "distance from the transducer face along the beam"),
@@ -157,52 +165,73 @@ VARIABLES: dict[str, Variable] = {
     "beam_angle": _V("rad", "UVP beam angle above the horizontal, towards +x"),
     "beam_x": _V("m", "x of the UVP transducer face"),
     "beam_dz": _V("m", "elevation of the UVP transducer face relative to the run's UVP elevation"),
-    "beam_velocity_std": _V("m s-1", "RMS of the along-beam velocity fluctuation about its phase average"),
-    "beam_velocity_ci": _V("m s-1", "half-width of the 95 % confidence interval of the phase-averaged beam velocity"),
+    "beam_velocity_std": _V("m s-1",
+                            "RMS of the along-beam velocity fluctuation about its phase average"),
+    "beam_velocity_ci": _V("m s-1", "half-width of the 95 % confidence interval of the "
+                           "phase-averaged beam velocity"),
     "n_cycles": _V("1", "number of wave cycles phase-averaged"),
     "n_repeats": _V("1", "number of repeated runs averaged"),
     "n_beams": _V("1", "number of UVP beams that see the point"),
-    "uu": _V("m2 s-2", "variance of the longitudinal velocity fluctuation <u'u'> (unclipped estimate)"),
+    "uu": _V("m2 s-2",
+             "variance of the longitudinal velocity fluctuation <u'u'> (unclipped estimate)"),
     "ww": _V("m2 s-2", "variance of the vertical velocity fluctuation <w'w'> (unclipped estimate)"),
     "uw": _V("m2 s-2", "covariance of the longitudinal and vertical velocity fluctuations <u'w'>"),
     "velocity_scale": _V("m s-1", "velocity scale U0 = pi H/T"),
     "inside_flap": _V("1", "1 where the point lies inside the flap (masked)"),
-    "phase_reference": _V("s", "time of the zero up-crossing of the incident wave at x = 0 that starts the phase average"),
+    "phase_reference": _V("s", "time of the zero up-crossing of the incident wave at x = 0 that "
+                          "starts the phase average"),
     # --- models ---
     "added_inertia": _V("kg m2", "added moment of inertia about the hinge"),
     "radiation_damping": _V("N m s", "radiation damping about the hinge"),
     "excitation_torque": _V("N m m-1", "excitation torque per unit wave amplitude"),
-    "hydrostatic_stiffness": _V("N m rad-1", "net buoyancy (hydrostatic) stiffness about the hinge"),
+    "hydrostatic_stiffness": _V("N m rad-1",
+                                "net buoyancy (hydrostatic) stiffness about the hinge"),
     "pto_damping": _V("N m s", "linear PTO damping"),
-    "theta_complex_amplitude": _V("rad m-1", "complex flap rotation amplitude per unit wave amplitude"),
+    "theta_complex_amplitude": _V("rad m-1",
+                                  "complex flap rotation amplitude per unit wave amplitude"),
     "efficiency": _V("1", "efficiency"),
     "temperature": _V("K", "temperature"),
     "film_thickness": _V("m", "lubricant film thickness"),
     "film_parameter": _V("1", "film parameter lambda = h_min / sigma"),
     "friction_coefficient": _V("1", "friction coefficient"),
     # time-domain hydrodynamics and simulator (models/hydro.py, radiation.py, simulator.py)
-    "added_inertia_infinite": _V("kg m2", "infinite-frequency added moment of inertia about the hinge"),
-    "added_inertia_infinite_estimate": _V("kg m2", "Ogilvie (1964) estimate of the infinite-frequency added inertia at each frequency"),
+    "added_inertia_infinite": _V("kg m2",
+                                 "infinite-frequency added moment of inertia about the hinge"),
+    "added_inertia_infinite_estimate": _V("kg m2", "Ogilvie (1964) estimate of the "
+                                          "infinite-frequency added inertia at each frequency"),
     "lag": _V("s", "time lag of the radiation impulse response"),
-    "radiation_irf": _V("N m", "radiation impulse response K(t): memory torque per unit angular velocity per unit time"),
-    "torque_radiation": _V("N m", "radiation torque acting on the flap, -A_inf theta_ddot - int K theta_dot"),
+    "radiation_irf": _V("N m", "radiation impulse response K(t): memory torque per unit angular "
+                        "velocity per unit time"),
+    "torque_radiation": _V("N m", "radiation torque acting on the flap, "
+                           "-A_inf theta_ddot - int K theta_dot"),
     "torque_drag": _V("N m", "quadratic viscous drag torque acting on the flap"),
     # Renzi-Dias linear model and frequency-domain response (models/renzi_dias.py, response.py)
     "period": _V("s", "wave period"),
-    "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit wave amplitude at the hinge line"),
-    "excitation_torque_imag": _V("N m m-1", "imaginary part of the complex excitation torque per unit wave amplitude at the hinge line"),
-    "reflection_coefficient_real": _V("1", "real part of the complex plane-wave reflection coefficient R0 of the fixed flap"),
-    "reflection_coefficient_imag": _V("1", "imaginary part of the complex plane-wave reflection coefficient R0 of the fixed flap"),
-    "transmission_coefficient_real": _V("1", "real part of the complex plane-wave transmission coefficient T0 of the fixed flap"),
-    "transmission_coefficient_imag": _V("1", "imaginary part of the complex plane-wave transmission coefficient T0 of the fixed flap"),
-    "propagating_transverse_modes": _V("1", "number of symmetric transverse channel modes above cut-off (k b > 2 pi q)"),
-    "theta_real": _V("rad", "real part of the complex flap rotation amplitude, theta = Re(Theta exp(-i omega t))"),
+    "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit "
+                                 "wave amplitude at the hinge line"),
+    "excitation_torque_imag": _V("N m m-1", "imaginary part of the complex excitation torque per "
+                                 "unit wave amplitude at the hinge line"),
+    "reflection_coefficient_real": _V("1", "real part of the complex plane-wave reflection "
+                                      "coefficient R0 of the fixed flap"),
+    "reflection_coefficient_imag": _V("1", "imaginary part of the complex plane-wave reflection "
+                                      "coefficient R0 of the fixed flap"),
+    "transmission_coefficient_real": _V("1", "real part of the complex plane-wave transmission "
+                                        "coefficient T0 of the fixed flap"),
+    "transmission_coefficient_imag": _V("1", "imaginary part of the complex plane-wave "
+                                        "transmission coefficient T0 of the fixed flap"),
+    "propagating_transverse_modes": _V("1", "number of symmetric transverse channel modes above "
+                                       "cut-off (k b > 2 pi q)"),
+    "theta_real": _V("rad", "real part of the complex flap rotation amplitude, "
+                     "theta = Re(Theta exp(-i omega t))"),
     "theta_imag": _V("rad", "imaginary part of the complex flap rotation amplitude"),
-    "theta_phase": _V("rad", "phase of the flap rotation, arg Theta, relative to the incident crest at the hinge line"),
+    "theta_phase": _V("rad", "phase of the flap rotation, arg Theta, relative to the incident "
+                      "crest at the hinge line"),
     "optimal_pto_damping": _V("N m s", "PTO damping maximising the mean power, RD12 Eq. (2.40)"),
-    "capture_factor_channel": _V("1", "mean power over the incident energy flux across the channel width"),
+    "capture_factor_channel": _V("1", "mean power over the incident energy flux across the "
+                                 "channel width"),
     # ball-screw WEC (Senatore & De Simone 2022): buoy kinematics
-    "buoy_heave": _V("m", "vertical displacement of the buoy centre of gravity from static equilibrium"),
+    "buoy_heave": _V("m",
+                     "vertical displacement of the buoy centre of gravity from static equilibrium"),
     "buoy_heave_velocity": _V("m s-1", "vertical velocity of the buoy centre of gravity"),
     "buoy_heave_acceleration": _V("m s-2", "vertical acceleration of the buoy centre of gravity"),
     "arm_angle": _V("rad", "holding-arm angle above the horizontal"),
@@ -224,12 +253,15 @@ VARIABLES: dict[str, Variable] = {
     "friction_force": _V("N", "ball-screw friction force magnitude"),
     "ball_load": _V("N", "normal load per loaded ball Q"),
     "entrainment_speed": _V("m s-1", "mean entrainment speed of the ball-groove contacts"),
-    "min_film_thickness_screw": _V("m", "Hamrock-Dowson minimum film thickness, ball-screw contact"),
+    "min_film_thickness_screw": _V("m",
+                                   "Hamrock-Dowson minimum film thickness, ball-screw contact"),
     "min_film_thickness_nut": _V("m", "Hamrock-Dowson minimum film thickness, ball-nut contact"),
     "film_parameter_screw": _V("1", "film parameter lambda_screw = h_min / sigma"),
     "film_parameter_nut": _V("1", "film parameter lambda_nut = h_min / sigma"),
-    "lubrication_regime_screw": _V("1", "lubrication regime, ball-screw: 0 boundary, 1 mixed, 2 full film"),
-    "lubrication_regime_nut": _V("1", "lubrication regime, ball-nut: 0 boundary, 1 mixed, 2 full film"),
+    "lubrication_regime_screw": _V("1", "lubrication regime, ball-screw: "
+                                   "0 boundary, 1 mixed, 2 full film"),
+    "lubrication_regime_nut": _V("1",
+                                 "lubrication regime, ball-nut: 0 boundary, 1 mixed, 2 full film"),
     "friction_coefficient_screw": _V("1", "friction coefficient f_ball-screw"),
     "friction_coefficient_nut": _V("1", "friction coefficient f_ball-nut"),
     "ballscrew_efficiency": _V("1", "indirect efficiency of the ball screw eta = P_out / P_in"),
@@ -244,8 +276,10 @@ VARIABLES: dict[str, Variable] = {
     # PTO thermal models
     "component": _V("1", "lumped thermal component"),
     "heat_source": _V("W", "heat generated in the component"),
-    "bearing_heat_loss": _V("W", "mechanical loss heating the support bearing (leaves the lumped model)"),
-    "temperature_rise_fit": _V("K", "temperature rise Delta T of the fit T0 + Delta T (1 - exp(-t/tau))"),
+    "bearing_heat_loss": _V("W", "mechanical loss heating the support bearing "
+                            "(leaves the lumped model)"),
+    "temperature_rise_fit": _V("K", "temperature rise Delta T of the fit "
+                               "T0 + Delta T (1 - exp(-t/tau))"),
     "time_constant_fit": _V("s", "time constant tau of the exponential fit"),
     "radial_coordinate": _V("m", "radial coordinate r of the axisymmetric model"),
     "axial_coordinate": _V("m", "axial coordinate of the axisymmetric model"),
@@ -306,7 +340,8 @@ def check(ds: xr.Dataset) -> None:
 
 
 def global_attrs(title: str, source: str, parameters: dict | None = None) -> dict[str, str]:
-    """Global attributes: Conventions, title, source and a history line with version and parameters."""
+    """Global attributes: Conventions, title, source and a history line with version and
+    parameters."""
     from flumekit import __version__
 
     stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")

@@ -1,4 +1,5 @@
-"""Shared signal tools: zero-phase filtering, differentiation, cycles, quasi-steady window, phase averaging.
+"""Shared signal tools: zero-phase filtering, differentiation, cycles, quasi-steady window,
+phase averaging.
 
 These are the only implementations of these operations in flumekit: waves, flap and UVP code
 call them. Functions take numpy arrays with time along the last axis and uniform sampling.

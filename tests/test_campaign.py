@@ -1,6 +1,5 @@
 """Campaign metadata: the default template reads, and bad fields are named."""
 
-import shutil
 from importlib import resources
 
 import pytest

@@ -4,7 +4,8 @@ One function per instrument file (raw/README.md):
 
 * ``calibration/probes.csv``: static submersions, ``level [m]`` then one voltage column per probe;
 * ``runs/<run>/probes.csv``: ``time [s]`` then one voltage column per probe, 25 Hz;
-* ``runs/<run>/flap.csv``: ``time [s]``, ``encoder [counts]``, ``pressure [<pressure unit>]``, 100 Hz.
+* ``runs/<run>/flap.csv``: ``time [s]``, ``encoder [counts]``, ``pressure [<pressure unit>]``,
+  100 Hz.
 """
 
 from __future__ import annotations
@@ -29,7 +30,8 @@ def _require(path: Path, cols: list[Column], name: str, quantity: str) -> int:
     raise InputError(path, f"missing column '{name}' (columns: {[c.name for c in cols]})")
 
 
-def _probe_columns(path: Path, cols: list[Column], probes: tuple[str, ...], first: str) -> list[int]:
+def _probe_columns(path: Path, cols: list[Column], probes: tuple[str, ...],
+                   first: str) -> list[int]:
     known = {first, *probes}
     unknown = [c.name for c in cols if c.name not in known]
     if unknown:

@@ -122,7 +122,8 @@ def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None)
 
 def write_table(path: str | Path, columns: list[tuple[str, str]], data: np.ndarray,
                 fmt: str | list[str] = "%.6f") -> Path:
-    """Write an instrument CSV atomically. ``columns`` are (name, unit); ``data`` is in those units."""
+    """Write an instrument CSV atomically. ``columns`` are (name, unit); ``data`` is in those
+    units."""
     path = Path(path)
     header = ",".join(f"{n} [{u}]" for n, u in columns)
     with atomic_path(path) as tmp:

@@ -10,9 +10,9 @@ from __future__ import annotations
 import fnmatch
 import sys
 import time
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterable
 
 from flumekit.errors import FlumekitError, InputError
 from flumekit.pipeline.executors import Executor
@@ -117,7 +117,8 @@ class Report:
     skipped: list[str]
 
 
-def plan(graph: Graph, targets: list[str], state: State, force: bool = False) -> list[tuple[str, str]]:
+def plan(graph: Graph, targets: list[str], state: State,
+         force: bool = False) -> list[tuple[str, str]]:
     """What would run and why, for a dry run. Assumes every rebuilt input changes."""
     rebuilt: set[str] = set()
     out = []
@@ -170,7 +171,7 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
             rule = graph.rules[t]
             try:
                 seconds = fut.result()
-            except BaseException as e:  # noqa: BLE001 - reported with target and run
+            except BaseException as e:  # broad on purpose: reported with target and run
                 state.targets.pop(t, None)
                 if failure is None:
                     failure = _wrap(rule, e)

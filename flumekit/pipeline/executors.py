@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import os
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 
 class Executor:
@@ -35,7 +36,7 @@ class SerialExecutor(Executor):
         fut: cf.Future = cf.Future()
         try:
             fut.set_result(fn(*args))
-        except BaseException as e:  # noqa: BLE001 - delivered through the future
+        except BaseException as e:  # broad on purpose: delivered through the future
             fut.set_exception(e)
         return fut
 

@@ -85,7 +85,8 @@ def test_binary_garbage(tmp_path):
 
 
 def test_non_integer_encoder_counts(tmp_path):
-    p = write(tmp_path / "flap.csv", "time [s],encoder [counts],pressure [Pa]\n0.00,0.5,1\n0.01,1,1\n")
+    p = write(tmp_path / "flap.csv",
+              "time [s],encoder [counts],pressure [Pa]\n0.00,0.5,1\n0.01,1,1\n")
     with pytest.raises(InputError, match="integers"):
         read_flap(p, 100.0)
 
