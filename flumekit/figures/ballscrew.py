@@ -48,7 +48,8 @@ def figure_13(eff: xr.Dataset):
 
 
 def figure_14(eff: xr.Dataset):
-    """Fig. 14: film parameters λ_nut, λ_screw and friction coefficients f_ball-nut, f_ball-screw."""
+    """Fig. 14: film parameters λ_nut, λ_screw and friction coefficients f_ball-nut,
+    f_ball-screw."""
     t = eff["time"].values
     panels = [("film_parameter_nut", r"(a) $\lambda_{nut}$"),
               ("film_parameter_screw", r"(b) $\lambda_{screw}$"),

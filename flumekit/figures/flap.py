@@ -8,8 +8,6 @@ by the incident height rounded to 5 mm.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 import numpy as np
 import xarray as xr
 

@@ -105,7 +105,8 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
     Parameters
     ----------
     axes : Four Axes (a-d).
-    summary : Summary of one simulated run (:func:`~flumekit.models.simulator_summary.summarise_run`).
+    summary : Summary of one simulated run
+        (:func:`~flumekit.models.simulator_summary.summarise_run`).
     sim : The simulation itself, for panel (a).
     label : Legend label.
     """

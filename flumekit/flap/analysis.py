@@ -17,8 +17,13 @@ from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
 from flumekit.flap.power import capture_factor, flow_rate, incident_power, pto_power, window_mean
 from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model, pressure_force
-from flumekit.flap.torque import (friction_torque, gravity_torque, hydrodynamic_torque,
-                                  inertia_torque, pressure_torque)
+from flumekit.flap.torque import (
+    friction_torque,
+    gravity_torque,
+    hydrodynamic_torque,
+    inertia_torque,
+    pressure_torque,
+)
 
 #: default cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
 #: differentiation [Hz]. It passes the first 8 harmonics of the shortest period (2 s) with at

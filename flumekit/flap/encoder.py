@@ -49,7 +49,8 @@ def _check_lengths(L5: float, L7: float) -> None:
 
 
 def wire_length(theta, L5: float, L7: float) -> np.ndarray:
-    """Wire length L(θ) [m] between the encoder and the flap frame (Eq. 1, sign for θ > 0 to the beach).
+    """Wire length L(θ) [m] between the encoder and the flap frame (Eq. 1, sign for θ > 0 to
+    the beach).
 
     Parameters
     ----------

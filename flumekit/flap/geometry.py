@@ -133,7 +133,8 @@ def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     b, p0 = check_anchors(bed_anchor, flap_anchor)
     ell = np.asarray(rod_length, dtype=float)
     lo, hi = rod_length_limits(b, p0)
-    if np.any(~np.isfinite(ell)) or np.any(ell < lo * (1 - 1e-12)) or np.any(ell > hi * (1 + 1e-12)):
+    if (np.any(~np.isfinite(ell)) or np.any(ell < lo * (1 - 1e-12))
+            or np.any(ell > hi * (1 + 1e-12))):
         raise GeometryError(f"rod length outside [{lo:.6g}, {hi:.6g}] m allowed by the anchors "
                             f"(got {np.nanmin(ell):.6g} to {np.nanmax(ell):.6g} m)")
     d, r = np.hypot(*b), np.hypot(*p0)

@@ -162,7 +162,8 @@ class PTOCoefficients:
 def lead_angle(lead: float, pitch_diameter: float) -> float:
     """Lead angle α = atan(lead / (π d_m)) [rad] at the pitch diameter."""
     if not (lead > 0 and pitch_diameter > 0):
-        raise GeometryError(f"lead and pitch diameter must be positive, got {lead}, {pitch_diameter}")
+        raise GeometryError(f"lead and pitch diameter must be positive, "
+                            f"got {lead}, {pitch_diameter}")
     return float(np.arctan(lead / (np.pi * pitch_diameter)))
 
 
@@ -266,7 +267,8 @@ def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, vi
     fr = np.asarray(friction_force, float)
     if np.any(fr < 0):
         raise ValueError("friction force magnitude must be >= 0")
-    return -damping * v - fr * np.sign(v) - viscous * v - inertia * np.asarray(nut_acceleration, float)
+    return (-damping * v - fr * np.sign(v) - viscous * v
+            - inertia * np.asarray(nut_acceleration, float))
 
 
 # --- coupled multibody-EHL evaluation ----------------------------------------------------------
@@ -286,7 +288,8 @@ def _contacts(screw: BallScrew) -> _Contacts:
     d, dm, b = screw.ball_diameter, screw.pitch_diameter, screw.contact_angle
     rxs, rys = ehl.ball_groove_radii(d, dm, b, screw.conformity_screw, "inner")
     rxn, ryn = ehl.ball_groove_radii(d, dm, b, screw.conformity_nut, "outer")
-    return _Contacts(rxs, rys, rxn, ryn, ehl.reduced_modulus(screw.young_modulus, screw.poisson_ratio),
+    return _Contacts(rxs, rys, rxn, ryn,
+                     ehl.reduced_modulus(screw.young_modulus, screw.poisson_ratio),
                      ehl.composite_roughness(screw.roughness_ball, screw.roughness_screw),
                      ehl.composite_roughness(screw.roughness_ball, screw.roughness_nut))
 

@@ -19,8 +19,8 @@ The paper gives no dimensions of the UMBRA device; :class:`BuoyGeometry` documen
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import asdict, dataclass
-from typing import Callable
 
 import numpy as np
 import xarray as xr
@@ -117,7 +117,8 @@ def arm_angle(heave, geometry: BuoyGeometry) -> np.ndarray:
     s = np.sin(g.rest_angle) + np.asarray(heave, float) / g.arm_length
     if np.any(np.abs(s) >= 1):
         raise GeometryError(f"heave out of reach of the arm: |z_rest + z| must stay below the "
-                            f"arm length {g.arm_length} m (max {np.max(np.abs(s)) * g.arm_length:.3g} m)")
+                            f"arm length {g.arm_length} m "
+                            f"(max {np.max(np.abs(s)) * g.arm_length:.3g} m)")
     return np.arcsin(s)
 
 
@@ -393,7 +394,8 @@ def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: B
     h_min = 1e-6 * h_max
     if balance(h_max) < 0:
         raise ValueError(f"sea state H={wave_height} m, T={wave_period} s carries more energy "
-                         f"than the PTO absorbs within the float's range of motion (h < {h_max:.3g} m)")
+                         f"than the PTO absorbs within the float's range of motion "
+                         f"(h < {h_max:.3g} m)")
     if balance(h_min) > 0:
         return 0.0  # the PTO friction exceeds the wave energy: the buoy does not move
     return float(optimize.brentq(balance, h_min, h_max, xtol=1e-10, rtol=1e-10))

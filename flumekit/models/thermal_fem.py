@@ -25,8 +25,17 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import xarray as xr
 from scipy.sparse import linalg as spla
-from skfem import (Basis, BilinearForm, ElementQuad1, ElementQuad2, FacetBasis, LinearForm,
-                   MeshQuad, asm, condense)
+from skfem import (
+    Basis,
+    BilinearForm,
+    ElementQuad1,
+    ElementQuad2,
+    FacetBasis,
+    LinearForm,
+    MeshQuad,
+    asm,
+    condense,
+)
 from skfem.helpers import dot, grad
 
 from flumekit import conventions

@@ -101,7 +101,8 @@ def heat_sources(mechanical_loss, electrical_loss_, params: LumpedThermal) -> di
     'nut' = (1 - p_sn) r Q_m and 'bearing' = (1 - p_sb)(1 - r) Q_m (leaves the model).
     """
     qm = np.asarray(mechanical_loss, float)
-    p, pb, r = params.partition_screw_nut, params.partition_screw_bearing, params.ball_system_fraction
+    p, pb = params.partition_screw_nut, params.partition_screw_bearing
+    r = params.ball_system_fraction
     return {"generator": np.asarray(electrical_loss_, float) + 0.0 * qm,
             "screw": p * r * qm + pb * (1 - r) * qm,   # Eq. (9)
             "nut": (1 - p) * r * qm,                  # Eq. (10)

@@ -106,7 +106,8 @@ def _renzi_dias_like(periods):
     # the layout of flumekit.models.renzi_dias.coefficients: over period, real/imag parts
     w = 2 * np.pi / periods
     f = 3000 * np.exp(-1j * (0.5 + 0.1 * w))
-    return xr.Dataset({"added_inertia": ("period", 100 + w), "radiation_damping": ("period", 50 * w),
+    return xr.Dataset({"added_inertia": ("period", 100 + w),
+                       "radiation_damping": ("period", 50 * w),
                        "excitation_torque_real": ("period", f.real),
                        "excitation_torque_imag": ("period", f.imag)},
                       coords={"period": periods, "angular_frequency": ("period", w)})

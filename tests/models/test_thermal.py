@@ -40,7 +40,8 @@ def test_lumped_energy_conservation_over_a_cycle():
     temp, mean = thermal_lumped.integrate(dt, src, P)
     c, _, _ = thermal_lumped.system_matrices(P)
     stored = np.sum(c * (temp[-1] - temp[0]))
-    t_air = np.array([P.air_temperature_generator, P.air_temperature_screw, P.air_temperature_screw])
+    t_air = np.array([P.air_temperature_generator, P.air_temperature_screw,
+                      P.air_temperature_screw])
     conv = np.array([P.conductance_generator_air, P.conductance_screw_air, P.conductance_nut_air])
     to_air = dt * np.sum(conv * (mean - t_air))  # exact step means; the b-exchange cancels
     assert src.sum() * dt == pytest.approx(stored + to_air, rel=1e-12)
