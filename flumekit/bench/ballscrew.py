@@ -30,12 +30,13 @@ def run(quick: bool = False) -> str:
     rows = ["efficiency step, reference motion (A = 1 m, T = 3.8 s), one period",
             f"reference: 16384 samples, converged: mean loss {loss_ref:.3f} W, "
             f"mean efficiency {eta_ref:.6f}",
-            f"{'samples':>7} {'iter':>4} {'loss error [%]':>14} {'eta_mean error':>14} {'time [ms]':>9}"]
+            f"{'samples':>7} {'iter':>4} {'loss error [%]':>14} {'eta_mean error':>14} "
+            f"{'time [ms]':>9}"]
     samples = [64, 256, 1024] if quick else [32, 64, 128, 256, 512, 1024, 4096]
     iterations = [1, 2, 4] if quick else [1, 2, 3, 4, 8]
     for n in samples:
         for it in iterations:
-            sec, st = best_time(lambda: _state(n, it))
+            sec, st = best_time(lambda n=n, it=it: _state(n, it))
             err_l = 100 * abs(st["mechanical_power_loss"].mean() / loss_ref - 1)
             err_e = abs(st["ballscrew_efficiency"].mean() - eta_ref)
             rows.append(f"{n:>7} {it:>4} {err_l:>14.4f} {err_e:>14.2e} {sec * 1e3:>9.2f}")
@@ -48,7 +49,8 @@ def run(quick: bool = False) -> str:
     fine, _ = thermal_lumped.integrate(0.01, np.tile(src, (600000, 1)), p)
     for dt in ([60.0, 10.0] if quick else [600.0, 60.0, 10.0, 1.0]):
         n = int(6000 / dt)
-        sec, (temp, _) = best_time(lambda: thermal_lumped.integrate(dt, np.tile(src, (n, 1)), p))
+        sec, (temp, _) = best_time(
+            lambda dt=dt, n=n: thermal_lumped.integrate(dt, np.tile(src, (n, 1)), p))
         x = np.full(3, p.initial_temperature)
         for _ in range(n):  # the explicit scheme, for comparison only
             x = x + dt * (src + air - k @ x) / c

@@ -66,12 +66,13 @@ def derivative_table(campaign: Campaign, cutoffs, cases, n_waves: int) -> str:
                              cutoff=fc)
             el = _time.perf_counter() - t0
 
-            def rel(name):
+            def rel(name, truth=truth, ds=ds, inner=inner):
                 ref = truth[name].values
                 return 100 * _rms((ds[name].values - ref)[inner]) / np.max(np.abs(ref))
 
             th = np.degrees(_rms((ds.theta.values - truth.theta.values)[inner]))
-            kp = 100 * (float(ds.pressure_loss_coefficient) / float(truth.pressure_loss_coefficient) - 1)
+            kp = 100 * (float(ds.pressure_loss_coefficient)
+                        / float(truth.pressure_loss_coefficient) - 1)
             ip = 100 * (float(ds.fluid_inertia) / float(truth.fluid_inertia) - 1)
             lines.append(f"{period:5.2f} {height:5.3f} {fc:6.1f} {th:9.5f} {rel('theta_dot'):9.4f} "
                          f"{rel('theta_ddot'):10.3f} {rel('torque_hydrodynamic'):7.3f} "
@@ -103,8 +104,9 @@ def friction_table(model: LuGre, steps, duration: float) -> str:
             f, _, _ = friction_series(v, dt, model)
             el = _time.perf_counter() - t0
             err = f[::m] - ref
-            lines.append(f"{amp:6.2f} {dt:8.0e} {t.size:8d} {100 * np.max(np.abs(err)) / scale:8.3f} "
-                         f"{100 * _rms(err) / scale:8.4f} {1e3 * el:8.1f} {t.size / el:9.2e}")
+            lines.append(f"{amp:6.2f} {dt:8.0e} {t.size:8d} "
+                         f"{100 * np.max(np.abs(err)) / scale:8.3f} {100 * _rms(err) / scale:8.4f} "
+                         f"{1e3 * el:8.1f} {t.size / el:9.2e}")
     return "\n".join(lines)
 
 

@@ -123,7 +123,8 @@ def run(quick: bool = False) -> str:
 
     # 2. IRF length: convolution, linear PTO (so that radiation dominates the error)
     lin = S.LinearDamper(500.0)
-    ref_sec, ref = best_time(lambda: S.simulate(exc, flap, irf40, lin, dt=0.02, duration=duration), 1)
+    ref_sec, ref = best_time(
+        lambda: S.simulate(exc, flap, irf40, lin, dt=0.02, duration=duration), 1)
     rows = []
     for length in ([2.5, 5.0, 10.0, 20.0] if not quick else [5.0, 20.0]):
         k = irf40.sel(lag=slice(0, length))
