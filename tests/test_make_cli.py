@@ -150,7 +150,8 @@ def test_scene_runs_only_what_it_needs(project):
     assert len(runs) == 1, fig10  # figure 10 processes one run, not the campaign
     efficiency = built(make(project, "ballscrew_efficiency"))
     assert "ballscrew/efficiency" in efficiency
-    assert "ballscrew/thermal_fem" not in efficiency and "ballscrew/thermal_lumped" not in efficiency
+    assert "ballscrew/thermal_fem" not in efficiency
+    assert "ballscrew/thermal_lumped" not in efficiency
 
 
 def test_list_shows_scenes_and_state(project):
