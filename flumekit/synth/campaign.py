@@ -109,6 +109,10 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
 
     runs = [("waves", t, h, None) for t, h in spec.wave_runs]
     runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
+    from flumekit.synth.flap import flume_hydrodynamics
+
+    # the flap simulator's coefficients and radiation model: the same for every run (~1.5 s)
+    flap_hydro = flume_hydrodynamics(campaign)
     seen: dict[str, int] = {}
     for i, (kind, period, height, z) in enumerate(runs):
         base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
@@ -118,7 +122,8 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
         if progress is not None:
             progress(i, len(runs), run_id)
         _write_run(tmp, campaign, run_id, kind, period, height, repeat, z, a, b, truth,
-                   np.random.default_rng([seed, len(seen), repeat]), spec.n_steady_waves)
+                   np.random.default_rng([seed, len(seen), repeat]), spec.n_steady_waves,
+                   flap_hydro=flap_hydro)
     if spec.uvp_elevations:
         from flumekit.synth.uvp import true_field
 
@@ -151,7 +156,7 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
 
 
 def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
-               truth: Truth, rng, n_steady: int) -> None:
+               truth: Truth, rng, n_steady: int, flap_hydro=None) -> None:
     from flumekit.synth.flap import flap_record
     from flumekit.synth.waves import regular_wave_field
 
@@ -183,9 +188,15 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
 
     enc = campaign.encoder
     t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
-    at_flap = regular_wave_field(t100, np.array([0.0]), **wave_kw)
-    flap = flap_record(t100, at_flap["eta_incident"].values[0], period=period, campaign=campaign,
-                       rng=rng, height=height)
+    n100 = t100.size
+    # the flap is driven 20 s past the record's end, so that its last seconds see the wave
+    # that goes on (flumekit.synth.flap.flap_record, eta_lead_out)
+    t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
+    at_flap = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **wave_kw)
+    at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected")}
+    flap = flap_record(t100, at_flap["eta_incident"][:n100], period=period, campaign=campaign,
+                       rng=rng, height=height, hydro=flap_hydro,
+                       eta_lead_out=at_flap["eta_incident"][n100:])
     write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
                 np.column_stack([t100, flap["encoder_counts"].values,
                                  flap["chamber_pressure"].values / 1e5]),
@@ -199,8 +210,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
         attrs={k: v for k, v in field.attrs.items() if np.isscalar(v)})
     write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
                   truth_dir / "waves.nc")
-    flap_truth = flap.assign(eta_incident=("time", at_flap["eta_incident"].values[0]),
-                             eta_reflected=("time", at_flap["eta_reflected"].values[0]))
+    flap_truth = flap.assign(eta_incident=("time", at_flap["eta_incident"][:n100]),
+                             eta_reflected=("time", at_flap["eta_reflected"][:n100]))
     write_dataset(_finish(flap_truth, f"Virtual flume truth: flap of run {run_id}", "", 0),
                   truth_dir / "flap.nc")
 

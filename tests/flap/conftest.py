@@ -36,21 +36,40 @@ def ramped_wave(time: np.ndarray, period: float, height: float, ramp_periods: fl
     return env * (a * np.cos(ph) + float(stokes2_coefficient(k, DEPTH)) * k * a**2 * np.cos(2 * ph))
 
 
-@functools.lru_cache(maxsize=4)
-def _record(campaign, period: float, height: float, n_waves: int, seed: int):
-    from flumekit.synth.flap import flap_record
+@functools.lru_cache(maxsize=1)
+def _hydrodynamics(campaign):
+    from flumekit.synth.flap import flume_hydrodynamics
+
+    return flume_hydrodynamics(campaign)
+
+
+@functools.lru_cache(maxsize=8)
+def _record(campaign, period: float, height: float, n_waves: int, seed: int, model: str):
+    from flumekit.synth.flap import FlapTruth, flap_record
 
     time = np.arange(int((5.0 + n_waves * period) * 100)) / 100.0
     eta = ramped_wave(time, period, height)
+    lead_out = ramped_wave(time[-1] + np.arange(1, 2001) / 100.0, period, height)  # 20 s
     return time, eta, flap_record(time, eta, period=period, campaign=campaign,
-                                  rng=np.random.default_rng(seed), height=height)
+                                  rng=np.random.default_rng(seed), height=height,
+                                  truth=FlapTruth(model=model),
+                                  hydro=_hydrodynamics(campaign) if model == "simulator" else None,
+                                  eta_lead_out=lead_out)
+
+
+@pytest.fixture(scope="session")
+def hydrodynamics(campaign):
+    """The simulator's Renzi-Dias container and radiation model for the flume (built once)."""
+    return _hydrodynamics(campaign)
 
 
 @pytest.fixture(scope="session")
 def record(campaign):
-    """record(period, height, n_waves=45, seed=7) -> (time, eta, truth dataset); cached."""
+    """record(period, height, n_waves=45, seed=7, model="simulator") -> (time, eta, truth
+    dataset); cached."""
 
-    def make(period: float, height: float, n_waves: int = 45, seed: int = 7):
-        return _record(campaign, period, height, n_waves, seed)
+    def make(period: float, height: float, n_waves: int = 45, seed: int = 7,
+             model: str = "simulator"):
+        return _record(campaign, period, height, n_waves, seed, model)
 
     return make

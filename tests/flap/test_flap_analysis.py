@@ -12,17 +12,20 @@ from flumekit.flap.analysis import analyse_run
 from flumekit.flap.power import incident_power, window_mean
 from flumekit.flap.torque import gravity_torque
 
-CASES = [(3.5, 0.25), (2.0, 0.15)]  # cavitating long wave; short, low wave without cavitation
+# cavitating long wave; short, low wave (cavitating with the simulator, not with the linear
+# model); the virtual flume's flap from the time-domain simulator and from the linear model
+CASES = [(3.5, 0.25, "simulator"), (2.0, 0.15, "simulator"), (3.5, 0.25, "linear"),
+         (2.0, 0.15, "linear")]
 
 
 @pytest.fixture(scope="module")
 def analysed(record, campaign):
     out = {}
-    for period, height in CASES:
-        t, _, truth = record(period, height)
+    for period, height, model in CASES:
+        t, _, truth = record(period, height, model=model)
         ds = analyse_run(t, truth.encoder_counts.values, truth.chamber_pressure.values,
                          campaign=campaign, period=period, incident_height=height)
-        out[(period, height)] = (t, truth, ds)
+        out[(period, height, model)] = (t, truth, ds)
     return out
 
 
@@ -33,9 +36,9 @@ def _rms(x):
 @pytest.mark.parametrize("case", CASES)
 def test_motion_and_torque_within_acceptance(analysed, case):
     t, truth, ds = analysed[case]
-    # theta within 0.05 deg RMS (measured 0.001 deg)
+    # theta within 0.05 deg RMS (measured 0.002-0.003 deg)
     assert np.degrees(_rms(ds.theta - truth.theta)) < 0.05
-    # theta_dot within 2 % RMS of its amplitude (measured 0.05-0.07 %)
+    # theta_dot within 2 % RMS of its amplitude (measured 0.09-0.21 %)
     assert _rms(ds.theta_dot - truth.theta_dot) < 0.02 * float(np.abs(truth.theta_dot).max())
     # T_h within 3 % RMS of its amplitude (measured 0.3-1.1 %, pressure noise dominates)
     amp = float(np.abs(truth.torque_hydrodynamic).max())
@@ -45,19 +48,23 @@ def test_motion_and_torque_within_acceptance(analysed, case):
 @pytest.mark.parametrize("case", CASES)
 def test_pressure_fit_and_capture_factor_within_acceptance(analysed, case):
     t, truth, ds = analysed[case]
-    # K_p and I_p within 2 % of the truth (measured < 0.05 %)
+    # K_p and I_p within 2 % of the truth (measured < 0.25 %)
     assert float(ds.pressure_loss_coefficient) == pytest.approx(float(truth.pressure_loss_coefficient), rel=0.02)
     assert float(ds.fluid_inertia) == pytest.approx(float(truth.fluid_inertia), rel=0.02)
     assert float(ds.pressure_fit_r2) > 0.99
     # C_f within 2 % given the true incident height: true mean power over the same window
-    period, height = case
+    period, height, _ = case
     w0, w1 = float(ds.steady_start), float(ds.steady_end)
     cf_true = window_mean(truth.power.values, t, w0, w1) / incident_power(height, period, 0.825, 1.31)
     assert float(ds.capture_factor) == pytest.approx(float(cf_true), rel=0.02)
-    # amplitudes: per-cycle extremes of the truth over the window
-    inside = (t >= w0) & (t <= w1)
+    # amplitudes: per-cycle extremes of the truth over the window's cycles, averaged (not the
+    # window's global extremes: the simulated flap may still overshoot by up to the window's
+    # 2 % crest tolerance in its first cycles, measured 1.1 % at T = 2 s)
+    edges = w0 + float(ds.measured_period) * np.arange(int(ds.steady_cycles) + 1)
+    cycles = [truth.theta.values[(t >= a) & (t < b)] for a, b in zip(edges[:-1], edges[1:])]
     assert float(ds.theta_amplitude) == pytest.approx(
-        0.5 * float(truth.theta[inside].max() - truth.theta[inside].min()), rel=0.01)
+        0.5 * (np.mean([c.max() for c in cycles]) - np.mean([c.min() for c in cycles])),
+        rel=0.01)
     assert float(ds.steady_cycles) >= 20
     assert float(ds.measured_period) == pytest.approx(period, rel=1e-3)
 
