@@ -186,6 +186,8 @@ VARIABLES: dict[str, Variable] = {
     "excitation_torque": _V("N m m-1", "excitation torque per unit wave amplitude"),
     "hydrostatic_stiffness": _V("N m rad-1",
                                 "net buoyancy (hydrostatic) stiffness about the hinge"),
+    "theta_relative_rms_difference": _V(
+        "1", "RMS of simulated minus measured theta over the steady window, over its amplitude"),
     "pto_damping": _V("N m s", "linear PTO damping"),
     "theta_complex_amplitude": _V("rad m-1",
                                   "complex flap rotation amplitude per unit wave amplitude"),

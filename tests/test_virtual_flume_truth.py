@@ -25,7 +25,8 @@ def built(tmp_path_factory):
     shutil.copytree(ROOT / "pipelines", project / "pipelines")
     write_campaign(project / "raw" / "small", size="small", seed=11)
     code = main(["make", "--pipeline", str(project / "pipelines" / "small.toml"),
-                 "calibration", "waves_summary", "flap_summary", "uvp_field"])
+                 "calibration", "waves_summary", "flap_summary", "uvp_field",
+                 "comparison_summary"])
     assert code == 0
     return project / "processed" / "small", project / "raw" / "small" / "truth"
 
@@ -90,3 +91,15 @@ def test_uvp_field_against_truth(built):
             ok = np.isfinite(err)
             assert ok.mean() > 0.3, "most of the field is masked"
             assert np.sqrt(np.mean(err[ok] ** 2)) < 0.02 * u0, name
+
+
+def test_simulator_reproduces_the_flume_motion(built):
+    """Issue 7: with the flume's physics (fitted K_p, I_p, LuGre, Renzi-Dias coefficients,
+    C sin theta) and driven by the separated incident wave, the simulated theta(t) is within
+    2 % RMS of its amplitude over the steady window, and so is its amplitude."""
+    processed, truth = built
+    for run in runs(truth):
+        with xr.open_dataset(processed / "comparison" / f"{run}.nc") as c:
+            assert float(c.theta_relative_rms_difference) < 0.02, run
+            assert float(c.theta_amplitude.sel(source="simulator")) == pytest.approx(
+                float(c.theta_amplitude.sel(source="experiment")), rel=0.02)
