@@ -8,7 +8,8 @@ for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams.
 
 Layout written (raw/README.md): ``campaign.toml``, ``calibration/probes.csv``,
 ``runs/<run>/{run.toml, probes.csv, flap.csv, UP1.mfprof, ...}`` and the truth in ``truth/``
-(``calibration.nc``, ``<run>/waves.nc``, ``<run>/flap.nc``, ``uvp_field.nc``). The same seed gives the same files.
+(``calibration.nc``, ``<run>/waves.nc``, ``<run>/flap.nc``, ``uvp_field.nc``). The same seed
+gives the same files.
 """
 
 from __future__ import annotations
@@ -146,7 +147,8 @@ def _finish(ds: xr.Dataset, title: str, size: str, seed: int) -> xr.Dataset:
 def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
     n = int(truth.static_seconds * rate)
     levels = np.repeat(CALIBRATION_LEVELS, n)
-    volts = a + b * (levels[:, None] + truth.probe_noise * rng.standard_normal((levels.size, len(names))))
+    noise = truth.probe_noise * rng.standard_normal((levels.size, len(names)))
+    volts = a + b * (levels[:, None] + noise)
     write_table(root / "calibration" / "probes.csv", [("level", "m")] + [(p, "V") for p in names],
                 np.column_stack([levels, volts]), fmt="%.6f")
     ds = xr.Dataset({"gain": ("probe", 1.0 / b), "offset": ("probe", -a / b)},

@@ -8,8 +8,7 @@ from scipy.optimize import brentq
 
 from flumekit import signal as sig
 from flumekit.errors import GeometryError
-from flumekit.flap.encoder import (angle_from_wire, counts_from_wire, wire_from_counts,
-                                   wire_length)
+from flumekit.flap.encoder import angle_from_wire, counts_from_wire, wire_from_counts, wire_length
 
 L5, L7 = 1.53, 1.48  # §2.3
 

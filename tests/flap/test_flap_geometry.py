@@ -6,8 +6,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from flumekit.errors import GeometryError
-from flumekit.flap.geometry import (angle_from_rod_length, flap_point, rod_kinematics,
-                                    rod_length_limits)
+from flumekit.flap.geometry import (
+    angle_from_rod_length,
+    flap_point,
+    rod_kinematics,
+    rod_length_limits,
+)
 from flumekit.flap.torque import friction_torque, pressure_torque
 
 BED, FLAP = (1.04, 0.0), (0.09, 0.47)  # §2.2
@@ -43,7 +47,8 @@ def test_rate_lever_and_torque_against_independent_formulas(bed, flap, theta):
     k = rod_kinematics(theta, 0.7, b, p0)
     # rod length rate = d(length)/d(theta) * theta_dot, by a central difference (h = 1e-6)
     h = 1e-6
-    dl = (rod_kinematics(theta + h, 0, b, p0).length - rod_kinematics(theta - h, 0, b, p0).length) / (2 * h)
+    dl = (rod_kinematics(theta + h, 0, b, p0).length
+          - rod_kinematics(theta - h, 0, b, p0).length) / (2 * h)
     assert float(k.velocity) == pytest.approx(0.7 * float(dl), rel=1e-6, abs=1e-9)
     # |lever| = r sin(beta) = perpendicular distance of the rod line from the hinge
     assert abs(float(k.lever_arm)) == pytest.approx(perp, rel=1e-10)

@@ -5,8 +5,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from flumekit.flap.pressure import (chamber_pressure_model, fit_pressure_model,
-                                    pressure_force, thoma_coefficient)
+from flumekit.flap.pressure import (
+    chamber_pressure_model,
+    fit_pressure_model,
+    pressure_force,
+    thoma_coefficient,
+)
 
 PATM, PV = 101325.0, 2339.0
 CLAMP = PV - PATM
