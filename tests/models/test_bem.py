@@ -45,22 +45,20 @@ capytaine = pytest.importorskip("capytaine")
 @pytest.fixture(scope="module")
 def thin():
     periods = [2.0, 3.0, 4.0]
-    coarse = bem.coefficients(periods, H, W, C, thickness=0.02, panel_size=0.1)
-    fine = bem.coefficients(periods, H, W, C, thickness=0.02, panel_size=0.07)
+    coarse = bem.coefficients(periods, H, W, C, thickness=0.02, panel_size=0.07)
+    fine = bem.coefficients(periods, H, W, C, thickness=0.02, panel_size=0.05)
     return coarse, fine, bem.richardson(coarse, fine), rd.coefficients(periods, H, W, C)
 
 
 def test_thin_flap_bem_agrees_with_the_thin_plate_model(thin):
     """0.02 m flap in open water, T = 2, 3, 4 s, BEM extrapolated to zero panel size (panels
-    0.1 and 0.07 m, first-order convergence measured): μ and |F| within 5 % of the model
-    (measured +0.4..0.8 % and +1.9..2.2 %), arg F within 1°.
+    0.07 and 0.05 m, first-order convergence measured): μ, ν and |F| within 5 % of the model
+    (measured μ +0.3..0.7 %, ν +4.2..4.9 %), arg F within 1°.
 
-    ν is +4.3..5.1 % above the zero-thickness model: the brief's 5 % is not reachable at this
-    thickness, and that is physics, not error. The BEM obeys the 3-D Haskind scaling ν ∝ |F|²
-    (checked here to 1 %), so ν carries twice the relative excess of |F|; |F| grows with the
-    thickness (measured ∂|F|/∂t ≈ 5000 N m m-1 per m at T = 4 s, +2.5 % for t = 0.02 m) and the
-    BEM tends to the model as t → 0 (t = 0.005 m: within 1 % after the mesh correction). So ν
-    is held to 6 % and, tightly, to the Haskind consistency.
+    ν carries the largest difference, and it is the plate's thickness rather than mesh error:
+    the BEM obeys the 3-D Haskind scaling ν ∝ |F|² (checked here to 1 %), so ν carries twice
+    the relative excess of |F|, which grows with the thickness (+2.5 % for t = 0.02 m). With the
+    coarser panels 0.1/0.07 m the extrapolated ν was +4.3..5.1 %: the mesh matters at that level.
     """
     _, _, ext, model = thin
     f_b, f_m = rd.excitation(ext).values, rd.excitation(model).values
@@ -70,7 +68,7 @@ def test_thin_flap_bem_agrees_with_the_thin_plate_model(thin):
     assert np.all(np.abs(mu_ratio - 1) < 0.05)
     assert np.all(np.abs(f_ratio - 1) < 0.05)
     assert np.all(np.abs(np.degrees(np.angle(f_b / f_m))) < 1.0)
-    assert np.all(np.abs(nu_ratio - 1) < 0.06)
+    assert np.all(np.abs(nu_ratio - 1) < 0.05)
     np.testing.assert_allclose(nu_ratio, f_ratio**2, rtol=0.01)
 
 
