@@ -1,7 +1,10 @@
-"""Stage: the flume's runs against the Renzi–Dias linear model and the time-domain simulator.
+"""Stage: the flume's runs against the linear model and the time-domain simulator.
 
-``models/hydro``: the Renzi–Dias coefficients of the campaign's flap in its channel over a
-frequency grid, as the simulator's coefficient container (with A∞ from the Ogilvie relation).
+``models/hydro``: the hydrodynamic coefficients of the campaign's flap over a frequency grid,
+as one container (with A∞ from the Ogilvie relation) used by both the linear model and the
+simulator: the Renzi–Dias thin plate in the flume's channel (default), or, with
+``[stages.models] coefficients = "bem"`` and Capytaine installed, the real thick flap on its
+foundation by BEM (open water: the channel walls are not modelled).
 ``comparison/<run>``: the experiment, the linear model (Eq. A1) and the simulator side by side
 along a ``source`` dimension. The linear model's PTO damping is set from the measured PTO by
 energy equivalence over the steady window, ν_pto = W̄_out / mean(θ̇²), so that it absorbs the
@@ -15,9 +18,11 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_coords, stack_runs
 
-VERSION = "3"
-DEFAULTS = {"omega_min": 0.4, "omega_max": 25.0, "n_omega": 400, "dt": 0.04,
-            "simulator": True, "friction": True, "spin_up_periods": 20}
+VERSION = "4"
+DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
+            "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
+            "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
+            "spin_up_periods": 20}
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
 PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
 
@@ -25,13 +30,21 @@ PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     p = ctx.stage_params("models", DEFAULTS)
+    if p["coefficients"] not in ("renzi_dias", "bem"):
+        from flumekit.errors import FlumekitError
+
+        raise FlumekitError(f"pipeline: [stages.models] coefficients must be 'renzi_dias' or "
+                            f"'bem', got {p['coefficients']!r}")
     geometry = {"depth": c.flume.water_depth, "flap_width": c.flap.width,
                 "hinge_height": c.flap.hinge_height, "channel_width": c.flume.width,
                 "stiffness": c.flap.buoyancy_stiffness, "inertia": c.flap.inertia}
     hydro = ctx.out("models", "hydro.nc")
+    keys = (("coefficients", "omega_min", "omega_max", "n_omega") if p["coefficients"] ==
+            "renzi_dias" else ("coefficients", "bem_omega_min", "bem_omega_max",
+                               "bem_n_omega", "bem_panel_size"))
     out = [Rule("models/hydro", "flumekit.stages.models:hydro", inputs={},
                 outputs={"dataset": hydro},
-                params={**geometry, **{k: p[k] for k in ("omega_min", "omega_max", "n_omega")}},
+                params={**geometry, "thickness": c.flap.thickness, **{k: p[k] for k in keys}},
                 version=VERSION)]
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
@@ -58,15 +71,32 @@ def hydro(inputs, outputs, params) -> None:
     from flumekit.models import hydro as hy
     from flumekit.models.renzi_dias import coefficients
 
-    omega = np.linspace(params["omega_min"], params["omega_max"], params["n_omega"])
-    rd = coefficients(2 * np.pi / omega[::-1], params["depth"], params["flap_width"],
-                      params["hinge_height"], channel_width=params["channel_width"])
-    ds = hy.with_infinite_frequency_inertia(hy.from_renzi_dias(rd, params["stiffness"]),
+    if params["coefficients"] == "bem":
+        from flumekit.errors import FlumekitError
+        from flumekit.models import bem
+
+        if not bem.available():
+            raise FlumekitError("[stages.models] coefficients = 'bem' needs Capytaine: "
+                                "pip install 'flumekit[bem]'")
+        # Capytaine's finite-depth Green function needs kh above about 0.15: the low-frequency
+        # end is held constant by the impulse response (flumekit.models.radiation)
+        omega = np.linspace(params["bem_omega_min"], params["bem_omega_max"],
+                            params["bem_n_omega"])
+        # the real, thick flap on its fixed foundation, in open water (no channel walls)
+        coeffs = bem.coefficients(2 * np.pi / omega[::-1], params["depth"],
+                                  params["flap_width"], params["hinge_height"],
+                                  params["thickness"], panel_size=params["bem_panel_size"])
+        title = "BEM (Capytaine) coefficients of the thick flap, open water"
+    else:
+        omega = np.linspace(params["omega_min"], params["omega_max"], params["n_omega"])
+        coeffs = coefficients(2 * np.pi / omega[::-1], params["depth"], params["flap_width"],
+                              params["hinge_height"], channel_width=params["channel_width"])
+        title = "Renzi-Dias coefficients of the thin flap in the flume's channel (RD12)"
+    ds = hy.with_infinite_frequency_inertia(hy.from_renzi_dias(coeffs, params["stiffness"]),
                                             max_spread=None)
     ds = hy.split_complex(ds)
-    ds.attrs.update(conventions.global_attrs(
-        "Renzi-Dias hydrodynamic coefficients of the flap in the flume (channel, RD12)",
-        "flumekit models/hydro stage", params))
+    ds.attrs.update(conventions.global_attrs(title, "flumekit models/hydro stage", params))
+    ds.attrs.update(depth=params["depth"], flap_width=params["flap_width"], rho=1000.0, g=9.81)
     write_dataset(ds, outputs["dataset"])
 
 
@@ -79,17 +109,29 @@ def energy_equivalent_damping(flap) -> float:
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
-def _analytical(params, flap, waves):
+def coefficients_at(hydro, period: float):
+    """The campaign's coefficient container at one period, in the layout of
+    :func:`flumekit.models.response.response` (cubic interpolation over the frequency grid)."""
+    import numpy as np
+
+    names = ["added_inertia", "radiation_damping", "excitation_torque_real",
+             "excitation_torque_imag"]
+    at = hydro[names].interp(angular_frequency=[2 * np.pi / period], method="cubic")
+    at = at.assign_coords(period=("angular_frequency", [period])).swap_dims(
+        angular_frequency="period").drop_vars("angular_frequency")
+    at.attrs = dict(hydro.attrs)
+    return at
+
+
+def _analytical(params, flap, waves, hydro):
     """Eq. (A1) response at the run's period with the energy-equivalent PTO damping."""
     import numpy as np
     import xarray as xr
 
-    from flumekit.models.renzi_dias import coefficients
     from flumekit.models.response import response
 
     period = float(waves["measured_period"])
-    rd = coefficients([period], params["depth"], params["flap_width"], params["hinge_height"],
-                      channel_width=params["channel_width"])
+    rd = coefficients_at(hydro, period)
     nu = energy_equivalent_damping(flap)
     r = response(rd, float(waves["incident_height"]) / 2, params["inertia"], params["stiffness"],
                  nu).isel(period=0)
@@ -129,8 +171,7 @@ def periodic_extension(eta, period: float, before: int, after: int):
                         name="eta_incident")
 
 
-def _simulated(inputs, params, flap, waves, campaign):
-    from flumekit.io.netcdf import read_dataset
+def _simulated(params, flap, waves, hydro, campaign):
     from flumekit.models.hydro import merge_complex
     from flumekit.models.simulator import simulate_run
     from flumekit.models.simulator_summary import summarise_run
@@ -138,7 +179,7 @@ def _simulated(inputs, params, flap, waves, campaign):
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=params["spin_up_periods"], after=5)
     # restoring C sin(theta): the torque balance of the flap stage (flumekit.flap.torque)
-    sim = simulate_run(merge_complex(read_dataset(inputs["hydro"])), eta, campaign,
+    sim = simulate_run(merge_complex(hydro), eta, campaign,
                        pressure_loss_coefficient=float(flap["pressure_loss_coefficient"]),
                        fluid_inertia=float(flap["fluid_inertia"]), friction=params["friction"],
                        restoring="sine", dt=params["dt"])
@@ -179,11 +220,12 @@ def compare(inputs, outputs, params) -> None:
     from flumekit.io.netcdf import read_dataset, write_dataset
 
     flap, waves = read_dataset(inputs["flap"]), read_dataset(inputs["waves"])
+    hydro = read_dataset(inputs["hydro"])
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
-    sources["analytical"], extra = _analytical(params, flap, waves)
+    sources["analytical"], extra = _analytical(params, flap, waves, hydro)
     if params["simulator"]:
         campaign = load_campaign(Path(inputs["campaign"]).parent)
-        sources["simulator"], theta_error = _simulated(inputs, params, flap, waves, campaign)
+        sources["simulator"], theta_error = _simulated(params, flap, waves, hydro, campaign)
         extra["theta_relative_rms_difference"] = theta_error
     names = list(sources)
     data = {n: ("source", np.array([float(sources[s][n]) for s in names])) for n in SCALARS}

@@ -1,0 +1,69 @@
+"""The comparison stage's pieces: coefficient container, interpolation, spin-up, PTO damping."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from flumekit.io.netcdf import read_dataset
+from flumekit.models import renzi_dias as rd
+from flumekit.stages import models as stage
+
+GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,
+            "stiffness": 605.0, "inertia": 14.74, "thickness": 0.17}
+
+
+@pytest.fixture(scope="module")
+def hydro(tmp_path_factory):
+    out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
+    params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
+                             ("coefficients", "omega_min", "omega_max", "n_omega")}}
+    stage.hydro({}, {"dataset": out}, params)
+    return read_dataset(out)
+
+
+@pytest.mark.parametrize("period", [2.0, 2.6, 3.5, 4.0])
+def test_container_at_a_period_matches_the_model_there(hydro, period):
+    """Cubic interpolation over the 400-point grid: 1e-4 relative on every coefficient."""
+    at = stage.coefficients_at(hydro, period)
+    direct = rd.coefficients([period], 0.825, 1.31, 0.10, channel_width=1.5)
+    for name in ("added_inertia", "radiation_damping"):
+        np.testing.assert_allclose(at[name], direct[name], rtol=1e-4)
+    np.testing.assert_allclose(np.abs(at.excitation_torque_real + 1j * at.excitation_torque_imag),
+                               np.abs(rd.excitation(direct)), rtol=1e-4)
+
+
+def test_periodic_extension_continues_the_steady_wave():
+    t = np.arange(0, 100, 0.04)
+    eta = np.where((t > 30) & (t < 80), np.sin(2 * np.pi * t / 2.5), np.nan)
+    ext = stage.periodic_extension(xr.DataArray(eta, dims="time", coords={"time": t}), 2.5,
+                                   before=10, after=4)
+    tt = ext.time.values
+    assert tt[0] == pytest.approx(30.04 - 25.0, abs=0.05) and tt[-1] > 79.9 + 9.9
+    wave = np.sin(2 * np.pi * tt / 2.5)
+    steady = tt > 30  # the window and the unramped continuation after it: the same sine
+    np.testing.assert_allclose(ext.values[steady], wave[steady], atol=2e-3)
+    # before it: the same sine under a half-cosine ramp from rest
+    ramp = 0.5 * (1 - np.cos(np.pi * (tt[~steady] - tt[0]) / (30.04 - tt[0])))
+    np.testing.assert_allclose(ext.values[~steady], ramp * wave[~steady], atol=2e-3)
+
+
+def test_energy_equivalent_damping_reproduces_the_mean_power():
+    t = np.arange(0, 200, 0.01)
+    theta_dot = 0.3 * np.cos(2 * np.pi * t / 3.0)
+    nu = 400.0
+    flap = xr.Dataset({"theta_dot": ("time", theta_dot),
+                       "mean_power": nu * np.mean(theta_dot[(t >= 50) & (t <= 150)] ** 2),
+                       "steady_start": 50.0, "steady_end": 150.0}, coords={"time": t})
+    assert stage.energy_equivalent_damping(flap) == pytest.approx(nu, rel=1e-12)
+
+
+def test_bem_container(tmp_path):
+    pytest.importorskip("capytaine")
+    out = tmp_path / "bem.nc"
+    params = {**GEOMETRY, "coefficients": "bem", "bem_omega_min": 1.5, "bem_omega_max": 4.0,
+              "bem_n_omega": 6, "bem_panel_size": 0.1}
+    stage.hydro({}, {"dataset": out}, params)
+    h = read_dataset(out)
+    assert h.sizes["angular_frequency"] == 6 and np.all(h.radiation_damping > 0)
+    at = stage.coefficients_at(h, 3.0)
+    assert at.added_inertia.item() > 0
