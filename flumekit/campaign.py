@@ -202,13 +202,6 @@ class Run:
     repeat: int
     probe_x: dict[str, float]  # probe name -> x [m]
     uvp_elevation: float | None  # [m]
-    seed_note: str = ""
-
-    @property
-    def files(self) -> dict[str, Path]:
-        out = {"run": self.path / "run.toml", "probes": self.path / "probes.csv",
-               "flap": self.path / "flap.csv"}
-        return out
 
 
 @dataclass(frozen=True)

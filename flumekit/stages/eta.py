@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords
+from flumekit.stages.runs import run_coords, run_params
 
 VERSION = "2"
 
@@ -14,9 +14,8 @@ def rules(ctx: Context) -> list[Rule]:
     out = []
     for run in c.runs:
         params = {"probes": list(c.probes.names), "probe_x": run.probe_x,
-                  "sampling_rate": c.probes.sampling_rate, "period": run.period,
-                  "height": run.height, "repeat": run.repeat, "kind": run.kind,
-                  "uvp_elevation": run.uvp_elevation, "run": run.id}
+                  "sampling_rate": c.probes.sampling_rate, "kind": run.kind,
+                  **run_params(run)}
         out.append(Rule(f"eta/{run.id}", "flumekit.stages.eta:build",
                         inputs={"probes": run.path / "probes.csv",
                                 "calibration": ctx.out("calibration.nc")},

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs
 
 VERSION = "2"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
@@ -15,9 +15,7 @@ def rules(ctx: Context) -> list[Rule]:
     params = ctx.stage_params("flap", DEFAULTS)
     out = []
     for run in c.runs:
-        p = {**params, "period": run.period, "run": run.id, "height": run.height,
-             "repeat": run.repeat, "uvp_elevation": run.uvp_elevation,
-             "sampling_rate": c.encoder.sampling_rate}
+        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
                         inputs={"flap": run.path / "flap.csv", "campaign": ctx.campaign_file,
                                 "waves": ctx.out("waves", f"{run.id}.nc")},

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs
 
 VERSION = "4"
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
@@ -49,8 +49,7 @@ def rules(ctx: Context) -> list[Rule]:
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
                   "friction": p["friction"], "spin_up_periods": p["spin_up_periods"],
-                  "run": run.id, "period": run.period,
-                  "height": run.height, "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+                  **run_params(run)}
         out.append(Rule(f"comparison/{run.id}", "flumekit.stages.models:compare",
                         inputs={"flap": ctx.out("flap", f"{run.id}.nc"),
                                 "waves": ctx.out("waves", f"{run.id}.nc"),

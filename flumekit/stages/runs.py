@@ -3,6 +3,12 @@
 from __future__ import annotations
 
 
+def run_params(run) -> dict:
+    """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses)."""
+    return {"run": run.id, "period": run.period, "height": run.height, "repeat": run.repeat,
+            "uvp_elevation": run.uvp_elevation}
+
+
 def run_coords(params: dict) -> dict:
     """Run parameters as scalar coordinates, so runs concatenate along ``run``.
 

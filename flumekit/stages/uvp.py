@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords
+from flumekit.stages.runs import run_coords, run_params
 
 VERSION = "1"
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
@@ -27,8 +27,7 @@ def rules(ctx: Context) -> list[Rule]:
         inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
         inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
                       flap=ctx.out("flap", f"{run.id}.nc"))
-        p = {**params, "run": run.id, "period": run.period, "height": run.height,
-             "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+        p = {**params, **run_params(run)}
         out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
                         outputs={"dataset": ctx.out("uvp", f"{run.id}.nc")}, params=p,
                         version=VERSION, run=run.id))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs
 
 VERSION = "2"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
@@ -16,9 +16,8 @@ def rules(ctx: Context) -> list[Rule]:
     params = ctx.stage_params("waves", DEFAULTS)
     out = []
     for run in c.runs:
-        p = {**params, "depth": c.flume.water_depth, "period": run.period,
-             "separation_probes": list(c.probes.separation), "run": run.id,
-             "height": run.height, "repeat": run.repeat, "uvp_elevation": run.uvp_elevation}
+        p = {**params, "depth": c.flume.water_depth,
+             "separation_probes": list(c.probes.separation), **run_params(run)}
         out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
                         inputs={"eta": ctx.out("eta", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
