@@ -118,7 +118,7 @@ class FlapTruth:
     excitation_phase: float = 0.0  # lag of the excitation torque behind η(x=0) [rad]
     pressure_loss_coefficient: float = 1.0e6  # K_p [Pa s2 rad-2]
     fluid_inertia: float = 2.4e4  # I_p [Pa s2 rad-1]
-    pressure_rated_output: float = 5.0e5  # pressure sensor range [Pa]
+    pressure_rated_output: float = 1.0e6  # sensor range [Pa]: the chamber reaches ~7 bar
     pressure_noise: float = 0.002  # noise std as a fraction of the rated output [-]
     friction_substeps: int = 10  # fine friction steps per record step (linear model)
     simulator_substeps: int = 1  # simulator steps per record step

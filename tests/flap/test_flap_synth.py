@@ -88,9 +88,11 @@ def test_raw_channels(record, campaign, model):
     # quantisation: within half a count of the true wire shortening
     wire = enc.L7 - wire_length(ds.theta.values, enc.L5, enc.L7)
     assert np.max(np.abs(counts / enc.counts_per_metre - wire)) <= 0.5 / enc.counts_per_metre
-    # sensor noise: std 0.2 % of the 5 bar rated output = 1 kPa (within 5 % for 17 000 samples)
+    # sensor noise: std 0.2 % of the rated output (within 5 % for 17 000 samples)
     noise = ds.chamber_pressure.values - ds.chamber_pressure_true.values
-    assert np.std(noise) == pytest.approx(1000.0, rel=0.05)
+    truth = FlapTruth()
+    assert np.std(noise) == pytest.approx(truth.pressure_noise * truth.pressure_rated_output,
+                                          rel=0.05)
     # the cavitation clamp is reached and never crossed (Eq. 14, sigma_c = 0)
     clamp = pto.vapour_pressure - pto.atmospheric_pressure
     assert ds.chamber_pressure_true.min() == clamp and ds.cavitating.sum() > 0
