@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import signal as sig
+from flumekit.figures.groups import by_height, height_of, period_of, runs_of
 from flumekit.figures.style import COLOURS, new_figure, style
 
 _MARKERS = ("o", "s", "^", "D", "v", "P", "X")
@@ -22,41 +23,6 @@ def _require(ds: xr.Dataset, *names: str) -> None:
     if missing:
         raise ValueError(f"the flap dataset lacks {missing}: pass the output of "
                          "flumekit.flap.analyse_run")
-
-
-def _runs(flaps) -> list[xr.Dataset]:
-    if isinstance(flaps, xr.Dataset):
-        if "run" in flaps.dims:
-            return [flaps.isel(run=i) for i in range(flaps.sizes["run"])]
-        return [flaps]
-    runs = list(flaps)
-    if not runs:
-        raise ValueError("no flap datasets given")
-    return runs
-
-
-def _height(ds: xr.Dataset) -> float:
-    if "wave_height" in ds.variables:
-        return float(ds["wave_height"])
-    _require(ds, "incident_height")
-    return round(float(ds["incident_height"]) / 0.005) * 0.005
-
-
-def _period(ds: xr.Dataset) -> float:
-    return float(ds["wave_period"]) if "wave_period" in ds.variables else float(ds.measured_period)
-
-
-def _by_height(flaps, *names: str) -> dict[float, tuple[np.ndarray, dict[str, np.ndarray]]]:
-    groups: dict[float, list[xr.Dataset]] = {}
-    for ds in _runs(flaps):
-        _require(ds, *names)
-        groups.setdefault(_height(ds), []).append(ds)
-    out = {}
-    for h in sorted(groups):
-        runs = sorted(groups[h], key=_period)
-        out[h] = (np.array([_period(r) for r in runs]),
-                  {n: np.array([float(r[n]) for r in runs]) for n in names})
-    return out
 
 
 def _window(ds: xr.Dataset, start: float, n_waves: int) -> tuple[np.ndarray, np.ndarray, float]:
@@ -147,7 +113,7 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
     Shows ``n_waves`` periods from the start of each run's quasi-steady window, with the R² of
     the fit of Eq. (13).
     """
-    runs = _runs(flaps)
+    runs = runs_of(flaps)
     if axes is None:
         with style():
             fig, grid = new_figure(len(runs), 1, figsize=(6.5, 2.2 * len(runs)))
@@ -163,7 +129,7 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
                     label="measured")
             ax.plot(tt[sel] - t0, ds.torque_pressure_fitted.values[sel],
                     color=COLOURS["analytical"], ls="--", label="fitted, Eq. (13)")
-            ax.set_title(f"({tag}) T = {_period(ds):g} s, H = {_height(ds):g} m, "
+            ax.set_title(f"({tag}) T = {period_of(ds):g} s, H = {height_of(ds):g} m, "
                          f"R² = {float(ds.pressure_fit_r2):.3f}", loc="left", fontsize=8)
             ax.set_ylabel(r"$T_p$ [N m]")
             ax.legend(loc="upper right", fontsize=7)
@@ -178,7 +144,7 @@ def figure_8(flaps, ax=None):
     the quasi-steady window (``torque_amplitude``). Model curves can be added to the returned
     figure's axes.
     """
-    groups = _by_height(flaps, "torque_amplitude")
+    groups = by_height(flaps, "torque_amplitude")
     if ax is None:
         with style():
             fig, axes = new_figure(figsize=(4.5, 3.2))
@@ -196,7 +162,7 @@ def figure_8(flaps, ax=None):
 
 def figure_9(flaps, axes=None):
     """(a) Amplitude of θ and (b) capture factor C_f against the wave period (Fig. 9)."""
-    groups = _by_height(flaps, "theta_amplitude", "capture_factor")
+    groups = by_height(flaps, "theta_amplitude", "capture_factor")
     if axes is None:
         with style():
             fig, grid = new_figure(1, 2, figsize=(7.5, 3.0))

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.groups import by_height
 from flumekit.figures.style import COLOURS, style
 
 _LINES = ("-", "--", "-.", ":")
@@ -22,36 +23,6 @@ _LINES = ("-", "--", "-.", ":")
 def _colour(label: str) -> str:
     """The role colour for a label ("simulator", "analytical", ...): one look in every figure."""
     return COLOURS.get(label, COLOURS["simulator"])
-
-
-def _runs(summaries) -> list[xr.Dataset]:
-    if isinstance(summaries, xr.Dataset):
-        if "run" in summaries.dims:
-            return [summaries.isel(run=i) for i in range(summaries.sizes["run"])]
-        return [summaries]
-    runs = list(summaries)
-    if not runs:
-        raise ValueError("no simulated runs given")
-    return runs
-
-
-def _group(summaries, *names: str) -> dict[float, tuple[np.ndarray, dict[str, np.ndarray]]]:
-    """{wave height: (periods, {name: values})}, sorted by period."""
-    groups: dict[float, list[xr.Dataset]] = {}
-    for ds in _runs(summaries):
-        missing = [n for n in (*names, "wave_period") if n not in ds.variables]
-        if missing:
-            raise ValueError(f"the simulated summary lacks {missing}: pass the output of "
-                             "flumekit.models.simulator_summary.summarise_run")
-        h = (float(ds["wave_height"]) if "wave_height" in ds.variables
-             else round(float(ds["incident_height"]) / 0.005) * 0.005)
-        groups.setdefault(h, []).append(ds)
-    out = {}
-    for h in sorted(groups):
-        runs = sorted(groups[h], key=lambda r: float(r["wave_period"]))
-        out[h] = (np.array([float(r["wave_period"]) for r in runs]),
-                  {n: np.array([float(r[n]) for r in runs]) for n in names})
-    return out
 
 
 def add_figure_8(ax, summaries, label: str = "simulator"):
@@ -64,7 +35,7 @@ def add_figure_8(ax, summaries, label: str = "simulator"):
     label : Legend label prefix.
     """
     with style():
-        for (h, (periods, v)), ls in zip(_group(summaries, "torque_amplitude").items(),
+        for (h, (periods, v)), ls in zip(by_height(summaries, "torque_amplitude").items(),
                                          _LINES * 3):
             ax.plot(periods, v["torque_amplitude"], ls, color=_colour(label),
                     label=f"H = {h:g} m ({label})")
@@ -83,7 +54,7 @@ def add_figure_9(axes, summaries, label: str = "simulator"):
     """
     if len(axes) != 2:
         raise ValueError("figure 9 needs two axes: (a) rotation, (b) capture factor")
-    groups = _group(summaries, "theta_amplitude", "capture_factor")
+    groups = by_height(summaries, "theta_amplitude", "capture_factor")
     with style():
         for (h, (periods, v)), ls in zip(groups.items(), _LINES * 3):
             kw = {"color": _colour(label), "label": f"H = {h:g} m ({label})"}
