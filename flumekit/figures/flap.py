@@ -13,7 +13,7 @@ import xarray as xr
 
 from flumekit import signal as sig
 from flumekit.figures.groups import by_height, height_of, period_of, runs_of
-from flumekit.figures.style import COLOURS, new_figure, style
+from flumekit.figures.style import COLOURS, figure_axes, new_figure, style
 
 _MARKERS = ("o", "s", "^", "D", "v", "P", "X")
 
@@ -47,11 +47,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
     """
     _require(flap, "theta", "theta_amplitude", "measured_period", "steady_start")
     period = float(flap.measured_period)
-    if ax is None:
-        with style():
-            fig, axes = new_figure(figsize=(6.5, 2.4))
-        ax = axes[0, 0]
-    fig = ax.figure
+    fig, ax = figure_axes(ax, figsize=(6.5, 2.4))
     with style():
         ax.plot(flap.time.values / period, flap.theta.values / float(flap.theta_amplitude),
                 color=COLOURS["experiment"], lw=0.6)
@@ -145,11 +141,7 @@ def figure_8(flaps, ax=None):
     figure's axes.
     """
     groups = by_height(flaps, "torque_amplitude")
-    if ax is None:
-        with style():
-            fig, axes = new_figure(figsize=(4.5, 3.2))
-        ax = axes[0, 0]
-    fig = ax.figure
+    fig, ax = figure_axes(ax, figsize=(4.5, 3.2))
     with style():
         for (h, (periods, v)), mk in zip(groups.items(), _MARKERS * 3):
             ax.plot(periods, v["torque_amplitude"], mk, color=COLOURS["experiment"],

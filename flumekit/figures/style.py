@@ -39,6 +39,15 @@ def new_figure(nrows: int = 1, ncols: int = 1, **kw):
     return fig, axes
 
 
+def figure_axes(ax=None, figsize=(6.5, 2.4)):
+    """``(figure, axes)``: those of ``ax`` if given, else a new one-axes figure."""
+    if ax is not None:
+        return ax.figure, ax
+    with style():
+        fig, axes = new_figure(figsize=figsize)
+    return fig, axes[0, 0]
+
+
 def save(fig, path: str | Path) -> Path:
     """Write a figure atomically (temporary file in the same folder, then rename)."""
     from flumekit.io.atomic import atomic_path

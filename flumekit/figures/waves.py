@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from flumekit.figures.style import COLOURS, new_figure, style
+from flumekit.figures.style import COLOURS, figure_axes, style
 
 
 def _probe(waves: xr.Dataset, probe) -> str:
@@ -31,14 +31,6 @@ def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, 
     return p, waves.time.values / period, waves.eta.sel(probe=p).values / scale, period
 
 
-def _axes(ax):
-    if ax is None:
-        with style():
-            fig, axes = new_figure(figsize=(6.5, 2.4))
-        return fig, axes[0, 0]
-    return ax.figure, ax
-
-
 def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     """Full time series of the normalised elevation η/A_s against t/T (Brito et al. 2020, Fig. 5a).
 
@@ -54,7 +46,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     vertical line the start of the quasi-steady window.
     """
     p, tt, eta, period = _normalised(waves, probe)
-    fig, ax = _axes(ax)
+    fig, ax = figure_axes(ax)
     with style():
         ax.plot(tt, eta, color=COLOURS["experiment"], lw=0.6, label=f"{p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale")
@@ -88,7 +80,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
         raise ValueError(f"t/T = {start:g}..{stop:g} lies outside the record "
                          f"(t/T = {tt[0]:.1f}..{tt[-1]:.1f})")
     sel = (tt >= start) & (tt <= stop)
-    fig, ax = _axes(ax)
+    fig, ax = figure_axes(ax)
     with style():
         ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"{p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9)

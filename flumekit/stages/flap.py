@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
 
 VERSION = "2"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
@@ -21,9 +21,7 @@ def rules(ctx: Context) -> list[Rule]:
                                 "waves": ctx.out("waves", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
-    out.append(Rule("flap_summary", "flumekit.stages.flap:summary",
-                    inputs={r.id: ctx.out("flap", f"{r.id}.nc") for r in c.runs},
-                    outputs={"dataset": ctx.out("flap_summary.nc")}, version=VERSION))
+    out.append(summary_rule(ctx, "flap", VERSION))
     return out
 
 

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
 
 VERSION = "4"
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
@@ -56,9 +56,7 @@ def rules(ctx: Context) -> list[Rule]:
                                 "hydro": hydro, "campaign": ctx.campaign_file},
                         outputs={"dataset": ctx.out("comparison", f"{run.id}.nc")},
                         params=params, version=VERSION, run=run.id))
-    out.append(Rule("comparison_summary", "flumekit.stages.models:summary",
-                    inputs={r.id: ctx.out("comparison", f"{r.id}.nc") for r in c.runs},
-                    outputs={"dataset": ctx.out("comparison_summary.nc")}, version=VERSION))
+    out.append(summary_rule(ctx, "comparison", VERSION, module="models"))
     return out
 
 

@@ -20,6 +20,16 @@ def run_coords(params: dict) -> dict:
             "uvp_elevation": float("nan") if z is None else z}
 
 
+def summary_rule(ctx, stage: str, version: str, module: str | None = None):
+    """The summary rule of a per-run stage: ``<stage>_summary`` from every ``<stage>/<run>.nc``,
+    built by ``summary`` of ``flumekit.stages.<module>`` (default: the stage's name)."""
+    from flumekit.pipeline.rules import Rule
+
+    return Rule(f"{stage}_summary", f"flumekit.stages.{module or stage}:summary",
+                inputs={r.id: ctx.out(stage, f"{r.id}.nc") for r in ctx.campaign.runs},
+                outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
+
+
 def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> None:
     """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs
+from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
 
 VERSION = "2"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
@@ -22,9 +22,7 @@ def rules(ctx: Context) -> list[Rule]:
                         inputs={"eta": ctx.out("eta", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
-    out.append(Rule("waves_summary", "flumekit.stages.waves:summary",
-                    inputs={r.id: ctx.out("waves", f"{r.id}.nc") for r in c.runs},
-                    outputs={"dataset": ctx.out("waves_summary.nc")}, version=VERSION))
+    out.append(summary_rule(ctx, "waves", VERSION))
     return out
 
 
