@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params
+from flumekit.stages.runs import run_params, write_run
 
 VERSION = "2"
 
@@ -29,9 +29,9 @@ def build(inputs, outputs, params) -> None:
 
     import numpy as np
 
-    from flumekit import calibration, conventions
+    from flumekit import calibration
     from flumekit.io.instruments import read_probes
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset
 
     raw = read_probes(inputs["probes"], tuple(params["probes"]), params["sampling_rate"])
     cal = read_dataset(inputs["calibration"])
@@ -41,8 +41,6 @@ def build(inputs, outputs, params) -> None:
     for w in caught:
         print(f"warning: {inputs['probes']}: {w.message}")
     x = np.array([params["probe_x"][p] for p in params["probes"]])
-    ds = eta.to_dataset().assign_coords(x=("probe", x), **run_coords(params))
-    ds.attrs.update(conventions.global_attrs(
-        "Calibrated surface elevation per probe",
-        f"flumekit eta stage from {inputs['probes']} and {inputs['calibration']}", params))
-    write_dataset(ds, outputs["dataset"])
+    write_run(eta.to_dataset().assign_coords(x=("probe", x)), outputs, params,
+              "Calibrated surface elevation per probe",
+              f"flumekit eta stage from {inputs['probes']} and {inputs['calibration']}")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
+from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "2"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
@@ -28,11 +28,10 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
-    from flumekit import conventions
     from flumekit.campaign import load_campaign
     from flumekit.flap import analyse_run
     from flumekit.io.instruments import read_flap
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     raw = read_flap(inputs["flap"], params["sampling_rate"])
@@ -42,11 +41,8 @@ def build(inputs, outputs, params) -> None:
                      incident_height=float(waves["incident_height"]), cutoff=params["cutoff"],
                      tolerance=params["tolerance"], n_phase=params["n_phase"],
                      max_flagged_fraction=params["max_flagged_fraction"])
-    ds = ds.assign_coords(run_coords(params))
-    ds.attrs.update(conventions.global_attrs(
-        f"Flap dynamics, PTO and power of run {params['run']}",
-        f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", params))
-    write_dataset(ds, outputs["dataset"])
+    write_run(ds, outputs, params, "Flap dynamics, PTO and power",
+              f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}")
 
 
 def summary(inputs, outputs, params) -> None:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
+from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "4"
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
@@ -212,9 +212,8 @@ def compare(inputs, outputs, params) -> None:
     import numpy as np
     import xarray as xr
 
-    from flumekit import conventions
     from flumekit.campaign import load_campaign
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset
 
     flap, waves = read_dataset(inputs["flap"]), read_dataset(inputs["waves"])
     hydro = read_dataset(inputs["hydro"])
@@ -232,13 +231,11 @@ def compare(inputs, outputs, params) -> None:
                                   "incident_height": float(waves["incident_height"]),
                                   "measured_period": float(waves["measured_period"]),
                                   "incident_power": float(flap["incident_power"])})
-    ds = ds.merge(extra).assign_coords(run_coords(params))
+    ds = ds.merge(extra)
     ds["pto_damping"].attrs["comment"] = ("linear-model PTO damping from the measured PTO by "
                                           "energy equivalence: mean power / mean(theta_dot^2)")
-    ds.attrs.update(conventions.global_attrs(
-        f"Experiment, linear model and simulator for run {params['run']}",
-        f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}", params))
-    write_dataset(ds, outputs["dataset"])
+    write_run(ds, outputs, params, "Experiment, linear model and simulator",
+              f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}")
 
 
 def summary(inputs, outputs, params) -> None:

@@ -20,6 +20,16 @@ def run_coords(params: dict) -> dict:
             "uvp_elevation": float("nan") if z is None else z}
 
 
+def write_run(ds, outputs: dict, params: dict, title: str, source: str) -> None:
+    """Write one run's dataset: run coordinates (those the dataset lacks), global attributes."""
+    from flumekit import conventions
+    from flumekit.io.netcdf import write_dataset
+
+    ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
+    ds.attrs.update(conventions.global_attrs(f"{title} of run {params['run']}", source, params))
+    write_dataset(ds, outputs["dataset"])
+
+
 def summary_rule(ctx, stage: str, version: str, module: str | None = None):
     """The summary rule of a per-run stage: ``<stage>_summary`` from every ``<stage>/<run>.nc``,
     built by ``summary`` of ``flumekit.stages.<module>`` (default: the stage's name)."""

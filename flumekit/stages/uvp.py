@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params
+from flumekit.stages.runs import run_params, write_run
 
 VERSION = "1"
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
@@ -61,10 +61,9 @@ def phase_reference(waves) -> tuple[float, float]:
 def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
-    from flumekit import conventions
     from flumekit.campaign import load_campaign
     from flumekit.io.mfprof import read_mfprof
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset
     from flumekit.uvp import phase_average_beams
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
@@ -76,12 +75,9 @@ def build(inputs, outputs, params) -> None:
                              cutoff=params["cutoff"], order=params["order"], theta=theta,
                              flap_thickness=campaign.flap.thickness, margin=params["margin"],
                              min_amplitude=params["min_amplitude"])
-    ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
-    ds.attrs.update(conventions.global_attrs(
-        f"Phase-averaged UVP beam velocities of run {params['run']}",
-        f"flumekit uvp stage from {', '.join(str(inputs[b.name]) for b in campaign.uvp.beams)}",
-        params))
-    write_dataset(ds, outputs["dataset"])
+    write_run(ds, outputs, params, "Phase-averaged UVP beam velocities",
+              "flumekit uvp stage from "
+              + ", ".join(str(inputs[b.name]) for b in campaign.uvp.beams))
 
 
 def field(inputs, outputs, params) -> None:

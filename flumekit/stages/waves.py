@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_coords, run_params, stack_runs, summary_rule
+from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "2"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
@@ -29,8 +29,7 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     import warnings
 
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset
     from flumekit.waves import analyse_run
 
     eta = read_dataset(inputs["eta"])["eta"]
@@ -44,11 +43,8 @@ def build(inputs, outputs, params) -> None:
     for w in caught:
         if issubclass(w.category, UserWarning):
             print(f"warning: run {params['run']}: {w.message}")
-    ds = ds.assign_coords(run_coords(params))
-    ds.attrs.update(conventions.global_attrs(
-        f"Incident and reflected waves of run {params['run']}",
-        f"flumekit waves stage from {inputs['eta']}", params))
-    write_dataset(ds, outputs["dataset"])
+    write_run(ds, outputs, params, "Incident and reflected waves",
+              f"flumekit waves stage from {inputs['eta']}")
 
 
 def summary(inputs, outputs, params) -> None:
