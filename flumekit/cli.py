@@ -33,8 +33,14 @@ def _graph(pipe, synthesise: bool):
     from flumekit.stages.context import Context
 
     if not (pipe.raw / "campaign.toml").exists():
-        if not (synthesise and pipe.synth):
-            raise FlumekitError(f"{pipe.raw}: no raw campaign there (campaign.toml missing)")
+        # The virtual flume is written only into an absent or empty folder: a raw path one
+        # folder off or a renamed campaign.toml must never cost a laboratory its files.
+        empty = not pipe.raw.exists() or (pipe.raw.is_dir() and not any(pipe.raw.iterdir()))
+        if not (synthesise and pipe.synth and empty):
+            why = ("" if empty else "; the folder holds other files, so no virtual campaign is "
+                   "written there (nothing was changed)")
+            raise FlumekitError(f"{pipe.raw / 'campaign.toml'}: campaign file not found{why}. "
+                                f"Check 'raw' in {pipe.path}")
         from flumekit.synth.campaign import write_campaign
 
         size, seed = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
@@ -103,8 +109,6 @@ def cmd_synth(args) -> int:
     from flumekit.synth.campaign import write_campaign
 
     out = Path(args.out)
-    if (out / "campaign.toml").exists() and not args.force:
-        raise FlumekitError(f"{out}: a campaign exists there; use --force to overwrite it")
     t0 = time.perf_counter()
     write_campaign(out, size=args.size, seed=args.seed, progress=_progress)
     print(f"wrote the '{args.size}' virtual-flume campaign to {out} in "
@@ -157,8 +161,8 @@ def parser() -> argparse.ArgumentParser:
     s = sub.add_parser("synth", help="write a virtual-flume raw campaign and its truth")
     s.add_argument("--size", choices=("small", "default", "paper"), default="small")
     s.add_argument("--seed", type=int, default=2020)
-    s.add_argument("--out", default="raw/synthetic")
-    s.add_argument("--force", action="store_true")
+    s.add_argument("--out", default="raw/synthetic",
+                   help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
 
     b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks")

@@ -14,7 +14,9 @@ gives the same files.
 
 from __future__ import annotations
 
+import os
 import shutil
+import tempfile
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
@@ -24,6 +26,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import Campaign, load_campaign
+from flumekit.errors import InputError
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.waves.theory import group_velocity, wavelength
@@ -87,21 +90,47 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
 
 def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
                    truth: Truth = Truth(), progress=None) -> Campaign:
-    """Write a virtual-flume campaign to ``root`` (replacing one there) and return it.
+    """Write a virtual-flume campaign to ``root`` and return it.
 
-    The campaign is written to a sibling folder and renamed into place at the end, so an
-    interrupted synthesis leaves no half campaign at ``root``. ``progress(i, n, run_id)`` is
-    called before each run.
+    ``root`` must be absent or an empty folder: synthesis never deletes or overwrites anything
+    it did not write (raw data is sacred). The campaign is written to a fresh temporary sibling
+    folder and renamed into place at the end, so an interrupted synthesis leaves no half
+    campaign at ``root``. ``progress(i, n, run_id)`` is called before each run.
     """
     root = Path(root)
+    _check_empty(root)
     spec = _size(size)
     rng = np.random.default_rng(seed)
-    tmp = root.with_name(root.name + ".partial")
-    shutil.rmtree(tmp, ignore_errors=True)
+    root.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{root.name}.", suffix=".partial", dir=root.parent))
+    umask = os.umask(0)
+    os.umask(umask)
+    os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700; the campaign folder follows the umask
+    try:
+        _write_all(tmp, root.name, spec, seed, size, truth, rng, progress)
+        # os.rename onto an empty directory replaces it atomically; onto a non-empty one it
+        # fails (ENOTEMPTY), so a folder filled meanwhile by someone else is never clobbered
+        _check_empty(root)
+        os.rename(tmp, root)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)  # only the folder this call created
+        raise
+    return load_campaign(root)
+
+
+def _check_empty(root: Path) -> None:
+    if root.exists() and (not root.is_dir() or any(root.iterdir())):
+        raise InputError(root, "the virtual flume writes only into an absent or empty folder; "
+                         "this one has files (nothing was changed). Point the pipeline's "
+                         "'raw' at the campaign folder, or choose a new folder")
+
+
+def _write_all(tmp: Path, name: str, spec: Size, seed: int, size: str, truth: Truth, rng,
+               progress) -> None:
     (tmp / "calibration").mkdir(parents=True)
     (tmp / "truth").mkdir()
     template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
-    template = template.replace('name = "default"', f'name = "{root.name}"', 1)
+    template = template.replace('name = "default"', f'name = "{name}"', 1)
     (tmp / "campaign.toml").write_text(template)
     campaign = load_campaign(tmp)
     names = campaign.probes.names
@@ -133,9 +162,6 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
                            x_wavemaker=truth.x_wavemaker)
         _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
         write_dataset(field, tmp / "truth" / "uvp_field.nc")
-    shutil.rmtree(root, ignore_errors=True)
-    tmp.rename(root)
-    return load_campaign(root)
 
 
 def _finish(ds: xr.Dataset, title: str, size: str, seed: int) -> xr.Dataset:
