@@ -13,7 +13,9 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.bench import best_time
-from flumekit.models import ballscrew, buoy, thermal_lumped
+from flumekit.ballscrew import screw as ballscrew
+from flumekit.ballscrew import buoy
+from flumekit.ballscrew.thermal import lumped as thermal_lumped
 
 
 def _state(samples: int, iterations: int):

@@ -4,7 +4,7 @@ The flume of Brito et al. (2020): h = 0.825 m, flap w = 1.31 m hinged at c = 0.1
 b = 1.5 m, the 9 periods of Table 1 (T = 2–4 s). Errors are the largest relative deviation of
 μ, ν and |F| over the periods from a reference with every order raised; "next" is the change to
 the next order in the table. Run times are the best of several calls of
-:func:`flumekit.models.renzi_dias.coefficients` (dataset construction included).
+:func:`flumekit.flap.renzi_dias.model.coefficients` (dataset construction included).
 """
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.bench import best_time
-from flumekit.models import renzi_dias as rd
+from flumekit.flap.renzi_dias import model as rd
 
 H, W, C, B = 0.825, 1.31, 0.10, 1.5
 PERIODS = np.arange(2.0, 4.001, 0.25)

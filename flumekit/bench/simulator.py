@@ -24,10 +24,10 @@ import xarray as xr
 
 from flumekit.bench import best_time
 from flumekit.campaign import load_campaign
-from flumekit.models import hydro as H
-from flumekit.models import radiation as R
-from flumekit.models import simulator as S
-from flumekit.models.excitation import excitation_torque
+from flumekit.hydro import coefficients as H
+from flumekit.hydro import radiation as R
+from flumekit.flap import simulator as S
+from flumekit.hydro.excitation import excitation_torque
 
 KP, IP = 2.0e6, 2.4e4
 PERIOD, HEIGHT = 3.5, 0.25
@@ -43,7 +43,7 @@ def _campaign():
 def _coefficients(campaign, n: int):
     w = np.linspace(0.4, 25.0, n)
     try:
-        from flumekit.models import renzi_dias
+        from flumekit.flap.renzi_dias import model as renzi_dias
 
         c = renzi_dias.coefficients(2 * np.pi / w, campaign.flume.water_depth,
                                     campaign.flap.width, campaign.flap.hinge_height,

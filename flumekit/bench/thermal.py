@@ -19,7 +19,10 @@ import numpy as np
 from scipy.sparse import linalg as spla
 
 from flumekit.bench import best_time
-from flumekit.models import ballscrew, buoy, thermal_fem, thermal_lumped
+from flumekit.ballscrew import screw as ballscrew
+from flumekit.ballscrew import buoy
+from flumekit.ballscrew.thermal import fem as thermal_fem
+from flumekit.ballscrew.thermal import lumped as thermal_lumped
 
 
 def _scenario():

@@ -2,9 +2,9 @@
 
 Each function takes the scenario dataset(s) and returns a matplotlib Figure (no pyplot):
 
-- efficiency dataset (:func:`flumekit.models.ballscrew.efficiency`): Figs. 11-15;
-- lumped thermal dataset (:func:`flumekit.models.thermal_lumped.thermal_lumped`): Figs. 9, 16;
-- FEM dataset (:func:`flumekit.models.thermal_fem.thermal_fem`): Figs. 10, 17, 18.
+- efficiency dataset (:func:`flumekit.ballscrew.screw.efficiency`): Figs. 11-15;
+- lumped thermal dataset (:func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`): Figs. 9, 16;
+- FEM dataset (:func:`flumekit.ballscrew.thermal.fem.thermal_fem`): Figs. 10, 17, 18.
 """
 
 from __future__ import annotations

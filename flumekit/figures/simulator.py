@@ -4,7 +4,7 @@ al. (2020).
 Each function draws into given matplotlib Axes (object-oriented API, no pyplot) and returns
 them, so it composes with :mod:`flumekit.figures.flap` (experiment) and the linear model's
 curves: e.g. ``fig = figure_8(flaps); add_figure_8(fig.axes[0], summaries)``. The inputs are
-summaries of simulated runs (:func:`flumekit.models.simulator_summary.summarise_run`), one per
+summaries of simulated runs (:func:`flumekit.flap.summary.summarise_run`), one per
 run or concatenated along ``run``, with the ``wave_period`` coordinate and a ``wave_height``
 coordinate or the ``incident_height`` variable to group the curves by wave height.
 """
@@ -77,7 +77,7 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
     ----------
     axes : Four Axes (a-d).
     summary : Summary of one simulated run
-        (:func:`~flumekit.models.simulator_summary.summarise_run`).
+        (:func:`~flumekit.flap.summary.summarise_run`).
     sim : The simulation itself, for panel (a).
     label : Legend label.
     """

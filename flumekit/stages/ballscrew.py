@@ -53,7 +53,7 @@ def _previous(inputs):
 
 
 def kinematics(inputs, outputs, params) -> None:
-    from flumekit.models import buoy
+    from flumekit.ballscrew import buoy
 
     motion = buoy.reference_motion(params["amplitude"], params["period"],
                                    samples_per_period=params["samples_per_period"])
@@ -62,14 +62,14 @@ def kinematics(inputs, outputs, params) -> None:
 
 
 def efficiency(inputs, outputs, params) -> None:
-    from flumekit.models import ballscrew
+    from flumekit.ballscrew import screw as ballscrew
 
     _write(ballscrew.efficiency(_previous(inputs)), outputs,
            "Ball-screw WEC: PTO force, lubrication and efficiency", params)
 
 
 def thermal_lumped(inputs, outputs, params) -> None:
-    from flumekit.models.thermal_lumped import thermal_lumped as run
+    from flumekit.ballscrew.thermal.lumped import thermal_lumped as run
 
     _write(run(_previous(inputs), cycle_duration=params["cycle_duration"],
                total_duration=params["total_duration"], time_step=params["lumped_time_step"]),
@@ -77,7 +77,7 @@ def thermal_lumped(inputs, outputs, params) -> None:
 
 
 def thermal_fem(inputs, outputs, params) -> None:
-    from flumekit.models.thermal_fem import thermal_fem as run
+    from flumekit.ballscrew.thermal.fem import thermal_fem as run
 
     _write(run(_previous(inputs), time_step=params["fem_time_step"],
                radial_cell_size=params["radial_cell_size"],

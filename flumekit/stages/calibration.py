@@ -19,7 +19,8 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     import warnings
 
-    from flumekit import calibration, conventions
+    from flumekit import conventions
+    from flumekit.waves import calibration
     from flumekit.io.instruments import read_calibration
     from flumekit.io.netcdf import write_dataset
 

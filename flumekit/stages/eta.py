@@ -29,7 +29,7 @@ def build(inputs, outputs, params) -> None:
 
     import numpy as np
 
-    from flumekit import calibration
+    from flumekit.waves import calibration
     from flumekit.io.instruments import read_probes
     from flumekit.io.netcdf import read_dataset
 

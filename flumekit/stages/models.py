@@ -65,18 +65,18 @@ def hydro(inputs, outputs, params) -> None:
 
     from flumekit import conventions
     from flumekit.io.netcdf import write_dataset
-    from flumekit.models import hydro as hy
-    from flumekit.models.renzi_dias import coefficients
+    from flumekit.hydro import coefficients as hy
+    from flumekit.flap.renzi_dias.model import coefficients
 
     if params["coefficients"] == "bem":
         from flumekit.errors import FlumekitError
-        from flumekit.models import bem
+        from flumekit.flap import bem
 
         if not bem.available():
             raise FlumekitError("[stages.models] coefficients = 'bem' needs Capytaine: "
                                 "pip install 'flumekit[bem]'")
         # Capytaine's finite-depth Green function needs kh above about 0.15: the low-frequency
-        # end is held constant by the impulse response (flumekit.models.radiation)
+        # end is held constant by the impulse response (flumekit.hydro.radiation)
         omega = np.linspace(params["bem_omega_min"], params["bem_omega_max"],
                             params["bem_n_omega"])
         # the real, thick flap on its fixed foundation, in open water (no channel walls)
@@ -108,7 +108,7 @@ def energy_equivalent_damping(flap) -> float:
 
 def coefficients_at(hydro, period: float):
     """The campaign's coefficient container at one period, in the layout of
-    :func:`flumekit.models.response.response` (cubic interpolation over the frequency grid)."""
+    :func:`flumekit.hydro.response.response` (cubic interpolation over the frequency grid)."""
     import numpy as np
 
     names = ["added_inertia", "radiation_damping", "excitation_torque_real",
@@ -125,7 +125,7 @@ def _analytical(params, flap, waves, hydro):
     import numpy as np
     import xarray as xr
 
-    from flumekit.models.response import response
+    from flumekit.hydro.response import response
 
     period = float(waves["measured_period"])
     rd = coefficients_at(hydro, period)
@@ -169,9 +169,9 @@ def periodic_extension(eta, period: float, before: int, after: int):
 
 
 def _simulated(params, flap, waves, hydro, campaign):
-    from flumekit.models.hydro import merge_complex
-    from flumekit.models.simulator import simulate_run
-    from flumekit.models.simulator_summary import summarise_run
+    from flumekit.hydro.coefficients import merge_complex
+    from flumekit.flap.simulator import simulate_run
+    from flumekit.flap.summary import summarise_run
 
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=params["spin_up_periods"], after=5)

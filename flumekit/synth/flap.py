@@ -2,7 +2,7 @@
 
 Two flap models (``FlapTruth.model``):
 
-``"simulator"`` (default): the time-domain simulator :func:`flumekit.models.simulator.
+``"simulator"`` (default): the time-domain simulator :func:`flumekit.flap.simulator.
 simulate_run` (Cummins equation, Brito et al. 2020 Eqs. 11-13 and Appendix B) driven from rest
 by the true incident elevation at the hinge line over the whole record (and an optional
 lead-out, see :func:`flap_record`), with the Renzi & Dias (2012) coefficients of the flap in
@@ -16,7 +16,7 @@ at 100 Hz; the states, pressure and LuGre state are the simulator's own at every
 nothing is resampled). Against 4 steps per sample: θ within 5e-5, θ̇ 2e-4, pressure 3e-4, T_h
 8e-4 and the friction force 9e-3 of their largest values (30 s, T = 2.5 s, cavitating). About
 0.4 s per 360 s record. An optional quadratic drag on the flat flap (``drag_coefficient`` C_d,
-:func:`flumekit.models.simulator.drag_torque_coefficient`) is off by default.
+:func:`flumekit.flap.simulator.drag_torque_coefficient`) is off by default.
 
 With potential-flow radiation as the only loss besides the PTO, this flap moves more than the
 paper's: at T = 3.5 s, H = 0.25 m the steady θ swings from −0.62 to +0.34 rad (amplitude
@@ -150,8 +150,8 @@ class FlapTruth:
 class FlumeHydrodynamics(NamedTuple):
     """What the simulator needs of the flap in the flume, the same for every run of a campaign."""
 
-    hydro: xr.Dataset  # coefficient container with A∞ (flumekit.models.hydro)
-    radiation: object  # flumekit.models.radiation.StateSpace of the radiation kernel
+    hydro: xr.Dataset  # coefficient container with A∞ (flumekit.hydro.coefficients)
+    radiation: object  # flumekit.hydro.radiation.StateSpace of the radiation kernel
 
 
 def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
@@ -160,9 +160,9 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
 
     The container is built as the pipeline's ``models/hydro`` stage builds it
     (:data:`HYDRO_OMEGA`, channel width = flume width; Renzi & Dias 2012 in a channel,
-    :func:`flumekit.models.hydro.from_renzi_dias`, A∞ from the Ogilvie relation, median), and
+    :func:`flumekit.hydro.coefficients.from_renzi_dias`, A∞ from the Ogilvie relation, median), and
     the radiation kernel K(t) over ``truth.irf_duration`` is fitted by the state-space model of
-    :func:`flumekit.models.radiation.fit_state_space` (about 1.5 s in all: build it once per
+    :func:`flumekit.hydro.radiation.fit_state_space` (about 1.5 s in all: build it once per
     campaign and pass it to :func:`flap_record`). The fit is tighter than the simulator's
     default (``rtol`` 1e-3 reaches order 17 and 0.28 % on K(t), against order 11 and 0.8 % at
     1e-2): measured against Eq. (A1) at small amplitude without PTO, the flap's steady
@@ -176,9 +176,9 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     irf_step : Sampling step of K(t) for the fit [s].
     rtol : Target relative error of the state-space fit of K(t).
     """
-    from flumekit.models import hydro as hy
-    from flumekit.models.radiation import fit_state_space, impulse_response
-    from flumekit.models.renzi_dias import coefficients
+    from flumekit.hydro import coefficients as hy
+    from flumekit.hydro.radiation import fit_state_space, impulse_response
+    from flumekit.flap.renzi_dias.model import coefficients
 
     flap = campaign.flap
     omega = np.linspace(*HYDRO_OMEGA)
@@ -325,8 +325,8 @@ def _linear_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth) -> dict:
 def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
                      hydro: FlumeHydrodynamics | xr.Dataset | None) -> dict:
     """Motion, pressure and friction of the time-domain simulator (module notes)."""
-    from flumekit.models.radiation import fit_state_space, impulse_response
-    from flumekit.models.simulator import drag_torque_coefficient, simulate_run
+    from flumekit.hydro.radiation import fit_state_space, impulse_response
+    from flumekit.flap.simulator import drag_torque_coefficient, simulate_run
 
     if hydro is None:
         hydro = flume_hydrodynamics(campaign, truth)
@@ -368,7 +368,7 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
             "scalars": {"added_inertia": at("added_inertia"),
                         "added_inertia_infinite": float(h["added_inertia_infinite"]),
                         "radiation_damping": at("radiation_damping")},
-            "source": ("flumekit.synth.flap: time-domain simulator (flumekit.models.simulator, "
+            "source": ("flumekit.synth.flap: time-domain simulator (flumekit.flap.simulator, "
                        "Renzi-Dias coefficients, hydraulic PTO with cavitation and fluid "
                        "inertia, modified LuGre friction, T_g = C sin theta)"),
             "attrs": {"simulator_time_step": dt / m,
@@ -408,7 +408,7 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
         the last 1-2 s differs from that of a continuing wave by up to 30 % of its amplitude;
         with 20 s of lead-out the whole record is within 0.11 % of that of a record 60 s
         longer, the rest being a near-constant offset: the excitation filter removes the
-        record's mean elevation, :func:`flumekit.models.excitation.excitation_torque`).
+        record's mean elevation, :func:`flumekit.hydro.excitation.excitation_torque`).
 
     Returns
     -------

@@ -149,12 +149,12 @@ def _steady_phasor(t, x, omega, start, end):
 
 @pytest.mark.parametrize("period", [2.0, 3.0, 4.0])
 def test_simulator_small_motion_is_eq_a1(campaign, hydrodynamics, period):
-    # independent truth: Eq. (A1) (flumekit.models.response) from the Renzi-Dias coefficients
+    # independent truth: Eq. (A1) (flumekit.hydro.response) from the Renzi-Dias coefficients
     # computed at the period itself; the flume's PTO made negligible (K_p = 1e-9, I_p = 0, no
     # friction) and a 2 mm wave, so that sin θ = θ to 1e-5. Tolerances are the simulator's
     # issue-7 acceptance, 0.5 % and 1° (measured 0.08/0.22/0.47 % and 0.03/0.24/0.31°)
-    from flumekit.models.renzi_dias import coefficients
-    from flumekit.models.response import response
+    from flumekit.flap.renzi_dias.model import coefficients
+    from flumekit.hydro.response import response
 
     free = dataclasses.replace(campaign, pto=dataclasses.replace(campaign.pto, friction=None))
     omega, a = 2 * np.pi / period, 0.002

@@ -8,7 +8,7 @@ K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω            (Ogilvie 1964; Cummins 19
 
 with A∞ the infinite-frequency added inertia, kept on the left-hand side of the equation of
 motion by the simulator (implicit: the effective inertia is I + A∞). The memory term has the
-frequency response (time factor e^{-iωt} of :mod:`flumekit.models.hydro`)
+frequency response (time factor e^{-iωt} of :mod:`flumekit.hydro.coefficients`)
 
     K̂(ω) = ∫₀^∞ K(t) e^{iωt} dt = C(ω) + i S(ω),
     C(ω) = ∫ K cos ωt dt = B(ω),   S(ω) = ∫ K sin ωt dt = ω (A∞ − A(ω))   (Ogilvie 1964),
@@ -149,7 +149,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 
     Parameters
     ----------
-    hydro : Coefficient container (:mod:`flumekit.models.hydro`).
+    hydro : Coefficient container (:mod:`flumekit.hydro.coefficients`).
     duration : Longest lag [s]; default 30 s.
     dt : Lag step [s]; default π/(8 ω_N) capped at 0.05 s.
     tail, tail_exponent, tail_factor, low : High- and low-frequency extension of B (module notes).

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from flumekit import calibration
+from flumekit.waves import calibration
 from flumekit.io.instruments import read_calibration
 from flumekit.synth.campaign import Truth, _probe_gains, _write_calibration
 

@@ -1,7 +1,7 @@
 """Frequency-domain response of the flap to regular waves: rotation, power and capture factor.
 
 Appendix A of Brito et al. (2020, "Brito") with the coefficients of
-:func:`flumekit.models.renzi_dias.coefficients` (or a BEM dataset of the same layout):
+:func:`flumekit.flap.renzi_dias.model.coefficients` (or a BEM dataset of the same layout):
 
 - Θ = F A / [-ω²(I + μ + I_pto) + C + C_pto - iω(ν + ν_pto)]: Eq. (A1) in Brito, RD12 Eq. (2.33)
   (I_pto, C_pto = 0 in both papers);
@@ -78,7 +78,7 @@ def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness
     coefficients : Dataset over ``period`` [s] with ``added_inertia`` [kg m2],
         ``radiation_damping`` [N m s], ``excitation_torque_real``/``_imag`` [N m m-1] and the
         attributes ``depth`` [m], ``flap_width`` [m], ``rho`` [kg m-3], ``g`` [m s-2] (as made by
-        :func:`flumekit.models.renzi_dias.coefficients` or :mod:`flumekit.models.bem`).
+        :func:`flumekit.flap.renzi_dias.model.coefficients` or :mod:`flumekit.flap.bem`).
     wave_amplitude : Incident wave amplitude A = H/2 [m]; scalar or a DataArray (e.g. over
         ``wave_height``), broadcast against ``period``.
     inertia : Moment of inertia I of the flap about the hinge [kg m2] (14.74 in Brito §2.2).
@@ -141,7 +141,7 @@ def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness
     out["torque_amplitude"].attrs["long_name"] = (
         "amplitude of the wave (excitation + radiation) torque on the moving flap")
     out.attrs.update(conventions.global_attrs(
-        "Linear flap response (Brito et al. 2020 App. A)", "flumekit.models.response",
+        "Linear flap response (Brito et al. 2020 App. A)", "flumekit.hydro.response",
         {"inertia": inertia, "stiffness": stiffness, "pto_stiffness": pto_stiffness,
          "pto_inertia": pto_inertia, "coefficients": a.get("title", "")}))
     out.attrs.update({"inertia": float(inertia), "stiffness": float(stiffness),

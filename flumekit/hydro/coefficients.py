@@ -159,7 +159,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
 
 
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
-    """Container from :func:`flumekit.models.renzi_dias.coefficients` (a dataset over ``period``).
+    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (a dataset over ``period``).
 
     Parameters
     ----------
@@ -318,7 +318,7 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             f"radiation damping is negative at {n} of {hydro.sizes[DIM]} frequencies: "
             f"{pairs}{more}; minimum {rep.attrs['min_damping']:.4g} N m s against a maximum "
             f"{rep.attrs['max_damping']:.4g} N m s. A passive body has B >= 0; use "
-            "flumekit.models.hydro.make_passive(hydro) to clip it to zero, or better coefficients.")
+            "flumekit.hydro.coefficients.make_passive(hydro) to clip it to zero, or better coefficients.")
 
 
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
@@ -338,7 +338,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
         A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt        Ogilvie (1964), Eq. (A.5)-type relation
 
-    with K(t) the radiation impulse response of :func:`flumekit.models.radiation.impulse_response`
+    with K(t) the radiation impulse response of :func:`flumekit.hydro.radiation.impulse_response`
     (same options). For coefficients that obey the Kramers-Kronig relations and a well-resolved
     K(t) the estimate is the same at every frequency; its spread measures how far they are from
     that (truncated frequency range, a thin-plate model, interpolation, a constant added inertia
@@ -354,7 +354,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     frequencies, where the 1/ω factor amplifies the error of the low-frequency extension of B),
     ``full_spread`` = (max − min)/|median|, ``rms_spread`` = std/|median|.
     """
-    from flumekit.models.radiation import impulse_response, sine_transform
+    from flumekit.hydro.radiation import impulse_response, sine_transform
 
     irf = impulse_response(hydro, duration=duration, dt=dt, **irf_options)
     w = hydro[DIM].values
@@ -387,7 +387,7 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         [rad s-1] (interpolated): the time-domain model then reproduces A and B exactly at that
         frequency even if the coefficients are not causal (e.g. a constant added inertia), which
         is what a regular-wave comparison needs. The spread is still reported.
-    **irf_options : Passed to :func:`flumekit.models.radiation.impulse_response`.
+    **irf_options : Passed to :func:`flumekit.hydro.radiation.impulse_response`.
     """
     check_passive(hydro)
     est = infinite_frequency_inertia(hydro, **irf_options)

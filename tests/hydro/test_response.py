@@ -10,8 +10,8 @@ from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
 from flumekit import conventions
-from flumekit.models import renzi_dias as rd
-from flumekit.models import response as rs
+from flumekit.flap.renzi_dias import model as rd
+from flumekit.hydro import response as rs
 
 H, W, C_HINGE, B = 0.825, 1.31, 0.10, 1.5
 INERTIA, STIFFNESS = 14.74, 605.0  # Brito §2.2 and App. A

@@ -1,7 +1,7 @@
 """Wave excitation torque from the measured incident elevation at the flap.
 
 The separation stage gives the incident elevation η_I(t) at the hinge line x = 0; with the
-excitation torque per unit amplitude F(ω) of :mod:`flumekit.models.hydro` (time factor
+excitation torque per unit amplitude F(ω) of :mod:`flumekit.hydro.coefficients` (time factor
 e^{-iωt}, referenced to the incident wave at x = 0) the excitation torque is the linear filter
 
     T_exc(t) = Re Σ F(ω) â(ω) e^{-iωt}        (Cummins 1962; Falnes 2002, §5.9)

@@ -5,7 +5,7 @@ Equation of motion about the hinge (Cummins 1962; Eq. (11)-(13) in Brito et al. 
     (I + A∞) θ̈ = T_exc(t) − μ(t) − T_g(θ) − c_d θ̇|θ̇| − T_PTO
 
 * μ(t) = ∫₀ᵗ K(t − τ) θ̇(τ) dτ, the radiation memory, by convolution with K(t) or by the modal
-  state-space model of :mod:`flumekit.models.radiation`; A∞ stays on the left-hand side.
+  state-space model of :mod:`flumekit.hydro.radiation`; A∞ stays on the left-hand side.
 * T_g = C θ (``restoring="linear"``, as in Eq. A1) or C sin θ (``"sine"``, exact for a rigid
   submerged flap, :func:`flumekit.flap.torque.gravity_torque`).
 * c_d θ̇|θ̇|: optional quadratic viscous drag torque [N m s2].
@@ -64,7 +64,7 @@ from flumekit.errors import FlumekitError
 from flumekit.flap import friction as _friction
 from flumekit.flap.friction import FrictionState, LuGre
 from flumekit.flap.geometry import rod_kinematics
-from flumekit.models.radiation import StateSpace
+from flumekit.hydro.radiation import StateSpace
 
 
 class SimulationError(FlumekitError, RuntimeError):
@@ -280,7 +280,7 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
     excitation : Excitation torque T_exc over ``time`` [N m] (cubic-spline interpolated to
         the half steps), or None for a free response.
     flap : Inertia, A∞, stiffness, restoring law and drag.
-    radiation : :class:`flumekit.models.radiation.StateSpace`, an impulse response K(t)
+    radiation : :class:`flumekit.hydro.radiation.StateSpace`, an impulse response K(t)
         (DataArray over ``lag``, convolution), or None (no memory term).
     pto : :class:`LinearDamper`, :class:`HydraulicCylinder` or None.
     dt : Time step h [s].
@@ -528,7 +528,7 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
 
     Parameters
     ----------
-    hydro : Coefficient container (:mod:`flumekit.models.hydro`). Its
+    hydro : Coefficient container (:mod:`flumekit.hydro.coefficients`). Its
         ``added_inertia_infinite`` is used if present, else it is estimated by the Ogilvie
         relation (median, or at ``match_frequency``; ``max_spread`` checks the spread).
     eta_incident_at_flap : Incident elevation at x = 0 over ``time`` [m] (separation stage).
@@ -542,14 +542,14 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     restoring : "linear" (C θ, as Eq. A1) or "sine" (C sin θ).
     dt : Time step [s].
     radiation : "state_space", "convolution" or "none", or a precomputed model
-        (:class:`~flumekit.models.radiation.StateSpace` or an impulse response over ``lag``) to
+        (:class:`~flumekit.hydro.radiation.StateSpace` or an impulse response over ``lag``) to
         reuse across the runs of a campaign (the fit takes ~1 s for 400 frequencies).
     irf_duration : Length of K(t) [s].
     order : State-space order (default: smallest with 1 % error on K(t)).
     match_frequency : Angular frequency [rad s-1] at which A∞ makes the time-domain model
         reproduce A(ω) exactly (e.g. 2π/T of a regular-wave run); default the median estimate.
     max_spread : Largest accepted spread of the Ogilvie estimates (None: report only).
-    taper : End tapers of the excitation filter [s] (:func:`flumekit.models.excitation.
+    taper : End tapers of the excitation filter [s] (:func:`flumekit.hydro.excitation.
         excitation_torque`): the last ``taper`` seconds of the run are driven by an attenuated
         torque and should be left out of comparisons (a flume record starts in still water).
 
@@ -558,9 +558,9 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     Dataset of :func:`simulate` on the elevation's time grid spacing ``dt``, plus
     ``eta_incident`` interpolated to the simulation times; attrs name the options.
     """
-    from flumekit.models.excitation import excitation_torque
-    from flumekit.models.hydro import with_infinite_frequency_inertia
-    from flumekit.models.radiation import fit_state_space, impulse_response
+    from flumekit.hydro.excitation import excitation_torque
+    from flumekit.hydro.coefficients import with_infinite_frequency_inertia
+    from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     if "added_inertia_infinite" in hydro and match_frequency is None:
         a_inf = float(hydro["added_inertia_infinite"])

@@ -30,7 +30,7 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
 
     Parameters
     ----------
-    sim : Output of :func:`flumekit.models.simulator.simulate_run` (or ``simulate``).
+    sim : Output of :func:`flumekit.flap.simulator.simulate_run` (or ``simulate``).
     period : Wave period T of the run [s].
     incident_height : Incident wave height H at the flap [m] (from the separation), for W_I.
     depth : Water depth h [m].
@@ -69,6 +69,6 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
          "steady_start": win.start, "steady_end": win.end, "measured_period": win.period,
          "steady_cycles": win.n_cycles},
         coords={"phase": pa["theta"].phase, "wave_period": float(period)},
-        attrs={"source": "flumekit.models.simulator_summary",
+        attrs={"source": "flumekit.flap.summary",
                **{k: v for k, v in sim.attrs.items() if isinstance(v, (int, float, str))}})
     return conventions.annotate(out)

@@ -8,7 +8,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.io.netcdf import read_dataset, write_dataset
-from flumekit.models import hydro as H
+from flumekit.hydro import coefficients as H
 
 #: analytic radiation kernel K(t) = Σ a e^{-αt} cos βt (a Kramers-Kronig pair with A∞ = 25)
 KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
@@ -52,7 +52,7 @@ def test_inconsistent_added_inertia_is_reported_with_numbers():
     w0 = 1.8
     out = H.with_infinite_frequency_inertia(hy, max_spread=None, at_frequency=w0,
                                             duration=30.0, dt=0.01)
-    from flumekit.models.radiation import impulse_response, sine_transform
+    from flumekit.hydro.radiation import impulse_response, sine_transform
 
     k = impulse_response(hy, 30.0, 0.01)
     a_td = float(out["added_inertia_infinite"]) - sine_transform(k, w0) / w0
@@ -103,7 +103,7 @@ def test_complex_split_survives_netcdf(tmp_path):
 
 
 def _renzi_dias_like(periods):
-    # the layout of flumekit.models.renzi_dias.coefficients: over period, real/imag parts
+    # the layout of flumekit.flap.renzi_dias.model.coefficients: over period, real/imag parts
     w = 2 * np.pi / periods
     f = 3000 * np.exp(-1j * (0.5 + 0.1 * w))
     return xr.Dataset({"added_inertia": ("period", 100 + w),
@@ -124,7 +124,7 @@ def test_from_renzi_dias_layout():
 
 
 def test_from_renzi_dias_model():
-    rd = pytest.importorskip("flumekit.models.renzi_dias")
+    rd = pytest.importorskip("flumekit.flap.renzi_dias.model")
     coef = rd.coefficients(np.array([2.0, 3.0, 3.5]), 0.825, 1.31, 0.1, channel_width=1.5)
     hy = H.from_renzi_dias(coef, 605.0)
     # e^{-iωt}: the excitation torque lags the crest at the hinge line (RD notes, arg F < 0)

@@ -5,9 +5,9 @@ fixed foundation, pitches about the hinge under regular waves coming from +x (cr
 the flap, time factor e^{-iωt}, θ positive towards -x, the direction of wave travel). Renzi &
 Dias (J. Fluid Mech. 701, 2012, "RD12") solve the channel of width b; Renzi & Dias
 (Eur. J. Mech. B/Fluids 41, 2013, "RD13o") the open ocean. Per vertical mode n
-(:mod:`flumekit.models.eigenmodes`) the jump of potential across the plate solves a
+(:mod:`flumekit.flap.renzi_dias.eigenmodes`) the jump of potential across the plate solves a
 hypersingular integral equation, expanded in (1-u²)^{1/2} U_p(u) and collocated at the zeros of
-T_{P+1} (:mod:`flumekit.models.hypersingular`). Only the radiation problem is solved: the
+T_{P+1} (:mod:`flumekit.flap.renzi_dias.hypersingular`). Only the radiation problem is solved: the
 diffraction coefficients are β_p0 = α_p0 d_0/f_0 (RD12 App. C).
 
 Dimensional results (RD12 Eqs. 2.34–2.36 with ρ and g restored):
@@ -32,7 +32,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.errors import GeometryError
-from flumekit.models import eigenmodes, hypersingular
+from flumekit.flap.renzi_dias import eigenmodes, hypersingular
 from flumekit.waves.theory import G, group_velocity
 
 #: Default truncation orders. With these, μ, ν and |F| are within 1e-5 (relative) of the
@@ -248,7 +248,7 @@ def dataset(sol: Solution, depth: float, hinge_height: float, rho: float = 1000.
     ds = xr.Dataset(data, coords={"period": ("period", sol.period),
                                   "angular_frequency": ("period", omega)})
     ds.attrs.update(conventions.global_attrs(
-        title, "flumekit.models.renzi_dias", {k: v for k, v in attrs.items()}))
+        title, "flumekit.flap.renzi_dias.model", {k: v for k, v in attrs.items()}))
     ds.attrs.update(attrs)
     ds.attrs["geometry"] = "channel" if sol.channel_width is not None else "open water"
     return conventions.annotate(ds)
@@ -324,6 +324,6 @@ def two_dimensional(period, depth: float, hinge_height: float, width: float,
          "wave_number": ("period", k)},
         coords={"period": period, "angular_frequency": ("period", omega)})
     ds.attrs.update(conventions.global_attrs(
-        "2-D flap (full channel width): eigenfunction solution", "flumekit.models.renzi_dias",
+        "2-D flap (full channel width): eigenfunction solution", "flumekit.flap.renzi_dias.model",
         {"depth": depth, "hinge_height": hinge_height, "width": width}))
     return conventions.annotate(ds)

@@ -8,7 +8,8 @@ from hypothesis import strategies as st
 from scipy import integrate
 
 from flumekit.errors import GeometryError
-from flumekit.models import ballscrew, buoy
+from flumekit.ballscrew import screw as ballscrew
+from flumekit.ballscrew import buoy
 
 G = buoy.BuoyGeometry()
 

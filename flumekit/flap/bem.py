@@ -5,7 +5,7 @@ height c above the bed up to (and piercing) the free surface, standing on a fixe
 the same width and thickness that fills the water column below the hinge. The only degree of
 freedom is the rotation about the hinge axis (x = 0, z = -h + c, along +y), applied to the flap
 panels only (the foundation panels do not move). The results go into the dataset layout of
-:func:`flumekit.models.renzi_dias.coefficients` so that the response and comparison code takes
+:func:`flumekit.flap.renzi_dias.model.coefficients` so that the response and comparison code takes
 either; the caller caches them as netCDF (:func:`flumekit.io.netcdf.write_dataset`).
 
 Conventions: Capytaine uses e^{-iωt} and waves travelling towards +x for ``wave_direction = 0``;
@@ -120,7 +120,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
 
     Returns
     -------
-    Dataset as :func:`flumekit.models.renzi_dias.coefficients` (open water, no reflection
+    Dataset as :func:`flumekit.flap.renzi_dias.model.coefficients` (open water, no reflection
     coefficients), with attributes ``thickness``, ``panel_size``, ``n_panels`` and ``solver``.
 
     Raises
@@ -133,7 +133,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
         from capytaine.bem.airy_waves import froude_krylov_force
         from capytaine.bodies.dofs import DofOnSubmesh, RotationDof
     except ImportError as exc:  # pragma: no cover - exercised without capytaine
-        raise ImportError("flumekit.models.bem needs Capytaine: pip install 'flumekit[bem]'"
+        raise ImportError("flumekit.flap.bem needs Capytaine: pip install 'flumekit[bem]'"
                           ) from exc
     period = np.atleast_1d(np.asarray(period, dtype=float))
     if period.ndim != 1 or np.any(~np.isfinite(period)) or np.any(period <= 0):
@@ -173,7 +173,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
              "geometry": "open water"}
     ds.attrs.update(conventions.global_attrs(
         "BEM coefficients of the thick flap on its fixed foundation (Capytaine)",
-        "flumekit.models.bem", attrs))
+        "flumekit.flap.bem", attrs))
     ds.attrs.update(attrs)
     return conventions.annotate(ds)
 

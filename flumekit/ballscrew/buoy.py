@@ -164,7 +164,7 @@ def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int
          "buoy_heave_velocity": ("time", amplitude * w * np.cos(w * t)),
          "buoy_heave_acceleration": ("time", -amplitude * w**2 * np.sin(w * t))},
         coords={"time": t},
-        attrs=conventions.global_attrs("reference buoy motion", "flumekit.models.buoy",
+        attrs=conventions.global_attrs("reference buoy motion", "flumekit.ballscrew.buoy",
                                        {"amplitude": amplitude, "period": period,
                                         "n_periods": n_periods}))
     ds.attrs["wave_period"] = period
@@ -231,7 +231,7 @@ def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
          "waterplane_area": ("time", waterplane_area(draft, g.float_radius)),
          "buoyancy_force": ("time", g.water_density * g.gravity * vol)},
         coords={"time": t},
-        attrs=conventions.global_attrs("buoy WEC kinematics", "flumekit.models.buoy.kinematics",
+        attrs=conventions.global_attrs("buoy WEC kinematics", "flumekit.ballscrew.buoy.kinematics",
                                        {**asdict(g), "lead": lead}))
     ds_out.attrs.update(lead=lead, **{f"geometry_{k}": np.asarray(v_, float)
                                       for k, v_ in asdict(g).items()})
@@ -375,7 +375,7 @@ def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: B
     wave_height, wave_period : H [m], T [s].
     geometry : Buoy geometry (limits h below the static draft and the arm reach).
     pto_force : Callable (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N], e.g.
-        :func:`flumekit.models.ballscrew.pto_force_function`.
+        :func:`flumekit.ballscrew.screw.pto_force_function`.
 
     Returns
     -------

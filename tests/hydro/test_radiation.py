@@ -6,8 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate, linalg
 
-from flumekit.models import hydro as H
-from flumekit.models import radiation as R
+from flumekit.hydro import coefficients as H
+from flumekit.hydro import radiation as R
 
 KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
 A_INF = 25.0

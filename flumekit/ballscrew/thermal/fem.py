@@ -422,7 +422,7 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
                 "control_point": [p[0] for p in geometry.control_points],
                 "region": [g.name for g in geometry.regions]},
         attrs=conventions.global_attrs(
-            "PTO axisymmetric FEM thermal model", "flumekit.models.thermal_fem.thermal_fem",
+            "PTO axisymmetric FEM thermal model", "flumekit.ballscrew.thermal.fem.thermal_fem",
             {"time_step": time_step, "radial_cell_size": radial_cell_size,
              "axial_cell_size": axial_cell_size, "order": order,
              "regions": [asdict(g) for g in geometry.regions]}))

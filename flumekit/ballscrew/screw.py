@@ -41,7 +41,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.errors import GeometryError
-from flumekit.models import buoy, ehl
+from flumekit.ballscrew import buoy, ehl
 
 
 @dataclass(frozen=True)
@@ -384,7 +384,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
 
     Parameters
     ----------
-    kin : Output of :func:`flumekit.models.buoy.kinematics` (its lead must match ``screw``).
+    kin : Output of :func:`flumekit.ballscrew.buoy.kinematics` (its lead must match ``screw``).
     screw, lubricant, pto : Ball screw, lubricant and Eq. (3) coefficients.
 
     Returns
@@ -406,7 +406,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     ds = xr.Dataset({name: ("time", val) for name, val in state.items()},
                     coords={"time": kin["time"].values},
                     attrs=conventions.global_attrs("ball-screw efficiency (multibody + EHL)",
-                                                   "flumekit.models.ballscrew.efficiency", params))
+                                                   "flumekit.ballscrew.screw.efficiency", params))
     ds["nut_velocity"] = kin["nut_velocity"]
     ds["nut_acceleration"] = kin["nut_acceleration"]
     ds["wave_force"] = dyn["wave_force"]

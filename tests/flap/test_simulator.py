@@ -12,10 +12,10 @@ from scipy import linalg
 
 from flumekit import conventions
 from flumekit.campaign import load_campaign
-from flumekit.models import hydro as H
-from flumekit.models import radiation as R
-from flumekit.models import simulator as S
-from flumekit.models.excitation import excitation_torque
+from flumekit.hydro import coefficients as H
+from flumekit.hydro import radiation as R
+from flumekit.flap import simulator as S
+from flumekit.hydro.excitation import excitation_torque
 
 KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}
 A_INF, C, I_FLAP = 25.0, 605.0, 14.74
@@ -444,7 +444,7 @@ def test_friction_adapter_matches_the_flap_package(campaign):
 def test_summary_and_figure_helpers(campaign, ss):
     from flumekit.figures.simulator import add_figure_8, add_figure_9, add_figure_10
     from flumekit.figures.style import new_figure
-    from flumekit.models.simulator_summary import summarise_run
+    from flumekit.flap.summary import summarise_run
 
     w, a, nu = 2 * np.pi / 2.5, 0.1, 150.0
     flap = S.FlapDynamics(I_FLAP, A_INF, C)

@@ -5,7 +5,7 @@ import pytest
 import xarray as xr
 
 from flumekit.io.netcdf import read_dataset
-from flumekit.models import renzi_dias as rd
+from flumekit.flap.renzi_dias import model as rd
 from flumekit.stages import models as stage
 
 GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,

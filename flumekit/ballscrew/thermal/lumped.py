@@ -250,7 +250,7 @@ def thermal_lumped(eff: xr.Dataset, params: LumpedThermal = LumpedThermal(),
 
     Parameters
     ----------
-    eff : Output of :func:`flumekit.models.ballscrew.efficiency`.
+    eff : Output of :func:`flumekit.ballscrew.screw.efficiency`.
     params : Lumped model parameters.
     cycle_duration : Length of the operating cycle [s] (600 s in the paper).
     total_duration : Simulated time [s] (100 min in the paper), the cycle repeated.
@@ -285,7 +285,7 @@ def thermal_lumped(eff: xr.Dataset, params: LumpedThermal = LumpedThermal(),
          "time_constant_fit": ("component", [f[1] for f in fits])},
         coords={"time": t, "component": list(COMPONENTS)},
         attrs=conventions.global_attrs("PTO lumped thermal model (Eqs. 8-10)",
-                                       "flumekit.models.thermal_lumped.thermal_lumped",
+                                       "flumekit.ballscrew.thermal.lumped.thermal_lumped",
                                        {**asdict(params), "cycle_duration": cycle_duration,
                                         "total_duration": total_duration,
                                         "time_step": time_step}))
