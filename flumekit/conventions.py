@@ -8,7 +8,8 @@ name. Units follow UDUNITS spelling. ``time`` is seconds since the start of a re
 
 from __future__ import annotations
 
-import datetime as _dt
+import contextvars
+import hashlib
 import json
 from dataclasses import dataclass
 
@@ -342,15 +343,99 @@ def check(ds: xr.Dataset) -> None:
 
 
 def global_attrs(title: str, source: str, parameters: dict | None = None) -> dict[str, str]:
-    """Global attributes: Conventions, title, source and a history line with version and
-    parameters."""
+    """Global attributes: Conventions, title, source, history (the flumekit version) and the
+    parameters. No clock time: identical inputs give identical bytes (the time of a build is in
+    the engine's state, ``.flumekit-state.json``)."""
     from flumekit import __version__
 
-    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     params = json.dumps(parameters or {}, sort_keys=True, default=str)
     return {
         "Conventions": CONVENTIONS,
         "title": title,
         "source": source,
-        "history": f"{stamp} flumekit {__version__}: {title}; parameters {params}",
+        "history": f"flumekit {__version__}: {title}",
+        "flumekit_parameters": params,
     }
+
+
+#: the rule being built in this process (set by :func:`flumekit.pipeline.rules.execute`):
+#: its target, version, parameters, inputs with their content hashes and relative paths
+_PROVENANCE: contextvars.ContextVar[dict | None] = contextvars.ContextVar("flumekit_provenance",
+                                                                           default=None)
+#: global attributes that describe how a file was made rather than what it holds; left out of
+#: :func:`content_digest` so that a rebuild with other settings but identical data is identical
+PROVENANCE_ATTRS = ("history", "flumekit_parameters", "flumekit_rule", "flumekit_version",
+                    "flumekit_rule_version", "flumekit_inputs", "flumekit_dependencies")
+
+
+def set_provenance(prov: dict | None):
+    """Declare the rule being built (``None``: none); returns a token for :func:`reset`."""
+    return _PROVENANCE.set(prov)
+
+
+def reset_provenance(token) -> None:
+    _PROVENANCE.reset(token)
+
+
+def _dependency_versions() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = []
+    for name in ("numpy", "scipy", "xarray", "netCDF4", "pandas", "matplotlib"):
+        try:
+            out.append(f"{name} {version(name)}")
+        except PackageNotFoundError:
+            pass
+    return "; ".join(out)
+
+
+def provenance(attrs: dict) -> dict:
+    """``attrs`` plus the provenance of the rule being built: flumekit version, rule, its
+    version and parameters, every input with its path relative to the pipeline file and its
+    content hash, and the versions of the numerical libraries. Absolute input paths in string
+    attributes (a stage's ``source``) become those relative paths, so that the same campaign
+    built in two folders gives the same bytes."""
+    from flumekit import __version__
+
+    prov = _PROVENANCE.get()
+    out = dict(attrs)
+    out["flumekit_version"] = __version__
+    out["flumekit_dependencies"] = _dependency_versions()
+    if prov is None:
+        return out
+    for k, v in out.items():
+        if isinstance(v, str):
+            for absolute, rel in prov["paths"].items():
+                v = v.replace(absolute, rel)
+            out[k] = v
+    out["flumekit_rule"] = prov["target"]
+    out["flumekit_rule_version"] = prov["version"]
+    out["flumekit_parameters"] = json.dumps(prov["params"], sort_keys=True, default=str)
+    out["flumekit_inputs"] = json.dumps(prov["inputs"], sort_keys=True)
+    return out
+
+
+def content_digest(ds: xr.Dataset) -> str:
+    """SHA-256 of what a dataset holds (values, dimensions, attributes), without the attributes
+    that say how it was made (:data:`PROVENANCE_ATTRS`). Two datasets with the same digest are
+    the same data: the engine stops a rebuild's cascade there."""
+    import numpy as np
+
+    h = hashlib.sha256()
+    for name in sorted(map(str, ds.variables)):
+        var = ds.variables[name]
+        h.update(json.dumps([name, list(map(str, var.dims)), str(var.dtype),
+                             {str(k): str(v) for k, v in sorted(var.attrs.items())}]).encode())
+        values = np.asarray(var.values)
+        h.update(values.tobytes() if values.dtype.kind not in "OUS"
+                 else "\x00".join(map(str, values.ravel())).encode())
+    h.update(json.dumps({str(k): str(v) for k, v in sorted(ds.attrs.items())
+                         if k not in PROVENANCE_ATTRS}).encode())
+    return h.hexdigest()
+
+
+def record_written(path, digest: str) -> None:
+    """Tell the rule being built the content digest of a file it wrote."""
+    prov = _PROVENANCE.get()
+    if prov is not None:
+        prov.setdefault("written", {})[str(path)] = digest

@@ -45,8 +45,10 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     missing = [a for a in ("Conventions", "title", "source", "history") if a not in ds.attrs]
     if missing:
         raise ValueError(f"{path}: dataset lacks global attributes {missing}")
+    ds.attrs = conventions.provenance(ds.attrs)
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
+    conventions.record_written(path, conventions.content_digest(ds))
     return path
 
 
