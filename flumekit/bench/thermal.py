@@ -44,7 +44,7 @@ def _naive(lumped, time_step, cell_r, cell_z):
     system, _ = thermal_fem.assemble_pto(thermal_fem.PTOGeometry(), cell_r, cell_z, 1)
     factor = int(round(time_step))
     powers = {g: thermal_fem._mean_over_steps(p, factor)
-              for g, p in thermal_fem._lumped_sources(lumped).items()}
+              for g, p in thermal_fem.lumped_sources(lumped).items()}
     m, k = system.capacity, system.stiffness
     a = (1.5 / time_step * m + k).tocsc()
     t = np.full(system.basis.N, 293.15)
