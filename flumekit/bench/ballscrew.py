@@ -16,11 +16,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.bench import best_time
-from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew import buoy, scenario
+from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew.thermal import fem
 from flumekit.ballscrew.thermal import lumped as thermal_lumped
+from flumekit.bench import best_time
 
 
 def _state(samples: int, iterations: int):
@@ -68,8 +68,8 @@ def run(quick: bool = False) -> str:
              scenario.table(scenario.stated_results(eff, th, fem_ds)), "",
              "FEM at 100 min, share of the steady rise (mean of the last cycle) per control point"]
     system, _ = fem.assemble_pto(fem.PTOGeometry())
-    sources = fem.lumped_sources(th)
-    steady = fem.solve_steady(system, {g: float(np.mean(p)) for g, p in sources.items()
+    sources = fem.source_powers(th, th.sizes["time"] - 1)  # one step: the mean over the run
+    steady = fem.solve_steady(system, {g: float(p[0]) for g, p in sources.items()
                                        if g in system.unit_loads})
     pts = np.stack([fem_ds["control_radius"].values, fem_ds["control_axial"].values])
     t0 = float(th.attrs["initial_temperature"])

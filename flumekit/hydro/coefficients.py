@@ -159,7 +159,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
 
 
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
-    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (a dataset over ``period``).
+    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (over ``period``).
 
     Parameters
     ----------
@@ -318,7 +318,8 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             f"radiation damping is negative at {n} of {hydro.sizes[DIM]} frequencies: "
             f"{pairs}{more}; minimum {rep.attrs['min_damping']:.4g} N m s against a maximum "
             f"{rep.attrs['max_damping']:.4g} N m s. A passive body has B >= 0; use "
-            "flumekit.hydro.coefficients.make_passive(hydro) to clip it to zero, or better coefficients.")
+            "flumekit.hydro.coefficients.make_passive(hydro) to clip it to zero, or better "
+            "coefficients.")
 
 
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
