@@ -558,8 +558,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     Dataset of :func:`simulate` on the elevation's time grid spacing ``dt``, plus
     ``eta_incident`` interpolated to the simulation times; attrs name the options.
     """
-    from flumekit.hydro.excitation import excitation_torque
     from flumekit.hydro.coefficients import with_infinite_frequency_inertia
+    from flumekit.hydro.excitation import excitation_torque
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     if "added_inertia_infinite" in hydro and match_frequency is None:
