@@ -40,8 +40,8 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.errors import GeometryError
 from flumekit.ballscrew import buoy, ehl
+from flumekit.errors import GeometryError
 
 
 @dataclass(frozen=True)

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.bench import best_time
-from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew import buoy
+from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew.thermal import lumped as thermal_lumped
+from flumekit.bench import best_time
 
 
 def _state(samples: int, iterations: int):

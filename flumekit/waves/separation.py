@@ -88,7 +88,18 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
     return np.linalg.solve(gram, r), cond, masked
 
 
-def _as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+    """Check an elevation record for separation and return its arrays.
+
+    Parameters
+    ----------
+    eta : Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+        ``probe``, uniformly sampled, finite.
+
+    Returns
+    -------
+    values [m] (probe, time), time [s], x [m], probe labels.
+    """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
                         f"{type(eta).__name__}")
@@ -186,7 +197,7 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
         raise ValueError(f"depth must be positive and finite, got {depth}")
     if not max_condition > 1:
         raise ValueError(f"max_condition must exceed 1, got {max_condition}")
-    v, t, x, probes = _as_probe_time(eta)
+    v, t, x, probes = as_probe_time(eta)
     n_min, n_max = METHODS[method]
     if x.size < n_min or (n_max is not None and x.size > n_max):
         need = f"exactly {n_min}" if n_min == n_max else f"at least {n_min}"

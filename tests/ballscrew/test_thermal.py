@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 from scipy import linalg, optimize, special
 
 from flumekit import conventions
-from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew import buoy
+from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew.thermal import fem as thermal_fem
 from flumekit.ballscrew.thermal import lumped as thermal_lumped
 

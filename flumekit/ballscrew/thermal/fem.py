@@ -343,8 +343,9 @@ def assemble_pto(geometry: PTOGeometry, radial_cell_size: float = 0.005,
     return assemble(mesh, k, rc, robin, (), sources, order), region
 
 
-def _lumped_sources(th: xr.Dataset) -> dict[str, np.ndarray]:
-    """Step-mean powers [W] of the lumped dataset split over the FEM source regions.
+def source_powers(th: xr.Dataset, factor: int) -> dict[str, np.ndarray]:
+    """Powers [W] of the lumped dataset split over the FEM source regions, averaged over FEM
+    steps of ``factor`` lumped steps.
 
     Eq. (9) gives the screw p_sn r Q_mecc (ball system: the swept screw length) plus
     p_sb (1 - r) Q_mecc (support bearing: the bearing seat); Eq. (10) the nut (1 - p_sn) r Q_mecc;
@@ -354,15 +355,12 @@ def _lumped_sources(th: xr.Dataset) -> dict[str, np.ndarray]:
     pb = float(th.attrs["partition_screw_bearing"])
     r = float(th.attrs["ball_system_fraction"])
     qm = th["mechanical_power_loss"].values[:-1]
-    return {"generator": th["electrical_power_loss"].values[:-1],
-            "screw": p * r * qm, "bearing": pb * (1 - r) * qm, "nut": (1 - p) * r * qm}
-
-
-def _mean_over_steps(x: np.ndarray, factor: int) -> np.ndarray:
-    if x.size % factor:
+    if qm.size % factor:
         raise ValueError(f"the FEM step ({factor} lumped steps) must divide the simulated "
-                         f"time ({x.size} lumped steps)")
-    return x.reshape(x.size // factor, factor).mean(axis=1)
+                         f"time ({qm.size} lumped steps)")
+    powers = {"generator": th["electrical_power_loss"].values[:-1],
+              "screw": p * r * qm, "bearing": pb * (1 - r) * qm, "nut": (1 - p) * r * qm}
+    return {g: x.reshape(x.size // factor, factor).mean(axis=1) for g, x in powers.items()}
 
 
 def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
@@ -394,8 +392,7 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
     if factor < 1 or abs(factor * dt_l - time_step) > 1e-9 * time_step:
         raise ValueError(f"FEM step {time_step} s must be a multiple of the lumped step {dt_l} s")
     system, region = assemble_pto(geometry, radial_cell_size, axial_cell_size, order)
-    powers = {g: _mean_over_steps(p, factor) for g, p in _lumped_sources(lumped).items()
-              if g in system.unit_loads}
+    powers = {g: p for g, p in source_powers(lumped, factor).items() if g in system.unit_loads}
     n = next(iter(powers.values())).size
     times = np.arange(n + 1) * time_step
     snap_t = np.asarray(snapshot_times, float)
