@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.ballscrew.scenario import GENERATOR_REGIONS
 from flumekit.figures.style import (
     ONE_COLUMN,
     TWO_COLUMNS,
@@ -204,39 +205,59 @@ def figure_10(fem: xr.Dataset):
     return fig
 
 
+def _generator_cells(fem: xr.Dataset) -> np.ndarray:
+    """Mask of the cells in the EMRG (stator, air gap, rotor and its hub)."""
+    names = np.array([str(x) for x in fem["region"].values])
+    return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
+
+
+def _generator_cells(fem: xr.Dataset) -> np.ndarray:
+    """Mask of the cells in the EMRG (stator, air gap, rotor and its hub)."""
+    names = np.array([str(x) for x in fem["region"].values])
+    return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
+
+
 def figure_17(fem: xr.Dataset):
-    """Fig. 17: temperature fields (°C) at the snapshot times (641, 1840, 3225, 6000 s)."""
+    """Fig. 17: temperature field of the EMRG (°C) at the snapshot times (641, 1840, 3225,
+    6000 s), the paper's most thermally stressed component."""
     r, z = fem["radial_coordinate"].values * 1e3, fem["axial_coordinate"].values * 1e3
-    tri = _triangles(fem)
+    q = fem["cell_nodes"].values[_generator_cells(fem)]
+    tri = np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
+    nodes = np.unique(q)
     fields = fem["temperature_field"].values - KELVIN
-    vmin, vmax = float(fields.min()), float(fields.max())
+    vmin, vmax = float(fields[:, nodes].min()), float(fields[:, nodes].max())
     n = fields.shape[0]
-    fig, axes = new_figure(1, n, width=TWO_COLUMNS, height=4.6, sharey=True)
+    fig, axes = new_figure(1, n, width=TWO_COLUMNS, height=3.6, sharey=True)
     with style():
         for k, ax in enumerate(axes.ravel()):
             pc = ax.tripcolor(r, z, tri, fields[k], shading="gouraud", cmap="inferno",
                               vmin=vmin, vmax=vmax)
             ax.set_title(f"({'abcdefgh'[k]}) t = {fem['snapshot_time'].values[k]:.0f} s")
             ax.set_xlabel(label(text="$r$", units="mm"))
+            ax.set_xlim(r[nodes].min(), r[nodes].max())
+            ax.set_ylim(z[nodes].min(), z[nodes].max())
             ax.set_aspect("equal")
         axes[0, 0].set_ylabel(label(text="Axial position", units="mm"))
         fig.colorbar(pc, ax=axes.ravel().tolist(), label=_TEMPERATURE)
-        title(fig, _scenario(fem, "FEM temperature fields"))
+        title(fig, _scenario(fem, "EMRG (rotor, air gap, stator): FEM temperature field"))
     return fig
 
 
 def figure_18(fem: xr.Dataset):
-    """Fig. 18: time evolution of the temperature at the control points (°C)."""
+    """Fig. 18: time evolution of the EMRG temperature at its control points (°C)."""
     t = fem["time"].values
+    inside = np.isin([str(x) for x in fem["control_region"].values], GENERATOR_REGIONS)
     fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
     ax = axes[0, 0]
     with style():
-        for p in fem["control_point"].values:
-            ax.plot(t / 60, fem["control_temperature"].sel(control_point=p).values - KELVIN,
-                    label=value_label(p))
+        for p in fem["control_point"].values[inside]:
+            pt = fem.sel(control_point=p)
+            ax.plot(t / 60, pt["control_temperature"].values - KELVIN,
+                    label=f"{value_label(p)} (r = {float(pt['control_radius']) * 1e3:.0f} mm, "
+                          f"z = {float(pt['control_axial']) * 1e3:.0f} mm)")
         ax.set_xlabel(_MINUTES)
         ax.set_ylabel(_TEMPERATURE)
-        title(fig, _scenario(fem, "FEM temperature at the control points"))
+        title(fig, _scenario(fem, "EMRG temperature at its control points (FEM)"))
         legend(fig, where="right")
     return fig
 

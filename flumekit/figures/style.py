@@ -115,6 +115,8 @@ VALUE_LABELS = {
     "screw_under_nut": "screw under the nut",
     "screw_swept_end": "screw, swept end",
     "rotor": "rotor",
+    "rotor_hub": "rotor hub",
+    "stator_bore": "stator bore",
     "air_gap": "air gap",
     "stator": "stator",
     "stator_end": "stator end",
