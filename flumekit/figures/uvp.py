@@ -87,9 +87,12 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
     spacing = stride * min(np.min(np.abs(np.diff(x))) if x.size > 1 else 1.0,
                            np.min(np.abs(np.diff(z))) if z.size > 1 else 1.0)
     scale = vmax / (arrow * spacing)  # data units (U0) per unit of x/h
-    ncols = 2
+    # panels shaped like the field (equal axes): three columns when it is taller than wide
+    aspect = float(np.ptp(z) / np.ptp(x)) if x.size > 1 and z.size > 1 else 1.0
+    ncols = min(len(phases), 3 if aspect > 1 else 2)
     nrows = int(np.ceil(len(phases) / ncols))
-    fig, axes = new_figure(nrows, ncols, width=TWO_COLUMNS, row_height=2.0,
+    panel = float(np.clip((TWO_COLUMNS - 1.4) / ncols * aspect, 1.0, 3.0))
+    fig, axes = new_figure(nrows, ncols, width=TWO_COLUMNS, height=nrows * (panel + 0.45) + 0.9,
                            sharex=True, sharey=True)
     for ax in axes.flat[len(phases):]:
         fig.delaxes(ax)
