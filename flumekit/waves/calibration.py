@@ -14,6 +14,8 @@ import xarray as xr
 
 from flumekit import conventions
 
+__all__ = ["R2_WARNING", "CalibrationWarning", "apply", "fit", "is_monotonic"]
+
 R2_WARNING = 0.999
 
 

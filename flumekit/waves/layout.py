@@ -62,8 +62,8 @@ def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
     Notes
     -----
     With M = [a, conj(a)], a_p = e^(-ikx_p), the Gram matrix MᴴM = [[P, S], [S*, P]] with
-    S = Σ_p e^(2ikx_p) has eigenvalues P ± |S|, so cond(M) = sqrt((P + |S|) / (P - |S|)).
-    For three probes P² - |S|² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
+    S = Σ_p e^(2ikx_p) has eigenvalues P ± abs(S), so cond(M) = sqrt((P + abs(S)) / (P - abs(S))).
+    For three probes P² - abs(S)² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
     """
     x = np.asarray(x, dtype=float)
     f = np.asarray(frequency, dtype=float)

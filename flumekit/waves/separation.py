@@ -210,7 +210,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         ``condition_number``, ``masked``, ``wave_number`` (frequency);
         ``reflection_coefficient`` [-]: irregular waves: Kr = sqrt(m0_R / m0_I) over the
         unmasked band bins (the energy ratio of Mansard & Funke 1980); ``regular``: the
-        first-harmonic ratio |A_R1| / |A_I1| (bound harmonics are not reflection; see
+        first-harmonic ratio abs(A_R1) / abs(A_I1) (bound harmonics are not reflection; see
         ``harmonic_reflection_coefficient`` for the others);
         ``incident_height``, ``reflected_height`` [m]: Hm0 = 4 sqrt(m0) for irregular waves;
         for ``regular`` the crest-to-trough height of the sum of the separated harmonics over
