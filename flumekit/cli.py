@@ -210,8 +210,8 @@ def _summary(args, pipe, graph, report) -> None:
         if report.removed:
             print(f"removed the outputs of {len(report.removed)} target(s) built from the "
                   "failed ones (no stale result stays readable)", file=sys.stderr)
-    figures = [str(graph.rules[t].outputs["figure"]) for t, _, _ in report.ran
-               if "figure" in graph.rules[t].outputs]
+    figures = [str(p) for t, _, _ in report.ran if t.startswith("figure/")
+               for p in graph.rules[t].outputs.values()]
     print(f"outputs in {where}/", file=sys.stderr)
     if figures:
         shown = ", ".join(os.path.relpath(f) for f in figures[:4])
@@ -328,6 +328,17 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def cmd_report(args) -> int:
+    from flumekit.report import write_report
+
+    pipe = _pipeline(args)
+    t0 = time.perf_counter()
+    out = write_report(pipe.processed, out=args.out)
+    print(f"wrote {out} in {time.perf_counter() - t0:.2f} s (open it in a browser; no server "
+          "needed)")
+    return 0
+
+
 def _version() -> str:
     from importlib.metadata import PackageNotFoundError, version
 
@@ -409,6 +420,13 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
+
+    r = sub.add_parser("report", help="one static HTML page for the processed campaign",
+                       parents=common)
+    r.add_argument("--out", default=None,
+                   help="file name in the processed folder (default: report.html there)")
+    pipeline_opts(r)
+    r.set_defaults(func=cmd_report)
 
     b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks", parents=common)
     b.add_argument("area", help="waves, flap, uvp, renzi_dias, simulator, ballscrew, pipeline")
