@@ -20,9 +20,9 @@ def build(inputs, outputs, params) -> None:
     import warnings
 
     from flumekit import conventions
-    from flumekit.waves import calibration
     from flumekit.io.instruments import read_calibration
     from flumekit.io.netcdf import write_dataset
+    from flumekit.waves import calibration
 
     raw = read_calibration(inputs["calibration"], tuple(params["probes"]))
     with warnings.catch_warnings(record=True) as caught:

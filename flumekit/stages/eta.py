@@ -29,9 +29,9 @@ def build(inputs, outputs, params) -> None:
 
     import numpy as np
 
-    from flumekit.waves import calibration
     from flumekit.io.instruments import read_probes
     from flumekit.io.netcdf import read_dataset
+    from flumekit.waves import calibration
 
     raw = read_probes(inputs["probes"], tuple(params["probes"]), params["sampling_rate"])
     cal = read_dataset(inputs["calibration"])
