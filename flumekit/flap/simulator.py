@@ -290,8 +290,9 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
     duration : Simulated time [s]; default the excitation record.
     theta0, theta_dot0 : Initial angle [rad] and angular velocity [rad s-1].
     extra_torque : Optional callable ``(j, theta, theta_dot) -> torque`` [N m] acting on the
-        flap, with j the half-step index (time t0 + j dt/2, j = 0 .. 2 n_steps); called at
-        every Runge-Kutta stage, so it must be a plain function of its arguments.
+        flap, with j the half-step index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is
+        called once per step, in order, at the step's start, and held over the step
+        (operator splitting, first order in the term: for slowly varying losses).
 
     Returns
     -------
@@ -373,11 +374,9 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0, extra=None):
                                   f"table [{th_lo:.3g}, {-th_lo:.3g}] rad")
         return mtab[i] + (u - i) * dmtab[i]
 
-    def accel(th, om, mu, j, z, hl):
+    def accel(th, om, mu, j, z, hl, xt=0.0):
         """θ̈, chamber pressure, friction force and lever arm at one stage (half step j)."""
-        rest = exc[j] - mu - (C * sin(th) if sine else C * th) - cd * om * abs(om)
-        if extra is not None:
-            rest += extra(j, th, om)
+        rest = exc[j] - mu - (C * sin(th) if sine else C * th) - cd * om * abs(om) + xt
         if not hydraulic:
             return (rest - nu * om) / J0, 0.0, 0.0, 0.0
         m = lever(th)
@@ -421,7 +420,10 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0, extra=None):
             mu_f = h * (S1 - (0.5 * kint[n + 1] * w0 if n + 1 <= M + 1 else 0.0))
         else:
             mu1 = 0.0
-        a1, p1, ff1, m1 = accel(th, om, mu1, 2 * n, fz, fh)
+        # the extra torque is frozen over the step at its start value (operator splitting, as
+        # the LuGre state): one call per step, in order
+        xt = extra(2 * n, th, om) if extra is not None else 0.0
+        a1, p1, ff1, m1 = accel(th, om, mu1, 2 * n, fz, fh, xt)
         o_th[n], o_om[n], o_acc[n], o_mu[n], o_p[n], o_ff[n] = th, om, a1, mu1, p1, ff1
         o_z[n], o_h[n] = fz, fh
         if not (isfinite(th) and isfinite(om) and isfinite(a1)):
@@ -439,16 +441,16 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0, extra=None):
         # stage 2 (t + h/2)
         om2 = om + hh * a1
         mu2 = ph + g2 * om if ss else (mu_h + hq * K0 * om2 if conv else 0.0)
-        a2 = accel(th + hh * om, om2, mu2, 2 * n + 1, zm, hm)[0]
+        a2 = accel(th + hh * om, om2, mu2, 2 * n + 1, zm, hm, xt)[0]
         # stage 3 (t + h/2)
         om3 = om + hh * a2
         mu3 = ph + g2 * om2 if ss else (mu_h + hq * K0 * om3 if conv else 0.0)
-        a3 = accel(th + hh * om2, om3, mu3, 2 * n + 1, zm, hm)[0]
+        a3 = accel(th + hh * om2, om3, mu3, 2 * n + 1, zm, hm, xt)[0]
         # stage 4 (t + h)
         om4 = om + h * a3
         mu4 = pf + g4a * om + g2 * (2.0 * om3 - om) if ss else \
             (mu_f + hh * K0 * om4 if conv else 0.0)
-        a4 = accel(th + h * om3, om4, mu4, 2 * n + 2, ze, he)[0]
+        a4 = accel(th + h * om3, om4, mu4, 2 * n + 2, ze, he, xt)[0]
         if ss:  # exponential update with Simpson's quadratic θ̇ over the step
             um = 0.5 * (om2 + om3)
             y = [e + a_ * om + b_ * um + c_ * om4 for e, a_, b_, c_ in zip(ey, qa, qm, qb)]

@@ -101,9 +101,9 @@ class FlumeLosses:
 class ExtraTorque:
     """The flume's extra torque as a scalar function of (half step j, θ, θ̇) for the simulator.
 
-    Called at every Runge-Kutta stage (~1.5e5 times per record), so the sum is a closure over
-    local floats and lists (:meth:`__call__`); :meth:`terms` returns the parts for the truth
-    by the same arithmetic.
+    Called once per simulator step (~4e4 times per record), so the sum is a closure over
+    local floats and lists (:meth:`__call__`); it keeps every call's parts, which
+    :meth:`record` returns for the truth. One instance serves one simulation.
 
     Parameters
     ----------
@@ -171,8 +171,13 @@ class ExtraTorque:
                 return t_d, t_w, t_o, t_b, p_v, m * area * p_v
             return t_d, t_w, t_o, t_b, p_v, 0.0
 
+        seen = self._seen = []
+        keep = seen.append
+
         def total(j, th, om):
-            t_d, t_w, t_o, t_b, _, t_v = terms(j, th, om)
+            parts = terms(j, th, om)
+            keep(parts)
+            t_d, t_w, t_o, t_b, _, t_v = parts
             return t_d + t_w + t_o + t_b + t_v
 
         self.terms = terms
@@ -181,10 +186,13 @@ class ExtraTorque:
     def __call__(self, j: int, th: float, om: float) -> float:
         return self._total(j, th, om)
 
-    def record(self, theta, theta_dot, step: int = 1) -> dict[str, np.ndarray]:
-        """Every term at the samples (θ_n, θ̇_n) of half step j = 2 n ``step`` [N m], [Pa]."""
-        parts = np.array([self.terms(2 * step * n, a, b)
-                          for n, (a, b) in enumerate(zip(theta, theta_dot))]).reshape(-1, 6)
+    def record(self, step: int = 1) -> dict[str, np.ndarray]:
+        """Every term as the simulator used it, one value per ``step`` calls [N m], [Pa].
+
+        The simulator calls the torque once per time step at the step's start state (see
+        :func:`flumekit.flap.simulator.simulate`), so the k-th call is the k-th output sample.
+        """
+        parts = np.array(self._seen[::step], dtype=float).reshape(-1, 6)
         names = ("torque_vortex_drag", "torque_wetted_length", "torque_overtopping",
                  "torque_bearing", "chamber_pressure_valve", "torque_valve")
         return dict(zip(names, parts.T))
