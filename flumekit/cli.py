@@ -49,7 +49,6 @@ def _graph(pipe):
     reads; planning itself writes nothing."""
     import json
 
-    from flumekit.campaign import load_campaign
     from flumekit.pipeline.engine import Graph
     from flumekit.stages import build_rules, virtual
     from flumekit.stages.context import Context
@@ -73,13 +72,48 @@ def _graph(pipe):
                                 f"Check 'raw' in {pipe.path}")
         lazy = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
     if lazy is None:
-        ctx = Context(campaign=load_campaign(raw), processed=pipe.processed, params=pipe.stages)
+        ctx = Context(campaign=_campaign(raw, pipe.processed), processed=pipe.processed,
+                      params=pipe.stages)
         return Graph(build_rules(ctx))
     from flumekit.synth.campaign import virtual_campaign
 
     campaign = virtual_campaign(raw, *lazy)
     rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages))
     return Graph(rules + virtual.rules(rules, raw, *lazy, [r.id for r in campaign.runs]))
+
+
+def _campaign(raw: Path, processed: Path):
+    """``load_campaign(raw)``, from a cache in the processed folder while no TOML file of the
+    campaign changed (size and modification time): parsing 141 run files is most of a no-op
+    make on the paper campaign."""
+    import os
+    import pickle
+
+    import flumekit.campaign as code
+    from flumekit.campaign import load_campaign
+
+    runs = raw / "runs"
+    files = [Path(code.__file__), raw / "campaign.toml",
+             *(sorted(runs.glob("*/run.toml")) if runs.is_dir() else [])]
+    key = []
+    for f in files:
+        st = os.stat(f)
+        key.append((str(f), st.st_size, st.st_mtime_ns))
+    cache = processed / ".flumekit-campaign.pickle"
+    try:
+        with open(cache, "rb") as fh:
+            old_key, campaign = pickle.load(fh)
+        if old_key == key:
+            return campaign
+    except (OSError, pickle.UnpicklingError, EOFError, ValueError, AttributeError, TypeError):
+        pass  # no cache, or one from another flumekit version: read the TOML files
+    campaign = load_campaign(raw)
+    if processed.is_dir():
+        from flumekit.io.atomic import atomic_path
+
+        with atomic_path(cache) as tmp:
+            tmp.write_bytes(pickle.dumps((key, campaign)))
+    return campaign
 
 
 def _targets(pipe, graph, names: list[str]) -> list[str]:
@@ -340,12 +374,9 @@ def cmd_report(args) -> int:
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
+    from flumekit import __version__  # not importlib.metadata: 0.2 s on every call
 
-    try:
-        return version("flumekit")
-    except PackageNotFoundError:
-        return "unknown"
+    return __version__
 
 
 def _global_options(sub: bool) -> argparse.ArgumentParser:

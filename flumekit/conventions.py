@@ -63,8 +63,10 @@ VARIABLES: dict[str, Variable] = {
                            "sea_water_pressure"),
     "calibration_voltage": _V("V", "probe voltage at a static calibration level"),
     # --- calibration ---
-    "calibration_coefficients": _V("m V-n",
-                                   "calibration polynomial coefficients, eta = sum c_n V^n"),
+    # c_n has the unit m V-n, which differs per order: UDUNITS has no such unit, so the
+    # variable is declared dimensionless and its long name says the unit of each c_n
+    "calibration_coefficients": _V("1", "calibration polynomial coefficients, eta = sum c_n V^n "
+                                   "with c_n in m V-n"),
     "calibration_r2": _V("1", "coefficient of determination of the calibration fit"),
     "calibration_residual": _V("m", "calibration fit residual"),
     "calibration_rms_residual": _V("m", "root-mean-square calibration residual"),
@@ -154,7 +156,7 @@ VARIABLES: dict[str, Variable] = {
     "beam_velocity": _V("m s-1", "velocity along the beam"),
     "amplitude": _V("1", "echo amplitude (raw counts)"),
     "u": _V("m s-1", "longitudinal velocity", "sea_water_x_velocity"),
-    "w": _V("m s-1", "vertical velocity", "sea_water_upward_velocity"),
+    "w": _V("m s-1", "vertical velocity", "upward_sea_water_velocity"),
     "u_rms": _V("m s-1", "RMS of the longitudinal velocity fluctuation"),
     "w_rms": _V("m s-1", "RMS of the vertical velocity fluctuation"),
     "tke": _V("m2 s-2", "turbulent kinetic energy from the available components"),

@@ -86,7 +86,7 @@ def test_every_dataset_has_units_long_names_and_history(built_once):
     files = sorted((built_once / "processed" / "small").rglob("*.nc"))
     assert files
     for f in files:
-        with xr.open_dataset(f) as ds:
+        with xr.open_dataset(f, decode_times=False) as ds:  # time: seconds since start
             assert {"history", "source", "Conventions", "title"} <= set(ds.attrs), f
             for name, var in {**ds.coords, **ds.data_vars}.items():
                 assert "long_name" in var.attrs, (f, name)
@@ -265,7 +265,11 @@ def test_kill_9_of_a_parallel_driver_leaves_no_worker(project):
     import signal
     import time
 
-    driver = _popen(project, "-j", "2", "waves/*", "flap/*")
+    # output to a file, not a pipe: a surviving worker would hold a pipe open forever
+    with open(project / "make.log", "w") as log:
+        driver = subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                                   "pipelines/small.toml", "-j", "2", "waves/*", "flap/*"],
+                                  cwd=project, stdout=log, stderr=log)
     workers: list[int] = []
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and len(workers) < 2:
@@ -274,7 +278,7 @@ def test_kill_9_of_a_parallel_driver_leaves_no_worker(project):
     assert len(workers) >= 2, "the pool workers did not start"
     time.sleep(2.0)  # the workers are busy building
     driver.send_signal(signal.SIGKILL)
-    driver.communicate()
+    driver.wait()
     deadline = time.monotonic() + 20
     while time.monotonic() < deadline and any(_alive(p) for p in workers):
         time.sleep(0.2)
@@ -290,13 +294,19 @@ def test_ctrl_c_exits_130_and_leaves_no_temporary_file(project, jobs):
     import signal
     import time
 
-    driver = _popen(project, "-j", jobs, "waves/*", "flap/*", start_new_session=True)
+    log = open(project / "make.log", "w+")
+    driver = subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                               "pipelines/small.toml", "-j", jobs, "waves/*", "flap/*"],
+                              cwd=project, stdout=log, stderr=log, start_new_session=True)
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and not (project / "processed/small/eta").exists():
         time.sleep(0.2)
     time.sleep(1.0)
     os.killpg(driver.pid, signal.SIGINT)  # what a terminal's Ctrl-C sends: the whole group
-    _, err = driver.communicate(timeout=120)
+    driver.wait(timeout=120)
+    log.seek(0)
+    err = log.read()
+    log.close()
     assert driver.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert _temporaries(project / "processed") == []
@@ -404,3 +414,104 @@ def test_one_run_synthesised_alone_is_the_run_of_the_whole_campaign(tmp_path, sm
         assert (root / rel).read_bytes() == (small_raw / rel).read_bytes(), rel
     with pytest.raises(Exception, match="never writes over"):
         write_virtual_run(root, "T2.00_H0.150_r0")
+
+
+# --- analyst-ready datasets (issue 12, point 6) -------------------------------------------------
+
+def _readme_snippet() -> str:
+    text = (ROOT / "README.md").read_text()
+    blocks = [b.split("```", 1)[0] for b in text.split("```python")[1:]]
+    (snippet,) = [b for b in blocks if "open_mfdataset" in b]
+    return snippet
+
+
+@pytest.mark.parametrize("stage", ["eta", "waves", "flap", "comparison", "uvp"])
+def test_readme_open_mfdataset_keeps_every_run_and_its_coordinates(built_once, stage):
+    import warnings
+
+    files = sorted((built_once / "processed/small" / stage).glob("*.nc"))
+    assert files
+    code = _readme_snippet().replace("processed/default/flap/*.nc",
+                                     str(built_once / "processed/small" / stage / "*.nc"))
+    scope: dict = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FutureWarning)  # no default that xarray is changing
+        exec(code, scope)
+    ds = scope["ds"]
+    assert ds.sizes["run"] == len(files)
+    for i, f in enumerate(files):
+        with xr.open_dataset(f) as one:
+            for c in ("run", "wave_period", "wave_height", "repeat", "uvp_elevation"):
+                got = ds[c].values if ds[c].ndim == 0 else ds[c].values[i]
+                assert got == one[c].values or (got != got and one[c].values != one[c].values), (
+                    f, c, got, one[c].values)
+
+
+# --- CF (issue 12, point 7) ---------------------------------------------------------------------
+
+_CF_CHECK = """
+import json, sys, warnings
+warnings.simplefilter("ignore")
+from compliance_checker.runner import CheckSuite
+suite = CheckSuite()
+suite.load_all_available_checkers()
+out = {}
+for path in sys.argv[1:]:
+    results, _ = suite.run_all(suite.load_dataset(path), ["cf:1.8"], skip_checks=[])["cf:1.8"]
+    errors = []
+    def walk(rs):
+        for r in rs:
+            if r.weight == 3 and r.value is not None:
+                ok = r.value if isinstance(r.value, bool) else r.value[0] == r.value[1]
+                if not ok:
+                    errors.extend(r.msgs or [r.name])
+            walk(r.children or [])
+    walk(results)
+    out[path] = errors
+print(json.dumps(out))
+"""
+
+
+def _cf_errors(paths) -> dict[str, list[str]]:
+    """The CF 1.8 errors (high-priority failures) compliance-checker finds in each file; in its
+    own process (it and xarray opening the same HDF5 files in one process can crash)."""
+    import json
+
+    result = subprocess.run([sys.executable, "-c", _CF_CHECK, *map(str, paths)],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def test_every_kind_of_file_has_no_cf_error(built_once):
+    pytest.importorskip("compliance_checker")
+    out = built_once / "processed/small"
+    kinds = ["calibration.nc", "eta/T3.50_H0.250_r0.nc", "waves/T3.50_H0.250_r0.nc",
+             "flap/T3.50_H0.250_r0.nc", "comparison/T3.50_H0.250_r0.nc",
+             "uvp/uvp_z0.300_r0.nc", "uvp_field.nc", "waves_summary.nc", "flap_summary.nc",
+             "comparison_summary.nc", "models/hydro.nc", "ballscrew/kinematics.nc",
+             "ballscrew/efficiency.nc", "ballscrew/thermal_lumped.nc",
+             "ballscrew/thermal_fem.nc"]
+    errors = _cf_errors([out / k for k in kinds])
+    assert len(errors) == len(kinds)
+    assert {k: e for k, e in errors.items() if e} == {}
+    # time in seconds since the record start, read back by flumekit as plain seconds
+    from flumekit.io.netcdf import read_dataset
+
+    with xr.open_dataset(out / "eta/T3.50_H0.250_r0.nc", decode_times=False) as ds:
+        assert ds["time"].attrs["units"].startswith("seconds since ")
+    assert read_dataset(out / "eta/T3.50_H0.250_r0.nc")["time"].dtype.kind == "f"
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in (ROOT / "pipelines").glob("*.toml")))
+def test_every_shipped_pipeline_plans_on_a_fresh_clone(tmp_path, name):
+    """Each pipeline plans its whole build without writing anything (the small one is built by
+    the tests above)."""
+    project = _fresh(tmp_path)
+    shutil.copy(ROOT / "pipelines" / name, project / "pipelines" / name)
+    result = flumekit("make", "-n", "--pipeline", f"pipelines/{name}", cwd=project)
+    assert result.returncode == 0, result.stderr
+    steps = result.stdout.splitlines()
+    assert any(s.startswith("would build synth/campaign") for s in steps)
+    assert any(s.startswith("would build figure/fig10") for s in steps)
+    assert not (project / "raw").exists() and not (project / "processed").exists()

@@ -11,6 +11,8 @@ from pathlib import Path
 #: every temporary name :func:`atomic_path` makes contains this, so that a build can find the
 #: temporaries a killed build left behind (and nothing else)
 TMP_MARK = ".flumekit-tmp"
+#: temporaries being written in this process, for :func:`remove_active` on a fatal signal
+_ACTIVE: set[str] = set()
 
 
 def umask() -> int:
@@ -46,12 +48,25 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         os.fchmod(fd, 0o666 & ~umask())
     finally:
         os.close(fd)
+    _ACTIVE.add(tmp)
     try:
         yield Path(tmp)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+    finally:
+        _ACTIVE.discard(tmp)
+
+
+def remove_active() -> None:
+    """Remove the temporaries this process is writing (called by a process about to die of a
+    signal, which will not unwind through :func:`atomic_path`)."""
+    for tmp in list(_ACTIVE):
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
 
 
 def remove_orphans(folder: Path) -> list[Path]:

@@ -27,8 +27,9 @@ from flumekit.pipeline.state import State
 
 
 def _key(p) -> str:
-    # abspath, not resolve: no file-system call per path, and the graph is built once per make
-    return os.path.abspath(p)
+    # no Path objects and no file-system call: the graph and the no-op make touch every path
+    s = os.fspath(p)
+    return s if s.startswith("/") else os.path.abspath(s)
 
 
 class Graph:
@@ -75,7 +76,8 @@ class Graph:
     def match(self, patterns: Iterable[str]) -> list[str]:
         found: list[str] = []
         for pat in patterns:
-            hits = [t for t in self.rules if fnmatch.fnmatchcase(t, pat)]
+            hits = (fnmatch.filter(self.rules, pat) if any(c in pat for c in "*?[")
+                    else [pat] if pat in self.rules else [])
             if not hits:
                 raise FlumekitError(f"no target matches '{pat}' (see `flumekit list`)")
             found += [t for t in hits if t not in found]
@@ -107,10 +109,10 @@ class Graph:
 def signature(rule: Rule, state: State) -> dict:
     inputs = {}
     for name, p in sorted(rule.inputs.items()):
-        p = Path(p)
-        if not p.exists():
-            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
-        inputs[name] = state.identity(p)
+        try:
+            inputs[name] = state.identity(p)
+        except FileNotFoundError:
+            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing") from None
     return {"version": rule.version, "params": rule.params_hash(), "inputs": inputs}
 
 
@@ -129,25 +131,32 @@ def provenance(rule: Rule, state: State, root: Path | None) -> dict:
 
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Reason to rebuild ``rule`` (None when it is up to date)."""
-    for name, p in rule.inputs.items():
-        if not graph.produced(p) and not Path(p).exists():
-            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
-    missing = [n for n, p in rule.outputs.items() if not Path(p).exists()]
+    exists = os.path.exists
+    missing = [n for n, p in rule.outputs.items() if not exists(p)]
     if rule.source:
         # a rule that creates raw data (the virtual flume) runs only where nothing exists yet:
         # it is never forced and never re-run over files that are there
         return f"output {missing[0]} missing" if missing else None
+
+    def check_inputs() -> None:
+        for name, p in rule.inputs.items():
+            if not exists(p) and not graph.produced(p):
+                raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
+
     if force:
+        check_inputs()
         return "forced"
     if missing:
+        check_inputs()
         return f"output {missing[0]} missing"
     upstream = [d for d in graph.deps(rule.target) if d in rebuilt]
     if upstream:
         return f"input from {upstream[0]} is rebuilt"
     old = state.targets.get(rule.target)
     if old is None:
+        check_inputs()
         return "never built"
-    new = signature(rule, state)
+    new = signature(rule, state)  # an input missing here is an error naming it
     if old.get("version") != new["version"]:
         return f"rule version {old.get('version')} -> {new['version']}"
     if old.get("params") != new["params"]:
@@ -340,7 +349,8 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
                 report.ran.append((t, reason, seconds))
                 events.finished(t, seconds)
     finally:
-        state.save()
+        if state.dirty or report.ran or report.failed:  # a no-op make writes nothing
+            state.save()
         events.close()
     report.seconds = time.perf_counter() - t_start
     if first_error is not None and not keep_going:

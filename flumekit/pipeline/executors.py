@@ -4,13 +4,12 @@ Dask is the only scale-out engine (DESIGN.md §4): a scheduler address given wit
 ``--scheduler`` or the standard ``DASK_SCHEDULER_ADDRESS`` sends rules to its workers.
 
 Pool workers die with their driver: they ignore Ctrl-C (the driver handles it and stops them),
-turn SIGTERM into a normal exit (so atomic writes remove their temporary files), and on Linux
-ask the kernel for a SIGTERM when the driver dies, even by ``kill -9``.
+on SIGTERM remove the temporary files they were writing and exit, and on Linux ask the kernel
+for a SIGTERM when the driver dies, even by ``kill -9``.
 """
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import os
 import signal
 import sys
@@ -47,7 +46,9 @@ class SerialExecutor(Executor):
     """Runs each rule at once in this process (the default, and the easiest to debug)."""
 
     def submit(self, fn, *args):
-        fut: cf.Future = cf.Future()
+        import concurrent.futures as cf  # here: a no-op make never needs it
+
+        fut = cf.Future()
         try:
             fut.set_result(fn(*args))
         except Exception as e:  # delivered through the future; Ctrl-C is not caught
@@ -59,7 +60,13 @@ class SerialExecutor(Executor):
 
 
 def _terminate(signum, frame):
-    raise SystemExit(128 + signum)
+    # not SystemExit: concurrent.futures would catch it inside a task, report it to a driver
+    # that may be dead, and wait for the next task forever. Remove what this worker was
+    # writing and leave at once.
+    from flumekit.io.atomic import remove_active
+
+    remove_active()
+    os._exit(128 + signum)
 
 
 def _worker_init() -> None:
@@ -82,9 +89,11 @@ class PoolExecutor(Executor):
     """A local pool of ``jobs`` processes (or threads)."""
 
     def __init__(self, jobs: int, kind: str = "processes"):
+        import concurrent.futures as cf
+
         self.kind = kind
         if kind == "threads":
-            self.pool: cf.Executor = cf.ThreadPoolExecutor(jobs)
+            self.pool = cf.ThreadPoolExecutor(jobs)
         else:
             import multiprocessing as mp
 
@@ -96,6 +105,8 @@ class PoolExecutor(Executor):
         return self.pool.submit(fn, *args)
 
     def wait_any(self, futures):
+        import concurrent.futures as cf
+
         done, _ = cf.wait(futures, return_when=cf.FIRST_COMPLETED)
         return list(done)
 
@@ -108,7 +119,7 @@ class PoolExecutor(Executor):
         self.pool.shutdown(wait=False, cancel_futures=True)
         workers = mp.active_children()
         for p in workers:
-            p.terminate()  # SIGTERM: the worker exits through its atomic writes' clean-up
+            p.terminate()  # SIGTERM: the worker removes its temporaries and exits
         deadline = time.monotonic() + 10.0
         for p in workers:
             p.join(max(0.0, deadline - time.monotonic()))

@@ -10,7 +10,6 @@ from __future__ import annotations
 import fcntl
 import json
 import os
-import socket
 import sys
 import time
 from collections.abc import Iterator
@@ -44,7 +43,7 @@ def build_lock(folder: Path, wait: float | None = None,
                         raise FlumekitError(f"{path}: another build holds the lock ({holder}); "
                                             f"gave up after {wait:g} s") from None
                     time.sleep(0.2)
-        me = {"pid": os.getpid(), "host": socket.gethostname(), "command": " ".join(sys.argv),
+        me = {"pid": os.getpid(), "host": os.uname().nodename, "command": " ".join(sys.argv),
               "since": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
         os.ftruncate(fd, 0)
         os.pwrite(fd, json.dumps(me).encode(), 0)

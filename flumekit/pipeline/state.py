@@ -19,12 +19,18 @@ from flumekit.io.atomic import atomic_path
 from flumekit.pipeline.rules import file_digest
 
 
+def _key(p) -> str:
+    s = os.fspath(p)
+    return s if s.startswith("/") else os.path.abspath(s)
+
+
 class State:
     def __init__(self, path: Path):
         self.path = path
         self.files: dict[str, list] = {}
         self.targets: dict[str, dict] = {}
-        self.content: dict[str, list] = {}  # path -> [file hash, content digest]
+        self.content: dict[str, str] = {}  # file hash -> content digest
+        self.dirty = False  # a file was hashed anew since the state was read
         if path.exists():
             try:
                 data = json.loads(path.read_text())
@@ -37,25 +43,29 @@ class State:
     def hash(self, path: Path) -> str:
         """Content hash of ``path`` (cached while its size and mtime are unchanged)."""
         st = os.stat(path)
-        key = os.path.abspath(path)
+        key = _key(path)
         cached = self.files.get(key)
         if cached and cached[0] == st.st_size and cached[1] == st.st_mtime_ns:
             return cached[2]
         h = file_digest(path)
         self.files[key] = [st.st_size, st.st_mtime_ns, h]
+        self.dirty = True
         return h
 
     def identity(self, path: Path) -> str:
         """The content digest its writer reported for the current bytes of ``path``, else the
-        hash of its bytes."""
+        hash of its bytes (keyed by the bytes' hash, so a moved project keeps it)."""
         h = self.hash(path)
-        known = self.content.get(os.path.abspath(path))
-        return known[1] if known and known[0] == h else h
+        return self.content.get(h, h)
 
     def written(self, path: Path, digest: str) -> None:
-        self.content[os.path.abspath(path)] = [self.hash(path), digest]
+        self.content[self.hash(path)] = digest
+        self.dirty = True
 
     def save(self) -> None:
+        live = {entry[2] for entry in self.files.values()}
+        self.content = {h: d for h, d in self.content.items() if h in live}
+        self.dirty = False
         with atomic_path(self.path) as tmp:
             tmp.write_text(json.dumps({"files": self.files, "targets": self.targets,
                                        "content": self.content}))

@@ -306,6 +306,17 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
                   root / "truth" / "calibration.nc")
 
 
+def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
+             probe_x: dict[str, float]) -> str:
+    """The text of a virtual run's ``run.toml``."""
+    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
+             f"repeat = {repeat}"]
+    if z is not None:
+        lines.append(f"uvp_elevation = {z}")
+    lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in probe_x.items()]
+    return "\n".join(lines) + "\n"
+
+
 def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
                truth: Truth, rng, n_steady: int, flap_hydro=None) -> None:
     from flumekit.synth.flap import flap_record
@@ -318,12 +329,7 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     # record: travel time from the wavemaker + ramp + steady waves, rounded to whole seconds
     travel = abs(truth.x_wavemaker) / float(group_velocity(period, depth))
     duration = float(np.ceil(travel + (35 + n_steady + 10) * period))
-    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
-             f"repeat = {repeat}"]
-    if z is not None:
-        lines.append(f"uvp_elevation = {z}")
-    lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in xp.items()]
-    (run_dir / "run.toml").write_text("\n".join(lines) + "\n")
+    (run_dir / "run.toml").write_text(run_toml(kind, period, height, repeat, z, xp))
 
     wave_kw = dict(period=period, height=height, depth=depth, reflection=truth.reflection,
                    reflection_phase=truth.reflection_phase, x_reflector=0.0,
