@@ -48,6 +48,17 @@ def test_separation_figure(waves):
     assert len(fig.axes[1].patches) == 1
 
 
+def test_separation_figure_of_separate_output(waves):
+    from flumekit.waves import separate
+
+    steady = waves["eta"].sel(time=slice(float(waves.steady_start), float(waves.steady_end)))
+    result = separate(steady.sel(probe=["WP1", "WP2", "WP3"]), 0.825)
+    fig = _passes(wave_figs.separation(result))
+    # five periods of the detected fundamental, not the whole record
+    period = 1.0 / result.attrs["fundamental_frequency"]
+    assert np.ptp(fig.axes[0].lines[0].get_xdata()) == pytest.approx(5 * period, abs=0.05)
+
+
 def test_flap_time_series_figures(flaps):
     ds = flaps[-1]
     fig = _passes(figs.figure_5b(ds))
