@@ -215,3 +215,19 @@ def test_png_at_300_dpi_and_print_size(tmp_path):
     assert (width, height) == (3.5 * 300, 2.5 * 300)
     with pytest.raises(ValueError, match="format 'jpg'"):
         save(_figure(), tmp_path / "f.jpg")
+
+
+def test_figure_rules_write_every_format(campaign, tmp_path):
+    from flumekit.errors import FlumekitError
+    from flumekit.stages import figures as stage
+    from flumekit.stages.context import Context
+
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, params={}))
+    assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
+    assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
+               for r in rules)
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
+    assert all(list(r.outputs) == ["svg"] for r in stage.rules(ctx))
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
+    with pytest.raises(FlumekitError, match="formats"):
+        stage.rules(ctx)
