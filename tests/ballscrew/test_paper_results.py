@@ -29,8 +29,8 @@ def test_every_stated_result_holds_within_the_papers_precision(reference):
 def test_hottest_point_of_the_fem_field_is_in_the_generator(reference):
     _, _, fem_ds = reference
     assert scenario.hottest_region(fem_ds) == "stator"
-    ct = fem_ds["control_temperature"].isel(time=-1)
-    assert float(ct.sel(control_point="stator")) == pytest.approx(float(ct.max()))
+    hottest = fem_ds["control_temperature"].isel(time=-1).argmax("control_point")
+    assert str(fem_ds["control_region"].values[int(hottest)]) in scenario.GENERATOR_REGIONS
 
 
 def test_steady_fraction_is_one_for_a_long_run(reference):

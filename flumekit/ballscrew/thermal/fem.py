@@ -306,8 +306,9 @@ class PTOGeometry:
     regions: tuple[Region, ...] = field(default_factory=_default_regions)
     air_temperature: float = 293.15
     control_points: tuple[tuple[str, float, float], ...] = (
-        ("stator", 0.099, 0.175), ("rotor", 0.0725, 0.175), ("screw_in_generator", 0.0, 0.175),
-        ("screw_under_nut", 0.0, 0.65), ("nut", 0.054, 0.65), ("stator_end", 0.099, 0.30))
+        ("stator", 0.099, 0.175), ("stator_bore", 0.0835, 0.175), ("stator_end", 0.099, 0.30),
+        ("rotor", 0.0725, 0.175), ("screw_in_generator", 0.0, 0.175),
+        ("screw_under_nut", 0.0, 0.65), ("nut", 0.054, 0.65))
 
     def __post_init__(self):
         for reg in self.regions:
@@ -315,6 +316,14 @@ class PTOGeometry:
                 raise GeometryError(f"region '{reg.name}' has an empty or inverted extent")
             if reg.conductivity <= 0 or reg.heat_capacity <= 0 or reg.convection < 0:
                 raise GeometryError(f"region '{reg.name}': k and ρc must be > 0, h >= 0")
+
+
+def _region_of(geometry: PTOGeometry, r: float, z: float) -> str:
+    """Name of the region holding the point (r, z) (the first one, on a shared boundary)."""
+    for g in geometry.regions:
+        if g.r0 <= r <= g.r1 and g.z0 <= z <= g.z1:
+            return g.name
+    raise GeometryError(f"control point (r = {r} m, z = {z} m) lies outside the PTO section")
 
 
 def pto_mesh(geometry: PTOGeometry, radial_cell_size: float = 0.005,
@@ -428,7 +437,8 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
          "radial_coordinate": ("node", mesh.p[0]), "axial_coordinate": ("node", mesh.p[1]),
          "cell_nodes": (("cell", "corner"), mesh.t.T.astype(np.int32)),
          "cell_region": ("cell", region.astype(np.int32)),
-         "control_radius": ("control_point", pts[0]), "control_axial": ("control_point", pts[1])},
+         "control_radius": ("control_point", pts[0]), "control_axial": ("control_point", pts[1]),
+         "control_region": ("control_point", [_region_of(geometry, r, z) for r, z in pts.T])},
         coords={"time": times, "snapshot_time": snap_t,
                 "control_point": [p[0] for p in geometry.control_points],
                 "region": [g.name for g in geometry.regions]},
