@@ -14,6 +14,9 @@ Equation of motion about the hinge (Cummins 1962; Eq. (11)-(13) in Brito et al. 
 * T_g = C θ (``restoring="linear"``, as in Eq. A1) or C sin θ (``"sine"``, exact for a rigid
   submerged flap, :func:`flumekit.flap.torque.gravity_torque`).
 * c_d θ̇|θ̇|: optional quadratic viscous drag torque [N m s2].
+* T_x(t, θ, θ̇): optional further torque acting on the flap (``extra_torque`` of
+  :func:`simulate`), for physics beyond this model's (the virtual flume's losses,
+  :mod:`flumekit.synth.flume`), which records its own parts.
 * PTO: :class:`LinearDamper` (T_PTO = ν_pto θ̇) or :class:`HydraulicCylinder`: Eq. (13) in the
   signed form of :mod:`flumekit.flap.pressure`, P = s (K_p θ̇|θ̇| + I_p θ̈) clamped at the vapour
   pressure, torque T_p = −m A P with the signed lever arm m(θ) of
@@ -264,7 +267,8 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
              radiation: StateSpace | xr.DataArray | None,
              pto: LinearDamper | HydraulicCylinder | None, *, dt: float,
              duration: float | None = None, theta0: float = 0.0,
-             theta_dot0: float = 0.0, output_step: float | None = None) -> xr.Dataset:
+             theta_dot0: float = 0.0, output_step: float | None = None,
+             extra_torque=None) -> xr.Dataset:
     """Integrate the flap's equation of motion (module notes) with a fixed step.
 
     Parameters
@@ -279,6 +283,10 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
     duration : Simulated time [s]; default the excitation record.
     theta0, theta_dot0 : Initial angle [rad] and angular velocity [rad s-1].
     output_step : Output interval [s], a multiple of ``dt`` (default every step).
+    extra_torque : Optional callable ``(j, theta, theta_dot) -> torque`` [N m] acting on the
+        flap, with j the half-step index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is
+        called once per step, in order, at the step's start, and held over the step
+        (operator splitting, first order in the term: for slowly varying losses).
 
     Returns
     -------
@@ -303,9 +311,13 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
                                 f"[{t0}, {t0 + n_steps * dt}] s")
     every = _output_every(output_step, dt)
     out = _sim.integrate(f, flap, radiation, pto, dt=dt, n_steps=n_steps, t0=t0,
-                         theta0=theta0, theta_dot0=theta_dot0, output_every=every)
+                         theta0=theta0, theta_dot0=theta_dot0, output_every=every,
+                         extra_torque=extra_torque)
     time = t0 + dt * np.arange(0, n_steps + 1, every)
-    return _sim.to_dataset(out, time, flap, radiation, pto, dt, {"output_step": every * dt})
+    attrs = {"output_step": every * dt}
+    if extra_torque is not None:
+        attrs["extra_torque"] = getattr(extra_torque, "description", repr(extra_torque))
+    return _sim.to_dataset(out, time, flap, radiation, pto, dt, attrs)
 
 
 def _output_every(output_step, dt) -> int:
@@ -346,7 +358,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
                  irf_duration: float = 30.0,
                  order: int | None = None, match_frequency: float | None = None,
                  max_spread: float | None = None, taper: float = 2.0,
-                 inertia: float | None = None, output_step: float | None = None) -> xr.Dataset:
+                 inertia: float | None = None, output_step: float | None = None,
+                 extra_torque=None) -> xr.Dataset:
     """Simulate one flume run from its incident elevation at the flap (pure; for the stages).
 
     Parameters
@@ -378,6 +391,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
         effect starts.
     inertia : Flap inertia about the hinge [kg m2]; default ``campaign.flap.inertia``.
     output_step : Output interval [s], a multiple of ``dt``.
+    extra_torque : Further torque on the flap, passed to :func:`simulate` (its half steps
+        are those of the elevation's time grid at step ``dt``).
 
     Returns
     -------
@@ -394,4 +409,4 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
                          dt=dt, radiation=radiation, irf_duration=irf_duration, order=order,
                          match_frequency=match_frequency, max_spread=max_spread,
                          restoring=restoring, drag_coefficient=drag_coefficient,
-                         output_step=output_step)
+                         output_step=output_step, extra_torque=extra_torque)

@@ -28,7 +28,7 @@ the step); everything else is vectorised per chunk of steps.
 Energy balance. With the stored energy E = ½ (I + A∞) θ̇² + V(θ) (V = ½ C θ², or
 C (1 − cos θ) for the sine law) the equation of motion gives
 
-    E(t) − E(0) = W_exc − W_rad − W_pto − W_fric − W_drag,
+    E(t) − E(0) = W_exc (+ W_extra) − W_rad − W_pto − W_fric − W_drag,
 
 W_x = ∫₀ᵗ P_x dt with P_exc = T_exc θ̇, P_rad = μ θ̇ (radiated, including the energy held by the
 memory), P_pto the PTO's useful absorption, P_fric its friction loss and P_drag = c_d |θ̇|³.
@@ -400,10 +400,14 @@ def stable_step(body: BodyDynamics, damping: float = 0.0) -> float:
 def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *, dt: float,
               n_steps: int, t0: float = 0.0, theta0: float = 0.0, theta_dot0: float = 0.0,
               output_every: int = 1, chunk: int = 20000, energy_growth: float = 1.0,
-              eta: Callable | None = None) -> dict:
+              eta: Callable | None = None, extra_torque: Callable | None = None) -> dict:
     """Integrate from rest (or θ0, θ̇0) over ``n_steps`` steps of ``dt``; arrays every
     ``output_every`` steps (module notes). ``excitation(t)`` gives T_exc [N m] on an array of
-    times (None: free response). Returns a dict of arrays and attributes for :func:`to_dataset`.
+    times (None: free response). ``extra_torque(j, θ, θ̇)`` [N m] is a further torque acting on
+    the body (j the half-step index from the start: time t0 + j dt/2), called once per step in
+    order at the step's start and held over the step (operator splitting, first order in the
+    term: for slowly varying losses beyond the model, e.g. the virtual flume's); its work is
+    ``work_extra``. Returns a dict of arrays for :func:`to_dataset`.
     """
     dt = check_parameter("dt", dt, 0.0, strict=True)
     theta0 = check_parameter("theta0", theta0)
@@ -413,7 +417,7 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
                                 "positive integer")
     j0 = body.inertia + body.added_inertia_infinite
     kern = (pto if pto is not None else LinearPTO(0.0)).kernel(j0, dt)
-    stepper = _stepper(body, radiation, kern, dt, n_steps)
+    stepper = _stepper(body, radiation, kern, dt, n_steps, extra_torque)
     guard = _Guard(body, dt, getattr(pto, "damping", 0.0), energy_growth)
     state = stepper.start(theta0, theta_dot0)
     keep: dict[str, list] = {}
@@ -437,6 +441,8 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
         arrays = _post(raw, t, exc[::2][: last - first], body, pto)
         carry = _energies(arrays, dt, carry)
         guard.check_energy(arrays, first, t0)
+        if extra_torque is None:
+            del arrays["torque_extra"], arrays["work_extra"]
         sel = slice((-first) % output_every, None, output_every)
         arrays = {k: v[sel] for k, v in arrays.items()}
         if eta is not None:
@@ -483,7 +489,7 @@ class _Guard:
         # the largest energy put in so far, this chunk included: a diverging run creates
         # energy exponentially, orders of magnitude above it by the end of the chunk
         supplied = (float(a["energy_stored"][0]) if first == 0 else 0.0) + float(
-            np.max(np.abs(a["work_excitation"])))
+            np.max(np.abs(a["work_excitation"]) + np.abs(a["work_extra"])))
         self.scale = supplied = max(self.scale, supplied)
         bad = np.flatnonzero(created > self.growth * supplied + 1e-9)
         if bad.size:
@@ -505,6 +511,8 @@ def _post(raw: dict, t, exc, body: BodyDynamics, pto) -> dict:
          "torque_gravity": body.hydrostatic_stiffness * (np.sin(th) if sine else th),
          "torque_inertia": body.inertia * acc}
     a["torque_hydrodynamic"] = exc + a["torque_radiation"] + a["torque_drag"]
+    xt = np.asarray(raw["extra"])
+    a["torque_extra"] = xt
     p = (pto if pto is not None else LinearPTO(0.0)).outputs(
         t, th, om, acc, np.asarray(raw["out0"]), np.asarray(raw["out1"]), np.asarray(raw["s0"]),
         np.asarray(raw["s1"]))
@@ -517,11 +525,12 @@ def _post(raw: dict, t, exc, body: BodyDynamics, pto) -> dict:
     a["_p_pto"] = (p["torque_pto"] - p["torque_friction"]) * om
     a["_p_fric"] = p["torque_friction"] * om
     a["_p_drag"] = body.drag_coefficient * np.abs(om) ** 3
+    a["_p_extra"] = xt * om
     return a
 
 
 _WORKS = (("work_excitation", "_p_exc"), ("work_radiation", "_p_rad"), ("work_pto", "_p_pto"),
-          ("work_friction", "_p_fric"), ("work_drag", "_p_drag"))
+          ("work_friction", "_p_fric"), ("work_drag", "_p_drag"), ("work_extra", "_p_extra"))
 
 
 def _energies(a: dict, dt: float, carry):
@@ -541,8 +550,8 @@ def _energies(a: dict, dt: float, carry):
     else:
         new["e0"] = carry["e0"]
     a["energy_balance_residual"] = (a["energy_stored"] - new["e0"] - a["work_excitation"]
-                                    + a["work_radiation"] + a["work_pto"] + a["work_friction"]
-                                    + a["work_drag"])
+                                    - a["work_extra"] + a["work_radiation"] + a["work_pto"]
+                                    + a["work_friction"] + a["work_drag"])
     return new
 
 
@@ -551,7 +560,8 @@ class _Stepper(NamedTuple):
     run: Callable
 
 
-def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: int) -> _Stepper:
+def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: int,
+             extra: Callable | None = None) -> _Stepper:
     """The time-stepping loop (module notes) as a restartable closure over chunks of steps."""
     C = body.hydrostatic_stiffness
     sine = body.restoring == "sine"
@@ -579,7 +589,8 @@ def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: 
             M, K0, Khalf, kint, khalf = cv["M"], cv["K0"], cv["Khalf"], cv["kint"], cv["khalf"]
             K1r, Khr, hist = cv["K1r"], cv["Khr"], cv["hist"]
         n1 = last - first
-        o_th, o_om, o_acc, o_mu, o_0, o_1, o_z, o_h = ([0.0] * n1 for _ in range(8))
+        o_th, o_om, o_acc, o_mu, o_0, o_1, o_z, o_h, o_x = ([0.0] * n1 for _ in range(9))
+        xt = 0.0
         hh, h6, hq = 0.5 * h, h / 6.0, 0.25 * h
         mu_h = mu_f = ph = pf = 0.0
         ey = y
@@ -608,10 +619,12 @@ def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: 
                     mu_f = h * (S1 - (0.5 * kint[n + 1] * w0 if n + 1 <= M + 1 else 0.0))
                 else:
                     mu1 = 0.0
+                if extra is not None:  # frozen over the step (operator splitting)
+                    xt = extra(2 * n, th, om)
                 rest = exc[2 * k] - mu1 - (C * sin(th) if sine else C * th) - cd * om * abs(om)
-                a1, p1, f1 = pto_accel(t, th, om, rest, z, hl)
+                a1, p1, f1 = pto_accel(t, th, om, rest + xt, z, hl)
                 o_th[k], o_om[k], o_acc[k], o_mu[k], o_0[k], o_1[k] = th, om, a1, mu1, p1, f1
-                o_z[k], o_h[k] = z, hl
+                o_z[k], o_h[k], o_x[k] = z, hl, xt
                 if not (isfinite(th) and isfinite(om) and isfinite(a1)):
                     raise _StepFailure(n, "the state became non-finite", o_th)
                 if final and k == n1 - 1:
@@ -626,20 +639,20 @@ def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: 
                 th2 = th + hh * om
                 mu2 = ph + g2 * om if ss else (mu_h + hq * K0 * om2 if conv else 0.0)
                 a2 = pto_accel(t + hh, th2, om2, te_h - mu2 - (C * sin(th2) if sine else C * th2)
-                               - cd * om2 * abs(om2), zm, hm)[0]
+                               - cd * om2 * abs(om2) + xt, zm, hm)[0]
                 # stage 3 (t + h/2)
                 om3 = om + hh * a2
                 th3 = th + hh * om2
                 mu3 = ph + g2 * om2 if ss else (mu_h + hq * K0 * om3 if conv else 0.0)
                 a3 = pto_accel(t + hh, th3, om3, te_h - mu3 - (C * sin(th3) if sine else C * th3)
-                               - cd * om3 * abs(om3), zm, hm)[0]
+                               - cd * om3 * abs(om3) + xt, zm, hm)[0]
                 # stage 4 (t + h)
                 om4 = om + h * a3
                 th4 = th + h * om3
                 mu4 = pf + g4a * om + g2 * (2.0 * om3 - om) if ss else \
                     (mu_f + hh * K0 * om4 if conv else 0.0)
                 a4 = pto_accel(t + h, th4, om4, te_f - mu4 - (C * sin(th4) if sine else C * th4)
-                               - cd * om4 * abs(om4), ze, he)[0]
+                               - cd * om4 * abs(om4) + xt, ze, he)[0]
                 if ss:  # exponential update with Simpson's quadratic θ̇ over the step
                     um = 0.5 * (om2 + om3)
                     y = [e + a_ * om + b_ * um + c_ * om4 for e, a_, b_, c_ in zip(ey, qa, qm, qb)]
@@ -653,7 +666,7 @@ def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: 
         except SimulationError as e:  # a PTO leaving its range: say at which step
             raise _StepFailure(n, str(e), o_th) from None
         raw = {"theta": o_th, "theta_dot": o_om, "theta_ddot": o_acc, "memory": o_mu,
-               "out0": o_0, "out1": o_1, "s0": o_z, "s1": o_h}
+               "out0": o_0, "out1": o_1, "s0": o_z, "s1": o_h, "extra": o_x}
         return raw, {"th": th, "om": om, "y": y, "s0": z, "s1": hl, "S1prev": S1prev}
 
     return _Stepper(start, run)
@@ -665,8 +678,11 @@ _ATTRS = {
     "work_pto": ("J", "energy absorbed by the PTO (friction excluded)"),
     "work_friction": ("J", "energy dissipated by PTO friction"),
     "work_drag": ("J", "energy dissipated by quadratic drag"),
+    "work_extra": ("J", "work of the extra torque on the body"),
+    "torque_extra": ("N m", "extra torque acting on the body (held over each step)"),
     "energy_stored": ("J", "kinetic (with A_inf) plus potential energy of the body"),
-    "energy_balance_residual": ("J", "E - E0 - (W_exc - W_rad - W_pto - W_fric - W_drag)"),
+    "energy_balance_residual": ("J", "E - E0 - (W_exc + W_extra - W_rad - W_pto - W_fric "
+                                     "- W_drag)"),
     "eta_incident": ("m", "incident wave elevation at the reference line"),
 }
 
@@ -707,7 +723,8 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
              match_frequency: float | None = None, restoring: str = "linear",
              drag_coefficient: float = 0.0, angle_limit: float = math.pi / 2,
              output_step: float | None = None, t_start: float | None = None,
-             energy_growth: float = 1.0, max_spread: float | None = None) -> xr.Dataset:
+             energy_growth: float = 1.0, max_spread: float | None = None,
+             extra_torque: Callable | None = None) -> xr.Dataset:
     """Simulate a one-dof body described by a coefficient container in a wave.
 
     Parameters
@@ -730,6 +747,8 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
     irf_duration, order : Length of K(t) [s] and state-space order (default: 1 % on K(t)).
     match_frequency : [rad s-1] (see ``hydro``).
     max_spread : Largest accepted spread of the Ogilvie estimates of A∞ (None: report only).
+    extra_torque : Further torque ``(j, θ, θ̇) -> T`` [N m] on the body (:func:`integrate`);
+        its ``description`` attribute, if any, goes into the result's attributes.
     restoring, drag_coefficient, angle_limit : :class:`BodyDynamics`.
     output_step : Output interval [s], a multiple of ``dt`` (default every step).
     t_start : Start time [s] (default 0, or the record's start).
@@ -780,7 +799,9 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
         raise BadParameterError(f"bad parameter: output_step = {output_step} s must be a "
                                 f"multiple of dt = {dt} s")
     out = integrate(f, body, rad, pto, dt=dt, n_steps=n_steps, t0=t0, output_every=every,
-                    energy_growth=energy_growth, eta=eta)
+                    energy_growth=energy_growth, eta=eta, extra_torque=extra_torque)
+    if extra_torque is not None:
+        attrs["extra_torque"] = getattr(extra_torque, "description", repr(extra_torque))
     time = t0 + dt * np.arange(0, n_steps + 1, every)
     return to_dataset(out, time, body, rad, pto, dt, {**attrs, "output_step": every * dt,
                                                       "added_inertia_infinite_spread": spread})
