@@ -64,9 +64,9 @@ def hydro(inputs, outputs, params) -> None:
     import numpy as np
 
     from flumekit import conventions
-    from flumekit.io.netcdf import write_dataset
-    from flumekit.hydro import coefficients as hy
     from flumekit.flap.renzi_dias.model import coefficients
+    from flumekit.hydro import coefficients as hy
+    from flumekit.io.netcdf import write_dataset
 
     if params["coefficients"] == "bem":
         from flumekit.errors import FlumekitError
@@ -169,9 +169,9 @@ def periodic_extension(eta, period: float, before: int, after: int):
 
 
 def _simulated(params, flap, waves, hydro, campaign):
-    from flumekit.hydro.coefficients import merge_complex
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
+    from flumekit.hydro.coefficients import merge_complex
 
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=params["spin_up_periods"], after=5)

@@ -83,21 +83,28 @@ def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
     return bool(np.all(d > 0) or np.all(d < 0))
 
 
+def non_monotonic(voltage: xr.DataArray, calibration: xr.Dataset) -> list[tuple[str, float, float]]:
+    """Probes whose calibration polynomial is not monotonic over the voltages ``voltage``
+    (probe, time) spans, where a voltage no longer maps to a unique level: (probe, min, max)."""
+    coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
+    vmin, vmax = voltage.min("time").values, voltage.max("time").values
+    return [(str(p), float(vmin[i]), float(vmax[i]))
+            for i, p in enumerate(voltage["probe"].values)
+            if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i]))]
+
+
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
     Warns (:class:`CalibrationWarning`) when a polynomial is not monotonic over the voltage range
-    the record spans, where a voltage no longer maps to a unique level.
+    the record spans (:func:`non_monotonic`).
     """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     powers = calibration["polynomial_order"]
-    eta = (coef * voltage ** powers).sum("polynomial_order")
-    vmin, vmax = voltage.min("time").values, voltage.max("time").values
-    for i, p in enumerate(voltage["probe"].values):
-        if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i])):
-            warnings.warn(f"probe {p}: calibration polynomial is not monotonic over the recorded "
-                          f"voltages [{vmin[i]:.4g}, {vmax[i]:.4g}] V", CalibrationWarning,
-                          stacklevel=2)
+    eta = (coef * voltage ** powers).sum("polynomial_order", skipna=False)
+    for p, lo, hi in non_monotonic(voltage, calibration):
+        warnings.warn(f"probe {p}: calibration polynomial is not monotonic over the recorded "
+                      f"voltages [{lo:.4g}, {hi:.4g}] V", CalibrationWarning, stacklevel=2)
     eta = eta.transpose("probe", "time").rename("eta")
     eta.attrs = conventions.attrs("eta")
     return eta
