@@ -30,7 +30,7 @@ def read_toml(path: Path) -> dict[str, Any]:
         raise InputError(path, f"not valid TOML ({e})") from None
 
 
-class _Table:
+class Table:
     """A TOML table that knows its file and section, so that errors can name both."""
 
     def __init__(self, data: dict, path: Path, section: str = ""):
@@ -39,12 +39,12 @@ class _Table:
     def _name(self, key: str) -> str:
         return f"{self.section}.{key}" if self.section else key
 
-    def sub(self, key: str) -> _Table:
+    def sub(self, key: str) -> Table:
         value = self.data.get(key)
         if not isinstance(value, dict):
             raise InputError(self.path, "missing section" if value is None else "not a section",
                              field=self._name(key))
-        return _Table(value, self.path, self._name(key))
+        return Table(value, self.path, self._name(key))
 
     def has(self, key: str) -> bool:
         return key in self.data
@@ -229,7 +229,7 @@ class Campaign:
 
 
 def _read_run(path: Path, probes: Probes) -> Run:
-    t = _Table(read_toml(path), path)
+    t = Table(read_toml(path), path)
     r = t.sub("run")
     kind = r.text("kind", "waves")
     if kind not in ("waves", "uvp"):
@@ -252,7 +252,7 @@ def load_campaign(root: str | Path) -> Campaign:
     """Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``."""
     root = Path(root)
     path = root / "campaign.toml"
-    t = _Table(read_toml(path), path)
+    t = Table(read_toml(path), path)
     c = t.sub("campaign")
     fl = t.sub("flume")
     flume = Flume(fl.number("water_depth", positive=True), fl.number("width", positive=True),

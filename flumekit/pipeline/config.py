@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from flumekit.campaign import _Table, read_toml
+from flumekit.campaign import Table, read_toml
 from flumekit.errors import InputError
 
 
@@ -48,7 +48,7 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     """Read a pipeline file; relative paths in it are relative to the file's folder."""
     path = Path(path)
     data = _read(path)
-    t = _Table(data, path)
+    t = Table(data, path)
     p = t.sub("pipeline")
     base = path.parent
     raw = (base / p.text("raw")).resolve()

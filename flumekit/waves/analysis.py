@@ -11,7 +11,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
-from flumekit.waves.separation import _as_probe_time, separate
+from flumekit.waves.separation import as_probe_time, separate
 from flumekit.waves.theory import G, energy_flux
 
 
@@ -58,7 +58,7 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     """
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
     # quasi-steady test below, so the window avoids them, and `separate` checks the window
-    v, t, x, probes = _as_probe_time(eta.fillna(0.0))
+    v, t, x, probes = as_probe_time(eta.fillna(0.0))
     v = np.asarray(eta.transpose("probe", "time").values, dtype=float)
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
