@@ -14,6 +14,8 @@ import xarray as xr
 
 from flumekit import conventions
 
+__all__ = ["R2_WARNING", "CalibrationWarning", "apply", "fit", "is_monotonic"]
+
 R2_WARNING = 0.999
 
 
@@ -121,16 +123,43 @@ def _submersions(voltage, levels) -> xr.Dataset:
 
 
 def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
-    """True if the calibration polynomial's derivative keeps one sign on [v_min, v_max]."""
+    """Whether the calibration polynomial's derivative keeps one sign on [v_min, v_max].
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        Polynomial coefficients c_0 ... c_n, lowest order first [m V^-n].
+    v_min, v_max : float
+        Voltage range [V].
+
+    Returns
+    -------
+    bool
+        True where a voltage in the range maps to a unique level.
+    """
     deriv = np.polynomial.polynomial.polyder(coefficients)
     vv = np.linspace(v_min, v_max, 201)
     d = np.polynomial.polynomial.polyval(vv, deriv)
     return bool(np.all(d > 0) or np.all(d < 0))
 
 
-def non_monotonic(voltage: xr.DataArray, calibration: xr.Dataset) -> list[tuple[str, float, float]]:
-    """Probes whose calibration polynomial is not monotonic over the voltages ``voltage``
-    (probe, time) spans, where a voltage no longer maps to a unique level: (probe, min, max)."""
+def non_monotonic(voltage: xr.DataArray,
+                  calibration: xr.Dataset) -> list[tuple[str, float, float]]:
+    """Probes whose calibration polynomial is not monotonic over the voltages of a record.
+
+    Parameters
+    ----------
+    voltage : xarray.DataArray
+        Probe voltages [V], dims ("probe", "time"); NaN (masked samples) ignored.
+    calibration : xarray.Dataset
+        Output of :func:`fit` holding every probe of ``voltage``.
+
+    Returns
+    -------
+    list of (str, float, float)
+        (probe, lowest, highest recorded voltage [V]) of every probe whose polynomial is not
+        monotonic there, where a voltage no longer maps to a unique level.
+    """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     vmin, vmax = voltage.min("time").values, voltage.max("time").values
     return [(str(p), float(vmin[i]), float(vmax[i]))
@@ -141,8 +170,23 @@ def non_monotonic(voltage: xr.DataArray, calibration: xr.Dataset) -> list[tuple[
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
-    Warns (:class:`CalibrationWarning`) when a polynomial is not monotonic over the voltage range
-    the record spans (:func:`non_monotonic`).
+    Parameters
+    ----------
+    voltage : xarray.DataArray
+        Probe voltages [V], dims ("probe", "time").
+    calibration : xarray.Dataset
+        Output of :func:`fit` holding every probe of ``voltage``.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``eta`` [m], dims ("probe", "time").
+
+    Warns
+    -----
+    CalibrationWarning
+        When a polynomial is not monotonic over the voltage range the record spans, where a
+        voltage no longer maps to a unique level (:func:`non_monotonic`).
     """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     powers = calibration["polynomial_order"]
