@@ -136,7 +136,7 @@ def render(page):
         res = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--virtual-time-budget=10000", "--enable-logging=stderr", "--v=0", "--dump-dom",
-             probe.as_uri()], capture_output=True, text=True, timeout=120)
+             probe.resolve().as_uri()], capture_output=True, text=True, timeout=120)
     finally:
         probe.unlink()
     dom = res.stdout
