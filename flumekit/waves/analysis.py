@@ -84,7 +84,10 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     """
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
-    v, t, x, probes = as_probe_time(eta)
+    # samples masked by quality control (NaN) may remain: the cycles holding them fail the
+    # quasi-steady test below, so the window avoids them, and `separate` checks the window
+    v, t, x, probes = as_probe_time(eta.fillna(0.0))
+    v = np.asarray(eta.transpose("probe", "time").values, dtype=float)
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     if n_harmonics < 1:
