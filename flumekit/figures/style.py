@@ -101,29 +101,17 @@ def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
 
 # --- human labels -------------------------------------------------------------------------
 
-#: labels of categorical coordinate values that are code identifiers (sources of a comparison,
-#: regions and control points of the ball-screw PTO model)
+#: labels of categorical coordinate values (sources of a comparison, regions and control points
+#: of the ball-screw PTO model) where replacing underscores by spaces does not read well
 VALUE_LABELS = {
-    "experiment": "experiment",
     "analytical": "linear model (Renzi & Dias)",
     "simulator": "time-domain simulator",
-    "bearing_seat": "bearing seat",
     "screw_generator": "screw in the generator",
     "screw_in_generator": "screw in the generator",
     "screw_free": "screw, free length",
     "screw_swept": "screw, swept by the nut",
     "screw_under_nut": "screw under the nut",
     "screw_swept_end": "screw, swept end",
-    "rotor": "rotor",
-    "rotor_hub": "rotor hub",
-    "stator_bore": "stator bore",
-    "air_gap": "air gap",
-    "stator": "stator",
-    "stator_end": "stator end",
-    "ball_track": "ball track",
-    "nut": "nut",
-    "generator": "generator",
-    "screw": "screw",
 }
 
 
@@ -214,8 +202,13 @@ def title(fig, text: str) -> None:
     """The figure's title (left-aligned above every panel, wrapped to the figure's width)."""
     import textwrap
 
-    # about 13 characters per inch at 9 pt
+    # about 13 characters per inch at 9 pt; "T = 3.8 s" stays on one line (no-break spaces
+    # outside mathtext, where textwrap does not break)
     width = int(fig.get_size_inches()[0] * 13)
+    parts = text.split("$")
+    parts[::2] = [re.sub(r" ?= ", "\u00a0=\u00a0", p) for p in parts[::2]]
+    parts[::2] = [re.sub(r"(\d) (s|m|%|°|K|min|W)\b", "\\1\u00a0\\2", p) for p in parts[::2]]
+    text = "$".join(parts)
     lines = [textwrap.fill(line, width) for line in text.split("\n")]
     fig.suptitle("\n".join(lines), x=0.01, ha="left", fontsize=STYLE["figure.titlesize"])
 
