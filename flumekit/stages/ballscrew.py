@@ -14,6 +14,19 @@ DEFAULTS = {"amplitude": 1.0, "period": 3.8, "samples_per_period": 380, "lead": 
             "cycle_duration": 600.0, "total_duration": 6000.0, "lumped_time_step": 1.0,
             "fem_time_step": 10.0, "radial_cell_size": 0.005, "axial_cell_size": 0.02,
             "fem_order": 1}
+DOCS = {
+    "amplitude": "heave amplitude of the buoy's reference motion [m]",
+    "period": "period of the reference motion [s]",
+    "samples_per_period": "samples per period of the reference motion [-]",
+    "lead": "ball-screw lead [m]",
+    "cycle_duration": "thermal models: duration of one operating cycle [s]",
+    "total_duration": "thermal models: simulated duration [s]",
+    "lumped_time_step": "lumped thermal model time step [s]",
+    "fem_time_step": "finite-element thermal model time step [s]",
+    "radial_cell_size": "finite-element mesh: radial cell size [m]",
+    "axial_cell_size": "finite-element mesh: axial cell size [m]",
+    "fem_order": "finite-element order [-]",
+}
 STEPS = ("kinematics", "efficiency", "thermal_lumped", "thermal_fem")
 #: which step's dataset each figure of the paper is drawn from
 FIGURE_SOURCES = {9: "thermal_lumped", 10: "thermal_fem", 11: "efficiency", 12: "efficiency",

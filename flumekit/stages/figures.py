@@ -12,6 +12,12 @@ from flumekit.stages.context import Context
 
 VERSION = "3"
 DEFAULTS = {"run": "auto", "format": "png", "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
+DOCS = {
+    "run": "run of the single-run figures; 'auto': the paper's T = 3.5 s, H = 0.25 m run, else "
+           "the first",
+    "format": "figure file format (png, pdf, svg)",
+    "pressure_runs": "[period [s], height [m]] of the runs of figure 7",
+}
 
 
 def _figure_run(ctx: Context, wanted: str) -> str | None:
@@ -39,10 +45,13 @@ def rules(ctx: Context) -> list[Rule]:
 
     run = _figure_run(ctx, p["run"])
     if run is not None:
-        waves, flap = ctx.out("waves", f"{run}.nc"), ctx.out("flap", f"{run}.nc")
+        waves = ctx.out("waves", f"{run}.nc")
         fig("fig05a", "waves:figure_5a", {"waves": waves})
-        fig("fig05b", "flap:figure_5b", {"flap": flap})
         fig("fig06a", "waves:figure_6a", {"waves": waves})
+        fig("separation", "separation:figure_separation", {"waves": waves})
+    if run is not None and "flap" in ctx.campaign.instruments:
+        flap = ctx.out("flap", f"{run}.nc")
+        fig("fig05b", "flap:figure_5b", {"flap": flap})
         fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
         fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves,
                                         "comparison": ctx.out("comparison", f"{run}.nc")})

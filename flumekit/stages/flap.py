@@ -8,16 +8,27 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "2"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
+DOCS = {
+    "cutoff": "cut-off of the zero-phase 4th-order Butterworth low-pass applied to theta before "
+              "differentiation [Hz]",
+    "tolerance": "quasi-steady window of the flap motion: relative crest tolerance [-] (0.02)",
+    "n_phase": "phase points per cycle of the phase averages [-]",
+    "max_flagged_fraction": "largest fraction of encoder samples outside the domain of Eq. (1) "
+                            "that is interpolated over instead of refused [-]",
+}
 
 
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     params = ctx.stage_params("flap", DEFAULTS)
+    if "flap" not in c.instruments:
+        return []
     out = []
     for run in c.runs:
-        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
+        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate,
+             "dialect": c.dialect("flap"), "time_offset": run.clock.get("flap", 0.0)}
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
-                        inputs={"flap": run.path / "flap.csv", "campaign": ctx.campaign_file,
+                        inputs={"flap": run.file("flap"), "campaign": ctx.campaign_file,
                                 "waves": ctx.out("waves", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
@@ -34,7 +45,8 @@ def build(inputs, outputs, params) -> None:
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
-    raw = read_flap(inputs["flap"], params["sampling_rate"])
+    raw = read_flap(inputs["flap"], params["sampling_rate"], params["dialect"],
+                    time_offset=params["time_offset"])
     waves = read_dataset(inputs["waves"])
     ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
                      raw["chamber_pressure"].values, campaign=campaign, period=params["period"],

@@ -23,6 +23,22 @@ DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "
             "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
             "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
             "spin_up_periods": 20}
+DOCS = {
+    "coefficients": "hydrodynamic coefficients: 'renzi_dias' (thin plate in the channel) or "
+                    "'bem' (Capytaine, thick flap, open water)",
+    "omega_min": "Renzi-Dias frequency grid: lowest angular frequency [rad s-1]",
+    "omega_max": "Renzi-Dias frequency grid: highest angular frequency [rad s-1]",
+    "n_omega": "Renzi-Dias frequency grid: number of frequencies [-]",
+    "bem_omega_min": "BEM frequency grid: lowest angular frequency [rad s-1]",
+    "bem_omega_max": "BEM frequency grid: highest angular frequency [rad s-1]",
+    "bem_n_omega": "BEM frequency grid: number of frequencies [-]",
+    "bem_panel_size": "BEM panel size [m]",
+    "dt": "time step of the time-domain simulator [s]",
+    "simulator": "run the time-domain simulator beside the linear model",
+    "friction": "include the campaign's LuGre PTO friction in the simulator",
+    "spin_up_periods": "periods of the incident wave the simulator runs before the compared "
+                       "window [-]",
+}
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
 PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
 
@@ -30,6 +46,8 @@ PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     p = ctx.stage_params("models", DEFAULTS)
+    if "flap" not in c.instruments:
+        return []
     if p["coefficients"] not in ("renzi_dias", "bem"):
         from flumekit.errors import FlumekitError
 
@@ -64,9 +82,9 @@ def hydro(inputs, outputs, params) -> None:
     import numpy as np
 
     from flumekit import conventions
-    from flumekit.io.netcdf import write_dataset
-    from flumekit.hydro import coefficients as hy
     from flumekit.flap.renzi_dias.model import coefficients
+    from flumekit.hydro import coefficients as hy
+    from flumekit.io.netcdf import write_dataset
 
     if params["coefficients"] == "bem":
         from flumekit.errors import FlumekitError
@@ -169,9 +187,9 @@ def periodic_extension(eta, period: float, before: int, after: int):
 
 
 def _simulated(params, flap, waves, hydro, campaign):
-    from flumekit.hydro.coefficients import merge_complex
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
+    from flumekit.hydro.coefficients import merge_complex
 
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=params["spin_up_periods"], after=5)

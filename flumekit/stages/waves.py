@@ -8,7 +8,21 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "2"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
-            "tolerance": 0.02, "min_cycles": 10}
+            "tolerance": 0.02, "min_cycles": 10, "noise_factor": 3.0}
+DOCS = {
+    "method": "separation method: 'mansard_funke' (3 probes), 'goda_suzuki' (2) or "
+              "'zelt_skjelbreia' (2 or more)",
+    "x_ref": "position where the incident and reflected waves are returned [m] (the flap hinge)",
+    "n_harmonics": "harmonics of the measured frequency in the analysis band [-]",
+    "bound_harmonics": "solve harmonics n >= 2 as bound waves (wavenumber n k1)",
+    "tolerance": "quasi-steady window: largest relative deviation of a cycle's crest from the "
+                 "amplitude scale [-] (Brito et al. 2020, §2.5: 0.02)",
+    "min_cycles": "fewest whole periods the probes' common quasi-steady window must hold [-]",
+    "noise_factor": "quasi-steady fallback when 'tolerance' leaves fewer than min_cycles "
+                    "periods: each probe's tolerance becomes noise_factor x the robust relative "
+                    "scatter of its crests (3: a steady cycle is rejected with probability "
+                    "0.3 %); 0 = the paper's criterion only [-]",
+}
 
 
 def rules(ctx: Context) -> list[Rule]:
@@ -39,12 +53,25 @@ def build(inputs, outputs, params) -> None:
                          method=params["method"], separation_probes=params["separation_probes"],
                          n_harmonics=params["n_harmonics"],
                          bound_harmonics=params["bound_harmonics"],
-                         tolerance=params["tolerance"], min_cycles=params["min_cycles"])
+                         tolerance=params["tolerance"], min_cycles=params["min_cycles"],
+                         noise_factor=params["noise_factor"])
     for w in caught:
         if issubclass(w.category, UserWarning):
             print(f"warning: run {params['run']}: {w.message}")
     write_run(ds, outputs, params, "Incident and reflected waves",
               f"flumekit waves stage from {inputs['eta']}")
+
+
+def report(path) -> str:
+    """One line of a run's wave statistics for the make summary."""
+    from flumekit.io.netcdf import read_dataset
+
+    ds = read_dataset(path)
+    crit = ds["steady_tolerance"].attrs.get("criterion", "tolerance") \
+        if "steady_tolerance" in ds else "tolerance"
+    return (f"first-harmonic Kr = {float(ds.reflection_coefficient):.3f}, "
+            f"H_I = {float(ds.incident_height):.4g} m, T = {float(ds.measured_period):.4g} s, "
+            f"{int(ds.steady_cycles)} steady cycles ({crit} criterion)")
 
 
 def summary(inputs, outputs, params) -> None:
