@@ -33,7 +33,7 @@ def read_toml(path: Path) -> dict[str, Any]:
         raise InputError(path, f"not valid TOML ({e})") from None
 
 
-class _Table:
+class Table:
     """A TOML table that knows its file and section, so that errors can name both."""
 
     def __init__(self, data: dict, path: Path, section: str = ""):
@@ -42,12 +42,12 @@ class _Table:
     def _name(self, key: str) -> str:
         return f"{self.section}.{key}" if self.section else key
 
-    def sub(self, key: str) -> _Table:
+    def sub(self, key: str) -> Table:
         value = self.data.get(key)
         if not isinstance(value, dict):
             raise InputError(self.path, "missing section" if value is None else "not a section",
                              field=self._name(key))
-        return _Table(value, self.path, self._name(key))
+        return Table(value, self.path, self._name(key))
 
     def has(self, key: str) -> bool:
         return key in self.data

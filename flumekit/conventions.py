@@ -298,6 +298,7 @@ VARIABLES: dict[str, Variable] = {
     "control_temperature": _V("K", "temperature at a control point"),
     "control_radius": _V("m", "radial coordinate of the control point"),
     "control_axial": _V("m", "axial coordinate of the control point"),
+    "control_region": _V("1", "material region holding the control point"),
     # --- truth of the virtual flume ---
 }
 

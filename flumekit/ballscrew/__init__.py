@@ -2,5 +2,6 @@
 
 The buoy and its inverse dynamics (:mod:`~flumekit.ballscrew.buoy`), the ball screw and its
 efficiency (:mod:`~flumekit.ballscrew.screw`), elastohydrodynamic lubrication of the ball
-contacts (:mod:`~flumekit.ballscrew.ehl`) and the thermal models (:mod:`~flumekit.ballscrew.thermal`).
+contacts (:mod:`~flumekit.ballscrew.ehl`) and the thermal models
+(:mod:`~flumekit.ballscrew.thermal`).
 """

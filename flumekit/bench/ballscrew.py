@@ -5,17 +5,22 @@ iterations between efficiency, ball load and film thickness. Errors of the cycle
 power and of the cycle-mean efficiency against a fine, fully converged reference (16384 samples,
 iterated to 1e-12). Also the lumped thermal model: exact discretisation vs explicit Euler.
 
-Run: ``python -m flumekit.bench.ballscrew`` (``run(quick=True)`` for a short table).
+Last, the paper's stated results for its reference scenario against flumekit's
+(:mod:`flumekit.ballscrew.scenario`), with how close the FEM field is to its steady state at
+100 min (the paper says steady; the FEM's slowest mode, rotor and shaft, has τ ≈ 38 min).
+
+Run: ``flumekit bench ballscrew`` (``--quick`` for a short table).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from flumekit.bench import best_time
+from flumekit.ballscrew import buoy, scenario
 from flumekit.ballscrew import screw as ballscrew
-from flumekit.ballscrew import buoy
+from flumekit.ballscrew.thermal import fem
 from flumekit.ballscrew.thermal import lumped as thermal_lumped
+from flumekit.bench import best_time
 
 
 def _state(samples: int, iterations: int):
@@ -58,6 +63,20 @@ def run(quick: bool = False) -> str:
             x = x + dt * (src + air - k @ x) / c
         rows.append(f"{dt:>7.0f} {np.max(np.abs(temp[-1] - fine[-1])):>13.2e} "
                     f"{np.max(np.abs(x - fine[-1])):>13.2e} {sec * 1e3:>10.3f}")
+    eff, th, fem_ds = scenario.reference_scenario()
+    rows += ["", "Senatore & De Simone (2022), reference scenario: stated results",
+             scenario.table(scenario.stated_results(eff, th, fem_ds)), "",
+             "FEM at 100 min, share of the steady rise (mean of the last cycle) per control point"]
+    system, _ = fem.assemble_pto(fem.PTOGeometry())
+    sources = fem.source_powers(th, th.sizes["time"] - 1)  # one step: the mean over the run
+    steady = fem.solve_steady(system, {g: float(p[0]) for g, p in sources.items()
+                                       if g in system.unit_loads})
+    pts = np.stack([fem_ds["control_radius"].values, fem_ds["control_axial"].values])
+    t0 = float(th.attrs["initial_temperature"])
+    rise_ss = system.basis.probes(pts) @ steady - t0
+    last = fem_ds["control_temperature"].sel(time=slice(5400.0, 6000.0)).mean("time").values
+    for name, a, b in zip(fem_ds["control_point"].values, last - t0, rise_ss):
+        rows.append(f"  {name:<20} {a:6.1f} K of {b:6.1f} K  ({100 * a / b:5.1f} %)")
     return "\n".join(rows)
 
 

@@ -24,9 +24,9 @@ import xarray as xr
 
 from flumekit.bench import best_time
 from flumekit.campaign import load_campaign
+from flumekit.flap import simulator as S
 from flumekit.hydro import coefficients as H
 from flumekit.hydro import radiation as R
-from flumekit.flap import simulator as S
 from flumekit.hydro.excitation import excitation_torque
 
 KP, IP = 2.0e6, 2.4e4

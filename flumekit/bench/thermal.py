@@ -18,11 +18,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse import linalg as spla
 
-from flumekit.bench import best_time
-from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew import buoy
+from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew.thermal import fem as thermal_fem
 from flumekit.ballscrew.thermal import lumped as thermal_lumped
+from flumekit.bench import best_time
 
 
 def _scenario():
@@ -43,8 +43,7 @@ def _naive(lumped, time_step, cell_r, cell_z):
     """BDF2 with a sparse direct solve at every step (the 'before' of the factorisation)."""
     system, _ = thermal_fem.assemble_pto(thermal_fem.PTOGeometry(), cell_r, cell_z, 1)
     factor = int(round(time_step))
-    powers = {g: thermal_fem._mean_over_steps(p, factor)
-              for g, p in thermal_fem._lumped_sources(lumped).items()}
+    powers = thermal_fem.source_powers(lumped, factor)
     m, k = system.capacity, system.stiffness
     a = (1.5 / time_step * m + k).tocsc()
     t = np.full(system.basis.N, 293.15)

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.ballscrew.scenario import GENERATOR_REGIONS
 from flumekit.figures.style import new_figure, style
 
 KELVIN = 273.15
@@ -150,16 +151,25 @@ def figure_10(fem: xr.Dataset):
     return fig
 
 
+def _generator_cells(fem: xr.Dataset) -> np.ndarray:
+    """Mask of the cells in the EMRG (stator, air gap, rotor and its hub)."""
+    names = np.array([str(x) for x in fem["region"].values])
+    return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
+
+
 def figure_17(fem: xr.Dataset):
-    """Fig. 17: temperature fields (°C) at the snapshot times (641, 1840, 3225, 6000 s)."""
+    """Fig. 17: temperature field of the EMRG (°C) at the snapshot times (641, 1840, 3225,
+    6000 s), the paper's most thermally stressed component."""
     r, z = fem["radial_coordinate"].values * 1e3, fem["axial_coordinate"].values * 1e3
-    tri = _triangles(fem)
+    q = fem["cell_nodes"].values[_generator_cells(fem)]
+    tri = np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
+    nodes = np.unique(q)
     fields = fem["temperature_field"].values - KELVIN
-    vmin, vmax = float(fields.min()), float(fields.max())
+    vmin, vmax = float(fields[:, nodes].min()), float(fields[:, nodes].max())
     n = fields.shape[0]
     ncols = min(n, 4)
     with style():
-        fig, axes = new_figure(1, ncols, figsize=(2.2 * ncols + 1, 5.0))
+        fig, axes = new_figure(1, ncols, figsize=(1.9 * ncols + 1.2, 3.6))
         for ax in axes.ravel()[1:]:
             ax.sharey(axes[0, 0])
         for k, ax in enumerate(axes.ravel()[:n]):
@@ -167,25 +177,31 @@ def figure_17(fem: xr.Dataset):
                               vmin=vmin, vmax=vmax)
             ax.set_title(f"({'abcdefgh'[k]}) {fem['snapshot_time'].values[k]:.0f} s")
             ax.set_xlabel("r [mm]")
+            ax.set_xlim(r[nodes].min(), r[nodes].max())
+            ax.set_ylim(z[nodes].min(), z[nodes].max())
             ax.set_aspect("equal")
         axes[0, 0].set_ylabel("axial position [mm]")
+        fig.suptitle("EMRG (rotor, air gap, stator): temperature field")
         fig.colorbar(pc, ax=axes.ravel().tolist(), label="temperature [°C]")
     return fig
 
 
 def figure_18(fem: xr.Dataset):
-    """Fig. 18: time evolution of the temperature at the control points (°C)."""
+    """Fig. 18: time evolution of the EMRG temperature at its control points (°C)."""
     t = fem["time"].values
+    inside = np.isin([str(x) for x in fem["control_region"].values], GENERATOR_REGIONS)
     with style():
         fig, axes = new_figure(figsize=(5.5, 3.6))
         ax = axes[0, 0]
-        for p in fem["control_point"].values:
-            ax.plot(t / 60, fem["control_temperature"].sel(control_point=p).values - KELVIN,
-                    label=str(p))
+        for p in fem["control_point"].values[inside]:
+            pt = fem.sel(control_point=p)
+            label = (f"{str(p).replace('_', ' ')} (r = {float(pt['control_radius']) * 1e3:.0f} "
+                     f"mm, z = {float(pt['control_axial']) * 1e3:.0f} mm)")
+            ax.plot(t / 60, pt["control_temperature"].values - KELVIN, label=label)
         ax.set_xlabel("time [min]")
         ax.set_ylabel("temperature [°C]")
-        ax.set_title("FEM: temperature at control points")
-        ax.legend(fontsize=7)
+        ax.set_title("EMRG temperature (FEM)")
+        ax.legend(fontsize=7, loc="lower right")
     return fig
 
 

@@ -170,7 +170,8 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
-    z, h = _step(float(state[0]), float(state[1]), float(velocity), float(dt), _constants(model))
+    z, h = kernel_step(float(state[0]), float(state[1]), float(velocity), float(dt),
+                       kernel_constants(model))
     return FrictionState(z, h)
 
 
@@ -193,8 +194,8 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
-    z, h = _advance(float(state[0]), float(state[1]), float(velocity_start), float(velocity_end),
-                    float(dt), _constants(model))
+    z, h = kernel_advance(float(state[0]), float(state[1]), float(velocity_start),
+                          float(velocity_end), float(dt), kernel_constants(model))
     return FrictionState(z, h)
 
 
@@ -215,14 +216,20 @@ def friction_force(state: FrictionState, velocity, model: LuGre):
     return model.sigma0 * z + model.sigma1 * zdot + model.sigma2 * v
 
 
-def _constants(m: LuGre) -> tuple:
+def kernel_constants(m: LuGre) -> tuple:
+    """The model's parameters as the plain tuple :func:`kernel_step` and :func:`kernel_advance`
+    take (time-stepping loops call the kernels directly, without a dataclass per step)."""
     return (m.sigma0, m.sigma1, m.sigma2, m.coulomb_force, m.static_force,
             1.0 / m.stribeck_velocity, m.stribeck_exponent, m.minimum_friction_velocity,
             m.film_gain, m.film_max, m.tau_hp, m.tau_hm, m.tau_h0)
 
 
-def _step(z, h, v, dt, c):
-    """One exact frozen-velocity step of Eqs. (A4) and (A6); plain floats for speed."""
+def kernel_step(z, h, v, dt, c):
+    """One exact frozen-velocity step of Eqs. (A4) and (A6); plain floats for speed.
+
+    ``z`` bristle deflection [m], ``h`` film thickness [-], ``v`` velocity [m s-1], ``dt`` step
+    [s], ``c`` from :func:`kernel_constants`; returns the new ``(z, h)``.
+    """
     s0, s1, s2, fc, fs, ivs, n, vb, kf, hmax, thp, thm, th0 = c
     a = abs(v)
     # film state, Eqs. (A6)-(A8): exact exponential towards h_ss for frozen v
@@ -242,13 +249,14 @@ def _step(z, h, v, dt, c):
     return zss + (z - zss) * math.exp(-s0 * a / g * dt), hss + (h - hss) * eh * eh
 
 
-def _advance(z, h, v0, v1, dt, c):
-    """Linear velocity over the step: split at a reversal, else one mid-velocity step."""
+def kernel_advance(z, h, v0, v1, dt, c):
+    """:func:`kernel_step` for a velocity linear from ``v0`` to ``v1`` over the step: split at
+    a reversal, else one mid-velocity step."""
     if v0 * v1 < 0.0:
         s = v0 / (v0 - v1)
-        z, h = _step(z, h, 0.5 * v0, s * dt, c)
-        return _step(z, h, 0.5 * v1, (1.0 - s) * dt, c)
-    return _step(z, h, 0.5 * (v0 + v1), dt, c)
+        z, h = kernel_step(z, h, 0.5 * v0, s * dt, c)
+        return kernel_step(z, h, 0.5 * v1, (1.0 - s) * dt, c)
+    return kernel_step(z, h, 0.5 * (v0 + v1), dt, c)
 
 
 def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = FrictionState(),
@@ -281,14 +289,14 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
         raise ValueError(f"friction_series: dt must be > 0, got {dt}")
     if int(substeps) != substeps or substeps < 1:
         raise ValueError(f"substeps must be an integer >= 1, got {substeps}")
-    c = _constants(model)
+    c = kernel_constants(model)
     n = v.size
     zs = np.empty(n)
     hs = np.empty(n)
     z, h = float(state[0]), float(state[1])
     zs[0], hs[0] = z, h
     vl = v.tolist()
-    adv = _advance
+    adv = kernel_advance
     # sequential by nature: per-step work is a handful of float operations and two exp()
     # (0.4-1.5 million steps per second in CPython, flumekit.bench.flap)
     if substeps == 1:

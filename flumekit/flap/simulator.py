@@ -93,9 +93,9 @@ def _friction_kernels(model: LuGre):
         g = fc + ((1.0 - h) * fs - fc) * exp(-(x if n_exp == 1.0 else x**n_exp))  # Eq. (A5)
         return s0 * z + s1 * (v - s0 * abs(v) * z / g) + s2 * v  # Eqs. (A3)-(A4)
 
-    if all(hasattr(_friction, f) for f in ("_constants", "_step", "_advance")):
-        c = _friction._constants(model)
-        s_, a_ = _friction._step, _friction._advance
+    if all(hasattr(_friction, f) for f in ("kernel_constants", "kernel_step", "kernel_advance")):
+        c = _friction.kernel_constants(model)
+        s_, a_ = _friction.kernel_step, _friction.kernel_advance
         return ((lambda z, h, v, dt: s_(z, h, v, dt, c)),
                 (lambda z, h, v0, v1, dt: a_(z, h, v0, v1, dt, c)), force)
     return ((lambda z, h, v, dt: tuple(_friction.friction_step(FrictionState(z, h), v, dt, model))),
@@ -558,8 +558,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     Dataset of :func:`simulate` on the elevation's time grid spacing ``dt``, plus
     ``eta_incident`` interpolated to the simulation times; attrs name the options.
     """
-    from flumekit.hydro.excitation import excitation_torque
     from flumekit.hydro.coefficients import with_infinite_frequency_inertia
+    from flumekit.hydro.excitation import excitation_torque
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     if "added_inertia_infinite" in hydro and match_frequency is None:

@@ -19,12 +19,15 @@ Brito et al. (2020, App. A) write θ̇ = iωθ, which belongs to the opposite ti
 e^{-iωt} the physically correct derivative is θ̇ = −iωΘ. θ is positive when the top of the
 flap moves towards the beach (+x), the direction the incident waves travel.
 
-Checks before use (DESIGN.md §5): passivity (B ≥ 0, :func:`check_passive`, explicit fix
+Checks before use (DESIGN.md §5): finite values and C > 0 (:func:`hydro_dataset`, always),
+passivity (B ≥ 0, :func:`check_passive`, explicit fix
 :func:`make_passive`) and the infinite-frequency inertia from the Ogilvie (1964) relation at
 every frequency with its spread (:func:`infinite_frequency_inertia`).
 """
 
 from __future__ import annotations
+
+import warnings
 
 import numpy as np
 import xarray as xr
@@ -37,6 +40,10 @@ DIM = "angular_frequency"
 
 class HydroError(FlumekitError, ValueError):
     """Hydrodynamic coefficients that cannot be used as they are (with a report of why)."""
+
+
+class FailedFrequencyWarning(UserWarning):
+    """BEM frequencies with non-finite coefficients were dropped."""
 
 
 def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitation_torque,
@@ -69,6 +76,13 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
             raise HydroError(f"{name} is not finite at omega = {np.round(bad, 4).tolist()} rad/s")
     if not np.isfinite(hydrostatic_stiffness):
         raise HydroError(f"hydrostatic stiffness must be finite, got {hydrostatic_stiffness}")
+    if not hydrostatic_stiffness > 0:
+        raise HydroError(
+            f"hydrostatic stiffness {hydrostatic_stiffness:.6g} N m/rad <= 0: the body has no "
+            "static equilibrium about this axis. A rigid-body BEM result taken about its centre "
+            "of gravity must be transformed to the hinge first "
+            "(flumekit.hydro.rigid_body.about_hinge); a statically unstable body needs its "
+            "restoring spring included in C")
     order = np.argsort(w)
     if np.any(np.diff(w[order]) <= 0):
         raise HydroError("angular frequencies are not distinct")
@@ -159,7 +173,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
 
 
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
-    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (a dataset over ``period``).
+    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (over ``period``).
 
     Parameters
     ----------
@@ -184,7 +198,8 @@ _FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
 
 
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
-                   hydrostatic_stiffness: float | None = None) -> xr.Dataset:
+                   hydrostatic_stiffness: float | None = None,
+                   failed: str = "drop") -> xr.Dataset:
     """Container from a Capytaine result (``cpt.assemble_dataset`` or its netCDF file).
 
     The degree of freedom must be a rotation about the hinge axis, e.g.
@@ -207,6 +222,12 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     wave_direction : Incident wave direction [rad], 0 for waves towards +x.
     hydrostatic_stiffness : C [N m rad-1]; by default the dataset's ``hydrostatic_stiffness``
         (which must then be about the hinge and include the flap's weight).
+    failed : Frequencies where the BEM run failed (non-finite values): "drop" (with a warning
+        naming them) or "raise".
+
+    For a six-dof rigid body (rotations about a body point, as WEC-Sim's files) use
+    :func:`flumekit.hydro.capytaine.read_capytaine` and
+    :func:`flumekit.hydro.rigid_body.about_hinge` instead.
     """
     ds = bem
     if "complex" in ds.dims:
@@ -264,6 +285,15 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     if omega.size != ds.sizes[fdim]:
         raise HydroError("the 'omega' coordinate does not run along the frequency dimension")
     finite = np.isfinite(omega) & (omega > 0)
+    bad = finite & ~(np.isfinite(a.values) & np.isfinite(b.values) & np.isfinite(exc.values))
+    if bad.any():
+        listed = ", ".join(f"{w:.4g}" for w in omega[bad])
+        if failed == "raise":
+            raise HydroError(f"the Capytaine result is not finite at omega = {listed} rad/s "
+                             "(failed BEM frequencies); pass failed='drop' to leave them out")
+        warnings.warn(f"dropped {int(bad.sum())} BEM frequencies with non-finite coefficients:"
+                      f" omega = {listed} rad/s", FailedFrequencyWarning, stacklevel=2)
+        finite &= ~bad
     a_inf = None
     if np.any(np.isinf(omega)):
         a_inf = float(np.real(a.values[np.isinf(omega)][0]))
@@ -318,7 +348,8 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             f"radiation damping is negative at {n} of {hydro.sizes[DIM]} frequencies: "
             f"{pairs}{more}; minimum {rep.attrs['min_damping']:.4g} N m s against a maximum "
             f"{rep.attrs['max_damping']:.4g} N m s. A passive body has B >= 0; use "
-            "flumekit.hydro.coefficients.make_passive(hydro) to clip it to zero, or better coefficients.")
+            "flumekit.hydro.coefficients.make_passive(hydro) to clip it to zero, or better "
+            "coefficients.")
 
 
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:

@@ -28,7 +28,6 @@ import xarray as xr
 from xarray.backends import BackendEntrypoint
 
 from flumekit import conventions
-from flumekit.campaign import UVP
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
 
@@ -89,8 +88,9 @@ def parse_parameters(block: bytes, encoding: str = "cp1252") -> dict[str, dict[s
     """Parse the INI-style parameter block into ``{section: {key: value}}`` (§4.1).
 
     A value ending with a backslash continues on the next line; the backslash stands for a line
-    break inside the value. Numbers become ``int`` (unbounded) or ``float``; multi-line values
-    stay text. Values are decoded one by one with ``encoding`` and ``errors="replace"``.
+    break inside the value. Numbers become ``int`` (unbounded) or ``float``; the free-text keys
+    (``Comment``, ``MeasurementProtocol``) and the multiplexer ``Table`` stay text. Values are
+    decoded one by one with ``encoding`` and ``errors="replace"``.
     """
     sections: dict[str, dict[str, object]] = {}
     current: dict[str, object] = sections.setdefault("", {})
@@ -127,8 +127,8 @@ def parse_parameters(block: bytes, encoding: str = "cp1252") -> dict[str, dict[s
                 rows.append(lines[i].decode("ascii", "replace"))
                 i += 1
             text = "\n".join([head[0].strip(), *rows]) if rows else head[0].strip()
-        current[name] = text if (name in _MULTILINE_KEYS and len(parts) > 1) or name == "Table" \
-            else _typed(text)
+        # free text stays text even when it looks like a number (a Comment "0" is not int 0)
+        current[name] = text if name in _MULTILINE_KEYS else _typed(text)
     if not sections[""]:
         del sections[""]
     return sections
@@ -276,67 +276,114 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
         raise InputError(path, f"file of {size} bytes is shorter than the {HEADER_SIZE}-byte "
                          "header (truncated or not a .mfprof file)")
     with open(path, "rb") as f:
-        head = np.frombuffer(f.read(HEADER_SIZE), dtype=_HEADER)[0]
-        sig = bytes(head["signature"])
-        if not sig.startswith(SIGNATURE):
-            raise InputError(path, "signature is not 'Met-Flow UVP Monitor' (not a .mfprof file)")
-        version = sig[len(SIGNATURE):].strip(b"\n\x00").split(b"\n")[0]
-        if version != b"4":
-            warnings.warn(f"{path}: format version line {version!r}, only '4' is known",
-                          stacklevel=2)
-        param_offset = int(head["param_offset"])
-        n_profiles, flags = int(head["n_profiles"]), int(head["flags"])
-        record_size, n_channels = int(head["record_size"]), int(head["n_channels"])
-        if int(head["reserved1"]) or int(head["reserved2"]):
-            warnings.warn(f"{path}: reserved header fields are not zero", stacklevel=2)
-        if param_offset != HEADER_SIZE + n_profiles * record_size:
-            raise InputError(path, f"header param_offset {param_offset} != 104 + n_profiles "
-                             f"({n_profiles}) x record_size ({record_size}) = "
-                             f"{HEADER_SIZE + n_profiles * record_size}", field="param_offset")
-        if param_offset > size:
-            raise InputError(path, f"file of {size} bytes is truncated: the records end at byte "
-                             f"{param_offset}", field="param_offset")
-        f.seek(param_offset)
-        block = f.read()
-        if not block.strip():
-            raise InputError(path, "parameter block is missing (file truncated after the records)")
-        try:
-            sections = parse_parameters(block, encoding)
-        except ValueError as e:
-            raise InputError(path, f"parameter block: {e}") from None
-        uvp = sections.get("UVP_PARAMETER")
-        if uvp is None:
-            raise InputError(path, "parameter block has no [UVP_PARAMETER] section")
-        mux = sections.get("MUX_PARAMETER", {})
-        for key in ("Frequency", "SoundSpeed", "MaximumDepth", "StartChannel",
-                    "ChannelDistance", "RawDataRange", "ProfileLength"):
-            if not isinstance(uvp.get(key), (int, float)) or not uvp[key] > 0:
-                raise InputError(path, f"parameter missing or not a positive number: "
-                                 f"{uvp.get(key)!r}", field=key)
-        if int(uvp["ProfileLength"]) != n_channels:
-            raise InputError(path, f"ProfileLength {uvp['ProfileLength']} != header n_channels "
-                             f"{n_channels}", field="ProfileLength")
-        amp_stored = bool(flags & 1)
-        if "AmplitudeStored" in uvp and int(uvp["AmplitudeStored"]) != int(amp_stored):
-            raise InputError(path, f"AmplitudeStored={uvp['AmplitudeStored']} disagrees with "
-                             f"header flags={flags}", field="AmplitudeStored")
-        doppler_stored = not int(uvp.get("DoNotStoreDoppler", 0))
-        expected = RECORD_HEADER_SIZE + 2 * n_channels * (int(doppler_stored) + int(amp_stored))
-        if record_size != expected:
-            raise InputError(path, f"record_size {record_size} != 16 + 2 x {n_channels} channels "
-                             f"x {int(doppler_stored) + int(amp_stored)} blocks = {expected}",
-                             field="record_size")
-        if not doppler_stored:
-            raise InputError(path, "file holds no Doppler block (DoNotStoreDoppler=1)")
-        dtype = _record_dtype(n_channels, doppler_stored, amp_stored)
+        head = _read_header(f, path, size)
+        f.seek(int(head["param_offset"]))
+        uvp, mux = _read_parameters(f.read(), path, encoding)
+        n_profiles, n_channels = int(head["n_profiles"]), int(head["n_channels"])
+        amp_stored = _check_layout(path, head, uvp)
         f.seek(HEADER_SIZE)
-        rec = np.fromfile(f, dtype=dtype, count=n_profiles)  # one structured-array read
+        rec = np.fromfile(f, dtype=_record_dtype(n_channels, True, amp_stored),
+                          count=n_profiles)  # one structured-array read
     if rec.size != n_profiles:
         raise InputError(path, f"only {rec.size} of {n_profiles} records could be read")
 
+    index = _valid_records(path, rec, uvp, mux, transducer)
+    rec = rec[index]
+    velocity = _velocity(path, rec["doppler"], uvp, angle_correction)
+
+    attrs = _attributes(path, head, uvp, mux)
+    if int(uvp.get("UseMultiplexer", 0)):
+        attrs["transducer"] = int(transducer)
+    bv_attrs = {"positive": positive, "sign_convention": SIGN_NOTE,
+                "angle_correction": int(angle_correction)}
+    data_vars = {"beam_velocity": (("time", "channel"), velocity, bv_attrs)}
+    if amp_stored:
+        data_vars["amplitude"] = (("time", "channel"), rec["amplitude"])
+    ds = xr.Dataset(
+        data_vars,
+        coords={"time": ("time", rec["time"] / 1e7),
+                "channel": ("channel", np.arange(n_channels)),
+                "distance": ("channel", channel_distance(uvp, n_channels)),
+                "record": ("time", index)},
+        attrs=attrs)
+    return conventions.annotate(ds)
+
+
+def _read_header(f, path: Path, size: int) -> np.void:
+    """The 104-byte header (§2), checked for signature and consistency with the file size."""
+    head = np.frombuffer(f.read(HEADER_SIZE), dtype=_HEADER)[0]
+    sig = bytes(head["signature"])
+    if not sig.startswith(SIGNATURE):
+        raise InputError(path, "signature is not 'Met-Flow UVP Monitor' (not a .mfprof file)")
+    version = sig[len(SIGNATURE):].strip(b"\n\x00").split(b"\n")[0]
+    if version != b"4":
+        warnings.warn(f"{path}: format version line {version!r}, only '4' is known",
+                      stacklevel=3)
+    param_offset = int(head["param_offset"])
+    n_profiles, record_size = int(head["n_profiles"]), int(head["record_size"])
+    if int(head["reserved1"]) or int(head["reserved2"]):
+        warnings.warn(f"{path}: reserved header fields are not zero", stacklevel=3)
+    if param_offset != HEADER_SIZE + n_profiles * record_size:
+        raise InputError(path, f"header param_offset {param_offset} != 104 + n_profiles "
+                         f"({n_profiles}) x record_size ({record_size}) = "
+                         f"{HEADER_SIZE + n_profiles * record_size}", field="param_offset")
+    if param_offset > size:
+        raise InputError(path, f"file of {size} bytes is truncated: the records end at byte "
+                         f"{param_offset}", field="param_offset")
+    return head
+
+
+def _read_parameters(block: bytes, path: Path, encoding: str
+                     ) -> tuple[dict[str, object], dict[str, object]]:
+    """The ``[UVP_PARAMETER]`` and ``[MUX_PARAMETER]`` sections of the parameter block (§4),
+    with the acoustic and channel parameters checked positive."""
+    if not block.strip():
+        raise InputError(path, "parameter block is missing (file truncated after the records)")
+    try:
+        sections = parse_parameters(block, encoding)
+    except ValueError as e:
+        raise InputError(path, f"parameter block: {e}") from None
+    uvp = sections.get("UVP_PARAMETER")
+    if uvp is None:
+        raise InputError(path, "parameter block has no [UVP_PARAMETER] section")
+    for key in ("Frequency", "SoundSpeed", "MaximumDepth", "StartChannel",
+                "ChannelDistance", "RawDataRange", "ProfileLength"):
+        if not isinstance(uvp.get(key), (int, float)) or not uvp[key] > 0:
+            raise InputError(path, f"parameter missing or not a positive number: "
+                             f"{uvp.get(key)!r}", field=key)
+    return uvp, sections.get("MUX_PARAMETER", {})
+
+
+def _check_layout(path: Path, head: np.void, uvp: Mapping[str, object]) -> bool:
+    """Check the header's record layout against the parameters (§3); whether the records hold
+    an amplitude block."""
+    flags, record_size, n_channels = (int(head["flags"]), int(head["record_size"]),
+                                      int(head["n_channels"]))
+    if int(uvp["ProfileLength"]) != n_channels:
+        raise InputError(path, f"ProfileLength {uvp['ProfileLength']} != header n_channels "
+                         f"{n_channels}", field="ProfileLength")
+    amp_stored = bool(flags & 1)
+    if "AmplitudeStored" in uvp and int(uvp["AmplitudeStored"]) != int(amp_stored):
+        raise InputError(path, f"AmplitudeStored={uvp['AmplitudeStored']} disagrees with "
+                         f"header flags={flags}", field="AmplitudeStored")
+    doppler_stored = not int(uvp.get("DoNotStoreDoppler", 0))
+    expected = RECORD_HEADER_SIZE + 2 * n_channels * (int(doppler_stored) + int(amp_stored))
+    if record_size != expected:
+        raise InputError(path, f"record_size {record_size} != 16 + 2 x {n_channels} channels "
+                         f"x {int(doppler_stored) + int(amp_stored)} blocks = {expected}",
+                         field="record_size")
+    if not doppler_stored:
+        raise InputError(path, "file holds no Doppler block (DoNotStoreDoppler=1)")
+    return amp_stored
+
+
+def _valid_records(path: Path, rec: np.ndarray, uvp: Mapping[str, object],
+                   mux: Mapping[str, object], transducer: int | None) -> np.ndarray:
+    """Indices of the records to return: valid (status 0, §3.4), of ``transducer`` in a
+    multiplexed file (§7), with strictly increasing times."""
     keep = rec["status"] == 0
     if int(uvp.get("UseMultiplexer", 0)):
-        owner = _mux_assignment(path, mux, n_profiles)
+        owner = _mux_assignment(path, mux, rec.size)
         sockets = np.unique(owner)
         if transducer is None:
             raise InputError(path, "multiplexed file (UseMultiplexer=1) holds transducers "
@@ -346,31 +393,35 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
             raise InputError(path, f"transducer {transducer} is not in the multiplexer table "
                              f"(transducers {sockets.tolist()})", field="Table")
         warnings.warn(f"{path}: multiplexed records assigned by the MUX-table rule of FORMAT.md "
-                      "§7, which is unverified", stacklevel=2)
+                      "§7, which is unverified", stacklevel=3)
         keep &= owner == transducer
     index = np.flatnonzero(keep)
     if index.size == 0:
-        raise InputError(path, f"none of the {n_profiles} records is a valid profile (status 0)")
-    rec = rec[index]
-    ticks = rec["time"]
+        raise InputError(path, f"none of the {rec.size} records is a valid profile (status 0)")
+    ticks = rec["time"][index]
     if index.size > 1 and np.any(np.diff(ticks) <= 0):
         k = int(np.flatnonzero(np.diff(ticks) <= 0)[0])
         raise InputError(path, f"profile times are not strictly increasing at record "
                          f"{index[k + 1]} ({ticks[k]} then {ticks[k + 1]} ticks)", field="time")
-    raw = rec["doppler"]
+    return index
+
+
+def _velocity(path: Path, raw: np.ndarray, uvp: Mapping[str, object],
+              angle_correction: bool) -> np.ndarray:
+    """Along-beam velocity [m s-1] from raw Doppler counts: ΔV scale (§5.1), interpreting mode
+    (§5.2), optional division by sin(Angle) (§5.3)."""
     lo, hi = int(uvp.get("RawDataMin", -128)), int(uvp.get("RawDataMax", 127))
     rmin, rmax = int(raw.min()), int(raw.max())
     if rmin < lo or rmax > hi:
         raise InputError(path, f"raw Doppler values {rmin}..{rmax} leave the declared range "
                          f"RawDataMin..RawDataMax = {lo}..{hi} (corrupt records)", field="doppler")
-
     dv = velocity_resolution(uvp)
     vrange = dv * float(uvp["RawDataRange"])
     velocity = raw * dv  # float64 (time, channel), §5.1
     mode = int(uvp.get("VelocityInterpretingMode", 0))
     if mode in (1, -1):
         warnings.warn(f"{path}: VelocityInterpretingMode={mode} is implemented from one source "
-                      "only (FORMAT.md §5.2) and unverified", stacklevel=2)
+                      "only (FORMAT.md §5.2) and unverified", stacklevel=3)
         if mode == 1:
             velocity = np.where(velocity < 0, velocity + vrange, velocity)
         else:
@@ -383,8 +434,15 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
         if np.isclose(np.sin(np.radians(angle)), 0.0):
             raise InputError(path, f"Angle={angle} deg: cannot divide by sin(Angle)", field="Angle")
         velocity = velocity / np.sin(np.radians(angle))
+    return velocity
 
+
+def _attributes(path: Path, head: np.void, uvp: Mapping[str, object],
+                mux: Mapping[str, object]) -> dict[str, object]:
+    """Every file parameter as ``mfprof_<Key>`` and the derived attributes of
+    :func:`read_mfprof`."""
     start_ticks = int(head["start_time"])
+    dv = velocity_resolution(uvp)
     attrs: dict[str, object] = {f"{ATTR_PREFIX}{k}": v for k, v in uvp.items()}
     attrs.update({f"{ATTR_PREFIX}{k}": v for k, v in mux.items()})
     attrs.update({
@@ -394,56 +452,28 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
         "start_time": _filetime_to_iso(start_ticks),
         "start_time_zone": "unknown (UVP Monitor PC clock)",
         "velocity_resolution": dv,
-        "velocity_range": vrange,
+        "velocity_range": dv * float(uvp["RawDataRange"]),
         "pulse_repetition_frequency": float(uvp["SoundSpeed"]) / (
             2 * float(uvp["MaximumDepth"]) * 1e-3),
-        "mfprof_records_stored": n_profiles,
+        "mfprof_records_stored": int(head["n_profiles"]),
     })
-    if int(uvp.get("UseMultiplexer", 0)):
-        attrs["transducer"] = int(transducer)
-    bv_attrs = {"positive": positive, "sign_convention": SIGN_NOTE,
-                "angle_correction": int(angle_correction)}
-    data_vars = {"beam_velocity": (("time", "channel"), velocity, bv_attrs)}
-    if amp_stored:
-        data_vars["amplitude"] = (("time", "channel"), rec["amplitude"])
-    ds = xr.Dataset(
-        data_vars,
-        coords={"time": ("time", ticks / 1e7), "channel": ("channel", np.arange(n_channels)),
-                "distance": ("channel", channel_distance(uvp, n_channels)),
-                "record": ("time", index)},
-        attrs=attrs)
-    return conventions.annotate(ds)
+    return attrs
 
 
 # --------------------------------------------------------------------------------------------
 # writer
 # --------------------------------------------------------------------------------------------
 
-def campaign_parameters(uvp: UVP) -> dict[str, object]:
-    """File parameters (key names and units of FORMAT.md §4.2) of campaign UVP settings.
-
-    ``MaximumDepth`` is not a campaign setting: the writer keeps the data's value or uses the
-    smallest depth covering every channel.
-    """
-    return {"Frequency": int(round(uvp.frequency)), "SoundSpeed": _plain(uvp.sound_speed),
-            "StartChannel": round(uvp.start_channel * 1e3, 9),
-            "ChannelDistance": round(uvp.channel_distance * 1e3, 9),
-            "ChannelWidth": round(uvp.channel_width * 1e3, 9),
-            "SampleTime": int(round(1e3 / uvp.sampling_rate))}
-
-
-def _plain(v: float) -> int | float:
-    return int(v) if float(v).is_integer() else float(v)
-
-
-def _params_from_attrs(attrs: Mapping[str, object]) -> dict[str, object]:
+def parameters_from_attrs(attrs: Mapping[str, object]) -> dict[str, object]:
+    """File parameters (key names of FORMAT.md §4.2) from a dataset's ``mfprof_*`` attributes,
+    as :func:`read_mfprof` stores them."""
     skip = {"mfprof_start_time_filetime", "mfprof_records_stored"}
     return {k[len(ATTR_PREFIX):]: v for k, v in attrs.items()
             if k.startswith(ATTR_PREFIX) and k not in skip}
 
 
 def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
-                 params: Mapping[str, object] | UVP | None = None, *, start_time: int | None = None,
+                 params: Mapping[str, object] | None = None, *, start_time: int | None = None,
                  n_records: int | None = None, encoding: str = "cp1252") -> Path:
     """Write a ``.mfprof`` file atomically (temporary file in the same folder, then rename).
 
@@ -453,12 +483,11 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     data : A dataset as returned by :func:`read_mfprof` (``time``, ``beam_velocity`` and
         optionally ``amplitude``), or a mapping with arrays ``time`` [s] (n,) and
         ``beam_velocity`` [m s-1] (n, n_channels), optionally ``amplitude`` [counts].
-    params : A :class:`flumekit.campaign.UVP` (its settings replace the acoustic and channel
-        parameters of ``data``'s attributes, see :func:`campaign_parameters`), or
-        file parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
+    params : File parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
         [m s-1], ``MaximumDepth`` [mm], ``StartChannel`` [mm], ``ChannelDistance`` [mm],
         ``ChannelWidth`` [mm], ``SampleTime`` [ms], ..., and the MUX keys). Default: the
-        ``mfprof_*`` attributes of ``data``; keys not given come from the UVP Monitor template.
+        ``mfprof_*`` attributes of ``data`` (:func:`parameters_from_attrs`); keys not given
+        come from the UVP Monitor template.
     start_time : Absolute start as a Windows FILETIME [100 ns ticks since 1601]; default the
         dataset's ``mfprof_start_time_filetime`` attribute, else 2020-01-01T00:00:00.
     n_records : Records to allocate (≥ number of profiles); the extra records are written
@@ -470,10 +499,7 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     """
     path = Path(path)
     attrs = dict(data.attrs) if isinstance(data, xr.Dataset) else {}
-    if isinstance(params, UVP):
-        given = {**_params_from_attrs(attrs), **campaign_parameters(params)}
-    else:
-        given = dict(_params_from_attrs(attrs) if params is None else params)
+    given = dict(parameters_from_attrs(attrs) if params is None else params)
     if start_time is None:
         start_time = int(attrs.get("mfprof_start_time_filetime",
                                    FILETIME_UNIX_EPOCH + 1_577_836_800 * 10_000_000))
@@ -494,7 +520,33 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     ticks = np.rint(time * 1e7).astype(np.int64)
     if np.any(np.diff(ticks) <= 0) or ticks[0] < 0:
         raise ValueError("times must be >= 0 and strictly increasing (at 100 ns resolution)")
-    amp_stored = amp is not None
+    total = n if n_records is None else int(n_records)
+    if total < n:
+        raise ValueError(f"n_records={total} is less than the {n} profiles to write")
+    uvp, mux = _complete_parameters(given, time, n_channels, total, amp is not None)
+    rec = _records(uvp, ticks, vel, amp, total)
+    header = np.zeros(1, dtype=_HEADER)
+    header["signature"] = SIGNATURE + b"\n4\n"
+    header["param_offset"] = HEADER_SIZE + total * rec.dtype.itemsize
+    header["n_profiles"] = total
+    header["flags"] = int(amp is not None)
+    header["record_size"] = rec.dtype.itemsize
+    header["n_channels"] = n_channels
+    header["start_time"] = start_time
+    block = format_parameters(uvp, mux, encoding)
+    with atomic_path(path) as tmp, open(tmp, "wb") as f:
+        f.write(header.tobytes())
+        f.write(rec.tobytes())
+        f.write(block)
+    return path
+
+
+def _complete_parameters(given: Mapping[str, object], time: np.ndarray, n_channels: int,
+                         total: int, amp_stored: bool
+                         ) -> tuple[dict[str, object], dict[str, object]]:
+    """The UVP and MUX sections to write: the template (§4.2, §4.3) overlaid with ``given``,
+    the layout keys set from the data, and the smallest ``MaximumDepth`` covering every channel
+    when none is given."""
     uvp = {k: given.get(k, v) for k, v in _UVP_TEMPLATE.items()}
     uvp.update({k: v for k, v in given.items() if k not in _MUX_KEYS})
     mux = {k: given.get(k, v) for k, v in _MUX_TEMPLATE.items()}
@@ -502,10 +554,7 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
                            "SoundSpeed") if uvp.get(k) is None]
     if missing:
         raise ValueError(f"write_mfprof needs the parameters {missing}")
-    total = n if n_records is None else int(n_records)
-    if total < n:
-        raise ValueError(f"n_records={total} is less than the {n} profiles to write")
-    dt_ms = float(np.median(np.diff(time))) * 1e3 if n > 1 else 0.0
+    dt_ms = float(np.median(np.diff(time))) * 1e3 if time.size > 1 else 0.0
     uvp["ProfileLength"] = n_channels
     uvp["AmplitudeStored"] = int(amp_stored)
     uvp["DoNotStoreDoppler"] = 0
@@ -516,39 +565,32 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
     if uvp.get("MaximumDepth") is None:  # the smallest d_max that covers every channel [mm]
         last = float(uvp["StartChannel"]) + (n_channels - 1) * float(uvp["ChannelDistance"])
         uvp["MaximumDepth"] = float(np.ceil((last + float(uvp["ChannelWidth"])) * 100) / 100)
+    return uvp, mux
+
+
+def _records(uvp: Mapping[str, object], ticks: np.ndarray, vel: np.ndarray, amp,
+             total: int) -> np.ndarray:
+    """The ``total`` records (§3): the profiles as counts of ΔV, then unfilled ones."""
+    n, n_channels = vel.shape
     dv = velocity_resolution(uvp)
     counts = np.rint(vel / dv)
     lo, hi = int(uvp["RawDataMin"]), int(uvp["RawDataMax"])
     if counts.min() < lo or counts.max() > hi:
         raise ValueError(f"velocities {vel.min():.4g}..{vel.max():.4g} m/s exceed the raw range "
                          f"{lo}..{hi} counts of {dv:.4g} m/s (Nyquist limit)")
-    dtype = _record_dtype(n_channels, True, amp_stored)
-    rec = np.zeros(total, dtype=dtype)
+    rec = np.zeros(total, dtype=_record_dtype(n_channels, True, amp is not None))
     rec["status"][n:] = 3
     rec["source"][:n] = 20  # the value every real file holds (FORMAT.md §3)
     rec["time"][:n] = ticks
     rec["doppler"][:n] = counts.astype(np.int16)
-    if amp_stored:
+    if amp is not None:
         a = np.asarray(amp)
         if a.shape != vel.shape:
             raise ValueError(f"amplitude shape {a.shape} != beam_velocity shape {vel.shape}")
         if not np.all(np.isfinite(a)) or np.any(a != np.rint(a)):
             raise ValueError("amplitude must hold whole (raw) counts")
         rec["amplitude"][:n] = a.astype(np.int16)
-    header = np.zeros(1, dtype=_HEADER)
-    header["signature"] = SIGNATURE + b"\n4\n"
-    header["param_offset"] = HEADER_SIZE + total * dtype.itemsize
-    header["n_profiles"] = total
-    header["flags"] = int(amp_stored)
-    header["record_size"] = dtype.itemsize
-    header["n_channels"] = n_channels
-    header["start_time"] = start_time
-    block = format_parameters(uvp, mux, encoding)
-    with atomic_path(path) as tmp, open(tmp, "wb") as f:
-        f.write(header.tobytes())
-        f.write(rec.tobytes())
-        f.write(block)
-    return path
+    return rec
 
 
 # --------------------------------------------------------------------------------------------

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from flumekit.campaign import _Table, read_toml
+from flumekit.campaign import Table, read_toml
 from flumekit.errors import InputError
 from flumekit.schema import Key, Problem, raise_problems, validate
 
@@ -78,7 +78,7 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     missing = [k for k in ("name", "raw", "processed") if k not in data.get("pipeline", {})]
     raise_problems(path, [Problem(path, f"pipeline.{k}", "missing key (a string)")
                           for k in missing])
-    t = _Table(data, path)
+    t = Table(data, path)
     p = t.sub("pipeline")
     base = path.parent
     raw = (base / p.text("raw")).resolve()

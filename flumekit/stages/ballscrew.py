@@ -9,11 +9,38 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "1"
+VERSION = "2"
+#: Model knobs that a pipeline may set, ``<part>_<field>`` for a field of the model's parameter
+#: dataclass: ``screw`` -> :class:`flumekit.ballscrew.screw.BallScrew`, ``lubricant`` ->
+#: ``Lubricant``, ``pto`` -> ``PTOCoefficients``, ``thermal`` ->
+#: :class:`flumekit.ballscrew.thermal.lumped.LumpedThermal`. Unset (None) means the model's
+#: documented default; the values and their sources live in those dataclasses only (planning
+#: must not import numpy, so they are not copied here).
+MODEL_KNOBS = {
+    "efficiency": {
+        "screw": ("pitch_diameter", "ball_diameter", "contact_angle", "conformity_screw",
+                  "conformity_nut", "loaded_balls", "preload_per_ball", "slip_angle",
+                  "rolling_resistance", "roughness_ball", "roughness_screw", "roughness_nut",
+                  "young_modulus", "poisson_ratio"),
+        "lubricant": ("viscosity", "pressure_viscosity", "friction_boundary",
+                      "friction_full_film"),
+        "pto": ("damping", "viscous", "rotor_inertia", "nut_mass")},
+    "thermal_lumped": {
+        "thermal": ("heat_capacity_generator", "heat_capacity_screw", "heat_capacity_nut",
+                    "conductance_generator_air", "conductance_screw_air",
+                    "conductance_nut_air", "conductance_screw_generator",
+                    "partition_screw_nut", "partition_screw_bearing", "ball_system_fraction",
+                    "generator_efficiency", "initial_temperature",
+                    "air_temperature_generator", "air_temperature_screw")},
+}
 DEFAULTS = {"amplitude": 1.0, "period": 3.8, "samples_per_period": 380, "lead": 0.02,
             "cycle_duration": 600.0, "total_duration": 6000.0, "lumped_time_step": 1.0,
             "fem_time_step": 10.0, "radial_cell_size": 0.005, "axial_cell_size": 0.02,
-            "fem_order": 1}
+            "fem_order": 1,
+            **{f"{part}_{name}": None for parts in MODEL_KNOBS.values()
+               for part, names in parts.items() for name in names}}
+_KNOB_OWNER = {"screw": "BallScrew", "lubricant": "Lubricant", "pto": "PTOCoefficients",
+               "thermal": "LumpedThermal"}
 DOCS = {
     "amplitude": "heave amplitude of the buoy's reference motion [m]",
     "period": "period of the reference motion [s]",
@@ -26,6 +53,10 @@ DOCS = {
     "radial_cell_size": "finite-element mesh: radial cell size [m]",
     "axial_cell_size": "finite-element mesh: axial cell size [m]",
     "fem_order": "finite-element order [-]",
+    **{f"{part}_{name}": f"model knob: field '{name}' of {_KNOB_OWNER[part]} ({step} step; "
+       "unit and source in that dataclass); none: its documented default"
+       for step, parts in MODEL_KNOBS.items() for part, names in parts.items()
+       for name in names},
 }
 STEPS = ("kinematics", "efficiency", "thermal_lumped", "thermal_fem")
 #: which step's dataset each figure of the paper is drawn from
@@ -40,6 +71,9 @@ def rules(ctx: Context) -> list[Rule]:
             "efficiency": (),
             "thermal_lumped": ("cycle_duration", "total_duration", "lumped_time_step"),
             "thermal_fem": ("fem_time_step", "radial_cell_size", "axial_cell_size", "fem_order")}
+    for step, parts in MODEL_KNOBS.items():  # only the knobs a pipeline sets enter the rule
+        keys[step] += tuple(f"{part}_{name}" for part, names in parts.items() for name in names
+                            if p[f"{part}_{name}"] is not None)
     out, previous = [], None
     for step in STEPS:
         inputs = {} if previous is None else {"previous": ctx.out("ballscrew", f"{previous}.nc")}
@@ -74,17 +108,28 @@ def kinematics(inputs, outputs, params) -> None:
            "Ball-screw WEC: buoy motion and linkage kinematics", params)
 
 
+def _knobs(params, part: str) -> dict:
+    """The ``<part>_<field>`` parameters a pipeline set, as keyword arguments of the model."""
+    return {k[len(part) + 1:]: v for k, v in params.items() if k.startswith(part + "_")}
+
+
 def efficiency(inputs, outputs, params) -> None:
     from flumekit.ballscrew import screw as ballscrew
 
-    _write(ballscrew.efficiency(_previous(inputs)), outputs,
-           "Ball-screw WEC: PTO force, lubrication and efficiency", params)
+    kin = _previous(inputs)
+    _write(ballscrew.efficiency(
+        kin, screw=ballscrew.BallScrew(lead=float(kin.attrs["lead"]), **_knobs(params, "screw")),
+        lubricant=ballscrew.Lubricant(**_knobs(params, "lubricant")),
+        pto=ballscrew.PTOCoefficients(**_knobs(params, "pto"))),
+        outputs, "Ball-screw WEC: PTO force, lubrication and efficiency", params)
 
 
 def thermal_lumped(inputs, outputs, params) -> None:
+    from flumekit.ballscrew.thermal.lumped import LumpedThermal
     from flumekit.ballscrew.thermal.lumped import thermal_lumped as run
 
-    _write(run(_previous(inputs), cycle_duration=params["cycle_duration"],
+    _write(run(_previous(inputs), LumpedThermal(**_knobs(params, "thermal")),
+               cycle_duration=params["cycle_duration"],
                total_duration=params["total_duration"], time_step=params["lumped_time_step"]),
            outputs, "Ball-screw WEC: lumped thermal model", params)
 

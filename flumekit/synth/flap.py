@@ -176,9 +176,9 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     irf_step : Sampling step of K(t) for the fit [s].
     rtol : Target relative error of the state-space fit of K(t).
     """
+    from flumekit.flap.renzi_dias.model import coefficients
     from flumekit.hydro import coefficients as hy
     from flumekit.hydro.radiation import fit_state_space, impulse_response
-    from flumekit.flap.renzi_dias.model import coefficients
 
     flap = campaign.flap
     omega = np.linspace(*HYDRO_OMEGA)
@@ -325,8 +325,8 @@ def _linear_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth) -> dict:
 def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
                      hydro: FlumeHydrodynamics | xr.Dataset | None) -> dict:
     """Motion, pressure and friction of the time-domain simulator (module notes)."""
-    from flumekit.hydro.radiation import fit_state_space, impulse_response
     from flumekit.flap.simulator import drag_torque_coefficient, simulate_run
+    from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     if hydro is None:
         hydro = flume_hydrodynamics(campaign, truth)

@@ -36,7 +36,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
-from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, campaign_parameters, velocity_range
+from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.uvp.geometry import beam_geometry, inside_flap
 from flumekit.waves.theory import G, group_velocity, stokes2_coefficient, wavenumber
 
@@ -168,6 +168,32 @@ def maximum_speed(*, period: float, height: float, depth: float, reflection: flo
     c1, _, c2, _ = _depth_functions(k, depth, zb)
     return float((1 + reflection) * (a1 * omega * c1)
                  + (1 + reflection**2) * (0.75 * a1**2 * omega * k * c2 if second_order else 0))
+
+
+def campaign_parameters(uvp: UVP) -> dict[str, object]:
+    """``.mfprof`` file parameters (key names and units of FORMAT.md §4.2) of campaign UVP
+    settings.
+
+    ``MaximumDepth`` is not a campaign setting: the writer keeps the data's value or uses the
+    smallest depth covering every channel.
+    """
+    def plain(v: float) -> int | float:
+        return int(v) if float(v).is_integer() else float(v)
+
+    return {"Frequency": int(round(uvp.frequency)), "SoundSpeed": plain(uvp.sound_speed),
+            "StartChannel": round(uvp.start_channel * 1e3, 9),
+            "ChannelDistance": round(uvp.channel_distance * 1e3, 9),
+            "ChannelWidth": round(uvp.channel_width * 1e3, 9),
+            "SampleTime": int(round(1e3 / uvp.sampling_rate))}
+
+
+def write_beam(path: str | Path, beam: xr.Dataset, uvp: UVP) -> Path:
+    """Write one beam's records as ``.mfprof`` with the campaign's UVP settings replacing the
+    acoustic and channel parameters of ``beam``'s ``mfprof_*`` attributes."""
+    from flumekit.io.mfprof import parameters_from_attrs, write_mfprof
+
+    return write_mfprof(path, beam, {**parameters_from_attrs(beam.attrs),
+                                     **campaign_parameters(uvp)})
 
 
 def instrument_parameters(uvp: UVP, *, max_speed: float | None = None,

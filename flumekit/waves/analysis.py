@@ -11,7 +11,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
-from flumekit.waves.separation import _as_probe_time, separate
+from flumekit.waves.separation import as_probe_time, separate
 from flumekit.waves.theory import G, energy_flux
 
 
@@ -61,7 +61,7 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
         crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes and
         spectra over ``harmonic`` and ``frequency``.
     """
-    v, t, x, probes = _as_probe_time(eta)
+    v, t, x, probes = as_probe_time(eta)
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     if n_harmonics < 1:

@@ -30,7 +30,15 @@ from scipy import signal as _sig
 
 from flumekit import conventions
 from flumekit.waves.layout import MAX_CONDITION
+from flumekit.waves.records import (
+    REGULAR_FRACTION,
+    harmonic_energy_fraction,
+    probe_record,
+    refine_frequency,
+)
 from flumekit.waves.theory import G, wavenumber
+
+__all__ = ["METHODS", "SeparationWarning", "as_probe_time", "lstsq_normal", "separate"]
 
 METHODS = {"mansard_funke": (3, 3), "goda_suzuki": (2, 2), "zelt_skjelbreia": (2, None)}
 
@@ -88,14 +96,26 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
     return np.linalg.solve(gram, r), cond, masked
 
 
-def _as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+    """Check an elevation record for separation and return its arrays.
+
+    Parameters
+    ----------
+    eta : Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+        ``probe``, uniformly sampled, finite.
+
+    Returns
+    -------
+    values [m] (probe, time), time [s], x [m], probe labels.
+    """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
                         f"{type(eta).__name__}")
     if set(eta.dims) != {"probe", "time"}:
         raise ValueError(f"eta must have dims ('probe', 'time'), got {eta.dims}")
     if "x" not in eta.coords or eta.coords["x"].dims != ("probe",):
-        raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions)")
+        raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions) "
+                         "or the argument x")
     eta = eta.transpose("probe", "time")
     x = np.asarray(eta.coords["x"].values, dtype=float)
     t = np.asarray(eta.coords["time"].values, dtype=float)
@@ -115,85 +135,230 @@ def _as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarra
     return v, t, x, eta.probe.values.tolist()
 
 
-def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
+def separate(eta, depth: float, method: str = "mansard_funke",
              band: tuple[float, float] | None = None, x_ref: float | None = None, *,
-             regular: bool = False, period: float | None = None, bound_harmonics: bool = False,
+             x=None, sampling_rate: float | None = None,
+             regular: bool | None = None, period: float | None = None,
+             bound_harmonics: bool | None = None,
              window: str | None = None, max_condition: float = MAX_CONDITION,
              warn_fraction: float = 0.01, g: float = G) -> xr.Dataset:
     """Separate incident and reflected waves from simultaneous probe records.
 
     Parameters
     ----------
-    eta : Surface elevation [m], dims ("probe", "time"), coordinate ``x`` on ``probe``
-        (probe positions [m], x positive in the direction of the incident wave) and ``time`` [s]
-        (uniform sampling).
-    depth : Still water depth [m].
-    method : "mansard_funke" (exactly 3 probes), "goda_suzuki" (exactly 2) or
+    eta : xarray.DataArray, pandas.DataFrame or array_like
+        Surface elevation [m]: a DataArray with dims ("probe", "time"), coordinate ``x`` on
+        ``probe`` (probe positions [m], x positive in the direction of the incident wave) and
+        ``time`` [s] (uniform sampling); or a DataFrame (one column per probe) or an array
+        (probe, time) with ``x`` and ``sampling_rate`` (see
+        :func:`flumekit.waves.probe_record`). The mean of each probe is removed.
+    depth : float
+        Still water depth [m].
+    method : str
+        "mansard_funke" (exactly 3 probes), "goda_suzuki" (exactly 2) or
         "zelt_skjelbreia" (2 or more); all use the same least-squares core.
-    band : (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
+    band : tuple of float, optional
+        (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
         frequency (both excluded).
-    x_ref : Position [m] where the incident and reflected elevations are returned; default the
+    x_ref : float, optional
+        Position [m] where the incident and reflected elevations are returned; default the
         first probe.
-    regular : Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
+    x : sequence of float, optional
+        Probe positions [m] when ``eta`` does not carry them.
+    sampling_rate : float, optional
+        Sampling rate [Hz] when ``eta`` has no time coordinate.
+    regular : bool, optional
+        Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
         every bin within f1/2 of harmonic n·f1 is fitted with the wavenumber of that harmonic
         (spectral leakage keeps its spatial structure). The statistics (harmonic amplitudes,
         Kr, heights, phase) come from a least-squares fit of the harmonics n·f1 in the band to
         each probe record at their exact frequencies, separated with the same core, so they
         are unbiased for any record length; the time series still come from the bins and show
-        edge transients unless the record holds a whole number of periods.
-    period : Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
-    bound_harmonics : Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
-        instead of free waves (implies ``regular``).
-    window : Optional taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
+        edge transients unless the record holds a whole number of periods. Default (None):
+        decided from the record. A record that holds at least
+        :data:`~flumekit.waves.records.REGULAR_FRACTION` of its variance at its peak
+        frequency and the harmonics of it (:func:`~flumekit.waves.harmonic_energy_fraction`)
+        is regular and its harmonics are bound (``bound_harmonics`` then defaults to True);
+        the ``regular_detection`` attribute of the result says what was found. Pass
+        ``regular=False`` to fit every bin as a free wave.
+    period : float, optional
+        Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
+    bound_harmonics : bool, optional
+        Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
+        instead of free waves (implies ``regular``). Default: True for a record detected as
+        regular, False otherwise.
+    window : str, optional
+        Taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
         and the irregular-wave statistics (Kr, Hm0, masked energy); the elevation time series
         and the regular-wave statistics never use it. The taper is normalised to unit mean
         square so variances are preserved.
-    max_condition : Bins whose least-squares matrix has a larger condition number are masked
+    max_condition : float
+        Bins whose least-squares matrix has a larger condition number are masked
         (excluded) [-]. Default cot(π/20) ≈ 6.3, the Goda–Suzuki two-probe limits.
-    warn_fraction : Warn (:class:`SeparationWarning`) when masked bins hold more than this
+    warn_fraction : float
+        Warn (:class:`SeparationWarning`) when masked bins hold more than this
         fraction of the measured energy in the band [-].
-    g : Gravitational acceleration [m s-2].
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    xr.Dataset with
-        ``eta_incident``, ``eta_reflected`` (time) [m] : separated elevations at ``x_ref``;
-        ``spectrum_incident``, ``spectrum_reflected`` (frequency) [m2 s] : one-sided variance
+    xarray.Dataset
+        ``eta_incident``, ``eta_reflected`` (time) [m]: separated elevations at ``x_ref``;
+        ``spectrum_incident``, ``spectrum_reflected`` (frequency) [m2 s]: one-sided variance
         densities (periodogram) of the band bins;
         ``condition_number``, ``masked``, ``wave_number`` (frequency);
-        ``reflection_coefficient`` [-] : irregular waves: Kr = sqrt(m0_R / m0_I) over the
+        ``reflection_coefficient`` [-]: irregular waves: Kr = sqrt(m0_R / m0_I) over the
         unmasked band bins (the energy ratio of Mansard & Funke 1980); ``regular``: the
         first-harmonic ratio |A_R1| / |A_I1| (bound harmonics are not reflection; see
         ``harmonic_reflection_coefficient`` for the others);
-        ``incident_height``, ``reflected_height`` [m] : Hm0 = 4 sqrt(m0) for irregular waves;
+        ``incident_height``, ``reflected_height`` [m]: Hm0 = 4 sqrt(m0) for irregular waves;
         for ``regular`` the crest-to-trough height of the sum of the separated harmonics over
         one period (equal to 2|a1| for a linear wave), see the ``definition`` attribute;
-        ``masked_energy_fraction`` [-] : measured energy of the masked bins / energy of the band;
+        ``masked_energy_fraction`` [-]: measured energy of the masked bins / energy of the band;
         for ``regular`` also, over ``harmonic``: ``incident_harmonic_amplitude``,
         ``reflected_harmonic_amplitude`` [m] and ``harmonic_reflection_coefficient`` [-]
         (NaN where the incident harmonic amplitude is below 1e-3 of the first harmonic's, i.e.
-        where the ratio is undefined); ``incident_amplitude`` a1 [m] and ``incident_phase`` [rad]
-        of the first harmonic at x_ref, η_I1 = a1 cos(2π f t + phase) in the record's time.
+        where the ratio is undefined); ``incident_amplitude`` a1 [m] and ``incident_phase``
+        [rad] of the first harmonic at x_ref, η_I1 = a1 cos(2π f t + phase) in the record's
+        time.
 
     Raises
     ------
-    ValueError : bad arguments, non-finite samples, an empty band, or no separable incident
+    ValueError
+        Bad arguments, non-finite samples, an empty band, or no separable incident
         energy at all (every bin holding energy masked).
+
+    References
+    ----------
+    Goda, Y. & Suzuki, Y. (1976). Estimation of incident and reflected waves in random wave
+    experiments. Proc. 15th Coastal Engineering Conference, 828-845.
+
+    Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected spectra
+    using a least squares method. Proc. 17th Coastal Engineering Conference, 154-172.
+
+    Zelt, J. A. & Skjelbreia, J. E. (1992). Estimating incident and reflected wave fields
+    using an arbitrary number of wave gauges. Proc. 23rd Coastal Engineering Conference,
+    777-789.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.waves import separate, wavenumber
+    >>> t = np.arange(4000) / 20.0                       # 200 s at 20 Hz
+    >>> x = np.array([0.0, 0.6, 0.9])                     # probe positions [m]
+    >>> w = 2 * np.pi / 2.0
+    >>> k = wavenumber(w, 0.5)
+    >>> eta = (0.05 * np.cos(w * t - k * x[:, None])     # incident, 5 cm amplitude
+    ...        + 0.01 * np.cos(w * t + k * x[:, None]))  # reflected, Kr = 0.2
+    >>> r = separate(eta, 0.5, x=x, sampling_rate=20.0)  # regular: detected
+    >>> round(float(r.reflection_coefficient), 3)
+    0.2
     """
+    if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
+        eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
+    v, t, x, probes = _check_inputs(eta, depth, method, max_condition)
+    detection = "given"
+    if regular is None and not bound_harmonics:
+        # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
+        # wave (WaveLabX record: Kr 0.136 instead of 0.028), so the default looks first.
+        f_peak, share = harmonic_energy_fraction(v, (t[-1] - t[0]) / (t.size - 1))
+        regular = share >= REGULAR_FRACTION
+        detection = (f"{'regular' if regular else 'irregular'}: {share:.1%} of the variance at "
+                     f"the peak {f_peak:.4g} Hz and its harmonics (regular from "
+                     f"{REGULAR_FRACTION:.0%}; pass regular=True/False to decide)")
+        if bound_harmonics is None:
+            bound_harmonics = regular
+    bound_harmonics = bool(bound_harmonics)
+    regular = bool(regular) or bound_harmonics
+    x_ref = float(x[0]) if x_ref is None else float(x_ref)
+    n = t.size
+    freq, sel = _band_bins(t, band)
+    f = freq[sel]
+
+    v = v - v.mean(axis=1, keepdims=True)
+    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
+    c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
+    rhs = [c.T]
+    if window is not None:
+        w = _sig.get_window(window, n)
+        w = w / np.sqrt(np.mean(w * w))
+        rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
+
+    if regular:
+        if period is None:  # the peak bin, refined: up to half a bin off otherwise
+            f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
+            period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
+        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g)
+    else:
+        k = wavenumber(2 * np.pi * f, depth, g)
+
+    phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
+    columns = np.stack([phase, np.conj(phase)], axis=-1)  # (F, P, 2)
+    sol, cond, masked = lstsq_normal(columns, np.stack(rhs, axis=-1), max_condition)
+    a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
+    # energy bookkeeping on the (tapered) spectrum used for statistics
+    e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,
+                                                 f, k, x, max_condition, warn_fraction)
+    m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
+    eta_i, eta_r = _elevations_at(a_inc[:, 0], a_ref[:, 0], k, x_ref, sel, n)
+
+    df = freq[1]
+    data = {
+        "eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r),
+        "spectrum_incident": ("frequency", e_inc / df),
+        "spectrum_reflected": ("frequency", e_ref / df),
+        "condition_number": ("frequency", cond), "masked": ("frequency", masked.astype(np.int8)),
+        "wave_number": ("frequency", k),
+        "masked_energy_fraction": ((), masked_fraction),
+    }
+    coords = {"time": t, "frequency": f}
+    if regular:
+        nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
+        nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
+        stats, coords["harmonic"] = _regular_statistics(v, t, x, f1, kh[:nh], x_ref,
+                                                        max_condition)
+        data.update(stats)
+    else:
+        definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
+        kr_definition = ("energy ratio sqrt(m0_R / m0_I) over the unmasked band "
+                         "(Mansard & Funke 1980)")
+        data["reflection_coefficient"] = ((), float(np.sqrt(m0_r / m0_i)),
+                                          {"definition": kr_definition})
+        for name, m0 in (("incident_height", m0_i), ("reflected_height", m0_r)):
+            data[name] = ((), float(4.0 * np.sqrt(m0)), {"definition": definition})
+
+    ds = xr.Dataset(data, coords=coords, attrs={
+        "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
+        "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
+        "regular": int(regular), "regular_detection": detection,
+        "bound_harmonics": int(bound_harmonics),
+        "max_condition": max_condition, "depth": float(depth),
+        **({"fundamental_frequency": f1} if regular else {}),
+        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
+    return conventions.annotate(ds)
+
+
+def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: float):
+    """The arguments of :func:`separate` checked; the record's arrays (:func:`as_probe_time`)."""
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
         raise ValueError(f"depth must be positive and finite, got {depth}")
     if not max_condition > 1:
         raise ValueError(f"max_condition must exceed 1, got {max_condition}")
-    v, t, x, probes = _as_probe_time(eta)
+    v, t, x, probes = as_probe_time(eta)
     n_min, n_max = METHODS[method]
     if x.size < n_min or (n_max is not None and x.size > n_max):
         need = f"exactly {n_min}" if n_min == n_max else f"at least {n_min}"
         raise ValueError(f"method {method!r} needs {need} probes, got {x.size} ({probes})")
-    regular = regular or bound_harmonics
-    x_ref = float(x[0]) if x_ref is None else float(x_ref)
+    return v, t, x, probes
 
+
+def _band_bins(t: np.ndarray, band: tuple[float, float] | None
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """FFT frequencies [Hz] of a record sampled at ``t`` [s] and the indices of the bins in
+    ``band`` (strictly between 0 and Nyquist)."""
     n = t.size
     dt = (t[-1] - t[0]) / (n - 1)
     freq = np.fft.rfftfreq(n, dt)
@@ -205,52 +370,46 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     if sel.size == 0:
         raise ValueError(f"no frequency bin of this record ({freq[1]:.3g} Hz apart, Nyquist "
                          f"{nyq:.3g} Hz) lies in the band {band}")
-    f = freq[sel]
-    df = freq[1]
+    return freq, sel
 
-    v = v - v.mean(axis=1, keepdims=True)
-    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
-    c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
-    rhs = [c.T]
-    if window is not None:
-        w = _sig.get_window(window, n)
-        w = w / np.sqrt(np.mean(w * w))
-        rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
 
-    # wavenumbers of the incident and reflected columns, per bin
-    harmonic = None
-    if regular:
-        if period is None:
-            f1 = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
-        else:
-            if not period > 0:
-                raise ValueError(f"period must be positive, got {period}")
-            f1 = 1.0 / float(period)
-        harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
-        k1 = float(wavenumber(2 * np.pi * f1, depth, g))
-        hmax = max(int(harmonic.max()), 1)
-        kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
-        if bound_harmonics:
-            kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
-        k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
-                     wavenumber(2 * np.pi * f, depth, g))
-    else:
-        k = wavenumber(2 * np.pi * f, depth, g)
+def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harmonics: bool,
+                          g: float):
+    """Wavenumbers of the bins of a regular wave (see ``regular`` in :func:`separate`).
 
-    phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
-    columns = np.stack([phase, np.conj(phase)], axis=-1)  # (F, P, 2)
-    sol, cond, masked = lstsq_normal(columns, np.stack(rhs, axis=-1), max_condition)
-    a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
+    Returns the fundamental frequency f1 = 1/``period`` [Hz], the harmonic number of each bin
+    (0 below f1/2), the wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per
+    bin [rad m-1].
+    """
+    if not period > 0:
+        raise ValueError(f"period must be positive, got {period}")
+    f1 = 1.0 / float(period)
+    harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
+    k1 = float(wavenumber(2 * np.pi * f1, depth, g))
+    hmax = max(int(harmonic.max()), 1)
+    kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
+    if bound_harmonics:
+        kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
+    k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
+                 wavenumber(2 * np.pi * f, depth, g))
+    return f1, harmonic, kh, k
 
-    # energy bookkeeping on the (tapered) spectrum used for statistics
-    s = -1
-    e_meas = 0.5 * np.mean(np.abs(rhs[s]) ** 2, axis=1)  # measured variance per bin
+
+def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
+                 masked: np.ndarray, f: np.ndarray, k: np.ndarray, x: np.ndarray,
+                 max_condition: float, warn_fraction: float):
+    """Variance per bin [m2] of the separated waves and the measured fraction in masked bins.
+
+    ``measured`` (F, P) are the probes' coefficients, ``a_inc``/``a_ref`` (F,) the separated
+    ones. Raises when no incident energy was separated; warns (:class:`SeparationWarning`) when
+    the masked bins hold more than ``warn_fraction`` of the band's energy.
+    """
+    e_meas = 0.5 * np.mean(np.abs(measured) ** 2, axis=1)  # measured variance per bin
     e_total = float(e_meas.sum())
     masked_fraction = float(e_meas[masked].sum() / e_total) if e_total > 0 else 0.0
-    e_inc = 0.5 * np.abs(a_inc[:, s]) ** 2
-    e_ref = 0.5 * np.abs(a_ref[:, s]) ** 2
-    m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
-    if not m0_i > 0:
+    e_inc = 0.5 * np.abs(a_inc) ** 2
+    e_ref = 0.5 * np.abs(a_ref) ** 2
+    if not float(e_inc.sum()) > 0:
         raise ValueError(
             f"no incident energy could be separated: the {int(masked.sum())} masked bins (of "
             f"{f.size}) hold {masked_fraction:.1%} of the energy in the band. The probe layout "
@@ -265,81 +424,66 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
             f"is ill-conditioned (condition number > {max_condition:.3g}; worst at "
             f"f = {f[worst]:.4g} Hz, k·Δx/π = {np.round(k[worst] * dxs / np.pi, 3).tolist()}). "
             "These bins are excluded from the incident and reflected waves; change the probe "
-            "spacing or narrow the band.", SeparationWarning, stacklevel=2)
-    kr = float(np.sqrt(m0_r / m0_i))  # energy ratio; replaced by the first harmonic's if regular
+            "spacing or narrow the band.", SeparationWarning, stacklevel=3)
+    return e_inc, e_ref, masked_fraction
 
-    # time series at x_ref from the untapered solution
+
+def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, x_ref: float,
+                   sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes
+    (untapered), by inverse FFT of an ``n``-sample record."""
     shift_i = np.exp(-1j * k * x_ref)
-    spec_i = np.zeros(freq.size, complex)
-    spec_r = np.zeros(freq.size, complex)
-    spec_i[sel] = a_inc[:, 0] * shift_i * (n / 2.0)
-    spec_r[sel] = a_ref[:, 0] * np.conj(shift_i) * (n / 2.0)
-    eta_i = np.fft.irfft(spec_i, n)
-    eta_r = np.fft.irfft(spec_r, n)
+    spec_i = np.zeros(n // 2 + 1, complex)
+    spec_r = np.zeros(n // 2 + 1, complex)
+    spec_i[sel] = a_inc * shift_i * (n / 2.0)
+    spec_r[sel] = a_ref * np.conj(shift_i) * (n / 2.0)
+    return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
 
+
+def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
+                        kh: np.ndarray, x_ref: float, max_condition: float):
+    """Statistics of a regular wave from its harmonics at their exact frequencies.
+
+    A least-squares harmonic fit per probe (leakage-free for any record length), separated by
+    the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh`` the wavenumber of each
+    harmonic kept [rad m-1]. Returns the dataset variables (see :func:`separate`) and the
+    ``harmonic`` coordinate.
+    """
+    nh = kh.size
+    coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
+    ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
+    sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, np.conj(ph_h)], axis=-1),
+                                           coef.T[:, :, None], max_condition)
+    if masked_h[0]:
+        raise ValueError(
+            f"the probe layout x = {x.tolist()} m is ill-conditioned at the wave frequency "
+            f"{f1:.4g} Hz (condition number {cond_h[0]:.3g} > {max_condition:.3g}): the "
+            "incident and reflected waves cannot be separated; change the spacing")
+    n_h = np.arange(1, nh + 1)
+    z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
+                  sol_h[:, 1, 0] * np.exp(1j * kh * x_ref)])  # (2, nh) at x_ref
+    amp_i, amp_r = np.abs(z)
+    psi = 2 * np.pi * np.arange(512) / 512
+    wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)
+    hi, hr = wave.max(axis=1) - wave.min(axis=1)
+    definition = ("crest-to-trough height over one period of the sum of the separated "
+                  "harmonics at x_ref")
+    # a harmonic's Kr is meaningless where it holds no incident wave: NaN below 1e-3 a1
+    resolved = (amp_i > 1e-3 * amp_i[0]) & ~masked_h
+    kr_n = np.where(resolved, amp_r / np.where(resolved, amp_i, 1.0), np.nan)
+    # phase in the record's time: a cos(2π f1 t + phase)
+    phase_1 = float(np.angle(z[0, 0] * np.exp(-2j * np.pi * f1 * t[0])))
+    kr_definition = "first-harmonic amplitude ratio |A_R1| / |A_I1|"
     data = {
-        "eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r),
-        "spectrum_incident": ("frequency", e_inc / df),
-        "spectrum_reflected": ("frequency", e_ref / df),
-        "condition_number": ("frequency", cond), "masked": ("frequency", masked.astype(np.int8)),
-        "wave_number": ("frequency", k),
-        "masked_energy_fraction": ((), masked_fraction),
-    }
-    coords = {"time": t, "frequency": f}
-    if regular:
-        # statistics from the harmonics at their exact frequencies (leakage-free for any record
-        # length): least-squares harmonic fit per probe, then the same separation core
-        nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
-        coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
-        kh = kh[:nh]
-        ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
-        sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, np.conj(ph_h)], axis=-1),
-                                               coef.T[:, :, None], max_condition)
-        if masked_h[0]:
-            raise ValueError(
-                f"the probe layout x = {x.tolist()} m is ill-conditioned at the wave frequency "
-                f"{f1:.4g} Hz (condition number {cond_h[0]:.3g} > {max_condition:.3g}): the "
-                "incident and reflected waves cannot be separated; change the spacing")
-        n_h = np.arange(1, nh + 1)
-        z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
-                      sol_h[:, 1, 0] * np.exp(1j * kh * x_ref)])  # (2, nh) at x_ref
-        amp_i, amp_r = np.abs(z)
-        psi = 2 * np.pi * np.arange(512) / 512
-        wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)
-        hi, hr = wave.max(axis=1) - wave.min(axis=1)
-        definition = ("crest-to-trough height over one period of the sum of the separated "
-                      "harmonics at x_ref")
-        # a harmonic's Kr is meaningless where it holds no incident wave: NaN below 1e-3 a1
-        resolved = (amp_i > 1e-3 * amp_i[0]) & ~masked_h
-        kr_n = np.where(resolved, amp_r / np.where(resolved, amp_i, 1.0), np.nan)
-        kr = float(kr_n[0])
-        # phase in the record's time: a cos(2π f1 t + phase)
-        phase_1 = float(np.angle(z[0, 0] * np.exp(-2j * np.pi * f1 * t[0])))
-        kr_definition = "first-harmonic amplitude ratio |A_R1| / |A_I1|"
-        data.update({
-            "incident_harmonic_amplitude": ("harmonic", amp_i),
-            "reflected_harmonic_amplitude": ("harmonic", amp_r),
-            "harmonic_reflection_coefficient": ("harmonic", kr_n),
-            "incident_amplitude": ((), float(amp_i[0])),
-            "incident_phase": ((), phase_1)})
-        coords["harmonic"] = np.arange(1, amp_i.size + 1)
-    else:
-        hi, hr = 4.0 * np.sqrt(m0_i), 4.0 * np.sqrt(m0_r)  # Hm0 = 4 sqrt(m0)
-        definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
-        kr_definition = ("energy ratio sqrt(m0_R / m0_I) over the unmasked band "
-                         "(Mansard & Funke 1980)")
-    data["reflection_coefficient"] = ((), kr, {"definition": kr_definition})
-    data["incident_height"] = ((), float(hi), {"definition": definition})
-    data["reflected_height"] = ((), float(hr), {"definition": definition})
-
-    ds = xr.Dataset(data, coords=coords, attrs={
-        "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
-        "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
-        "regular": int(regular), "bound_harmonics": int(bound_harmonics),
-        "max_condition": max_condition, "depth": float(depth),
-        **({"fundamental_frequency": f1} if regular else {}),
-        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
-    return conventions.annotate(ds)
+        "incident_harmonic_amplitude": ("harmonic", amp_i),
+        "reflected_harmonic_amplitude": ("harmonic", amp_r),
+        "harmonic_reflection_coefficient": ("harmonic", kr_n),
+        "incident_amplitude": ((), float(amp_i[0])),
+        "incident_phase": ((), phase_1),
+        "reflection_coefficient": ((), float(kr_n[0]), {"definition": kr_definition}),
+        "incident_height": ((), float(hi), {"definition": definition}),
+        "reflected_height": ((), float(hr), {"definition": definition})}
+    return data, np.arange(1, amp_i.size + 1)
 
 
 def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int) -> np.ndarray:

@@ -7,9 +7,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from flumekit.errors import GeometryError
-from flumekit.ballscrew import screw as ballscrew
 from flumekit.ballscrew import buoy
+from flumekit.ballscrew import screw as ballscrew
+from flumekit.errors import GeometryError
 
 G = buoy.BuoyGeometry()
 

@@ -7,8 +7,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy import integrate
 
-from flumekit.errors import GeometryError
 from flumekit.ballscrew import ehl
+from flumekit.errors import GeometryError
 
 # Hamrock's deep-groove ball bearing example (Hamrock, Fundamentals of Fluid Film Lubrication,
 # NASA RP-1255 (1991) / 2nd ed. 2004, rolling-element bearing chapter; inputs as reproduced in

@@ -7,10 +7,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from flumekit import conventions
+from flumekit.ballscrew import buoy
+from flumekit.ballscrew import screw as ballscrew
 from flumekit.errors import GeometryError
 from flumekit.io.netcdf import read_dataset, write_dataset
-from flumekit.ballscrew import screw as ballscrew
-from flumekit.ballscrew import buoy
 
 angles = st.floats(np.radians(1.0), np.radians(30.0))
 contact = st.floats(np.radians(20.0), np.radians(80.0))

@@ -7,10 +7,10 @@ import pytest
 
 from flumekit import conventions
 from flumekit.errors import GeometryError
-from flumekit.io.netcdf import read_dataset, write_dataset
 from flumekit.flap import bem
 from flumekit.flap.renzi_dias import model as rd
 from flumekit.hydro import response as rs
+from flumekit.io.netcdf import read_dataset, write_dataset
 
 H, W, C = 0.825, 1.31, 0.10
 

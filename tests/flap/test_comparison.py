@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from flumekit.io.netcdf import read_dataset
 from flumekit.flap.renzi_dias import model as rd
+from flumekit.io.netcdf import read_dataset
 from flumekit.stages import models as stage
 
 GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,

@@ -16,9 +16,9 @@ from scipy.special import jv
 
 from flumekit import conventions
 from flumekit.errors import GeometryError
-from flumekit.io.netcdf import read_dataset, write_dataset
 from flumekit.flap.renzi_dias import eigenmodes, hypersingular
 from flumekit.flap.renzi_dias import model as rd
+from flumekit.io.netcdf import read_dataset, write_dataset
 
 H, W, C, B = 0.825, 1.31, 0.10, 1.5
 G = 9.81

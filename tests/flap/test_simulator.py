@@ -12,9 +12,9 @@ from scipy import linalg
 
 from flumekit import conventions
 from flumekit.campaign import load_campaign
+from flumekit.flap import simulator as S
 from flumekit.hydro import coefficients as H
 from flumekit.hydro import radiation as R
-from flumekit.flap import simulator as S
 from flumekit.hydro.excitation import excitation_torque
 
 KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}

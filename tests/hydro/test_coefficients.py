@@ -7,8 +7,8 @@ import pytest
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.io.netcdf import read_dataset, write_dataset
 from flumekit.hydro import coefficients as H
+from flumekit.io.netcdf import read_dataset, write_dataset
 
 #: analytic radiation kernel K(t) = Σ a e^{-αt} cos βt (a Kramers-Kronig pair with A∞ = 25)
 KERNEL = {"amplitude": [400.0, 300.0], "decay_rate": [1.0, 3.0], "frequency": [2.5, 6.0]}

@@ -224,6 +224,14 @@ def test_parameter_table_without_backslashes():
     assert len(sec["MUX_PARAMETER"]["Table"].split("\n")) == 3
 
 
+def test_free_text_that_looks_like_a_number_stays_text():
+    # the round trip found it: a one-line Comment "0" came back as the integer 0
+    block = b"[UVP_PARAMETER]\nFrequency=4000000\nComment=0\nMeasurementProtocol=1.5\n"
+    sec = parse_parameters(block)["UVP_PARAMETER"]
+    assert sec["Comment"] == "0" and sec["MeasurementProtocol"] == "1.5"
+    assert sec["Frequency"] == 4000000  # numbers elsewhere are still numbers
+
+
 # ---------------------------------------------------------------- corrupt files
 
 @pytest.fixture()

@@ -5,8 +5,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from flumekit.io.mfprof import read_mfprof, write_mfprof
-from flumekit.synth.uvp import incident_upcrossing, true_field, uvp_beams, wave_kinematics
+from flumekit.io.mfprof import read_mfprof
+from flumekit.synth.uvp import (
+    incident_upcrossing,
+    true_field,
+    uvp_beams,
+    wave_kinematics,
+    write_beam,
+)
 from flumekit.synth.waves import regular_wave_field
 
 T, H, DEPTH = 3.5, 0.25, 0.825
@@ -75,7 +81,7 @@ def test_virtual_beams_are_quantised_projections(campaign, tmp_path):
     # UP2's last channel (x = -0.0843 m) lies behind the flap face at x = -0.085 m
     assert np.all(beams["UP2"]["amplitude"].values[:, -1] > 1000)
     # the lead's call: write with the campaign UVP settings, read back exactly
-    p = write_mfprof(tmp_path / "UP1.mfprof", beams["UP1"], u)
+    p = write_beam(tmp_path / "UP1.mfprof", beams["UP1"], u)
     back = read_mfprof(p)
     np.testing.assert_array_equal(back["beam_velocity"].values,
                                   beams["UP1"]["beam_velocity"].values)

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from flumekit.waves import calibration
 from flumekit.io.instruments import read_calibration
 from flumekit.synth.campaign import Truth, _probe_gains, _write_calibration
+from flumekit.waves import calibration
 
 NAMES = ("WP1", "WP2", "WP3", "WP4")
 

@@ -257,23 +257,34 @@ class Region:
 
 STEEL = (45.0, 3.6e6)
 LAMINATION = (28.0, 3.7e6)  # laminated iron + magnets/copper, radial conductivity
-AIR_GAP = (0.1, 1.2e3)  # still air with gap convection, effective
+# Air in the rotor-stator gap: a rotor at ≈ 1300 rpm drives Taylor-Couette flow whose Nusselt
+# number (Becker & Kaye 1962 correlation) is ≈ 10, so the gap conducts like k_eff ≈ 10 k_air
+AIR_GAP = (0.3, 1.2e3)
 BALL_TRACK = (2.0, 2.5e6)  # balls in Hertz point contacts + grease, effective radial k
+# Spoked aluminium hub between shaft and rotor ring: a quarter of the annulus is metal
+# (k = 0.25 x 160, ρc = 0.25 x 2.4e6), the rest air
+ROTOR_HUB = (40.0, 0.6e6)
 
 
 def _default_regions() -> tuple[Region, ...]:
+    # h on the screw shaft: a cylinder of Ø 80 mm spinning at up to 140 rad/s in still air,
+    # Nu = 0.133 Re^(2/3) Pr^(1/3) (Anderson & Saunders' rotating-cylinder correlation) gives
+    # h ≈ 55 W/m²/K at the peak speed and ≈ 40 W/m²/K over the wave cycle; the rotor's end
+    # faces are rotating disks (laminar, Nu = 0.33 Re^(1/2)): h ≈ 26 W/m²/K.
+    shaft, disk = 40.0, 26.0
     return (
-        Region("bearing_seat", 0.0, 0.040, 0.00, 0.05, *STEEL, 20.0, "bearing"),
+        Region("bearing_seat", 0.0, 0.040, 0.00, 0.05, *STEEL, shaft, "bearing"),
         Region("screw_generator", 0.0, 0.040, 0.05, 0.30, *STEEL, 0.0),
-        Region("screw_free", 0.0, 0.040, 0.30, 0.41, *STEEL, 20.0),
-        Region("screw_swept", 0.0, 0.040, 0.41, 0.55, *STEEL, 20.0, "screw"),
-        Region("screw_under_nut", 0.0, 0.034, 0.55, 0.75, *STEEL, 20.0, "screw"),
-        Region("screw_swept_end", 0.0, 0.040, 0.75, 0.89, *STEEL, 20.0, "screw"),
-        Region("rotor", 0.040, 0.080, 0.05, 0.30, *LAMINATION, 20.0),
-        Region("air_gap", 0.080, 0.083, 0.05, 0.30, *AIR_GAP, 20.0),
-        Region("stator", 0.083, 0.130, 0.05, 0.30, *LAMINATION, 45.0, "generator"),
-        Region("ball_track", 0.034, 0.046, 0.55, 0.75, *BALL_TRACK, 35.0),
-        Region("nut", 0.046, 0.076, 0.55, 0.75, *STEEL, 35.0, "nut"),
+        Region("screw_free", 0.0, 0.040, 0.30, 0.41, *STEEL, shaft),
+        Region("screw_swept", 0.0, 0.040, 0.41, 0.55, *STEEL, shaft, "screw"),
+        Region("screw_under_nut", 0.0, 0.034, 0.55, 0.75, *STEEL, shaft, "screw"),
+        Region("screw_swept_end", 0.0, 0.040, 0.75, 0.89, *STEEL, shaft, "screw"),
+        Region("rotor_hub", 0.040, 0.065, 0.05, 0.30, *ROTOR_HUB, disk),
+        Region("rotor", 0.065, 0.080, 0.05, 0.30, *LAMINATION, disk),
+        Region("air_gap", 0.080, 0.083, 0.05, 0.30, *AIR_GAP, disk),
+        Region("stator", 0.083, 0.115, 0.05, 0.30, *LAMINATION, 64.0, "generator"),
+        Region("ball_track", 0.034, 0.046, 0.55, 0.75, *BALL_TRACK, 40.0),
+        Region("nut", 0.046, 0.062, 0.55, 0.75, *STEEL, 40.0, "nut"),
     )
 
 
@@ -281,9 +292,12 @@ def _default_regions() -> tuple[Region, ...]:
 class PTOGeometry:
     """Axisymmetric PTO section (Fig. 10), materials, convection and control points.
 
-    Plausible dimensions for the 80 mm ball screw of :mod:`ballscrew` and an EMRG of the
-    lumped model's size; convection coefficients as in :class:`thermal_lumped.LumpedThermal`
-    (45 W/m²/K on the finned EMRG casing, 20 on the shaft, 35 on the moving nut). The
+    Plausible dimensions for the 80 mm ball screw of :mod:`flumekit.ballscrew.screw` and an EMRG
+    of the lumped model's size (the stator's ρc V = 18 kJ/K is the lumped generator's heat
+    capacity); convection coefficients as in
+    :class:`flumekit.ballscrew.thermal.lumped.LumpedThermal`: 64 W/m²/K on the stator's
+    envelope is the finned casing's h ≈ 25 W/m²/K times its fin area ratio ≈ 2.5, so the
+    envelope (0.27 m²) conducts a1 = 17 W/K to the air; 20 on the shaft, 35 on the moving nut. The
     bearing seat at the screw end receives the screw's share of the bearing losses. Between
     screw core (r < 34 mm) and nut (r > 46 mm) lies the ball track, a layer of balls in Hertz
     point contacts and grease with an effective conductivity of 2 W/m/K.
@@ -292,8 +306,9 @@ class PTOGeometry:
     regions: tuple[Region, ...] = field(default_factory=_default_regions)
     air_temperature: float = 293.15
     control_points: tuple[tuple[str, float, float], ...] = (
-        ("stator", 0.1065, 0.175), ("rotor", 0.060, 0.175), ("screw_in_generator", 0.0, 0.175),
-        ("screw_under_nut", 0.0, 0.65), ("nut", 0.061, 0.65), ("stator_end", 0.1065, 0.30))
+        ("stator", 0.099, 0.175), ("stator_bore", 0.0835, 0.175), ("stator_end", 0.099, 0.30),
+        ("rotor", 0.0725, 0.175), ("screw_in_generator", 0.0, 0.175),
+        ("screw_under_nut", 0.0, 0.65), ("nut", 0.054, 0.65))
 
     def __post_init__(self):
         for reg in self.regions:
@@ -301,6 +316,14 @@ class PTOGeometry:
                 raise GeometryError(f"region '{reg.name}' has an empty or inverted extent")
             if reg.conductivity <= 0 or reg.heat_capacity <= 0 or reg.convection < 0:
                 raise GeometryError(f"region '{reg.name}': k and ρc must be > 0, h >= 0")
+
+
+def _region_of(geometry: PTOGeometry, r: float, z: float) -> str:
+    """Name of the region holding the point (r, z) (the first one, on a shared boundary)."""
+    for g in geometry.regions:
+        if g.r0 <= r <= g.r1 and g.z0 <= z <= g.z1:
+            return g.name
+    raise GeometryError(f"control point (r = {r} m, z = {z} m) lies outside the PTO section")
 
 
 def pto_mesh(geometry: PTOGeometry, radial_cell_size: float = 0.005,
@@ -343,8 +366,9 @@ def assemble_pto(geometry: PTOGeometry, radial_cell_size: float = 0.005,
     return assemble(mesh, k, rc, robin, (), sources, order), region
 
 
-def _lumped_sources(th: xr.Dataset) -> dict[str, np.ndarray]:
-    """Step-mean powers [W] of the lumped dataset split over the FEM source regions.
+def source_powers(th: xr.Dataset, factor: int) -> dict[str, np.ndarray]:
+    """Powers [W] of the lumped dataset split over the FEM source regions, averaged over FEM
+    steps of ``factor`` lumped steps.
 
     Eq. (9) gives the screw p_sn r Q_mecc (ball system: the swept screw length) plus
     p_sb (1 - r) Q_mecc (support bearing: the bearing seat); Eq. (10) the nut (1 - p_sn) r Q_mecc;
@@ -354,15 +378,12 @@ def _lumped_sources(th: xr.Dataset) -> dict[str, np.ndarray]:
     pb = float(th.attrs["partition_screw_bearing"])
     r = float(th.attrs["ball_system_fraction"])
     qm = th["mechanical_power_loss"].values[:-1]
-    return {"generator": th["electrical_power_loss"].values[:-1],
-            "screw": p * r * qm, "bearing": pb * (1 - r) * qm, "nut": (1 - p) * r * qm}
-
-
-def _mean_over_steps(x: np.ndarray, factor: int) -> np.ndarray:
-    if x.size % factor:
+    if qm.size % factor:
         raise ValueError(f"the FEM step ({factor} lumped steps) must divide the simulated "
-                         f"time ({x.size} lumped steps)")
-    return x.reshape(x.size // factor, factor).mean(axis=1)
+                         f"time ({qm.size} lumped steps)")
+    powers = {"generator": th["electrical_power_loss"].values[:-1],
+              "screw": p * r * qm, "bearing": pb * (1 - r) * qm, "nut": (1 - p) * r * qm}
+    return {g: x.reshape(x.size // factor, factor).mean(axis=1) for g, x in powers.items()}
 
 
 def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
@@ -394,8 +415,7 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
     if factor < 1 or abs(factor * dt_l - time_step) > 1e-9 * time_step:
         raise ValueError(f"FEM step {time_step} s must be a multiple of the lumped step {dt_l} s")
     system, region = assemble_pto(geometry, radial_cell_size, axial_cell_size, order)
-    powers = {g: _mean_over_steps(p, factor) for g, p in _lumped_sources(lumped).items()
-              if g in system.unit_loads}
+    powers = {g: p for g, p in source_powers(lumped, factor).items() if g in system.unit_loads}
     n = next(iter(powers.values())).size
     times = np.arange(n + 1) * time_step
     snap_t = np.asarray(snapshot_times, float)
@@ -417,7 +437,8 @@ def thermal_fem(lumped: xr.Dataset, geometry: PTOGeometry = PTOGeometry(),
          "radial_coordinate": ("node", mesh.p[0]), "axial_coordinate": ("node", mesh.p[1]),
          "cell_nodes": (("cell", "corner"), mesh.t.T.astype(np.int32)),
          "cell_region": ("cell", region.astype(np.int32)),
-         "control_radius": ("control_point", pts[0]), "control_axial": ("control_point", pts[1])},
+         "control_radius": ("control_point", pts[0]), "control_axial": ("control_point", pts[1]),
+         "control_region": ("control_point", [_region_of(geometry, r, z) for r, z in pts.T])},
         coords={"time": times, "snapshot_time": snap_t,
                 "control_point": [p[0] for p in geometry.control_points],
                 "region": [g.name for g in geometry.regions]},

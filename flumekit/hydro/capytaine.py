@@ -1,0 +1,134 @@
+"""Reader of Capytaine's netCDF output (``cpt.assemble_dataset`` + ``to_netcdf``), as WEC-Sim
+ships it.
+
+The file holds ``added_mass`` and ``radiation_damping`` over (frequency, ``radiating_dof``,
+``influenced_dof``), ``excitation_force`` (or ``diffraction_force`` + ``Froude_Krylov_force``)
+over (frequency, ``wave_direction``, ``influenced_dof``) with complex values split along a
+``complex`` dimension ("re", "im"), and ``hydrostatic_stiffness`` over (``influenced_dof``,
+``radiating_dof``). Multi-body runs name the dofs ``<body>__<Dof>`` (WEC-Sim's OSWEC:
+``oswec_flap__Pitch``, ``oswec_base_shift__Surge``, ...). Capytaine uses the time factor
+e^{-iωt} and references the excitation to the incident wave at the origin, as flumekit does.
+
+Capytaine does not store the rotation centre of the rigid dofs in the file: pass it as
+``reference_point`` (WEC-Sim's OSWEC: the flap's centre of gravity, (0, 0, −3.9) m).
+
+:func:`read_capytaine` returns the six-dof dataset of :mod:`flumekit.hydro.rigid_body`; for a
+hinged flap continue with :func:`flumekit.hydro.rigid_body.about_hinge`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from flumekit.errors import InputError
+from flumekit.hydro.rigid_body import DOFS, rigid_body_dataset
+
+_FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
+
+
+def merge_complex_dim(ds: xr.Dataset) -> xr.Dataset:
+    """Join variables split along a ``complex`` ("re", "im") dimension into complex values."""
+    if "complex" not in ds.dims:
+        return ds
+    ds = ds.copy()
+    for name in [n for n in ds.data_vars if "complex" in ds[n].dims]:
+        ds[name] = ds[name].sel(complex="re") + 1j * ds[name].sel(complex="im")
+    return ds.drop_dims("complex", errors="ignore").drop_vars("complex", errors="ignore")
+
+
+def frequency_dim(ds: xr.Dataset) -> str:
+    """Capytaine's frequency dimension, which must carry an ``omega`` coordinate."""
+    fdim = next((d for d in _FREQ_DIMS if d in ds.dims), None)
+    if fdim is None:
+        raise ValueError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one "
+                         f"of {list(_FREQ_DIMS)}")
+    if "omega" not in ds.coords:
+        raise ValueError(f"the dataset has frequency dim '{fdim}' but no 'omega' coordinate")
+    return fdim
+
+
+def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
+                   wave_direction: float = 0.0, reference_point=None) -> xr.Dataset:
+    """Six-dof coefficients of one body from a Capytaine dataset or netCDF file.
+
+    Parameters
+    ----------
+    source : Path of the netCDF file, or the dataset.
+    body : Body name in a multi-body file (dofs ``<body>__Surge`` ...); by default the dofs
+        without a body prefix.
+    wave_direction : Incident direction [rad] to keep (0: waves towards +x).
+    reference_point : Rotation centre of the body's rigid dofs (x, y, z) [m].
+
+    Returns
+    -------
+    Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset`; frequencies that failed
+    (NaN) are kept (see :func:`flumekit.hydro.rigid_body.drop_failed`), ω = 0 is dropped and
+    ω = ∞ becomes ``added_mass_infinite``.
+    """
+    path = None if isinstance(source, xr.Dataset) else Path(source)
+    try:
+        if path is None:
+            raw = source
+        else:
+            if not path.is_file():
+                raise ValueError("no such file")
+            raw = xr.load_dataset(path)
+        return _read(raw, body, wave_direction, reference_point, str(path or "dataset"))
+    except (ValueError, KeyError, OSError) as e:
+        raise InputError(path, f"not a usable Capytaine result: {e}") from None
+
+
+def _read(raw: xr.Dataset, body, wave_direction, reference_point, name) -> xr.Dataset:
+    ds = merge_complex_dim(raw)
+    fdim = frequency_dim(ds)
+    for var in ("added_mass", "radiation_damping"):
+        if var not in ds:
+            raise ValueError(f"no '{var}' variable (radiation problems)")
+    names = [str(v) for v in ds["radiating_dof"].values]
+    prefix = f"{body}__" if body else ""
+    wanted = [prefix + d for d in DOFS]
+    missing = [w for w in wanted if w not in names]
+    if missing:
+        bodies = sorted({n.split("__")[0] for n in names if "__" in n})
+        raise ValueError(f"dofs {missing} are not in the file (dofs: {names}"
+                         + (f"; bodies: {bodies}, pass body=" if bodies else "") + ")")
+    sel = {"radiating_dof": wanted, "influenced_dof": wanted}
+
+    def pick(da):
+        da = da.sel({k: v for k, v in sel.items() if k in da.dims})
+        if "wave_direction" in da.dims:
+            dirs = da["wave_direction"].values.astype(float)
+            gap = np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))
+            if gap.min() > 1e-6:
+                raise ValueError(f"wave direction {wave_direction} rad not computed; "
+                                 f"available: {dirs.tolist()}")
+            da = da.isel(wave_direction=int(np.argmin(gap)))
+        return da
+
+    if "excitation_force" in ds:
+        exc = pick(ds["excitation_force"])
+    elif "diffraction_force" in ds and "Froude_Krylov_force" in ds:
+        exc = pick(ds["diffraction_force"] + ds["Froude_Krylov_force"])
+    else:
+        raise ValueError("neither 'excitation_force' nor 'diffraction_force' + "
+                         "'Froude_Krylov_force'")
+    a = pick(ds["added_mass"]).transpose(fdim, "radiating_dof", "influenced_dof")
+    b = pick(ds["radiation_damping"]).transpose(fdim, "radiating_dof", "influenced_dof")
+    exc = exc.transpose(fdim, "influenced_dof")
+    if "hydrostatic_stiffness" in ds:
+        c = np.real(pick(ds["hydrostatic_stiffness"]).transpose(
+            "influenced_dof", "radiating_dof").values)
+    else:
+        c = np.zeros((6, 6))
+    omega = np.asarray(ds["omega"].values, dtype=float).ravel()
+    keep = np.isfinite(omega) & (omega > 0)
+    a_inf = np.real(a.values[np.isinf(omega)][0]) if np.any(np.isinf(omega)) else None
+    scalar = {k: float(ds[k].values) for k in ("rho", "g", "water_depth") if k in ds}
+    return rigid_body_dataset(
+        omega[keep], np.real(a.values[keep]), np.real(b.values[keep]), exc.values[keep], c,
+        reference_point=reference_point, wave_direction=wave_direction,
+        added_mass_infinite=a_inf, source=f"Capytaine {raw.attrs.get('capytaine_version', '')}"
+        f" result {Path(name).name}, body '{body or ''}'", **scalar)
