@@ -8,6 +8,7 @@ per pair), on the pairs whose spacing lies in Goda-Suzuki's valid range 0.05 < d
 """
 
 import hashlib
+import re
 import shutil
 from pathlib import Path
 
@@ -91,3 +92,35 @@ def test_paper_tolerance_alone_fails_on_the_noisy_record(tmp_path):
     p.write_text(p.read_text().replace("x_ref = 0.0", "x_ref = 0.0\nnoise_factor = 0"))
     assert main(["make", "--pipeline", str(p), "--processed", str(tmp_path / "out"),
                  "waves/regular"]) == 1
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda rows: [r.split(",")[0] + ",0.1," + r.split(",")[2] for r in rows],
+     r"wavedata\.csv: probe G2: fewer than four wave cycles"),  # a dead gauge
+    (lambda rows: rows[:1200],  # a 12 s record: each gauge's window is named
+     r"wavedata\.csv: the probes' quasi-steady windows overlap .* fewer than 10 periods .*G1"),
+])
+def test_dead_gauge_and_short_record_name_file_and_probe(tmp_path, capsys, edit, message):
+    shutil.copytree(EXAMPLE, tmp_path / "ex")
+    csv = tmp_path / "ex" / "wavedata.csv"
+    head, *rows = csv.read_text().splitlines()
+    csv.write_text("\n".join([head, *edit(rows)]))
+    assert main(["make", "--pipeline", str(tmp_path / "ex" / "pipeline.toml"), "--processed",
+                 str(tmp_path / "out"), "waves/regular"]) == 1
+    assert len(re.findall(message, capsys.readouterr().err)) == 1
+
+
+def test_list_and_make_on_a_probes_only_campaign(tmp_path, capsys):
+    """The default scenes over a waves study: flap, comparison and UVP scenes are marked not
+    available, the waves scene builds."""
+    default = Path(__file__).resolve().parents[1] / "pipelines" / "default.toml"
+    p = tmp_path / "p.toml"
+    p.write_text(f'extends = "{default}"\n[pipeline]\nname = "w"\nraw = "{EXAMPLE}"\n'
+                 f'processed = "{tmp_path / "out"}"\n')
+    assert main(["list", "--pipeline", str(p)]) == 0
+    out = capsys.readouterr().out
+    for scene in ("calibration", "flap", "comparison", "uvp"):
+        assert any(line.split()[:3] == [scene, "not", "available"] for line in out.splitlines())
+    assert "flap/" not in out and "eta/regular" in out
+    assert main(["make", "--pipeline", str(p), "waves"]) == 0
+    assert (tmp_path / "out" / "figures" / "fig06a.png").exists()

@@ -40,6 +40,7 @@ def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
+    from flumekit.errors import InputError
     from flumekit.flap import analyse_run
     from flumekit.io.instruments import read_flap
     from flumekit.io.netcdf import read_dataset
@@ -48,11 +49,15 @@ def build(inputs, outputs, params) -> None:
     raw = read_flap(inputs["flap"], params["sampling_rate"], params["dialect"],
                     time_offset=params["time_offset"])
     waves = read_dataset(inputs["waves"])
-    ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
-                     raw["chamber_pressure"].values, campaign=campaign, period=params["period"],
-                     incident_height=float(waves["incident_height"]), cutoff=params["cutoff"],
-                     tolerance=params["tolerance"], n_phase=params["n_phase"],
-                     max_flagged_fraction=params["max_flagged_fraction"])
+    try:
+        ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
+                         raw["chamber_pressure"].values, campaign=campaign,
+                         period=params["period"], incident_height=float(waves["incident_height"]),
+                         cutoff=params["cutoff"], tolerance=params["tolerance"],
+                         n_phase=params["n_phase"],
+                         max_flagged_fraction=params["max_flagged_fraction"])
+    except ValueError as e:  # a stuck encoder, a record too short: name the file
+        raise InputError(inputs["flap"], f"encoder and pressure record: {e}") from None
     write_run(ds, outputs, params, "Flap dynamics, PTO and power",
               f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}")
 

@@ -33,7 +33,8 @@ def rules(ctx: Context) -> list[Rule]:
         p = {**params, "depth": c.flume.water_depth,
              "separation_probes": list(c.probes.separation), **run_params(run)}
         out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
-                        inputs={"eta": ctx.out("eta", f"{run.id}.nc")},
+                        inputs={"eta": ctx.out("eta", f"{run.id}.nc"),
+                                "probes": run.file("probes")},
                         outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
     out.append(summary_rule(ctx, "waves", VERSION))
@@ -47,14 +48,20 @@ def build(inputs, outputs, params) -> None:
     from flumekit.waves import analyse_run
 
     eta = read_dataset(inputs["eta"])["eta"]
+    from flumekit.errors import InputError
+
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        ds = analyse_run(eta, params["depth"], params["period"], params["x_ref"],
-                         method=params["method"], separation_probes=params["separation_probes"],
-                         n_harmonics=params["n_harmonics"],
-                         bound_harmonics=params["bound_harmonics"],
-                         tolerance=params["tolerance"], min_cycles=params["min_cycles"],
-                         noise_factor=params["noise_factor"])
+        try:
+            ds = analyse_run(eta, params["depth"], params["period"], params["x_ref"],
+                             method=params["method"],
+                             separation_probes=params["separation_probes"],
+                             n_harmonics=params["n_harmonics"],
+                             bound_harmonics=params["bound_harmonics"],
+                             tolerance=params["tolerance"], min_cycles=params["min_cycles"],
+                             noise_factor=params["noise_factor"])
+        except ValueError as e:  # a dead probe, a record too short: the message names the probe
+            raise InputError(inputs["probes"], str(e)) from None
     for w in caught:
         if issubclass(w.category, UserWarning):
             print(f"warning: run {params['run']}: {w.message}")

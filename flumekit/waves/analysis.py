@@ -74,10 +74,15 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     criteria = [("tolerance", 0.0)] + ([("crest noise", noise_factor)] if noise_factor > 0
                                        else [])
     for criterion, factor in criteria:  # noqa: B007 (the criterion kept is recorded)
+        windows = []
         try:
-            windows = [quasi_steady_window(v[p], t, tolerance=tolerance,
-                                           min_period=0.75 * period, noise_factor=factor)
-                       for p in range(v.shape[0])]  # a handful of probes
+            for p in range(v.shape[0]):  # a handful of probes
+                try:
+                    windows.append(quasi_steady_window(v[p], t, tolerance=tolerance,
+                                                       min_period=0.75 * period,
+                                                       noise_factor=factor))
+                except ValueError as e:  # name the probe (a dead probe, a short record)
+                    raise ValueError(f"probe {probes[p]}: {e}") from None
         except ValueError:
             if factor == criteria[-1][1]:
                 raise
