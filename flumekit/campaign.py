@@ -368,7 +368,9 @@ class Probes:
     sampling_rate: float  # [Hz]
     separation: tuple[str, ...]  # probes used for incident/reflected separation
     units: str = "V"  # unit of the recorded channels (voltage: calibrate; length: calibrated)
-    still_water: Any = None  # still-water rule (None: 'none' for voltages, 'mean' for lengths)
+    # still-water rule (None: 'none' for voltages, 'mean' for lengths); a list or table is
+    # unhashable, and a campaign is hashed (cached hydrodynamics): left out of the hash
+    still_water: Any = field(default=None, hash=False)
 
     @property
     def calibrated(self) -> bool:
@@ -430,7 +432,8 @@ class Campaign:
     probes: Probes
     uvp: UVP | None
     runs: tuple[Run, ...] = field(default_factory=tuple)
-    files: dict[str, dict] = field(default_factory=dict)  # instrument -> dialect (io.dialects)
+    # instrument -> dialect (io.dialects); not hashed (a dict), see Probes.still_water
+    files: dict[str, dict] = field(default_factory=dict, hash=False)
 
     @property
     def calibration_file(self) -> Path:
@@ -557,7 +560,10 @@ def load_campaign(root: str | Path) -> Campaign:
                                   "calibration": ["level", *names]}, problems)
     fl, f, p = _table(data, "flume"), _table(data, "flap"), _table(data, "pto")
     if not problems and f:
-        if "width" in fl and f["width"] > fl["width"]:
+        if "width" not in fl:
+            problems.append(Problem(path, "flume.width", "missing key [m]: the flap's models "
+                                    "need the channel width"))
+        elif f["width"] > fl["width"]:
             problems.append(Problem(path, "flap.width", f"flap width {f['width']} m exceeds the "
                                     f"flume width {fl['width']} m"))
         if f["hinge_height"] >= fl["water_depth"]:

@@ -99,7 +99,7 @@ def _check_value(key: Key, v: Any, name: str, path: Path) -> list[Problem]:
     if key.choices and v not in key.choices:
         out.append(Problem(path, name, f"expected one of {list(key.choices)}, got {v!r}"
                            + suggest(str(v), [str(c) for c in key.choices])))
-    if _is_kind(v, "number") and key.kind == "number":
+    if _is_kind(v, "number") and key.kind in ("number", "integer"):
         if key.positive and v <= 0:
             out.append(Problem(path, name, f"must be > 0, got {v}"))
         if key.nonnegative and v < 0:

@@ -20,7 +20,6 @@ import pandas as pd
 
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
-from flumekit.units import UNITS  # noqa: F401  (re-exported: the units a header may declare)
 
 _HEADER = re.compile(r"^\s*(.*?)\s*\[([^\]]*)\]\s*$")
 
