@@ -14,6 +14,8 @@ import xarray as xr
 
 from flumekit import conventions
 
+__all__ = ["R2_WARNING", "CalibrationWarning", "apply", "fit", "is_monotonic"]
+
 R2_WARNING = 0.999
 
 
@@ -121,7 +123,20 @@ def _submersions(voltage, levels) -> xr.Dataset:
 
 
 def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
-    """True if the calibration polynomial's derivative keeps one sign on [v_min, v_max]."""
+    """Whether the calibration polynomial's derivative keeps one sign on [v_min, v_max].
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        Polynomial coefficients c_0 ... c_n, lowest order first [m V^-n].
+    v_min, v_max : float
+        Voltage range [V].
+
+    Returns
+    -------
+    bool
+        True where a voltage in the range maps to a unique level.
+    """
     deriv = np.polynomial.polynomial.polyder(coefficients)
     vv = np.linspace(v_min, v_max, 201)
     d = np.polynomial.polynomial.polyval(vv, deriv)
@@ -131,8 +146,23 @@ def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
-    Warns (:class:`CalibrationWarning`) when a polynomial is not monotonic over the voltage range
-    the record spans, where a voltage no longer maps to a unique level.
+    Parameters
+    ----------
+    voltage : xarray.DataArray
+        Probe voltages [V], dims ("probe", "time").
+    calibration : xarray.Dataset
+        Output of :func:`fit` holding every probe of ``voltage``.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``eta`` [m], dims ("probe", "time").
+
+    Warns
+    -----
+    CalibrationWarning
+        When a polynomial is not monotonic over the voltage range the record spans, where a
+        voltage no longer maps to a unique level.
     """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     powers = calibration["polynomial_order"]

@@ -53,16 +53,22 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
 
     Parameters
     ----------
-    columns : Design matrices, shape (F, P, K): F independent systems of P equations in K
+    columns : numpy.ndarray
+        Design matrices, complex, shape (F, P, K): F independent systems of P equations in K
         unknowns.
-    rhs : Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
-    max_condition : Systems whose 2-norm condition number exceeds this are masked [-].
+    rhs : numpy.ndarray
+        Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
+    max_condition : float
+        Systems whose 2-norm condition number exceeds this are masked [-].
 
     Returns
     -------
-    solution : shape (F, K, R); zero for masked systems.
-    condition : 2-norm condition number of each design matrix, shape (F,); inf if singular.
-    masked : bool, shape (F,).
+    solution : numpy.ndarray
+        Shape (F, K, R); zero for masked systems.
+    condition : numpy.ndarray
+        2-norm condition number of each design matrix, shape (F,); inf if singular.
+    masked : numpy.ndarray
+        Bool, shape (F,).
     """
     mc = np.conj(columns)
     # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than a
@@ -101,12 +107,28 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
     Parameters
     ----------
-    eta : Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+    eta : xarray.DataArray
+        Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
         ``probe``, uniformly sampled, finite.
 
     Returns
     -------
-    values [m] (probe, time), time [s], x [m], probe labels.
+    values : numpy.ndarray
+        Elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s].
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+
+    Raises
+    ------
+    TypeError
+        When ``eta`` is not a DataArray.
+    ValueError
+        Wrong dims, missing or repeated positions, fewer than 8 samples, non-uniform time or
+        non-finite samples (the message names the first probe holding one).
     """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
@@ -210,7 +232,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         ``condition_number``, ``masked``, ``wave_number`` (frequency);
         ``reflection_coefficient`` [-]: irregular waves: Kr = sqrt(m0_R / m0_I) over the
         unmasked band bins (the energy ratio of Mansard & Funke 1980); ``regular``: the
-        first-harmonic ratio |A_R1| / |A_I1| (bound harmonics are not reflection; see
+        first-harmonic ratio abs(A_R1) / abs(A_I1) (bound harmonics are not reflection; see
         ``harmonic_reflection_coefficient`` for the others);
         ``incident_height``, ``reflected_height`` [m]: Hm0 = 4 sqrt(m0) for irregular waves;
         for ``regular`` the crest-to-trough height of the sum of the separated harmonics over
@@ -340,7 +362,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
 
 
 def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: float):
-    """The arguments of :func:`separate` checked; the record's arrays (:func:`as_probe_time`)."""
+    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`."""
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
@@ -357,8 +379,10 @@ def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: f
 
 def _band_bins(t: np.ndarray, band: tuple[float, float] | None
                ) -> tuple[np.ndarray, np.ndarray]:
-    """FFT frequencies [Hz] of a record sampled at ``t`` [s] and the indices of the bins in
-    ``band`` (strictly between 0 and Nyquist)."""
+    """FFT frequencies [Hz] of a record sampled at ``t`` [s] and the indices of the band's bins.
+
+    The bins lie in ``band`` and strictly between 0 and the Nyquist frequency.
+    """
     n = t.size
     dt = (t[-1] - t[0]) / (n - 1)
     freq = np.fft.rfftfreq(n, dt)
@@ -430,8 +454,10 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
 
 def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, x_ref: float,
                    sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes
-    (untapered), by inverse FFT of an ``n``-sample record."""
+    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes.
+
+    The untapered amplitudes, by inverse FFT of an ``n``-sample record.
+    """
     shift_i = np.exp(-1j * k * x_ref)
     spec_i = np.zeros(n // 2 + 1, complex)
     spec_r = np.zeros(n // 2 + 1, complex)

@@ -22,7 +22,7 @@ from flumekit import conventions
 
 
 def still_water_level(elevation: xr.DataArray, rule) -> xr.DataArray:
-    """The still-water level of each probe [m] by ``rule`` (see the module docstring).
+    """Compute the still-water level of each probe [m] by ``rule`` (see the module docstring).
 
     Parameters
     ----------
