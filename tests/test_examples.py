@@ -67,7 +67,7 @@ def test_kr_is_printed_and_physically_consistent(built):
     out, code, printed = built
     assert code == 0
     assert "waves/regular: first-harmonic Kr = 0.027" in printed
-    assert (out / "figures" / "separation.png").stat().st_size > 10_000
+    assert (out / "figures" / "separation" / "regular.png").stat().st_size > 10_000
     with xr.open_dataset(out / "waves" / "regular.nc") as ds:
         kr = float(ds.reflection_coefficient)
         t0, t1 = float(ds.steady_start), float(ds.steady_end)

@@ -60,7 +60,6 @@ def rules(ctx: Context) -> list[Rule]:
         waves = ctx.out("waves", f"{run}.nc")
         fig("fig05a", "waves:figure_5a", {"waves": waves})
         fig("fig06a", "waves:figure_6a", {"waves": waves})
-        fig("separation", "separation:figure_separation", {"waves": waves})
     if run is not None and "flap" in ctx.campaign.instruments:
         flap = ctx.out("flap", f"{run}.nc")
         fig("fig05b", "flap:figure_5b", {"flap": flap})
