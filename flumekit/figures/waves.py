@@ -151,8 +151,9 @@ def separation(waves: xr.Dataset, n_waves: int = 5):
     t0 = float(t[ok][0])
     period = next((float(waves[n]) for n in ("measured_period", "period")
                    if n in waves.variables), None)
-    if period is None and "period" in waves.attrs:
-        period = float(waves.attrs["period"])
+    f1 = waves.attrs.get("fundamental_frequency")  # the output of separate
+    if period is None and f1 is not None and float(f1) > 0:
+        period = 1.0 / float(f1)
     shown = ok & (t <= t0 + n_waves * period) if period else ok
     f = waves["frequency"].values
     masked = (waves["masked"].values.astype(bool) if "masked" in waves.variables

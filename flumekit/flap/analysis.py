@@ -78,29 +78,41 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
 
     Parameters
     ----------
-    time : Sample times [s], uniform (100 Hz in the campaign).
-    encoder_counts : Wire-encoder counts, increasing as the wire is reeled in [-].
-    chamber_pressure : Measured gauge pressure in the cylinder chamber [Pa].
-    campaign : Campaign metadata (flume depth, flap, PTO anchors/bore/friction, encoder).
-    period : Wave period of the run [s] (the quasi-steady window's cycle detection ignores
+    time : array_like
+        Sample times [s], uniform (100 Hz in the campaign).
+    encoder_counts : array_like
+        Wire-encoder counts, increasing as the wire is reeled in [-].
+    chamber_pressure : array_like
+        Measured gauge pressure in the cylinder chamber [Pa].
+    campaign : Campaign
+        Campaign metadata (flume depth, flap, PTO anchors/bore/friction, encoder).
+    period : float
+        Wave period of the run [s] (the quasi-steady window's cycle detection ignores
         crossings closer than half of it).
-    incident_height : Incident wave height at the flap from the wave separation [m]; used for
+    incident_height : float
+        Incident wave height at the flap from the wave separation [m]; used for
         W_I (Eq. A2) and C_f.
-    cutoff : Cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
+    cutoff : float
+        Cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
         differentiation [Hz].
-    zero_count : Encoder count at θ = 0.
-    tolerance : Relative crest tolerance of the quasi-steady window (2 %, §2.5).
-    n_phase : Phase points per cycle of the phase averages.
-    max_flagged_fraction : Largest fraction of encoder samples outside the domain of Eq. (1)
+    zero_count : float
+        Encoder count at θ = 0.
+    tolerance : float
+        Relative crest tolerance of the quasi-steady window (2 %, §2.5).
+    n_phase : int
+        Phase points per cycle of the phase averages.
+    max_flagged_fraction : float
+        Largest fraction of encoder samples outside the domain of Eq. (1)
         that may be replaced by interpolation; more is an :class:`InputError`.
 
     Returns
     -------
-    xr.Dataset with dims ``time`` and ``phase``: θ, θ̇, θ̈, rod kinematics, measured and fitted
-    pressure, forces, torques (Eq. 11-12, resisting-torque convention of
-    :mod:`flumekit.flap.torque`), T_h, flow and power time series; phase averages over the
-    quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power, W_I, C_f
-    and the window. Every name is in :mod:`flumekit.conventions`.
+    xarray.Dataset
+        Dims ``time`` and ``phase``: θ, θ̇, θ̈, rod kinematics, measured and fitted pressure,
+        forces, torques (Eq. 11-12, resisting-torque convention of
+        :mod:`flumekit.flap.torque`), T_h, flow and power time series; phase averages over
+        the quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power,
+        W_I, C_f and the window. Every name is in :mod:`flumekit.conventions`.
     """
     t = np.asarray(time, dtype=float)
     fs = _uniform_rate(t)

@@ -1,10 +1,10 @@
 """Stage: surface elevation at every probe of a run, relative to the still-water level.
 
-Probes recorded in volts are calibrated (the ``calibration`` target); probes recorded in length
-units skip the calibration. The still-water level is then removed by the declared rule
-(``still_water`` of the run, else of the campaign's ``[probes]``; default ``"none"`` for
-calibrated voltages, whose calibration levels already refer to still water, and ``"mean"`` for
-lengths) and recorded in the dataset.
+Reads the quality-controlled probe records (``qc/probes/<run>``). Probes recorded in volts are
+calibrated (the ``calibration`` target); probes recorded in length units skip the calibration.
+The still-water level is then removed by the declared rule (``still_water`` of the run, else of
+the campaign's ``[probes]``; default ``"none"`` for calibrated voltages, whose calibration
+levels already refer to still water, and ``"mean"`` for lengths) and recorded in the dataset.
 """
 
 from __future__ import annotations
@@ -26,10 +26,9 @@ def rules(ctx: Context) -> list[Rule]:
             rule = "mean" if calibrated else "none"
         params = {"probes": list(c.probes.names), "probe_x": run.probe_x,
                   "sampling_rate": c.probes.sampling_rate, "kind": run.kind,
-                  "dialect": c.dialect("probes"), "units": c.probes.units,
                   "time_offset": run.clock.get("probes", 0.0), "still_water": rule,
                   **run_params(run)}
-        inputs = {"probes": run.file("probes")}
+        inputs = {"probes": ctx.out("qc", "probes", f"{run.id}.nc")}
         if not calibrated:
             inputs["calibration"] = ctx.out("calibration.nc")
         out.append(Rule(f"eta/{run.id}", "flumekit.stages.eta:build", inputs=inputs,
@@ -39,37 +38,42 @@ def rules(ctx: Context) -> list[Rule]:
 
 
 def build(inputs, outputs, params) -> None:
-    import warnings
-
     import numpy as np
 
     from flumekit.errors import InputError
-    from flumekit.io.instruments import read_probes
     from flumekit.io.netcdf import read_dataset
+    from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
     from flumekit.waves.still_water import remove_still_water
 
-    raw = read_probes(inputs["probes"], tuple(params["probes"]), params["sampling_rate"],
-                      params["dialect"], units=params["units"],
-                      time_offset=params["time_offset"])
-    if "probe_voltage" in raw:
+    qc = read_dataset(inputs["probes"])
+    source_file = qc.attrs.get("source_file", inputs["probes"])
+    warnings = [qc.attrs.get(WARNINGS, "")]
+    if "probe_voltage" in qc:
+        raw = qc["probe_voltage"].sel(probe=list(params["probes"]))
         cal = read_dataset(inputs["calibration"])
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", calibration.CalibrationWarning)
-            elevation = calibration.apply(raw["probe_voltage"], cal)
-        for w in caught:
-            print(f"warning: {inputs['probes']}: {w.message}")
+        bad = calibration.non_monotonic(raw, cal)
+        if bad:
+            raise InputError(source_file,
+                             "; ".join(f"probe {p}: calibration polynomial is not monotonic "
+                                       f"over the recorded voltages [{lo:.4g}, {hi:.4g}] V"
+                                       for p, lo, hi in bad))
+        elevation = calibration.apply(raw, cal)
+        warnings.append(cal.attrs.get(WARNINGS, ""))
         source = f"{inputs['probes']} and {inputs['calibration']}"
     else:
-        elevation = raw["probe_elevation"]
+        elevation = qc["probe_elevation"].sel(probe=list(params["probes"]))
         source = f"{inputs['probes']} (calibrated probes)"
     try:
         eta, level = remove_still_water(elevation, params["still_water"])
     except ValueError as e:
-        raise InputError(inputs["probes"], str(e), field="still_water") from None
+        raise InputError(source_file, str(e), field="still_water") from None
     x = np.array([params["probe_x"][p] for p in params["probes"]])
     ds = eta.to_dataset().assign_coords(x=("probe", x))
     ds["still_water_level"] = level
     ds.attrs.update(still_water_rule=level.attrs["rule"], time_offset=params["time_offset"])
+    warnings = [w for w in warnings if w]
+    if warnings:
+        ds.attrs[WARNINGS] = "\n".join(warnings)
     write_run(ds, outputs, params, "Surface elevation per probe",
               f"flumekit eta stage from {source}")

@@ -6,7 +6,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "2"
+VERSION = "3"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
 DOCS = {
     "cutoff": "cut-off of the zero-phase 4th-order Butterworth low-pass applied to theta before "
@@ -25,10 +25,10 @@ def rules(ctx: Context) -> list[Rule]:
         return []
     out = []
     for run in c.runs:
-        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate,
-             "dialect": c.dialect("flap"), "time_offset": run.clock.get("flap", 0.0)}
+        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
-                        inputs={"flap": run.file("flap"), "campaign": ctx.campaign_file,
+                        inputs={"flap": ctx.out("qc", "flap", f"{run.id}.nc"),
+                                "campaign": ctx.campaign_file,
                                 "waves": ctx.out("waves", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
@@ -42,12 +42,10 @@ def build(inputs, outputs, params) -> None:
     from flumekit.campaign import load_campaign
     from flumekit.errors import InputError
     from flumekit.flap import analyse_run
-    from flumekit.io.instruments import read_flap
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
-    raw = read_flap(inputs["flap"], params["sampling_rate"], params["dialect"],
-                    time_offset=params["time_offset"])
+    raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
     try:
         ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
@@ -57,7 +55,8 @@ def build(inputs, outputs, params) -> None:
                          n_phase=params["n_phase"],
                          max_flagged_fraction=params["max_flagged_fraction"])
     except ValueError as e:  # a stuck encoder, a record too short: name the file
-        raise InputError(inputs["flap"], f"encoder and pressure record: {e}") from None
+        raise InputError(raw.attrs.get("source_file", inputs["flap"]),
+                         f"encoder and pressure record: {e}") from None
     write_run(ds, outputs, params, "Flap dynamics, PTO and power",
               f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}")
 

@@ -6,9 +6,10 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "2"
+VERSION = "3"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 4, "bound_harmonics": True,
-            "tolerance": 0.02, "min_cycles": 10, "noise_factor": 3.0}
+            "tolerance": 0.02, "min_cycles": 10, "noise_factor": 3.0, "height_tolerance": 0.25,
+            "height_warning": 0.1}
 DOCS = {
     "method": "separation method: 'mansard_funke' (3 probes), 'goda_suzuki' (2) or "
               "'zelt_skjelbreia' (2 or more)",
@@ -22,6 +23,9 @@ DOCS = {
                     "periods: each probe's tolerance becomes noise_factor x the robust relative "
                     "scatter of its crests (3: a steady cycle is rejected with probability "
                     "0.3 %); 0 = the paper's criterion only [-]",
+    "height_tolerance": "declared run height vs the measured incident height: relative "
+                        "difference beyond which the run is refused [-]",
+    "height_warning": "relative difference beyond which a warning is recorded [-]",
 }
 
 
@@ -34,7 +38,7 @@ def rules(ctx: Context) -> list[Rule]:
              "separation_probes": list(c.probes.separation), **run_params(run)}
         out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
                         inputs={"eta": ctx.out("eta", f"{run.id}.nc"),
-                                "probes": run.file("probes")},
+                                "run": run.path / "run.toml", "probes": run.file("probes")},
                         outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
     out.append(summary_rule(ctx, "waves", VERSION))
@@ -44,12 +48,14 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     import warnings
 
+    from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
+    from flumekit.qc.checks import check_height
+    from flumekit.stages.qc import WARNINGS
     from flumekit.waves import analyse_run
 
-    eta = read_dataset(inputs["eta"])["eta"]
-    from flumekit.errors import InputError
-
+    eta_ds = read_dataset(inputs["eta"])
+    eta = eta_ds["eta"]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -65,6 +71,17 @@ def build(inputs, outputs, params) -> None:
     for w in caught:
         if issubclass(w.category, UserWarning):
             print(f"warning: run {params['run']}: {w.message}")
+    # the declared height only labels the run (the analysis uses the measured one), so a
+    # moderate disagreement is a warning and a gross one an error; an undeclared one is not
+    # checked
+    warned = None
+    if params["height"] is not None:
+        warned = check_height(params["height"], float(ds["incident_height"]),
+                              params["height_tolerance"], params["height_warning"],
+                              inputs["run"], "incident height at the flap")
+    warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), warned) if w]
+    if warnings_:
+        ds.attrs[WARNINGS] = "\n".join(warnings_)
     write_run(ds, outputs, params, "Incident and reflected waves",
               f"flumekit waves stage from {inputs['eta']}")
 

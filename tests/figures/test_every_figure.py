@@ -48,6 +48,17 @@ def test_separation_figure(waves):
     assert len(fig.axes[1].patches) == 1
 
 
+def test_separation_figure_of_separate_output(waves):
+    from flumekit.waves import separate
+
+    steady = waves["eta"].sel(time=slice(float(waves.steady_start), float(waves.steady_end)))
+    result = separate(steady.sel(probe=["WP1", "WP2", "WP3"]), 0.825)
+    fig = _passes(wave_figs.separation(result))
+    # five periods of the detected fundamental, not the whole record
+    period = 1.0 / result.attrs["fundamental_frequency"]
+    assert np.ptp(fig.axes[0].lines[0].get_xdata()) == pytest.approx(5 * period, abs=0.05)
+
+
 def test_flap_time_series_figures(flaps):
     ds = flaps[-1]
     fig = _passes(figs.figure_5b(ds))
@@ -204,3 +215,19 @@ def test_png_at_300_dpi_and_print_size(tmp_path):
     assert (width, height) == (3.5 * 300, 2.5 * 300)
     with pytest.raises(ValueError, match="format 'jpg'"):
         save(_figure(), tmp_path / "f.jpg")
+
+
+def test_figure_rules_write_every_format(campaign, tmp_path):
+    from flumekit.errors import FlumekitError
+    from flumekit.stages import figures as stage
+    from flumekit.stages.context import Context
+
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, params={}))
+    assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
+    assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
+               for r in rules)
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
+    assert all(list(r.outputs) == ["svg"] for r in stage.rules(ctx))
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
+    with pytest.raises(FlumekitError, match="formats"):
+        stage.rules(ctx)
