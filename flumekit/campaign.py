@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -489,7 +490,9 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
     for inst in ("probes", "flap"):
         given = _table(data, "files").get(inst)
         default = campaign.files.get(inst, {}).get("file", INSTRUMENT_FILES[inst])
-        files[inst] = path.parent / (given if isinstance(given, str) else default)
+        # normalised, not resolved: "../../record.csv" reads as the file it names
+        files[inst] = Path(os.path.normpath(path.parent / (given if isinstance(given, str)
+                                                           else default)))
     if found:
         problems += found
         return None

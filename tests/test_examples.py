@@ -95,7 +95,7 @@ def test_paper_tolerance_alone_fails_on_the_noisy_record(tmp_path):
 
 @pytest.mark.parametrize("edit, message", [
     (lambda rows: [r.split(",")[0] + ",0.1," + r.split(",")[2] for r in rows],
-     r"wavedata\.csv: probe G2: fewer than four wave cycles"),  # a dead gauge
+     r"/ex/wavedata\.csv: channel 'G2' is dead"),  # a dead gauge (quality control)
     (lambda rows: rows[:1200],  # a 12 s record: each gauge's window is named
      r"wavedata\.csv: the probes' quasi-steady windows overlap .* fewer than 10 periods .*G1"),
 ])

@@ -35,7 +35,8 @@ def build(inputs, outputs, params) -> None:
     from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
 
-    raw = read_calibration(inputs["calibration"], tuple(params["probes"]), params["dialect"])
+    raw = read_calibration(inputs["calibration"], tuple(params["probes"]),
+                           params.get("dialect"))
     with warnings.catch_warnings():
         # the R² is checked below against the stage's thresholds, naming the file
         warnings.simplefilter("ignore", calibration.CalibrationWarning)

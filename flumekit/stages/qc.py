@@ -122,8 +122,10 @@ def probes(inputs, outputs, params) -> None:
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["probes"])
-    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"], params["dialect"],
-                      units=params["units"], time_offset=params["time_offset"])
+    # dialect, units, clock: as the campaign declares them (default: the raw campaign's CSV)
+    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"],
+                      params.get("dialect"), units=params.get("units", "V"),
+                      time_offset=params.get("time_offset", 0.0))
     # volts to calibrate, or elevations of calibrated probes [m]
     name = "probe_voltage" if "probe_voltage" in raw else "probe_elevation"
     th = Thresholds.from_params(params)
@@ -157,8 +159,8 @@ def flap(inputs, outputs, params) -> None:
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["flap"])
-    raw = read_flap(path, params["sampling_rate"], params["dialect"],
-                    time_offset=params["time_offset"])
+    raw = read_flap(path, params["sampling_rate"], params.get("dialect"),
+                    time_offset=params.get("time_offset", 0.0))
     raw["encoder_counts"] = raw["encoder_counts"].astype(float)
     th = Thresholds.from_params(params)
     parts = []
