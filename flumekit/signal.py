@@ -147,7 +147,8 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
     c = cycles(x, time, min_period=min_period)
     if c.crest.size < 4:
         raise ValueError("fewer than four wave cycles: no quasi-steady window can be found")
-    scale = float(np.median(c.crest[c.crest.size // 2:]))
+    # nanmedian: a cycle holding masked (NaN) samples has a NaN crest and is never steady
+    scale = float(np.nanmedian(c.crest[c.crest.size // 2:]))
     ok = np.abs(c.crest - scale) <= tolerance * abs(scale)
     # longest run of consecutive True
     padded = np.concatenate([[False], ok, [False]])

@@ -20,6 +20,7 @@ PACKAGE = ROOT / "flumekit"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "conventions", "campaign", "signal"),
     ("io",),
+    ("qc",),
     ("waves", "hydro"),
     ("flap", "ballscrew", "uvp"),
     ("synth",),
