@@ -153,7 +153,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
     w_out = pto_power(p, q)
 
     # quasi-steady window on θ (§2.5), pressure fit (Eqs. 13-14) inside it
-    win = sig.quasi_steady_window(theta, t, tolerance=tolerance, min_period=0.5 * period)
+    win = sig.steady_window_or_centred(theta, t, tolerance=tolerance, min_period=0.5 * period)
     inside = (t >= win.start) & (t <= win.end)
     fit = fit_pressure_model(p[inside], theta_dot[inside], theta_ddot[inside],
                              atmospheric_pressure=pto.atmospheric_pressure,

@@ -49,7 +49,7 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
     """
     t = sim["time"].values
     theta = sim["theta"].values
-    win = sig.quasi_steady_window(theta, t, tolerance=tolerance, min_period=0.5 * period)
+    win = sig.steady_window_or_centred(theta, t, tolerance=tolerance, min_period=0.5 * period)
     if win.n_cycles < 2:
         raise ValueError("the simulated run has fewer than two quasi-steady cycles")
     mean_w = window_mean(sim["power"].values, t, win.start, win.end)
