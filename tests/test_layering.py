@@ -20,7 +20,7 @@ PACKAGE = ROOT / "flumekit"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "conventions", "campaign", "signal"),
     ("io",),
-    ("waves", "hydro"),
+    ("waves", "hydro", "qc"),
     ("flap", "ballscrew", "uvp"),
     ("synth",),
     ("figures",),

@@ -19,9 +19,8 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     import warnings
 
-    from flumekit import conventions
     from flumekit.io.instruments import read_calibration
-    from flumekit.io.netcdf import write_dataset
+    from flumekit.io.netcdf import write_product
     from flumekit.waves import calibration
 
     raw = read_calibration(inputs["calibration"], tuple(params["probes"]))
@@ -31,7 +30,6 @@ def build(inputs, outputs, params) -> None:
     for w in caught:
         print(f"warning: {inputs['calibration']}: {w.message}")
     ds = ds.merge(raw[["calibration_voltage"]])
-    ds.attrs.update(conventions.global_attrs(
-        "Wave probe calibration (static submersions, least squares)",
-        f"flumekit calibration stage from {inputs['calibration']}", params))
-    write_dataset(ds, outputs["dataset"])
+    write_product(ds, outputs["dataset"],
+                  "Wave probe calibration (static submersions, least squares)",
+                  f"flumekit calibration stage from {inputs['calibration']}", params)
