@@ -132,6 +132,17 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def cmd_report(args) -> int:
+    from flumekit.report import write_report
+
+    pipe = _pipeline(args)
+    t0 = time.perf_counter()
+    out = write_report(pipe.processed, out=args.out)
+    print(f"wrote {out} in {time.perf_counter() - t0:.2f} s (open it in a browser; no server "
+          "needed)")
+    return 0
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="flumekit", description=__doc__)
     p.add_argument("--debug", action="store_true", help="show tracebacks")
@@ -164,6 +175,12 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
+
+    r = sub.add_parser("report", help="one static HTML page for the processed campaign")
+    r.add_argument("--out", default=None,
+                   help="file name in the processed folder (default: report.html there)")
+    pipeline_opts(r)
+    r.set_defaults(func=cmd_report)
 
     b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks")
     b.add_argument("area", help="waves, flap, uvp, renzi_dias, simulator, ballscrew, pipeline")

@@ -28,7 +28,8 @@ class InputError(FlumekitError):
             where += f", field '{field}'"
         super().__init__(f"{where}: {problem}" if where else problem)
 
-    def __reduce__(self):  # survive pickling across process and dask workers
+    def __reduce__(self):
+        """Rebuild from the fields, so the error survives pickling to processes and workers."""
         return (_rebuild_input_error, (self.path, self.problem, self.line, self.field, self.args))
 
 

@@ -23,7 +23,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("waves", "hydro", "qc"),
     ("flap", "ballscrew", "uvp"),
     ("synth",),
-    ("figures",),
+    ("figures", "plot", "report"),
     ("pipeline",),
     ("stages",),
     ("bench", "cli"),

@@ -121,13 +121,13 @@ def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
 def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     """Flap angle θ [rad] on the branch through θ = 0 for a given rod length ℓ [m].
 
-    The anchors lie on circles of radius d = |b| and r = |p| about the hinge, so
+    The anchors lie on circles of radius d = abs(b) and r = abs(p) about the hinge, so
     ℓ² = d² + r² − 2 d r cos(α − α_b) with α the polar angle of the flap anchor; the branch is
     the one containing θ = 0.
 
     Raises
     ------
-    GeometryError : A rod shorter than |d − r| or longer than d + r (no configuration of the
+    GeometryError : A rod shorter than abs(d − r) or longer than d + r (no configuration of the
         anchors gives that length), or impossible anchors.
     """
     b, p0 = check_anchors(bed_anchor, flap_anchor)

@@ -52,7 +52,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     Parameters
     ----------
     force_pressure : Pressure force pushing the rod out, A P_int [N].
-    lever_arm : Signed lever arm m of the rod about the hinge [m], |m| = r sin β.
+    lever_arm : Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β.
     """
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 

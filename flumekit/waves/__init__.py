@@ -1,14 +1,28 @@
-"""Waves: linear theory, probe layout, incident/reflected separation and run statistics."""
+"""Waves: linear theory, probe layout, incident/reflected separation and run statistics.
 
-from flumekit.waves.analysis import analyse_run  # noqa: F401
-from flumekit.waves.layout import (  # noqa: F401
+The names an analyst needs: :func:`separate` (incident and reflected waves from a probe array,
+numpy, pandas or xarray), :func:`probe_record` (a record in the shape the wave functions use),
+:func:`analyse_run` (quasi-steady window and separation of one regular-wave run), the linear
+theory (:func:`wavenumber`, :func:`wavelength`, ...), the probe layout checks and
+:mod:`~flumekit.waves.calibration` (probe calibration).
+"""
+
+from flumekit.waves import calibration
+from flumekit.waves.analysis import analyse_run
+from flumekit.waves.layout import (
     MAX_CONDITION,
     check_layout,
     condition_number,
     probe_spacing,
 )
-from flumekit.waves.separation import SeparationWarning, separate  # noqa: F401
-from flumekit.waves.theory import (  # noqa: F401
+from flumekit.waves.records import (
+    REGULAR_FRACTION,
+    harmonic_energy_fraction,
+    probe_record,
+    refine_frequency,
+)
+from flumekit.waves.separation import SeparationWarning, separate
+from flumekit.waves.theory import (
     energy_flux,
     group_velocity,
     phase_velocity,
@@ -16,3 +30,10 @@ from flumekit.waves.theory import (  # noqa: F401
     wavelength,
     wavenumber,
 )
+
+__all__ = [
+    "MAX_CONDITION", "REGULAR_FRACTION", "SeparationWarning", "analyse_run", "calibration",
+    "check_layout", "condition_number", "energy_flux", "group_velocity",
+    "harmonic_energy_fraction", "phase_velocity", "probe_record", "probe_spacing",
+    "refine_frequency", "separate", "stokes2_coefficient", "wavelength", "wavenumber",
+]

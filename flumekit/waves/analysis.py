@@ -23,38 +23,56 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
 
     Parameters
     ----------
-    eta : Calibrated surface elevation [m], dims ("probe", "time"), coordinate ``x`` [m] on
+    eta : xarray.DataArray
+        Calibrated surface elevation [m], dims ("probe", "time"), coordinate ``x`` [m] on
         ``probe``, ``time`` [s] since the start of the record (uniform sampling).
-    depth : Still water depth [m].
-    period : Target wave period [s] (used to merge noisy zero crossings closer than 0.75 T and as
+    depth : float
+        Still water depth [m].
+    period : float
+        Target wave period [s] (used to merge noisy zero crossings closer than 0.75 T and as
         the starting guess; the analysis uses the measured period).
-    x_ref : Position where the incident and reflected waves are returned [m] (the flap hinge,
+    x_ref : float
+        Position where the incident and reflected waves are returned [m] (the flap hinge,
         x = 0, for the comparison with the flap).
-    method : Separation method (see :func:`flumekit.waves.separate`).
-    separation_probes : Names of the probes used for the separation; default all.
-    n_harmonics : Harmonics of the measured frequency included in the analysis band [-].
-    bound_harmonics : Solve harmonics n ≥ 2 as bound waves (wavenumber n k1).
-    tolerance : Quasi-steady criterion: relative deviation of each cycle's crest from the
+    method : str
+        Separation method (see :func:`flumekit.waves.separate`).
+    separation_probes : sequence of str, optional
+        Names of the probes used for the separation; default all.
+    n_harmonics : int
+        Harmonics of the measured frequency included in the analysis band [-].
+    bound_harmonics : bool
+        Solve harmonics n ≥ 2 as bound waves (wavenumber n k1).
+    tolerance : float
+        Quasi-steady criterion: relative deviation of each cycle's crest from the
         amplitude scale (Brito et al. 2020, §2.5: 2 %).
-    min_cycles : Fewest whole periods the common quasi-steady window must hold [-].
-    max_condition : Largest condition number of the separation accepted per bin [-].
-    g : Gravitational acceleration [m s-2].
+    min_cycles : int
+        Fewest whole periods the common quasi-steady window must hold [-].
+    max_condition : float
+        Largest condition number of the separation accepted per bin [-].
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    xr.Dataset with
-        ``eta`` (probe, time) : the input records (for figures 5a and 6a);
-        ``eta_incident``, ``eta_reflected`` (time) : separated at ``x_ref`` from the steady
+    xarray.Dataset
+        ``eta`` (probe, time): the input records (for figures 5a and 6a);
+        ``eta_incident``, ``eta_reflected`` (time): separated at ``x_ref`` from the steady
         window cut to a whole number of periods; NaN (documented fill) outside that window,
         where a regular-wave separation is not defined (ramp-up, reflections still arriving);
-        ``amplitude_scale``, ``measured_height`` (probe) : per-probe quasi-steady statistics;
+        ``amplitude_scale``, ``measured_height`` (probe): per-probe quasi-steady statistics;
         scalars ``steady_start``, ``steady_end`` [s] (the window where every probe is
-        quasi-steady), ``steady_cycles``, ``measured_period`` [s] and, from the separation of that
-        window cut to a whole number of periods, ``reflection_coefficient`` (first harmonic),
-        ``incident_height`` / ``reflected_height`` (crest-to-trough of the separated harmonic
-        waves), ``incident_amplitude``, ``incident_phase``, ``energy_flux`` (Eq. A2 per metre of
-        crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes and
-        spectra over ``harmonic`` and ``frequency``.
+        quasi-steady), ``steady_cycles``, ``measured_period`` [s] and, from the separation of
+        that window cut to a whole number of periods, ``reflection_coefficient`` (first
+        harmonic), ``incident_height`` / ``reflected_height`` (crest-to-trough of the separated
+        harmonic waves), ``incident_amplitude``, ``incident_phase``, ``energy_flux`` (Eq. A2 per
+        metre of crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes
+        and spectra over ``harmonic`` and ``frequency``.
+
+    Raises
+    ------
+    ValueError
+        A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
+        over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
     v, t, x, probes = as_probe_time(eta)
     if not period > 0:

@@ -14,6 +14,8 @@ import xarray as xr
 
 from flumekit import conventions
 
+__all__ = ["R2_WARNING", "CalibrationWarning", "apply", "fit", "is_monotonic"]
+
 R2_WARNING = 0.999
 
 
@@ -21,21 +23,46 @@ class CalibrationWarning(UserWarning):
     """A probe calibration is poor (R² below 0.999) or not monotonic where it is used."""
 
 
-def fit(calibration: xr.Dataset, order: int = 1) -> xr.Dataset:
+def fit(calibration, order: int = 1, *, levels=None) -> xr.Dataset:
     """Least-squares calibration polynomial per probe.
 
     Parameters
     ----------
-    calibration : Dataset from :func:`flumekit.io.instruments.read_calibration`, with
-        ``calibration_voltage`` (sample, probe) [V] and coordinate ``level`` (sample) [m].
-    order : Polynomial order (1 = gain and offset, as in the paper).
+    calibration : xarray.Dataset, pandas.DataFrame or array_like
+        The static submersions: a Dataset from :func:`flumekit.io.read_calibration`, with
+        ``calibration_voltage`` (sample, probe) [V] and coordinate ``level`` (sample) [m]; or
+        the voltages [V] alone, one row per submersion, as an array of shape (sample,) (one
+        probe) or (sample, probe) or a DataFrame with one column per probe, with ``levels``.
+    order : int
+        Polynomial order (1 = gain and offset, as in the paper).
+    levels : array_like, optional
+        Water level of each submersion relative to still water [m], shape (sample,); needed
+        with voltages given as an array or a DataFrame.
 
     Returns
     -------
-    Dataset with ``calibration_coefficients`` (probe, polynomial_order) [m V^-n], ``gain``
-    [m V-1] and ``offset`` [m] (first-order terms), ``calibration_r2``, ``calibration_residual``
-    (sample, probe) [m], ``calibration_rms_residual`` [m].
+    xarray.Dataset
+        ``calibration_coefficients`` (probe, polynomial_order) [m V^-n], ``gain`` [m V-1] and
+        ``offset`` [m] (first-order terms), ``calibration_r2``, ``calibration_residual``
+        (sample, probe) [m], ``calibration_rms_residual`` [m].
+
+    Raises
+    ------
+    ValueError
+        Too few distinct levels for the order, or voltages and levels that do not match.
+
+    Examples
+    --------
+    >>> from flumekit.waves import calibration
+    >>> cal = calibration.fit([1.0, 2.0, 3.0], levels=[-0.05, 0.0, 0.05])
+    >>> round(float(cal.gain[0]), 9), round(float(cal.offset[0]), 9)
+    (0.05, -0.1)
     """
+    if not isinstance(calibration, xr.Dataset):
+        calibration = _submersions(calibration, levels)
+    elif levels is not None:
+        raise ValueError("levels is only for voltages given as an array or a DataFrame; the "
+                         "Dataset carries its own 'level' coordinate")
     v = calibration["calibration_voltage"].transpose("sample", "probe").values
     levels = calibration["level"].values
     n_levels = np.unique(levels).size
@@ -75,8 +102,41 @@ def fit(calibration: xr.Dataset, order: int = 1) -> xr.Dataset:
     return conventions.annotate(ds)
 
 
+def _submersions(voltage, levels) -> xr.Dataset:
+    """Voltages (array or DataFrame) and levels as the Dataset :func:`fit` reads."""
+    if levels is None:
+        raise ValueError("give the water level [m] of each submersion: fit(voltages, levels=...)")
+    if hasattr(voltage, "columns") and hasattr(voltage, "to_numpy"):  # a pandas DataFrame
+        probes = [str(c) for c in voltage.columns]
+        v = voltage.to_numpy(dtype=float)
+    else:
+        v = np.asarray(voltage, dtype=float)
+        if v.ndim == 1:
+            v = v[:, None]
+        probes = [str(i) for i in range(v.shape[1] if v.ndim == 2 else 0)]
+    lev = np.asarray(levels, dtype=float)
+    if v.ndim != 2 or lev.shape != (v.shape[0],):
+        raise ValueError(f"voltages of shape {v.shape} (sample, probe) need one level per "
+                         f"sample, got levels of shape {lev.shape}")
+    return xr.Dataset({"calibration_voltage": (("sample", "probe"), v)},
+                      coords={"level": ("sample", lev), "probe": probes})
+
+
 def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
-    """True if the calibration polynomial's derivative keeps one sign on [v_min, v_max]."""
+    """Whether the calibration polynomial's derivative keeps one sign on [v_min, v_max].
+
+    Parameters
+    ----------
+    coefficients : numpy.ndarray
+        Polynomial coefficients c_0 ... c_n, lowest order first [m V^-n].
+    v_min, v_max : float
+        Voltage range [V].
+
+    Returns
+    -------
+    bool
+        True where a voltage in the range maps to a unique level.
+    """
     deriv = np.polynomial.polynomial.polyder(coefficients)
     vv = np.linspace(v_min, v_max, 201)
     d = np.polynomial.polynomial.polyval(vv, deriv)
@@ -86,8 +146,23 @@ def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
-    Warns (:class:`CalibrationWarning`) when a polynomial is not monotonic over the voltage range
-    the record spans, where a voltage no longer maps to a unique level.
+    Parameters
+    ----------
+    voltage : xarray.DataArray
+        Probe voltages [V], dims ("probe", "time").
+    calibration : xarray.Dataset
+        Output of :func:`fit` holding every probe of ``voltage``.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``eta`` [m], dims ("probe", "time").
+
+    Warns
+    -----
+    CalibrationWarning
+        When a polynomial is not monotonic over the voltage range the record spans, where a
+        voltage no longer maps to a unique level.
     """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     powers = calibration["polynomial_order"]

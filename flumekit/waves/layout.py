@@ -25,13 +25,19 @@ def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
 
     Parameters
     ----------
-    period : Design wave period [s].
-    depth : Water depth [m].
-    g : Gravitational acceleration [m s-2].
+    period : array_like
+        Design wave period [s].
+    depth : array_like
+        Water depth [m].
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    (x12, x23) : Spacing between probes 1 and 2, and between probes 2 and 3 [m].
+    x12 : numpy.ndarray
+        Spacing between probes 1 and 2 [m].
+    x23 : numpy.ndarray
+        Spacing between probes 2 and 3 [m].
 
     Notes
     -----
@@ -50,20 +56,27 @@ def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
 
     Parameters
     ----------
-    x : Probe positions [m], shape (P,), P ≥ 2.
-    frequency : Frequencies [Hz], any shape, > 0.
-    depth : Water depth [m].
-    g : Gravitational acceleration [m s-2].
+    x : array_like
+        Probe positions [m], shape (P,), P ≥ 2.
+    frequency : array_like
+        Frequencies [Hz], any shape, > 0.
+    depth : float
+        Water depth [m].
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Condition number, shape of ``frequency``; ``inf`` where the layout is exactly singular.
+    numpy.ndarray
+        Condition number [-], shape of ``frequency``; ``inf`` where the layout is exactly
+        singular.
 
     Notes
     -----
     With M = [a, conj(a)], a_p = e^(-ikx_p), the Gram matrix MᴴM = [[P, S], [S*, P]] with
-    S = Σ_p e^(2ikx_p) has eigenvalues P ± |S|, so cond(M) = sqrt((P + |S|) / (P - |S|)).
-    For three probes P² - |S|² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
+    S = Σ_p e^(2ikx_p) has eigenvalues P ± abs(S), so
+    cond(M) = sqrt((P + abs(S)) / (P - abs(S))). For three probes
+    P² - abs(S)² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
     """
     x = np.asarray(x, dtype=float)
     f = np.asarray(frequency, dtype=float)
@@ -80,19 +93,31 @@ def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX
 
     Parameters
     ----------
-    x : Probe positions [m], shape (P,), P ≥ 2, distinct.
-    depth : Water depth [m].
-    band : (f_min, f_max) analysis band [Hz].
-    max_condition : Largest acceptable condition number [-] (default: two-probe Goda–Suzuki limits).
-    n_frequencies : Number of frequencies sampled uniformly across the band.
-    g : Gravitational acceleration [m s-2].
+    x : array_like
+        Probe positions [m], shape (P,), P ≥ 2, distinct.
+    depth : float
+        Water depth [m].
+    band : tuple of float
+        (f_min, f_max) analysis band [Hz].
+    max_condition : float
+        Largest acceptable condition number [-] (default: two-probe Goda–Suzuki limits).
+    n_frequencies : int
+        Number of frequencies sampled uniformly across the band.
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Dataset over ``frequency`` with ``condition_number``, ``masked`` (1 where the condition
-    number exceeds ``max_condition``), ``wave_number`` and, over ``pair``, the spacing of each probe
-    pair; attrs ``ill_conditioned_fraction`` (fraction of the band that would be masked) and a
-    human-readable ``advice``.
+    xarray.Dataset
+        Over ``frequency``: ``condition_number``, ``masked`` (1 where the condition number
+        exceeds ``max_condition``), ``wave_number``; over ``pair``: the spacing of each probe
+        pair; attrs ``ill_conditioned_fraction`` (fraction of the band that would be masked)
+        and a human-readable ``advice``.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two or repeated probe positions, or an empty band.
     """
     x = np.asarray(x, dtype=float)
     if x.ndim != 1 or x.size < 2:

@@ -31,7 +31,15 @@ from scipy import signal as _sig
 from flumekit import conventions
 from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
+from flumekit.waves.records import (
+    REGULAR_FRACTION,
+    harmonic_energy_fraction,
+    probe_record,
+    refine_frequency,
+)
 from flumekit.waves.theory import G, wavenumber
+
+__all__ = ["METHODS", "SeparationWarning", "as_probe_time", "lstsq_normal", "separate"]
 
 METHODS = {"mansard_funke": (3, 3), "goda_suzuki": (2, 2), "zelt_skjelbreia": (2, None)}
 
@@ -46,16 +54,22 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
 
     Parameters
     ----------
-    columns : Design matrices, shape (F, P, K): F independent systems of P equations in K
+    columns : numpy.ndarray
+        Design matrices, complex, shape (F, P, K): F independent systems of P equations in K
         unknowns.
-    rhs : Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
-    max_condition : Systems whose 2-norm condition number exceeds this are masked [-].
+    rhs : numpy.ndarray
+        Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
+    max_condition : float
+        Systems whose 2-norm condition number exceeds this are masked [-].
 
     Returns
     -------
-    solution : shape (F, K, R); zero for masked systems.
-    condition : 2-norm condition number of each design matrix, shape (F,); inf if singular.
-    masked : bool, shape (F,).
+    solution : numpy.ndarray
+        Shape (F, K, R); zero for masked systems.
+    condition : numpy.ndarray
+        2-norm condition number of each design matrix, shape (F,); inf if singular.
+    masked : numpy.ndarray
+        Bool, shape (F,).
     """
     mc = np.conj(columns)
     # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than a
@@ -94,12 +108,28 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
     Parameters
     ----------
-    eta : Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+    eta : xarray.DataArray
+        Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
         ``probe``, uniformly sampled, finite.
 
     Returns
     -------
-    values [m] (probe, time), time [s], x [m], probe labels.
+    values : numpy.ndarray
+        Elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s].
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+
+    Raises
+    ------
+    TypeError
+        When ``eta`` is not a DataArray.
+    ValueError
+        Wrong dims, missing or repeated positions, fewer than 8 samples, non-uniform time or
+        non-finite samples (the message names the first probe holding one).
     """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
@@ -107,7 +137,8 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     if set(eta.dims) != {"probe", "time"}:
         raise ValueError(f"eta must have dims ('probe', 'time'), got {eta.dims}")
     if "x" not in eta.coords or eta.coords["x"].dims != ("probe",):
-        raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions)")
+        raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions) "
+                         "or the argument x")
     eta = eta.transpose("probe", "time")
     x = np.asarray(eta.coords["x"].values, dtype=float)
     t = np.asarray(eta.coords["time"].values, dtype=float)
@@ -125,73 +156,142 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     return v, t, x, eta.probe.values.tolist()
 
 
-def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
+def separate(eta, depth: float, method: str = "mansard_funke",
              band: tuple[float, float] | None = None, x_ref: float | None = None, *,
-             regular: bool = False, period: float | None = None, bound_harmonics: bool = False,
+             x=None, sampling_rate: float | None = None,
+             regular: bool | None = None, period: float | None = None,
+             bound_harmonics: bool | None = None,
              window: str | None = None, max_condition: float = MAX_CONDITION,
              warn_fraction: float = 0.01, g: float = G) -> xr.Dataset:
     """Separate incident and reflected waves from simultaneous probe records.
 
     Parameters
     ----------
-    eta : Surface elevation [m], dims ("probe", "time"), coordinate ``x`` on ``probe``
-        (probe positions [m], x positive in the direction of the incident wave) and ``time`` [s]
-        (uniform sampling).
-    depth : Still water depth [m].
-    method : "mansard_funke" (exactly 3 probes), "goda_suzuki" (exactly 2) or
+    eta : xarray.DataArray, pandas.DataFrame or array_like
+        Surface elevation [m]: a DataArray with dims ("probe", "time"), coordinate ``x`` on
+        ``probe`` (probe positions [m], x positive in the direction of the incident wave) and
+        ``time`` [s] (uniform sampling); or a DataFrame (one column per probe) or an array
+        (probe, time) with ``x`` and ``sampling_rate`` (see
+        :func:`flumekit.waves.probe_record`). The mean of each probe is removed.
+    depth : float
+        Still water depth [m].
+    method : str
+        "mansard_funke" (exactly 3 probes), "goda_suzuki" (exactly 2) or
         "zelt_skjelbreia" (2 or more); all use the same least-squares core.
-    band : (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
+    band : tuple of float, optional
+        (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
         frequency (both excluded).
-    x_ref : Position [m] where the incident and reflected elevations are returned; default the
+    x_ref : float, optional
+        Position [m] where the incident and reflected elevations are returned; default the
         first probe.
-    regular : Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
+    x : sequence of float, optional
+        Probe positions [m] when ``eta`` does not carry them.
+    sampling_rate : float, optional
+        Sampling rate [Hz] when ``eta`` has no time coordinate.
+    regular : bool, optional
+        Treat the record as a regular wave of fundamental frequency f1 = 1/``period``:
         every bin within f1/2 of harmonic n·f1 is fitted with the wavenumber of that harmonic
         (spectral leakage keeps its spatial structure). The statistics (harmonic amplitudes,
         Kr, heights, phase) come from a least-squares fit of the harmonics n·f1 in the band to
         each probe record at their exact frequencies, separated with the same core, so they
         are unbiased for any record length; the time series still come from the bins and show
-        edge transients unless the record holds a whole number of periods.
-    period : Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
-    bound_harmonics : Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
-        instead of free waves (implies ``regular``).
-    window : Optional taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
+        edge transients unless the record holds a whole number of periods. Default (None):
+        decided from the record. A record that holds at least
+        :data:`~flumekit.waves.records.REGULAR_FRACTION` of its variance at its peak
+        frequency and the harmonics of it (:func:`~flumekit.waves.harmonic_energy_fraction`)
+        is regular and its harmonics are bound (``bound_harmonics`` then defaults to True);
+        the ``regular_detection`` attribute of the result says what was found. Pass
+        ``regular=False`` to fit every bin as a free wave.
+    period : float, optional
+        Fundamental period [s] for ``regular``; default the peak of the mean spectrum.
+    bound_harmonics : bool, optional
+        Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
+        instead of free waves (implies ``regular``). Default: True for a record detected as
+        regular, False otherwise.
+    window : str, optional
+        Taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
         and the irregular-wave statistics (Kr, Hm0, masked energy); the elevation time series
         and the regular-wave statistics never use it. The taper is normalised to unit mean
         square so variances are preserved.
-    max_condition : Bins whose least-squares matrix has a larger condition number are masked
+    max_condition : float
+        Bins whose least-squares matrix has a larger condition number are masked
         (excluded) [-]. Default cot(π/20) ≈ 6.3, the Goda–Suzuki two-probe limits.
-    warn_fraction : Warn (:class:`SeparationWarning`) when masked bins hold more than this
+    warn_fraction : float
+        Warn (:class:`SeparationWarning`) when masked bins hold more than this
         fraction of the measured energy in the band [-].
-    g : Gravitational acceleration [m s-2].
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    xr.Dataset with
-        ``eta_incident``, ``eta_reflected`` (time) [m] : separated elevations at ``x_ref``;
-        ``spectrum_incident``, ``spectrum_reflected`` (frequency) [m2 s] : one-sided variance
+    xarray.Dataset
+        ``eta_incident``, ``eta_reflected`` (time) [m]: separated elevations at ``x_ref``;
+        ``spectrum_incident``, ``spectrum_reflected`` (frequency) [m2 s]: one-sided variance
         densities (periodogram) of the band bins;
         ``condition_number``, ``masked``, ``wave_number`` (frequency);
-        ``reflection_coefficient`` [-] : irregular waves: Kr = sqrt(m0_R / m0_I) over the
+        ``reflection_coefficient`` [-]: irregular waves: Kr = sqrt(m0_R / m0_I) over the
         unmasked band bins (the energy ratio of Mansard & Funke 1980); ``regular``: the
-        first-harmonic ratio |A_R1| / |A_I1| (bound harmonics are not reflection; see
+        first-harmonic ratio abs(A_R1) / abs(A_I1) (bound harmonics are not reflection; see
         ``harmonic_reflection_coefficient`` for the others);
-        ``incident_height``, ``reflected_height`` [m] : Hm0 = 4 sqrt(m0) for irregular waves;
+        ``incident_height``, ``reflected_height`` [m]: Hm0 = 4 sqrt(m0) for irregular waves;
         for ``regular`` the crest-to-trough height of the sum of the separated harmonics over
         one period (equal to 2|a1| for a linear wave), see the ``definition`` attribute;
-        ``masked_energy_fraction`` [-] : measured energy of the masked bins / energy of the band;
+        ``masked_energy_fraction`` [-]: measured energy of the masked bins / energy of the band;
         for ``regular`` also, over ``harmonic``: ``incident_harmonic_amplitude``,
         ``reflected_harmonic_amplitude`` [m] and ``harmonic_reflection_coefficient`` [-]
         (NaN where the incident harmonic amplitude is below 1e-3 of the first harmonic's, i.e.
-        where the ratio is undefined); ``incident_amplitude`` a1 [m] and ``incident_phase`` [rad]
-        of the first harmonic at x_ref, η_I1 = a1 cos(2π f t + phase) in the record's time.
+        where the ratio is undefined); ``incident_amplitude`` a1 [m] and ``incident_phase``
+        [rad] of the first harmonic at x_ref, η_I1 = a1 cos(2π f t + phase) in the record's
+        time.
 
     Raises
     ------
-    ValueError : bad arguments, non-finite samples, an empty band, or no separable incident
+    ValueError
+        Bad arguments, non-finite samples, an empty band, or no separable incident
         energy at all (every bin holding energy masked).
+
+    References
+    ----------
+    Goda, Y. & Suzuki, Y. (1976). Estimation of incident and reflected waves in random wave
+    experiments. Proc. 15th Coastal Engineering Conference, 828-845.
+
+    Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected spectra
+    using a least squares method. Proc. 17th Coastal Engineering Conference, 154-172.
+
+    Zelt, J. A. & Skjelbreia, J. E. (1992). Estimating incident and reflected wave fields
+    using an arbitrary number of wave gauges. Proc. 23rd Coastal Engineering Conference,
+    777-789.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.waves import separate, wavenumber
+    >>> t = np.arange(4000) / 20.0                       # 200 s at 20 Hz
+    >>> x = np.array([0.0, 0.6, 0.9])                     # probe positions [m]
+    >>> w = 2 * np.pi / 2.0
+    >>> k = wavenumber(w, 0.5)
+    >>> eta = (0.05 * np.cos(w * t - k * x[:, None])     # incident, 5 cm amplitude
+    ...        + 0.01 * np.cos(w * t + k * x[:, None]))  # reflected, Kr = 0.2
+    >>> r = separate(eta, 0.5, x=x, sampling_rate=20.0)  # regular: detected
+    >>> round(float(r.reflection_coefficient), 3)
+    0.2
     """
+    if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
+        eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     v, t, x, probes = _check_inputs(eta, depth, method, max_condition)
-    regular = regular or bound_harmonics
+    detection = "given"
+    if regular is None and not bound_harmonics:
+        # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
+        # wave (WaveLabX record: Kr 0.136 instead of 0.028), so the default looks first.
+        f_peak, share = harmonic_energy_fraction(v, (t[-1] - t[0]) / (t.size - 1))
+        regular = share >= REGULAR_FRACTION
+        detection = (f"{'regular' if regular else 'irregular'}: {share:.1%} of the variance at "
+                     f"the peak {f_peak:.4g} Hz and its harmonics (regular from "
+                     f"{REGULAR_FRACTION:.0%}; pass regular=True/False to decide)")
+        if bound_harmonics is None:
+            bound_harmonics = regular
+    bound_harmonics = bool(bound_harmonics)
+    regular = bool(regular) or bound_harmonics
     x_ref = float(x[0]) if x_ref is None else float(x_ref)
     n = t.size
     freq, sel = _band_bins(t, band)
@@ -207,7 +307,10 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
         rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
 
     if regular:
-        f1, harmonic, kh, k = _harmonic_wavenumbers(f, c, depth, period, bound_harmonics, g)
+        if period is None:  # the peak bin, refined: up to half a bin off otherwise
+            f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
+            period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
+        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g)
     else:
         k = wavenumber(2 * np.pi * f, depth, g)
 
@@ -249,7 +352,8 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
     ds = xr.Dataset(data, coords=coords, attrs={
         "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
         "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
-        "regular": int(regular), "bound_harmonics": int(bound_harmonics),
+        "regular": int(regular), "regular_detection": detection,
+        "bound_harmonics": int(bound_harmonics),
         "max_condition": max_condition, "depth": float(depth),
         **({"fundamental_frequency": f1} if regular else {}),
         "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
@@ -257,7 +361,7 @@ def separate(eta: xr.DataArray, depth: float, method: str = "mansard_funke",
 
 
 def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: float):
-    """The arguments of :func:`separate` checked; the record's arrays (:func:`as_probe_time`)."""
+    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`."""
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
@@ -274,8 +378,10 @@ def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: f
 
 def _band_bins(t: np.ndarray, band: tuple[float, float] | None
                ) -> tuple[np.ndarray, np.ndarray]:
-    """FFT frequencies [Hz] of a record sampled at ``t`` [s] and the indices of the bins in
-    ``band`` (strictly between 0 and Nyquist)."""
+    """FFT frequencies [Hz] of a record sampled at ``t`` [s] and the indices of the band's bins.
+
+    The bins lie in ``band`` and strictly between 0 and the Nyquist frequency.
+    """
     n = t.size
     dt = (t[-1] - t[0]) / (n - 1)
     freq = np.fft.rfftfreq(n, dt)
@@ -290,20 +396,17 @@ def _band_bins(t: np.ndarray, band: tuple[float, float] | None
     return freq, sel
 
 
-def _harmonic_wavenumbers(f: np.ndarray, c: np.ndarray, depth: float, period: float | None,
-                          bound_harmonics: bool, g: float):
+def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harmonics: bool,
+                          g: float):
     """Wavenumbers of the bins of a regular wave (see ``regular`` in :func:`separate`).
 
-    Returns the fundamental frequency f1 [Hz] (``1/period``, or the peak of the mean spectrum
-    of the coefficients ``c`` (P, F)), the harmonic number of each bin (0 below f1/2), the
-    wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per bin [rad m-1].
+    Returns the fundamental frequency f1 = 1/``period`` [Hz], the harmonic number of each bin
+    (0 below f1/2), the wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per
+    bin [rad m-1].
     """
-    if period is None:
-        f1 = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
-    else:
-        if not period > 0:
-            raise ValueError(f"period must be positive, got {period}")
-        f1 = 1.0 / float(period)
+    if not period > 0:
+        raise ValueError(f"period must be positive, got {period}")
+    f1 = 1.0 / float(period)
     harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
     k1 = float(wavenumber(2 * np.pi * f1, depth, g))
     hmax = max(int(harmonic.max()), 1)
@@ -350,8 +453,10 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
 
 def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, x_ref: float,
                    sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes
-    (untapered), by inverse FFT of an ``n``-sample record."""
+    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes.
+
+    The untapered amplitudes, by inverse FFT of an ``n``-sample record.
+    """
     shift_i = np.exp(-1j * k * x_ref)
     spec_i = np.zeros(n // 2 + 1, complex)
     spec_r = np.zeros(n // 2 + 1, complex)

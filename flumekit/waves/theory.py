@@ -17,19 +17,41 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
 
     Parameters
     ----------
-    omega : Angular frequency [rad s-1], array-like, > 0.
-    depth : Water depth h [m], array-like broadcastable with ``omega``, > 0.
-    g : Gravitational acceleration [m s-2].
+    omega : array_like
+        Angular frequency [rad s-1], > 0.
+    depth : array_like
+        Water depth h [m], broadcastable with ``omega``, > 0.
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Wave number [rad m-1], relative accuracy better than 1e-12 for 1e-4 ≤ kh ≤ 1e3.
+    numpy.ndarray
+        Wave number [rad m-1], relative accuracy better than 1e-12 for 1e-4 ≤ kh ≤ 1e3.
+
+    Raises
+    ------
+    ValueError
+        For a non-finite or non-positive ``omega`` or ``depth``.
 
     Notes
     -----
     Solves y tanh y = x with x = ω²h/g, y = kh, from the explicit start of Fenton & McKee (1990),
     y0 = x / tanh(x^(3/4))^(2/3) (error below 1.5 %), by Newton steps written with sech² in the
     overflow-free exponential form.
+
+    References
+    ----------
+    Fenton, J. D. & McKee, W. D. (1990). On calculating the lengths of water waves. Coastal
+    Engineering 14, 499-513.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.waves import wavenumber
+    >>> k = wavenumber(2 * np.pi / 3.5, 0.825)  # T = 3.5 s in the paper's 0.825 m
+    >>> round(float(2 * np.pi / k), 2)  # wavelength [m]
+    9.51
     """
     omega = np.asarray(omega, dtype=float)
     depth = np.asarray(depth, dtype=float)
@@ -45,18 +67,50 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
 
 
 def wavelength(period, depth, g: float = G) -> np.ndarray:
-    """Wavelength L = 2π/k [m] of a wave of ``period`` [s] in ``depth`` [m]."""
+    """Wavelength L = 2π/k [m] of a wave of ``period`` [s] in ``depth`` [m].
+
+    Parameters
+    ----------
+    period : array_like
+        Wave period [s], > 0.
+    depth : array_like
+        Water depth [m], broadcastable with ``period``, > 0.
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Wavelength [m] from the linear dispersion relation (:func:`wavenumber`).
+    """
     return 2 * np.pi / wavenumber(2 * np.pi / np.asarray(period, dtype=float), depth, g)
 
 
 def _two_kh_over_sinh(y: np.ndarray) -> np.ndarray:
-    """2kh / sinh(2kh) evaluated as 2y e^(-y) / (1 - e^(-2y)) with y = 2kh: no overflow, no
-    cancellation at small y (``expm1``)."""
+    """Evaluate 2kh / sinh(2kh) as 2y e^(-y) / (1 - e^(-2y)) with y = 2kh.
+
+    No overflow, and no cancellation at small y (``expm1``).
+    """
     return 2.0 * y * np.exp(-y) / -np.expm1(-2.0 * y)
 
 
 def phase_velocity(period, depth, g: float = G) -> np.ndarray:
-    """Phase velocity c = ω/k [m s-1] of a wave of ``period`` [s] in ``depth`` [m]."""
+    """Phase velocity c = ω/k [m s-1] of a wave of ``period`` [s] in ``depth`` [m].
+
+    Parameters
+    ----------
+    period : array_like
+        Wave period [s], > 0.
+    depth : array_like
+        Water depth [m], broadcastable with ``period``, > 0.
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Phase velocity [m s-1].
+    """
     omega = 2 * np.pi / np.asarray(period, dtype=float)
     return omega / wavenumber(omega, depth, g)
 
@@ -66,9 +120,17 @@ def group_velocity(period, depth, g: float = G) -> np.ndarray:
 
     Parameters
     ----------
-    period : Wave period [s], array-like, > 0.
-    depth : Water depth [m], broadcastable with ``period``, > 0.
-    g : Gravitational acceleration [m s-2].
+    period : array_like
+        Wave period [s], > 0.
+    depth : array_like
+        Water depth [m], broadcastable with ``period``, > 0.
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Group velocity [m s-1].
     """
     omega = 2 * np.pi / np.asarray(period, dtype=float)
     depth = np.asarray(depth, dtype=float)
@@ -84,11 +146,26 @@ def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.
 
     Parameters
     ----------
-    height : Wave height H (crest to trough) [m].
-    period : Wave period T [s].
-    depth : Water depth h [m].
-    rho : Water density [kg m-3].
-    g : Gravitational acceleration [m s-2].
+    height : array_like
+        Wave height H (crest to trough) [m], ≥ 0.
+    period : array_like
+        Wave period T [s].
+    depth : array_like
+        Water depth h [m].
+    rho : float
+        Water density [kg m-3].
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Energy flux [W m-1].
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of
+    an oscillating wave surge converter. J. Mar. Sci. Eng. 8, Eq. (A2).
     """
     height = np.asarray(height, dtype=float)
     if np.any(~(height >= 0)):
@@ -103,6 +180,23 @@ def stokes2_coefficient(k, depth) -> np.ndarray:
     B = cosh kh (2 + cosh 2kh) / (4 sinh³ kh) (Dean & Dalrymple 1991, Eq. 11.33, written with
     a = H/2), evaluated overflow-free as (1 + q)(1 + 4q + q²) / (2 (1 - q)³), q = e^(-2kh);
     B → 1/2 in deep water. The second-order crest-to-trough height equals 2a exactly.
+
+    Parameters
+    ----------
+    k : array_like
+        Wave number of the first harmonic [rad m-1].
+    depth : array_like
+        Water depth h [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        B [-].
+
+    References
+    ----------
+    Dean, R. G. & Dalrymple, R. A. (1991). Water wave mechanics for engineers and scientists.
+    World Scientific, Eq. (11.33).
     """
     kh = np.asarray(k, dtype=float) * np.asarray(depth, dtype=float)
     q = np.exp(-2.0 * kh)

@@ -1,0 +1,222 @@
+"""One static HTML page for a processed campaign: ``flumekit report``.
+
+The page lives in the processed folder (``processed/<pipeline>/report.html``) and links the
+figures and datasets beside it by relative paths, so it opens from disk or any copy of the
+folder, with no server, script or network. It shows the run conditions (one row per run), the
+summary statistics of every campaign dataset, the counts of every quality-control flag (any
+variable with CF ``flag_values`` and ``flag_meanings``), every figure, and a link to every
+dataset. Same processed folder, same bytes: nothing depends on the clock or absolute paths.
+"""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from flumekit import __version__
+from flumekit.errors import InputError
+from flumekit.io.atomic import atomic_path
+
+__all__ = ["REPORT_NAME", "write_report"]
+
+REPORT_NAME = "report.html"
+#: the per-run conditions, in the order of the table: (dataset, variable)
+CONDITIONS = (("waves_summary", "wave_period"), ("waves_summary", "wave_height"),
+              ("waves_summary", "measured_period"), ("waves_summary", "incident_height"),
+              ("waves_summary", "reflection_coefficient"), ("flap_summary", "theta_amplitude"),
+              ("flap_summary", "mean_power"), ("flap_summary", "capture_factor"))
+IMAGE_SUFFIXES = (".png", ".svg", ".jpg", ".jpeg")
+
+_CSS = """
+body{font-family:system-ui,-apple-system,"Segoe UI",sans-serif;margin:2em auto;max-width:72em;
+padding:0 1em;color:#222}
+h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
+table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+th,td{border:1px solid #ddd;padding:.25em .6em;text-align:right}
+th{background:#f3f3f3}td.l,th.l{text-align:left}
+figure{display:inline-block;margin:.5em;vertical-align:top;max-width:100%}
+figure img{max-width:46em;width:100%;border:1px solid #eee}
+figcaption{font-size:.85em;color:#555}
+nav a{margin-right:1em}.muted{color:#777}
+"""
+
+
+def _esc(x) -> str:
+    return html.escape(str(x), quote=True)
+
+
+def _fmt(v) -> str:
+    if isinstance(v, (float, np.floating)):
+        return "" if not np.isfinite(v) else f"{v:.4g}"
+    return _esc(v)
+
+
+def _label(var: xr.DataArray) -> str:
+    name = var.attrs.get("long_name", var.name)
+    units = var.attrs.get("units")
+    return f"{name} [{units}]" if units not in (None, "", "1") else str(name)
+
+
+def _table(header: list[str], rows: list[list[str]], left: int = 1) -> str:
+    th = "".join(f'<th class="l">{h}</th>' if i < left else f"<th>{h}</th>"
+                 for i, h in enumerate(header))
+    body = "".join("<tr>" + "".join(f'<td class="l">{c}</td>' if i < left else f"<td>{c}</td>"
+                                    for i, c in enumerate(r)) + "</tr>" for r in rows)
+    return f"<table><thead><tr>{th}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _open(path: Path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def _conditions(summaries: dict[str, xr.Dataset]) -> str:
+    cols = [(d, v) for d, v in CONDITIONS if d in summaries and v in summaries[d].variables]
+    if not cols:
+        return '<p class="muted">No run summary (waves_summary.nc) in this folder.</p>'
+    runs = summaries[cols[0][0]]["run"].values
+    header = ["run"] + [_esc(_label(summaries[d][v])) for d, v in cols]
+    rows = []
+    for r in runs:
+        row = [_esc(r)]
+        for d, v in cols:
+            ds = summaries[d]
+            row.append(_fmt(ds[v].sel(run=r).values.item()) if r in ds["run"].values else "")
+        rows.append(row)
+    return _table(header, rows)
+
+
+def _statistics(name: str, ds: xr.Dataset) -> str:
+    rows = []
+    for v, var in ds.data_vars.items():
+        if var.dtype.kind not in "fiu" or "flag_values" in var.attrs or var.size == 0:
+            continue
+        # one row per value of a small extra dimension (e.g. comparison's "source"), not one
+        # statistic pooled over experiment and models
+        other = [d for d in var.dims if d != "run"]
+        groups = ([(f"{other[0]} = {c}", var.sel({other[0]: c}))
+                   for c in var[other[0]].values]
+                  if len(other) == 1 and other[0] in var.coords and var.sizes[other[0]] <= 10
+                  else [("", var)])
+        for tag, sub in groups:
+            x = np.asarray(sub.values, dtype=float).ravel()
+            x = x[np.isfinite(x)]
+            if x.size:
+                rows.append([_esc(v) + (f" ({_esc(tag)})" if tag else ""), _esc(_label(var)),
+                             str(x.size), _fmt(x.mean()), _fmt(x.std()), _fmt(x.min()),
+                             _fmt(x.max())])
+    if not rows:
+        return ""
+    return (f"<h3>{_esc(name)}</h3>"
+            + _table(["variable", "quantity", "n", "mean", "std", "min", "max"], rows, left=2))
+
+
+def _flag_counts(datasets: dict[str, xr.Dataset]) -> str:
+    rows = []
+    for name, ds in datasets.items():
+        for v, var in ds.variables.items():
+            values, meanings = var.attrs.get("flag_values"), var.attrs.get("flag_meanings")
+            if values is None or meanings is None:
+                continue
+            data = np.asarray(var.values).ravel()
+            for fv, meaning in zip(np.atleast_1d(values), str(meanings).split()):
+                rows.append([_esc(name), _esc(v), _esc(meaning), str(int(np.sum(data == fv)))])
+    if not rows:
+        return '<p class="muted">No quality-control flags in the processed datasets.</p>'
+    return _table(["dataset", "variable", "flag", "count"], rows, left=3)
+
+
+def _figures(root: Path) -> str:
+    images = sorted(p for p in root.rglob("*") if p.suffix.lower() in IMAGE_SUFFIXES)
+    # one image per figure: the PNG where a figure is also written as SVG or PDF
+    seen: dict[Path, Path] = {}
+    for p in images:
+        key = p.with_suffix("")
+        if key not in seen or p.suffix.lower() == ".png":
+            seen[key] = p
+    if not seen:
+        return '<p class="muted">No figures in this folder (run `flumekit make`).</p>'
+    out = []
+    for p in sorted(seen.values()):
+        rel = p.relative_to(root).as_posix()
+        others = sorted(q.relative_to(root).as_posix()
+                        for q in p.parent.glob(p.stem + ".*")
+                        if q != p and q.suffix.lower() in (".pdf", ".svg"))
+        links = "".join(f' <a href="{_esc(o)}">{_esc(Path(o).suffix[1:].upper())}</a>'
+                        for o in others)
+        out.append(f'<figure id="{_esc(p.stem)}"><a href="{_esc(rel)}"><img src="{_esc(rel)}" '
+                   f'alt="{_esc(p.stem)}" loading="eager"></a>'
+                   f"<figcaption>{_esc(p.stem)}{links}</figcaption></figure>")
+    return "\n".join(out)
+
+
+def _datasets(root: Path) -> str:
+    rows = []
+    for p in sorted(root.glob("*.nc")):
+        rows.append([f'<a href="{_esc(p.name)}">{_esc(p.name)}</a>', "1"])
+    for d in sorted(q for q in root.iterdir() if q.is_dir()):
+        files = sorted(d.rglob("*.nc"))
+        if files:
+            links = ", ".join(f'<a href="{_esc(f.relative_to(root).as_posix())}">'
+                              f"{_esc(f.stem)}</a>" for f in files)
+            rows.append([f"{_esc(d.name)}/: {links}", str(len(files))])
+    return _table(["datasets", "files"], rows) if rows else ""
+
+
+def write_report(processed: str | Path, out: str | Path | None = None,
+                 title: str | None = None) -> Path:
+    """Write the static HTML report of a processed campaign.
+
+    Parameters
+    ----------
+    processed : str or pathlib.Path
+        The processed campaign folder (``processed/<pipeline>``).
+    out : str or pathlib.Path, optional
+        Where to write the page; default ``report.html`` in ``processed``. Figures and datasets
+        are linked relative to the page, so it must lie in ``processed`` itself.
+    title : str, optional
+        Page title; default "flumekit report: <folder name>".
+
+    Returns
+    -------
+    pathlib.Path
+        The page written.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When ``processed`` holds no processed dataset, or ``out`` lies outside it.
+    """
+    root = Path(processed)
+    if not root.is_dir() or not any(root.rglob("*.nc")):
+        raise InputError(root, "no processed dataset here: run `flumekit make` first, or give "
+                               "the processed folder of the campaign")
+    out = root / REPORT_NAME if out is None else Path(out)
+    if out.resolve().parent != root.resolve():
+        raise InputError(out, f"the report must be written into {root} itself (it links the "
+                              "figures and datasets there by relative paths)")
+    title = title or f"flumekit report: {root.resolve().name}"
+    summaries = {p.stem: _open(p) for p in sorted(root.glob("*.nc"))}
+    stats = "".join(_statistics(n, ds) for n, ds in summaries.items() if "run" in ds.dims)
+    sections = [
+        ("conditions", "Run conditions", _conditions(summaries)),
+        ("statistics", "Summary statistics over the runs", stats or
+         '<p class="muted">No campaign summary datasets.</p>'),
+        ("qc", "Quality control", _flag_counts(summaries)),
+        ("figures", "Figures", _figures(root)),
+        ("datasets", "Datasets", _datasets(root)),
+    ]
+    nav = "".join(f'<a href="#{a}">{_esc(h)}</a>' for a, h, _ in sections)
+    body = "\n".join(f'<h2 id="{a}">{_esc(h)}</h2>\n{s}' for a, h, s in sections)
+    page = (f'<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+            f'<meta name="viewport" content="width=device-width, initial-scale=1">'
+            f"<title>{_esc(title)}</title><style>{_CSS}</style></head><body>"
+            f"<h1>{_esc(title)}</h1>"
+            f'<p class="muted">{len(summaries)} campaign datasets, written by flumekit '
+            f"{_esc(__version__)}</p><nav>{nav}</nav>\n{body}\n</body></html>\n")
+    with atomic_path(out) as tmp:
+        tmp.write_text(page, encoding="utf-8")
+    return out
