@@ -101,11 +101,9 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                          "not finite")
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
-    enc = encoder
-
     # Eq. (1): encoder -> wire -> angle
-    wire = wire_from_counts(counts, enc.counts_per_metre, zero_count)
-    wa = angle_from_wire(wire, enc.L5, enc.L7)
+    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
+    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
     theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
     theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
 

@@ -316,6 +316,9 @@ def test_two_dimensional_excitation_has_no_overflow_in_short_waves():
     assert np.all(k * H > 710)
     expected = 2 * 1000.0 * G * B * ((H - C) / k - 1 / k**2)
     np.testing.assert_allclose(two.excitation_torque_real.values, expected, rtol=1e-12)
+    # and the Haskind relation (RD12 Eq. C3) holds there too, written without overflow as well
+    np.testing.assert_allclose(rd.haskind_damping(two.excitation_torque_real.values, periods, H,
+                                                  C), two.radiation_damping.values, rtol=1e-10)
 
 
 def test_channel_model_tends_to_two_dimensional_as_the_gaps_close():

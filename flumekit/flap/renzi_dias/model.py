@@ -318,7 +318,10 @@ def haskind_damping(excitation_torque, period, depth: float, hinge_height: float
     k, h, c = modes.wavenumber, float(depth), float(hinge_height)
     kh = k * h
     cg = group_velocity(period, h, g)
-    bracket = h - c + (np.cosh(k * c) - np.cosh(kh)) / (k * np.sinh(kh))
+    # (cosh kc - cosh kh) / sinh kh without overflow for kh > 710
+    e = np.exp(-2 * kh)
+    ratio = (np.exp(k * c - kh) * (1 + np.exp(-2 * k * c)) - (1 + e)) / -np.expm1(-2 * kh)
+    bracket = h - c + ratio / k
     return np.tanh(kh) / (k * cg) * bracket * np.real(excitation_torque)
 
 
