@@ -207,6 +207,13 @@ VARIABLES: dict[str, Variable] = {
     "torque_radiation": _V("N m", "radiation torque acting on the flap, "
                            "-A_inf theta_ddot - int K theta_dot"),
     "torque_drag": _V("N m", "quadratic viscous drag torque acting on the flap"),
+    # the virtual flume's extra losses (synth/flume.py), acting on the flap
+    "torque_vortex_drag": _V("N m", "vortex drag torque of the oscillating flap, C_d(KC)"),
+    "torque_wetted_length": _V("N m", "waterline torque of the flap's changing wetted length"),
+    "torque_overtopping": _V("N m", "excitation lost to overtopping of the flap's top"),
+    "torque_bearing": _V("N m", "friction torque of the hinge bearings"),
+    "torque_valve": _V("N m", "torque of the PTO check valve's pressure"),
+    "chamber_pressure_valve": _V("Pa", "pressure drop of the PTO check valve in the chamber"),
     # Renzi-Dias linear model and frequency-domain response (models/renzi_dias.py, response.py)
     "period": _V("s", "wave period"),
     "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit "

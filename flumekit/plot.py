@@ -7,5 +7,6 @@ looks for; they take the datasets the analysis functions return or ``flumekit ma
 from flumekit.figures.flap import figure_5b as flap_angle
 from flumekit.figures.uvp import fig11 as velocity_field
 from flumekit.figures.waves import figure_5a as probe_elevation
+from flumekit.figures.waves import separation
 
-__all__ = ["flap_angle", "probe_elevation", "velocity_field"]
+__all__ = ["flap_angle", "probe_elevation", "separation", "velocity_field"]

@@ -67,9 +67,11 @@ def test_flap_motion_torque_and_power_against_truth(built):
             for name, tol in (("theta_dot", 0.02), ("torque_hydrodynamic", 0.03)):
                 amp = 0.5 * np.ptp(t[name].values[win])
                 assert _rms(f[name].values, t[name].values, win) < tol * amp, (run, name)
+            # the flume's chamber pressure holds a check-valve term Eq. (13) cannot represent:
+            # the stage's target is the best Eq. (13) fit to the noise-free truth
             assert float(f.pressure_loss_coefficient) == pytest.approx(
-                t.attrs["truth_pressure_loss_coefficient"], rel=0.02)
-            assert float(f.fluid_inertia) == pytest.approx(t.attrs["truth_fluid_inertia"],
+                t.attrs["eq13_pressure_loss_coefficient"], rel=0.02)
+            assert float(f.fluid_inertia) == pytest.approx(t.attrs["eq13_fluid_inertia"],
                                                            rel=0.02)
             # C_f: true mean power over the same window, W_I from the true height (Eq. A2)
             from flumekit.flap.power import incident_power
@@ -93,13 +95,16 @@ def test_uvp_field_against_truth(built):
             assert np.sqrt(np.mean(err[ok] ** 2)) < 0.02 * u0, name
 
 
-def test_simulator_reproduces_the_flume_motion(built):
-    """Issue 7: with the flume's physics (fitted K_p, I_p, LuGre, Renzi-Dias coefficients,
-    C sin theta) and driven by the separated incident wave, the simulated theta(t) is within
-    2 % RMS of its amplitude over the steady window, and so is its amplitude."""
+def test_experiment_simulator_and_linear_model_differ(built):
+    """Issue 16: the virtual flume has losses the simulator and the linear model lack (vortex
+    drag, overtopping, bearing friction, check valve), so the comparison shows three distinct
+    curves, the experiment's motion below both models'. The simulator's numerics against a
+    flume of its own physics (issue 7) are tested in tests/flap/test_flap_synth.py."""
     processed, truth = built
     for run in runs(truth):
         with xr.open_dataset(processed / "comparison" / f"{run}.nc") as c:
-            assert float(c.theta_relative_rms_difference) < 0.02, run
-            assert float(c.theta_amplitude.sel(source="simulator")) == pytest.approx(
-                float(c.theta_amplitude.sel(source="experiment")), rel=0.02)
+            amp = c.theta_amplitude
+            exp = float(amp.sel(source="experiment"))
+            assert float(amp.sel(source="simulator")) > 1.2 * exp, run
+            assert float(amp.sel(source="analytical")) > 1.2 * exp, run
+            assert float(c.theta_relative_rms_difference) > 0.1, run

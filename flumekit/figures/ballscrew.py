@@ -13,90 +13,139 @@ import numpy as np
 import xarray as xr
 
 from flumekit.ballscrew.scenario import GENERATOR_REGIONS
-from flumekit.figures.style import new_figure, style
+from flumekit.figures.style import (
+    ONE_COLUMN,
+    TWO_COLUMNS,
+    label,
+    legend,
+    new_figure,
+    style,
+    title,
+    value_label,
+)
 
 KELVIN = 273.15
 #: the paper's colours of Fig. 16: EMRG red, nut black, screw blue
 COMPONENT_COLOURS = {"generator": "tab:red", "nut": "k", "screw": "tab:blue"}
 
 
-def _time_series(ds: xr.Dataset, name: str, scale: float, ylabel: str, title: str):
+_TIME = label(text="Time $t$", units="s")
+_MINUTES = label(text="Time $t$", units="min")
+_TEMPERATURE = label(text="Temperature", units="°C")
+
+
+def _scenario(ds: xr.Dataset, what: str) -> str:
+    """Figure title: what is shown and the operating condition of the ball-screw WEC."""
+    cond = []
+    if "wave_period" in ds.attrs:
+        cond.append(f"regular wave T = {float(ds.attrs['wave_period']):g} s")
+    if "cycle_duration" in ds.attrs:
+        cond.append(f"{float(ds.attrs['cycle_duration']):g} s operating cycles")
+    if "time" in ds.coords and ds["time"].size > 1 and "wave_period" not in ds.attrs:
+        cond.append(f"{float(ds['time'][-1] - ds['time'][0]) / 60:g} min")
+    return f"{what}: ball-screw WEC" + (f", {', '.join(cond)}" if cond else "")
+
+
+def _time_series(ds: xr.Dataset, name: str, scale: float, ylabel: str, what: str):
+    fig, axes = new_figure(width=ONE_COLUMN, height=2.6)
+    ax = axes[0, 0]
     with style():
-        fig, axes = new_figure(figsize=(5.5, 3.2))
-        ax = axes[0, 0]
         ax.plot(ds["time"].values, ds[name].values * scale, color="k")
-        ax.set_xlabel("time [s]")
+        ax.set_xlabel(_TIME)
         ax.set_ylabel(ylabel)
-        ax.set_title(title)
         ax.set_xlim(ds["time"].values[0], ds["time"].values[-1])
+        title(fig, _scenario(ds, what))
     return fig
 
 
 def figure_11(eff: xr.Dataset):
     """Fig. 11: axial force F_PTO on the nut as a function of time."""
-    return _time_series(eff, "pto_force", 1e-3, "$F_{PTO}$ [kN]", "Axial force on the nut")
+    return _time_series(eff, "pto_force", 1e-3, label("pto_force", "$F_{PTO}$", units="kN",
+                                                      text="Axial force"), "Axial force on the nut")
 
 
 def figure_12(eff: xr.Dataset):
     """Fig. 12: screw rotation speed ω_screw (in rpm) as a function of time."""
-    return _time_series(eff, "screw_speed", 60 / (2 * np.pi), r"$\omega_{screw}$ [rpm]",
+    return _time_series(eff, "screw_speed", 60 / (2 * np.pi),
+                        label(text=r"Screw speed $\omega_{screw}$", units="rpm"),
                         "Screw rotation speed")
 
 
 def figure_13(eff: xr.Dataset):
     """Fig. 13: nut velocity v_nut as a function of time."""
-    return _time_series(eff, "nut_velocity", 1.0, "$v_{nut}$ [m/s]", "Nut velocity")
+    return _time_series(eff, "nut_velocity", 1.0,
+                        label("nut_velocity", "$v_{nut}$", text="Nut velocity"), "Nut velocity")
+
+
+#: lubrication regimes by film parameter λ (Senatore & De Simone 2022, §3.2)
+REGIMES = ((0.0, 1.0, "boundary", "tab:red"), (1.0, 3.0, "mixed", "tab:olive"),
+           (3.0, np.inf, "full film", "tab:green"))
 
 
 def figure_14(eff: xr.Dataset):
-    """Fig. 14: film parameters λ_nut, λ_screw and friction coefficients f_ball-nut,
-    f_ball-screw."""
+    """Fig. 14: film parameters λ_nut, λ_screw (lubrication regimes shaded) and friction
+    coefficients f_ball-nut, f_ball-screw."""
+    from matplotlib.patches import Patch
+
     t = eff["time"].values
-    panels = [("film_parameter_nut", r"(a) $\lambda_{nut}$"),
-              ("film_parameter_screw", r"(b) $\lambda_{screw}$"),
-              ("friction_coefficient_nut", "(c) $f_{ball-nut}$"),
-              ("friction_coefficient_screw", "(d) $f_{ball-screw}$")]
+    panels = [("film_parameter_nut", r"$\lambda_{nut}$", "(a) ball-nut film parameter"),
+              ("film_parameter_screw", r"$\lambda_{screw}$", "(b) ball-screw film parameter"),
+              ("friction_coefficient_nut", "$f_{ball-nut}$", "(c) ball-nut friction"),
+              ("friction_coefficient_screw", "$f_{ball-screw}$", "(d) ball-screw friction")]
+    fig, axes = new_figure(2, 2, width=TWO_COLUMNS, row_height=2.0, sharex=True)
     with style():
-        fig, axes = new_figure(2, 2, figsize=(7.0, 4.8))
-        for ax in axes.ravel()[1:]:
-            ax.sharex(axes[0, 0])
-        for ax, (name, label) in zip(axes.ravel(), panels):
+        for ax, (name, sym, tag) in zip(axes.ravel(), panels):
             ax.plot(t, eff[name].values, color="k")
-            ax.set_ylabel(label)
+            text = "Film parameter" if name.startswith("film") else "Friction coefficient"
+            ax.set_ylabel(label(text=f"{text} {sym}", units="1"))
+            ax.set_title(tag)
             if name.startswith("film"):
-                for lim, txt in ((1.0, "boundary | mixed"), (3.0, "mixed | full film")):
-                    ax.axhline(lim, color="0.5", lw=0.8, ls="--")
-                    ax.text(t[0], lim, " " + txt, fontsize=7, va="bottom", color="0.4")
+                top = max(float(np.nanmax(eff[name].values)), 3.0) * 1.05
+                for lo, hi, _, colour in REGIMES:
+                    ax.axhspan(lo, min(hi, top), color=colour, alpha=0.12, lw=0)
+                ax.set_ylim(0, top)
         for ax in axes[1]:
-            ax.set_xlabel("time [s]")
-        fig.suptitle("EHL model outputs")
+            ax.set_xlabel(_TIME)
+        title(fig, _scenario(eff, "Lubrication (EHL model)"))
+        legend(fig, [Patch(color=c, alpha=0.25, label=f"{r} lubrication")
+                     for _, _, r, c in REGIMES])
     return fig
 
 
 def figure_15(eff: xr.Dataset):
     """Fig. 15: indirect efficiency η of the ball screw as a function of time (in %)."""
-    fig = _time_series(eff, "ballscrew_efficiency", 100.0, r"$\eta$ [%]", "Indirect efficiency")
     eta = eff["ballscrew_efficiency"].values * 100
-    fig.axes[0].text(0.02, 0.05, f"range {eta.min():.0f}-{eta.max():.0f} %",
-                     transform=fig.axes[0].transAxes)
-    return fig
+    return _time_series(eff, "ballscrew_efficiency", 100.0,
+                        label(text=r"Indirect efficiency $\eta$", units="%"),
+                        f"Efficiency ({np.nanmin(eta):.0f}-{np.nanmax(eta):.0f} %)")
 
 
-def figure_9(lumped: xr.Dataset):
-    """Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle."""
+def figure_9(lumped: xr.Dataset, zoom_periods: float = 5.0):
+    """Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle.
+
+    The operating cycle of the paper lasts 600 s (``cycle_duration``); (a) shows it whole,
+    (b) its first ``zoom_periods`` wave periods, where the instantaneous losses can be read.
+    """
     cycle = float(lumped.attrs.get("cycle_duration", 600.0))
     one = lumped.sel(time=slice(0.0, cycle))
+    t = one["time"].values
+    period = float(lumped.attrs.get("wave_period", 3.8))
+    zoom = t <= t[0] + zoom_periods * period
+    fig, axes = new_figure(1, 2, width=TWO_COLUMNS, height=2.8, sharey=True)
     with style():
-        fig, axes = new_figure(figsize=(5.5, 3.2))
-        ax = axes[0, 0]
-        ax.plot(one["time"].values, one["mechanical_power_loss"].values, color="k",
-                label="mechanical losses $Q_{mecc}$")
-        ax.plot(one["time"].values, one["electrical_power_loss"].values, color="tab:red",
-                label="electrical losses $Q_{el}$")
-        ax.set_xlabel("time [s]")
-        ax.set_ylabel("power loss [W]")
-        ax.set_title("Power losses in one operating cycle")
-        ax.legend(fontsize=7)
+        for ax, sel, tag in ((axes[0, 0], slice(None), f"(a) the whole {cycle:g} s cycle"),
+                             (axes[0, 1], zoom, f"(b) its first {zoom_periods:g} wave periods")):
+            style_ = "-" if tag.startswith("(a)") else ".-"  # (b): the samples of the model
+            ax.plot(t[sel], one["mechanical_power_loss"].values[sel], style_, color="k", lw=0.6,
+                    label="mechanical losses $Q_{mecc}$")
+            ax.plot(t[sel], one["electrical_power_loss"].values[sel], style_, color="tab:red",
+                    lw=0.6, label="electrical losses $Q_{el}$")
+            ax.set_xlabel(_TIME)
+            ax.set_title(tag)
+            ax.set_xlim(t[sel][0], t[sel][-1])
+        axes[0, 0].set_ylabel(label(text="Power loss", units="W"))
+        title(fig, f"Power losses over one {cycle:g} s operating cycle of the ball-screw WEC")
+        legend(fig)
     return fig
 
 
@@ -104,21 +153,21 @@ def figure_16(lumped: xr.Dataset):
     """Fig. 16: lumped thermal profiles (dashed) and their exponential fits (solid), in °C."""
     t = lumped["time"].values
     t0 = float(lumped.attrs.get("initial_temperature", KELVIN + 20))
+    fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
+    ax = axes[0, 0]
     with style():
-        fig, axes = new_figure(figsize=(5.5, 3.6))
-        ax = axes[0, 0]
         for comp in lumped["component"].values:
             c = COMPONENT_COLOURS.get(str(comp), None)
             temp = lumped["temperature"].sel(component=comp).values
             d = float(lumped["temperature_rise_fit"].sel(component=comp))
             tau = float(lumped["time_constant_fit"].sel(component=comp))
-            ax.plot(t / 60, temp - KELVIN, ls="--", color=c, label=f"{comp}")
+            ax.plot(t / 60, temp - KELVIN, ls="--", color=c, label=f"{value_label(comp)}, model")
             ax.plot(t / 60, t0 + d * (1 - np.exp(-t / tau)) - KELVIN, ls="-", color=c, lw=0.8,
-                    label=f"fit: ΔT = {d:.1f} K, τ = {tau / 60:.1f} min")
-        ax.set_xlabel("time [min]")
-        ax.set_ylabel("temperature [°C]")
-        ax.set_title("Lumped thermal model")
-        ax.legend(fontsize=7)
+                    label=f"{value_label(comp)}, fit: ΔT = {d:.1f} K, τ = {tau / 60:.1f} min")
+        ax.set_xlabel(_MINUTES)
+        ax.set_ylabel(_TEMPERATURE)
+        title(fig, _scenario(lumped, "Lumped thermal model"))
+        legend(fig, where="right")
     return fig
 
 
@@ -128,7 +177,11 @@ def _triangles(fem: xr.Dataset) -> np.ndarray:
 
 
 def figure_10(fem: xr.Dataset):
-    """Fig. 10: the axisymmetric section of the PTO with its material regions."""
+    """Fig. 10: the axisymmetric section of the PTO with its material regions.
+
+    Drawn with the axis of symmetry horizontal (axial position along x, radius up), so the
+    long, slender section fills a page-wide figure.
+    """
     from matplotlib import colormaps
     from matplotlib.patches import Patch
 
@@ -136,19 +189,26 @@ def figure_10(fem: xr.Dataset):
     reg = fem["cell_region"].values
     names = [str(x) for x in fem["region"].values]
     cmap = colormaps["tab20"].resampled(max(len(names), 2))
+    aspect = (r.max() - r.min()) / max(z.max() - z.min(), 1e-9)
+    fig, axes = new_figure(width=TWO_COLUMNS, height=min(1.3 + 6.3 * aspect, 6.0))
+    ax = axes[0, 0]
     with style():
-        fig, axes = new_figure(figsize=(5.5, 6.0))
-        ax = axes[0, 0]
-        ax.tripcolor(r, z, _triangles(fem), facecolors=np.concatenate([reg, reg]).astype(float),
+        ax.tripcolor(z, r, _triangles(fem), facecolors=np.concatenate([reg, reg]).astype(float),
                      cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, edgecolors="none")
-        ax.legend(handles=[Patch(color=cmap(i), label=n) for i, n in enumerate(names)],
-                  fontsize=7, loc="upper right")
-        ax.set_xlabel("r [mm]")
-        ax.set_ylabel("axial position [mm]")
+        ax.set_xlabel(label(text="Axial position", units="mm"))
+        ax.set_ylabel(label(text="Radius $r$", units="mm"))
         ax.set_aspect("equal")
-        ax.set_xlim(0, max(r.max() * 2.2, 1.0))
-        ax.set_title("PTO section (axis of symmetry at r = 0)")
+        ax.set_ylim(0, r.max() * 1.05)
+        title(fig, "PTO section of the ball-screw WEC (axis of symmetry at r = 0)")
+        legend(fig, [Patch(color=cmap(i), label=value_label(n)) for i, n in enumerate(names)],
+               ncols=4)
     return fig
+
+
+def _generator_cells(fem: xr.Dataset) -> np.ndarray:
+    """Mask of the cells in the EMRG (stator, air gap, rotor and its hub)."""
+    names = np.array([str(x) for x in fem["region"].values])
+    return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
 
 
 def _generator_cells(fem: xr.Dataset) -> np.ndarray:
@@ -167,22 +227,19 @@ def figure_17(fem: xr.Dataset):
     fields = fem["temperature_field"].values - KELVIN
     vmin, vmax = float(fields[:, nodes].min()), float(fields[:, nodes].max())
     n = fields.shape[0]
-    ncols = min(n, 4)
+    fig, axes = new_figure(1, n, width=TWO_COLUMNS, height=3.6, sharey=True)
     with style():
-        fig, axes = new_figure(1, ncols, figsize=(1.9 * ncols + 1.2, 3.6))
-        for ax in axes.ravel()[1:]:
-            ax.sharey(axes[0, 0])
-        for k, ax in enumerate(axes.ravel()[:n]):
+        for k, ax in enumerate(axes.ravel()):
             pc = ax.tripcolor(r, z, tri, fields[k], shading="gouraud", cmap="inferno",
                               vmin=vmin, vmax=vmax)
-            ax.set_title(f"({'abcdefgh'[k]}) {fem['snapshot_time'].values[k]:.0f} s")
-            ax.set_xlabel("r [mm]")
+            ax.set_title(f"({'abcdefgh'[k]}) t = {fem['snapshot_time'].values[k]:.0f} s")
+            ax.set_xlabel(label(text="$r$", units="mm"))
             ax.set_xlim(r[nodes].min(), r[nodes].max())
             ax.set_ylim(z[nodes].min(), z[nodes].max())
             ax.set_aspect("equal")
-        axes[0, 0].set_ylabel("axial position [mm]")
-        fig.suptitle("EMRG (rotor, air gap, stator): temperature field")
-        fig.colorbar(pc, ax=axes.ravel().tolist(), label="temperature [°C]")
+        axes[0, 0].set_ylabel(label(text="Axial position", units="mm"))
+        fig.colorbar(pc, ax=axes.ravel().tolist(), label=_TEMPERATURE)
+        title(fig, _scenario(fem, "EMRG (rotor, air gap, stator): FEM temperature field"))
     return fig
 
 
@@ -190,18 +247,18 @@ def figure_18(fem: xr.Dataset):
     """Fig. 18: time evolution of the EMRG temperature at its control points (°C)."""
     t = fem["time"].values
     inside = np.isin([str(x) for x in fem["control_region"].values], GENERATOR_REGIONS)
+    fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
+    ax = axes[0, 0]
     with style():
-        fig, axes = new_figure(figsize=(5.5, 3.6))
-        ax = axes[0, 0]
         for p in fem["control_point"].values[inside]:
             pt = fem.sel(control_point=p)
-            label = (f"{str(p).replace('_', ' ')} (r = {float(pt['control_radius']) * 1e3:.0f} "
-                     f"mm, z = {float(pt['control_axial']) * 1e3:.0f} mm)")
-            ax.plot(t / 60, pt["control_temperature"].values - KELVIN, label=label)
-        ax.set_xlabel("time [min]")
-        ax.set_ylabel("temperature [°C]")
-        ax.set_title("EMRG temperature (FEM)")
-        ax.legend(fontsize=7, loc="lower right")
+            ax.plot(t / 60, pt["control_temperature"].values - KELVIN,
+                    label=f"{value_label(p)} (r = {float(pt['control_radius']) * 1e3:.0f} mm, "
+                          f"z = {float(pt['control_axial']) * 1e3:.0f} mm)")
+        ax.set_xlabel(_MINUTES)
+        ax.set_ylabel(_TEMPERATURE)
+        title(fig, _scenario(fem, "EMRG temperature at its control points (FEM)"))
+        legend(fig, where="right")
     return fig
 
 

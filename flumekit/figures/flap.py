@@ -1,9 +1,10 @@
-"""Flap figures of Brito et al. 2020: Figs. 5b, 6b-d, 7, 8, 9 and 10 (experimental parts).
+"""Flap figures of Brito et al. 2020: Figs. 5b, 6b-d, 7, 8, 9 and 10.
 
 Every function reads processed flap datasets (output of :func:`flumekit.flap.analyse_run`, one
 per run, or several concatenated along ``run``) and returns a matplotlib Figure built without
 pyplot. Runs are grouped by the ``wave_height`` coordinate that the pipeline attaches, or else
-by the incident height rounded to 5 mm.
+by the incident height rounded to 5 mm. Figs. 8-10 take the model curves (linear model,
+simulator) as ``models``: ``{source: summaries}`` (see :mod:`flumekit.figures.simulator`).
 """
 
 from __future__ import annotations
@@ -13,9 +14,31 @@ import xarray as xr
 
 from flumekit import signal as sig
 from flumekit.figures.groups import by_height, height_of, period_of, runs_of
-from flumekit.figures.style import COLOURS, figure_axes, new_figure, style
+from flumekit.figures.simulator import (
+    MARKERS,
+    SOURCE_LINES,
+    add_figure_8,
+    add_figure_9,
+    add_figure_10,
+    height_colours,
+)
+from flumekit.figures.style import (
+    COLOURS,
+    ONE_COLUMN,
+    TWO_COLUMNS,
+    label,
+    legend,
+    long_name,
+    new_figure,
+    run_title,
+    runs_title,
+    style,
+    title,
+    value_label,
+)
 
-_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
+_TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
+_PERIOD = label("wave_period", "$T$", text="Wave period")
 
 
 def _require(ds: xr.Dataset, *names: str) -> None:
@@ -35,28 +58,45 @@ def _window(ds: xr.Dataset, start: float, n_waves: int) -> tuple[np.ndarray, np.
     return tt, sel, period
 
 
-def _half_range(x: np.ndarray) -> float:
-    return 0.5 * float(np.max(x) - np.min(x))
+def _levels(phase_mean: np.ndarray, scale: float) -> tuple[float, float]:
+    """Crest and trough of the quasi-steady cycle (its phase average) over ``scale``: where
+    the normalised series peaks, whatever its mean (a flap leaning seaward, a clamped
+    suction side)."""
+    return float(np.max(phase_mean)) / scale, float(np.min(phase_mean)) / scale
+
+
+def _crest_trough(ax, levels, lab: str | None = "crest and trough of the steady cycle"):
+    for k, level in enumerate(levels):
+        ax.axhline(level, color="0.3", ls="-.", lw=0.9, label=lab if k == 0 else None)
 
 
 def figure_5b(flap: xr.Dataset, ax=None):
     """Full time series of the normalised flap angle θ/θ_s against t/T (Fig. 5b).
 
-    θ_s is the amplitude θ of the quasi-steady window; the dash-dotted line marks θ/θ_s = 1 and
-    the vertical line the start of the quasi-steady window.
+    θ_s is the amplitude of θ over the quasi-steady window (half the mean crest-to-trough
+    range); the dash-dotted lines mark the crest and trough of the steady cycle, θ/θ_s =
+    (θ̄ ± θ_s)/θ_s with θ̄ its centre, so they meet the steady crests and troughs even when
+    the flap oscillates about a leaning mean. The vertical line is the start of the window.
     """
-    _require(flap, "theta", "theta_amplitude", "measured_period", "steady_start")
+    _require(flap, "theta", "theta_amplitude", "theta_phase_mean", "measured_period",
+             "steady_start")
     period = float(flap.measured_period)
-    fig, ax = figure_axes(ax, figsize=(6.5, 2.4))
+    scale = float(flap.theta_amplitude)
+    if ax is None:
+        fig, axes = new_figure(width=TWO_COLUMNS, height=2.4)
+        ax = axes[0, 0]
+    fig = ax.figure
     with style():
-        ax.plot(flap.time.values / period, flap.theta.values / float(flap.theta_amplitude),
-                color=COLOURS["experiment"], lw=0.6)
-        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale")
+        ax.plot(flap.time.values / period, flap.theta.values / scale,
+                color=COLOURS["experiment"], lw=0.5, label="measured")
+        _crest_trough(ax, _levels(flap.theta_phase_mean.values, scale))
         ax.axvline(float(flap.steady_start) / period, color="tab:red", lw=0.9,
-                   label="quasi-steady")
-        ax.set_xlabel("t/T")
-        ax.set_ylabel(r"$\theta/\theta_s$")
-        ax.legend(loc="lower right", ncols=2, fontsize=7)
+                   label="start of the quasi-steady window")
+        ax.set_xlabel(_TIME_OVER_PERIOD)
+        ax.set_ylabel(label(text=r"$\theta/\theta_s$", units="1"))
+        title(fig, run_title(flap, "Normalised flap rotation")
+              + rf", $\theta_s$ = {np.degrees(scale):.1f}°")
+        legend(fig)
     return fig
 
 
@@ -65,7 +105,8 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
 
     Each signal is divided by its amplitude scale (half the range of its phase average over
     the quasi-steady window; for P_int, whose suction side is clamped at the vapour pressure,
-    the maximum of the phase average); dash-dotted lines mark ±1.
+    the maximum of the phase average); dash-dotted lines mark the crest and trough of the
+    phase average, which the steady cycles meet.
 
     Parameters
     ----------
@@ -77,29 +118,28 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
     _require(flap, "theta", "chamber_pressure", "theta_dot", "theta_phase_mean",
              "chamber_pressure_phase_mean", "theta_dot_phase_mean", "measured_period")
     tt, sel, _ = _window(flap, start, n_waves)
-    rows = [
-        ("theta", _half_range(flap.theta_phase_mean.values), r"$\theta/\theta_s$", "(b)"),
-        ("chamber_pressure", float(np.max(flap.chamber_pressure_phase_mean.values)),
-         r"$P_{int}/P_s$", "(c)"),
-        ("theta_dot", _half_range(flap.theta_dot_phase_mean.values),
-         r"$\dot\theta/\dot\theta_s$", "(d)"),
-    ]
+    rows = []
+    for name, sym, half in (("theta", r"$\theta/\theta_s$", True),
+                            ("chamber_pressure", r"$P_{int}/P_s$", False),
+                            ("theta_dot", r"$\dot\theta/\dot\theta_s$", True)):
+        pm = flap[f"{name}_phase_mean"].values
+        scale = 0.5 * float(np.ptp(pm)) if half else float(np.max(pm))
+        rows.append((name, scale, sym, pm))
     if axes is None:
-        with style():
-            fig, grid = new_figure(3, 1, figsize=(6.5, 5.5))
+        fig, grid = new_figure(3, 1, width=TWO_COLUMNS, row_height=1.6, sharex=True)
         axes = grid[:, 0]
-        for ax in axes[1:]:
-            ax.sharex(axes[0])
     fig = axes[0].figure
     with style():
-        for ax, (name, scale, label, tag) in zip(axes, rows):
-            ax.plot(tt[sel], flap[name].values[sel] / scale, color=COLOURS["experiment"])
-            for level in (-1.0, 1.0):
-                ax.axhline(level, color="0.3", ls="-.", lw=0.9)
-            ax.set_ylabel(label)
-            ax.set_title(tag, loc="left", fontsize=8)
-        axes[-1].set_xlabel("t/T")
+        for ax, (name, scale, sym, pm), tag in zip(axes, rows, "bcd"):
+            ax.plot(tt[sel], flap[name].values[sel] / scale, color=COLOURS["experiment"],
+                    label="measured")
+            _crest_trough(ax, _levels(pm, scale))
+            ax.set_ylabel(label(text=sym, units="1"))
+            ax.set_title(f"({tag}) {long_name(name)}")
+        axes[-1].set_xlabel(_TIME_OVER_PERIOD)
         axes[-1].set_xlim(start, start + n_waves)
+        title(fig, run_title(flap, "Flap rotation, chamber pressure and angular velocity"))
+        legend(fig)
     return fig
 
 
@@ -107,16 +147,20 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
     """Measured and fitted torque of the cylinder pressure force (Fig. 7), one panel per run.
 
     Shows ``n_waves`` periods from the start of each run's quasi-steady window, with the R² of
-    the fit of Eq. (13).
+    the fit of Eq. (13). Two columns of panels when there are more than three runs.
     """
     runs = runs_of(flaps)
     if axes is None:
-        with style():
-            fig, grid = new_figure(len(runs), 1, figsize=(6.5, 2.2 * len(runs)))
-        axes = grid[:, 0]
+        ncols = 1 if len(runs) <= 3 else 2
+        nrows = int(np.ceil(len(runs) / ncols))
+        fig, grid = new_figure(nrows, ncols, width=TWO_COLUMNS, row_height=1.7)
+        axes = grid.ravel()[:len(runs)]
+        for ax in grid.ravel()[len(runs):]:
+            fig.delaxes(ax)
     fig = axes[0].figure
+    wide = axes[0].get_position().width > 0.5
     with style():
-        for ax, ds, tag in zip(axes, runs, "abcdefgh"):
+        for ax, ds, tag in zip(axes, runs, "abcdefghijklmnop"):
             _require(ds, "torque_pressure", "torque_pressure_fitted", "pressure_fit_r2",
                      "steady_start", "measured_period")
             t0 = float(ds.steady_start) / float(ds.measured_period)
@@ -125,70 +169,116 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
                     label="measured")
             ax.plot(tt[sel] - t0, ds.torque_pressure_fitted.values[sel],
                     color=COLOURS["analytical"], ls="--", label="fitted, Eq. (13)")
-            ax.set_title(f"({tag}) T = {period_of(ds):g} s, H = {height_of(ds):g} m, "
-                         f"R² = {float(ds.pressure_fit_r2):.3f}", loc="left", fontsize=8)
-            ax.set_ylabel(r"$T_p$ [N m]")
-            ax.legend(loc="upper right", fontsize=7)
-        axes[-1].set_xlabel("t/T (from the start of the quasi-steady window)")
+            cond = f"T = {period_of(ds):g} s, H = {height_of(ds):g} m"
+            if "run" in ds.variables:  # a narrow panel names the run only (its id tells T, H)
+                cond = f"run {ds['run'].values}" + (f": {cond}" if wide else "")
+            ax.set_title(f"({tag}) {cond}, R² = {float(ds.pressure_fit_r2):.3f}")
+            ax.set_ylabel(label("torque_pressure", "$T_p$", text="Pressure torque"))
+            ax.set_xlabel(label(text="$t/T$ from the steady start", units="1"))
+        title(fig, runs_title(runs, "Torque of the cylinder pressure force"))
+        legend(fig)
     return fig
 
 
-def figure_8(flaps, ax=None):
+def _source_handles(heights: list[float], sources: list[str]):
+    """Legend proxies: a colour and marker per wave height, a line style per source."""
+    from matplotlib.lines import Line2D
+
+    colours = height_colours(heights)
+    handles = [Line2D([], [], color=colours[h], marker=m, ls="none", mfc="none",
+                      label=f"H = {h:g} m") for h, m in zip(heights, MARKERS * 3)]
+    for s in sources:
+        if s == "experiment":
+            handles.append(Line2D([], [], color="0.2", marker="o", mfc="none", ls="none",
+                                  label=value_label(s)))
+        else:
+            handles.append(Line2D([], [], color="0.2", ls=SOURCE_LINES.get(s, "-."),
+                                  label=value_label(s)))
+    return handles
+
+
+def _experiment_points(ax, groups, heights, transform=lambda v: v):
+    colours = height_colours(heights)
+    for (h, (periods, v)), mk in zip(groups.items(), MARKERS * 3):
+        ax.plot(periods, transform(v), mk, color=colours[h], mfc="none", zorder=3)
+
+
+def _heights(flaps, models) -> list[float]:
+    runs = runs_of(flaps) + [r for m in (models or {}).values() for r in runs_of(m)]
+    return sorted({height_of(r) for r in runs})
+
+
+def figure_8(flaps, models: dict | None = None, ax=None):
     """Amplitude of the hydrodynamic torque against the wave period, per wave height (Fig. 8).
 
     The amplitude is half the difference of the mean per-cycle maximum and minimum of T_h over
-    the quasi-steady window (``torque_amplitude``). Model curves can be added to the returned
-    figure's axes.
+    the quasi-steady window (``torque_amplitude``). Markers: the experiment; lines: the
+    ``models`` ({source: run summaries}), one line style per source, one colour per height.
     """
     groups = by_height(flaps, "torque_amplitude")
-    fig, ax = figure_axes(ax, figsize=(4.5, 3.2))
+    heights = _heights(flaps, models)
+    if ax is None:
+        fig, axes = new_figure(width=ONE_COLUMN, height=3.9)
+        ax = axes[0, 0]
+    fig = ax.figure
     with style():
-        for (h, (periods, v)), mk in zip(groups.items(), _MARKERS * 3):
-            ax.plot(periods, v["torque_amplitude"], mk, color=COLOURS["experiment"],
-                    mfc="none", label=f"H = {h:g} m (exp.)")
-        ax.set_xlabel("T [s]")
-        ax.set_ylabel(r"$|T_h|$ [N m]")
-        ax.legend(fontsize=7)
+        _experiment_points(ax, groups, heights, lambda v: v["torque_amplitude"])
+        for source, runs in (models or {}).items():
+            add_figure_8(ax, runs, label=source, heights=heights)
+        ax.set_xlabel(_PERIOD)
+        ax.set_ylabel(label("torque_amplitude", "$|T_h|$", text="Hydrodynamic torque"))
+        title(fig, runs_title(flaps, "Torque amplitude"))
+        legend(fig, _source_handles(heights, ["experiment", *(models or {})]), ncols=2)
     return fig
 
 
-def figure_9(flaps, axes=None):
-    """(a) Amplitude of θ and (b) capture factor C_f against the wave period (Fig. 9)."""
+def figure_9(flaps, models: dict | None = None, axes=None):
+    """(a) Amplitude of θ and (b) capture factor C_f against the wave period (Fig. 9).
+
+    Markers: the experiment; lines: the ``models`` ({source: run summaries}).
+    """
     groups = by_height(flaps, "theta_amplitude", "capture_factor")
+    heights = _heights(flaps, models)
     if axes is None:
-        with style():
-            fig, grid = new_figure(1, 2, figsize=(7.5, 3.0))
+        fig, grid = new_figure(1, 2, width=TWO_COLUMNS, height=3.0)
         axes = grid[0, :]
     fig = axes[0].figure
     with style():
-        for (h, (periods, v)), mk in zip(groups.items(), _MARKERS * 3):
-            kw = dict(color=COLOURS["experiment"], mfc="none", label=f"H = {h:g} m (exp.)")
-            axes[0].plot(periods, v["theta_amplitude"] / np.pi, mk, **kw)
-            axes[1].plot(periods, v["capture_factor"], mk, **kw)
-        axes[0].set_ylabel(r"$|\theta|/\pi$")
-        axes[1].set_ylabel(r"$C_f$")
+        _experiment_points(axes[0], groups, heights, lambda v: v["theta_amplitude"] / np.pi)
+        _experiment_points(axes[1], groups, heights, lambda v: v["capture_factor"])
+        for source, runs in (models or {}).items():
+            add_figure_9(axes, runs, label=source, heights=heights)
+        axes[0].set_ylabel(label(text=r"Rotation amplitude $|\theta|/\pi$", units="1"))
+        axes[1].set_ylabel(label("capture_factor", "$C_f$", text="Capture factor"))
         for ax, tag in zip(axes, "ab"):
-            ax.set_xlabel("T [s]")
-            ax.set_title(f"({tag})", loc="left", fontsize=8)
-        axes[0].legend(fontsize=7)
+            ax.set_xlabel(_PERIOD)
+            ax.set_title(f"({tag})")
+        title(fig, runs_title(flaps, "Flap rotation and capture factor"))
+        handles = _source_handles(heights, ["experiment", *(models or {})])
+        legend(fig, handles, where="right")
     return fig
 
 
-def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, axes=None):
-    """Normalised phase averages over the quasi-steady window (Fig. 10, experiment).
+def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | None = None,
+              axes=None):
+    """Normalised phase averages over the quasi-steady window (Fig. 10).
 
-    Panels: (a) ⟨η⟩/H, (b) ⟨θ⟩/π, (c) ⟨W_out⟩/W_I with its mean as a dashed line, (d)
-    ⟨θ̇⟩/(π ω), ω = 2π/T. The paper does not state its normalisation of θ̇; dividing by π ω gives
-    a sinusoidal motion the same amplitude in (b) and (d). Cycles start at a zero up-crossing of
-    θ (t/T = 0: the flap vertical and moving to the beach), as in the paper.
+    Panels: (a) ⟨η⟩/H (only with ``eta``), (b) ⟨θ⟩/π, (c) ⟨W_out⟩/W_I with its mean over the
+    cycle dotted, (d) ⟨θ̇⟩/(π ω), ω = 2π/T. The paper does not state its normalisation of θ̇;
+    dividing by π ω gives a sinusoidal motion the same amplitude in (b) and (d). Cycles start
+    at a zero up-crossing of θ (t/T = 0: the flap vertical and moving to the beach), as in the
+    paper. The experiment is drawn on top (thick black) so that model curves that coincide
+    with it do not hide it.
 
     Parameters
     ----------
     flap : Processed flap dataset of one run.
     eta : Surface elevation [m] on a ``time`` coordinate of the same clock (e.g. the probe
         nearest the flap from the waves dataset); phase-averaged here over the flap's window.
-        Panel (a) is left empty without it.
-    axes : Four axes to draw into; default a new figure.
+        Without it the figure has three panels.
+    models : {source: summary of that source for this run} (``"analytical"``,
+        ``"simulator"``), drawn with :func:`flumekit.figures.simulator.add_figure_10`.
+    axes : Four axes (a)-(d) to draw into (``None`` for (a) to skip it); default a new figure.
     """
     _require(flap, "theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean",
              "incident_power", "mean_power", "incident_height", "steady_start",
@@ -196,34 +286,44 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, axes=None):
     phase = flap.phase.values
     period = float(flap.measured_period)
     if axes is None:
-        with style():
-            fig, grid = new_figure(2, 2, figsize=(7.0, 5.0))
-        axes = grid.ravel()
-    fig = axes[0].figure
-    exp = dict(color=COLOURS["experiment"])
+        if eta is None:
+            fig, grid = new_figure(1, 3, width=TWO_COLUMNS, height=2.9)
+            axes = [None, *grid[0]]
+        else:
+            fig, grid = new_figure(2, 2, width=TWO_COLUMNS, height=4.9)
+            axes = list(grid.ravel())
+    axes = list(axes)
+    fig = next(ax for ax in axes if ax is not None).figure
+    w_i = float(flap.incident_power)
+    exp = dict(color=COLOURS["experiment"], lw=1.6, zorder=3)
     with style():
-        if eta is not None:
+        if eta is not None and axes[0] is not None:
             if "time" not in eta.coords:
                 raise ValueError("eta needs a 'time' coordinate")
             pa = sig.phase_average(eta.values, eta["time"].values, period,
                                    float(flap.steady_start), int(flap.steady_cycles),
                                    n_phase=phase.size)
             axes[0].plot(pa.phase, pa.mean / float(flap.incident_height), **exp)
-        axes[0].set_ylabel(r"$\langle\eta\rangle/H$")
+            probe = f", probe {eta['probe'].values}" if "probe" in eta.coords else ""
+            axes[0].set_ylabel(label(text=r"$\langle\eta\rangle/H$" + probe, units="1"))
         axes[1].plot(phase, flap.theta_phase_mean.values / np.pi, **exp)
-        axes[1].set_ylabel(r"$\langle\theta\rangle/\pi$")
-        w_i = float(flap.incident_power)
-        axes[2].plot(phase, flap.power_phase_mean.values / w_i, **exp)
-        axes[2].axhline(float(flap.mean_power) / w_i, color="0.3", ls="--", lw=0.9,
-                        label=rf"$\overline{{W}}_{{out}}/W_I$ = {float(flap.mean_power) / w_i:.2f}")
-        axes[2].set_ylabel(r"$\langle W_{out}\rangle/W_I$")
-        axes[2].legend(fontsize=7)
+        axes[1].set_ylabel(label(text=r"$\langle\theta\rangle/\pi$", units="1"))
+        mean = float(flap.mean_power) / w_i
+        axes[2].plot(phase, flap.power_phase_mean.values / w_i,
+                     label=rf"experiment, $\overline{{W}}_{{out}}/W_I$ = {mean:.2f}", **exp)
+        axes[2].axhline(mean, color=COLOURS["experiment"], ls=":", lw=1.0)
+        axes[2].set_ylabel(label(text=r"$\langle W_{out}\rangle/W_I$", units="1"))
         omega = 2 * np.pi / period
         axes[3].plot(phase, flap.theta_dot_phase_mean.values / (np.pi * omega), **exp)
-        axes[3].set_ylabel(r"$\langle\dot\theta\rangle/(\pi\omega)$")
-        for ax, tag in zip(axes, "abcd"):
-            ax.set_title(f"({tag})", loc="left", fontsize=8)
+        axes[3].set_ylabel(label(text=r"$\langle\dot\theta\rangle/(\pi\omega)$", units="1"))
+        for source, summary in (models or {}).items():
+            add_figure_10(axes, summary, label=source)
+        shown = [(ax, tag) for ax, tag in zip(axes, "abcd") if ax is not None]
+        for ax, tag in shown:
+            ax.set_title(f"({tag})")
             ax.set_xlim(0, 1)
-        for ax in axes[2:]:
-            ax.set_xlabel("t/T")
+            ax.set_xlabel(_TIME_OVER_PERIOD)
+        title(fig, run_title(flap, "Phase averages") + "; dotted: mean over the cycle")
+        # one entry per source, with its mean power, from panel (c)
+        legend(fig, *axes[2].get_legend_handles_labels(), ncols=2)
     return fig

@@ -1,20 +1,54 @@
-"""The package figure style and atomic figure saving (used by every figure function)."""
+"""The package figure style, print sizes, human labels and deterministic figure saving.
+
+Every figure function of :mod:`flumekit.figures` draws inside :func:`style` on a figure from
+:func:`new_figure` (one column, 3.5 in, or two columns, 7 in, wide; text >= 8 pt at that size),
+and :func:`save` writes it under the same style at 300 dpi (PNG) or as vector graphics (PDF,
+SVG) with the same bytes for the same figure: no software version, creation date or random
+hash salt in the file.
+"""
 
 from __future__ import annotations
 
+import re
 from contextlib import contextmanager
 from pathlib import Path
 
+#: page widths [in] of a two-column journal layout
+ONE_COLUMN = 3.5
+TWO_COLUMNS = 7.0
+#: the smallest text at print size [pt]
+MIN_FONT_SIZE = 8.0
+#: the formats :func:`save` writes, with the metadata keys that would carry a version or a date
+FORMATS = {
+    "png": {"Software": None},
+    "pdf": {"Creator": None, "Producer": None, "CreationDate": None},
+    "svg": {"Creator": None, "Date": None},
+}
+
 STYLE = {
     "figure.dpi": 100,
-    "savefig.dpi": 150,
-    "font.size": 9,
+    "savefig.dpi": 300,
+    "font.size": MIN_FONT_SIZE,
+    "axes.titlesize": MIN_FONT_SIZE,
+    "axes.titlelocation": "left",
+    "axes.labelsize": MIN_FONT_SIZE,
+    "xtick.labelsize": MIN_FONT_SIZE,
+    "ytick.labelsize": MIN_FONT_SIZE,
+    "legend.fontsize": MIN_FONT_SIZE,
+    "legend.title_fontsize": MIN_FONT_SIZE,
+    "figure.titlesize": 9,
     "axes.grid": True,
     "grid.alpha": 0.3,
     "axes.spines.top": False,
     "axes.spines.right": False,
     "legend.frameon": False,
-    "lines.linewidth": 1.2,
+    "lines.linewidth": 1.0,
+    "lines.markersize": 4,
+    # deterministic vector output: a fixed salt for SVG element ids; TrueType fonts in PDF
+    # keep the text editable in a paper's figure
+    "svg.hashsalt": "flumekit",
+    "svg.fonttype": "path",
+    "pdf.fonttype": 42,
 }
 
 #: colours by role, so experiment/model/simulator look the same in every figure
@@ -24,34 +58,208 @@ COLOURS = {"experiment": "k", "analytical": "tab:blue", "simulator": "tab:red",
 
 @contextmanager
 def style():
+    """Context in which figures are built and saved with the package style."""
     import matplotlib
 
     with matplotlib.rc_context(STYLE):
         yield
 
 
-def new_figure(nrows: int = 1, ncols: int = 1, **kw):
-    """A figure not registered with pyplot (no global state, safe in worker processes)."""
+def new_figure(nrows: int = 1, ncols: int = 1, width: float = TWO_COLUMNS,
+               height: float | None = None, row_height: float = 2.2, **kw):
+    """A figure of ``nrows`` x ``ncols`` axes, not registered with pyplot.
+
+    Parameters
+    ----------
+    nrows, ncols : Axes grid.
+    width : Figure width [in]: :data:`ONE_COLUMN` or :data:`TWO_COLUMNS`.
+    height : Figure height [in]; default ``row_height`` per row.
+    row_height : Height per row of axes [in], used when ``height`` is None.
+    **kw : Passed to :meth:`matplotlib.figure.Figure.subplots` (``sharex``, ...).
+
+    Returns
+    -------
+    (Figure, 2-D array of Axes). No pyplot state: safe in worker processes.
+    """
     from matplotlib.figure import Figure
 
-    fig = Figure(layout="constrained", **kw)
-    axes = fig.subplots(nrows, ncols, squeeze=False)
+    if height is None:
+        height = row_height * nrows + 0.5  # + the figure title and an outside legend
+    with style():
+        fig = Figure(figsize=(width, height), layout="constrained")
+        axes = fig.subplots(nrows, ncols, squeeze=False, **kw)
     return fig, axes
 
 
-def figure_axes(ax=None, figsize=(6.5, 2.4)):
+def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
     """``(figure, axes)``: those of ``ax`` if given, else a new one-axes figure."""
     if ax is not None:
         return ax.figure, ax
-    with style():
-        fig, axes = new_figure(figsize=figsize)
+    fig, axes = new_figure(width=width, height=height)
     return fig, axes[0, 0]
 
 
-def save(fig, path: str | Path) -> Path:
-    """Write a figure atomically (temporary file in the same folder, then rename)."""
+# --- human labels -------------------------------------------------------------------------
+
+#: labels of categorical coordinate values that are code identifiers (sources of a comparison,
+#: regions and control points of the ball-screw PTO model)
+VALUE_LABELS = {
+    "experiment": "experiment",
+    "analytical": "linear model (Renzi & Dias)",
+    "simulator": "time-domain simulator",
+    "bearing_seat": "bearing seat",
+    "screw_generator": "screw in the generator",
+    "screw_in_generator": "screw in the generator",
+    "screw_free": "screw, free length",
+    "screw_swept": "screw, swept by the nut",
+    "screw_under_nut": "screw under the nut",
+    "screw_swept_end": "screw, swept end",
+    "rotor": "rotor",
+    "rotor_hub": "rotor hub",
+    "stator_bore": "stator bore",
+    "air_gap": "air gap",
+    "stator": "stator",
+    "stator_end": "stator end",
+    "ball_track": "ball track",
+    "nut": "nut",
+    "generator": "generator",
+    "screw": "screw",
+}
+
+
+def value_label(value) -> str:
+    """A human label for a categorical value (an identifier with underscores otherwise)."""
+    value = str(value)
+    return VALUE_LABELS.get(value, value.replace("_", " "))
+
+
+_POWER = re.compile(r"([A-Za-z]+)(-?\d+)")
+
+
+def units_text(units: str) -> str:
+    """UDUNITS spelling as axis text: ``"m s-1"`` -> ``"m s$^{-1}$"``, ``"1"`` -> ``"-"``."""
+    if units in ("1", "", None):
+        return "-"
+    return _POWER.sub(lambda m: f"{m.group(1)}$^{{{m.group(2)}}}$", units)
+
+
+def long_name(name: str) -> str:
+    """The registry's long name of a variable, up to its first comma, capitalised."""
+    from flumekit.conventions import VARIABLES
+
+    text = VARIABLES[name].long_name.split(",")[0]
+    return text[:1].upper() + text[1:]
+
+
+def label(name: str | None = None, symbol: str | None = None, units: str | None = None,
+          text: str | None = None) -> str:
+    """An axis label "Long name symbol [units]".
+
+    Parameters
+    ----------
+    name : Registered variable (:mod:`flumekit.conventions`): its long name and units.
+    symbol : Mathematical symbol appended to the name (``r"$\\theta$"``).
+    units : Units in UDUNITS spelling, overriding the registry's (e.g. ``"1"`` for a
+        normalised quantity, ``"kN"`` for a scaled one).
+    text : Description replacing the registry's long name.
+    """
+    from flumekit.conventions import VARIABLES
+
+    if text is None:
+        text = long_name(name) if name is not None else ""
+    if units is None:
+        if name is None:
+            raise ValueError("a label needs a registered name or explicit units")
+        units = VARIABLES[name].units
+    parts = [p for p in (text, symbol) if p]
+    return f"{' '.join(parts)} [{units_text(units)}]"
+
+
+def condition(ds) -> str:
+    """"T = 3.5 s, H = 0.25 m" from a run dataset's ``wave_period``/``wave_height``."""
+    parts = []
+    if "wave_period" in ds.coords or "wave_period" in ds.variables:
+        parts.append(f"T = {float(ds['wave_period']):g} s")
+    if "wave_height" in ds.coords or "wave_height" in ds.variables:
+        parts.append(f"H = {float(ds['wave_height']):g} m")
+    return ", ".join(parts)
+
+
+def run_title(ds, what: str = "") -> str:
+    """Figure title naming a run and its condition: "What: run T3.50_H0.250_r0 (T = 3.5 s, ...)"."""
+    run = str(ds["run"].values) if "run" in ds.variables else ""
+    cond = condition(ds)
+    who = f"run {run} ({cond})" if run and cond else (f"run {run}" if run else cond)
+    text = f"{what}: {who}" if what and who else (what or who)
+    return text[:1].upper() + text[1:]
+
+
+def runs_title(datasets, what: str) -> str:
+    """Figure title of a campaign figure: how many runs and the span of periods and heights."""
+    from flumekit.figures.groups import height_of, period_of, runs_of
+
+    runs = runs_of(datasets)
+    periods = sorted({period_of(r) for r in runs})
+    heights = sorted({height_of(r) for r in runs})
+
+    def span(v, unit):
+        return f"{v[0]:g} {unit}" if len(v) == 1 else f"{v[0]:g}-{v[-1]:g} {unit}"
+
+    n = len(runs)
+    return (f"{what}: {n} run{'s' if n != 1 else ''}, T = {span(periods, 's')}, "
+            f"H = {span(heights, 'm')}")
+
+
+def title(fig, text: str) -> None:
+    """The figure's title (left-aligned above every panel, wrapped to the figure's width)."""
+    import textwrap
+
+    # about 13 characters per inch at 9 pt
+    width = int(fig.get_size_inches()[0] * 13)
+    lines = [textwrap.fill(line, width) for line in text.split("\n")]
+    fig.suptitle("\n".join(lines), x=0.01, ha="left", fontsize=STYLE["figure.titlesize"])
+
+
+def legend(fig, handles=None, labels=None, ncols: int | None = None, where: str = "lower"):
+    """One legend for the figure, outside every axes (below them by default).
+
+    Entries of all axes are collected (duplicates by label dropped) unless ``handles`` is
+    given; ``where`` is ``"lower"`` (below the axes), ``"right"`` or ``"upper"`` (above the
+    axes: only for a figure without a title, which takes that place).
+    """
+    if handles is None:
+        seen: dict[str, object] = {}
+        for ax in fig.axes:
+            for h, lab in zip(*ax.get_legend_handles_labels()):
+                if not lab.startswith("_"):
+                    seen.setdefault(lab, h)
+        handles, labels = list(seen.values()), list(seen)
+    elif labels is None:
+        labels = [h.get_label() for h in handles]
+    if not handles:
+        return None
+    loc = {"upper": "outside upper center", "right": "outside right center",
+           "lower": "outside lower center"}[where]
+    if ncols is None:
+        ncols = 1 if where == "right" else min(len(handles), 3)
+    with style():
+        return fig.legend(handles, labels, loc=loc, ncols=ncols)
+
+
+def save(fig, *paths: str | Path) -> list[Path]:
+    """Write a figure to each path atomically, in the format of its suffix (png, pdf, svg).
+
+    Saved under the package style (PNG at 300 dpi) with the metadata that would carry a
+    software version or a date removed, so the same figure gives the same bytes.
+    """
     from flumekit.io.atomic import atomic_path
 
-    with atomic_path(path) as tmp:
-        fig.savefig(tmp)
-    return Path(path)
+    out = []
+    for path in map(Path, paths):
+        fmt = path.suffix.lstrip(".").lower()
+        if fmt not in FORMATS:
+            raise ValueError(f"{path}: figure format '{fmt}' is not one of {sorted(FORMATS)}")
+        with style(), atomic_path(path) as tmp:
+            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=FORMATS[fmt])
+        out.append(path)
+    return out

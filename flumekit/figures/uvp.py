@@ -10,7 +10,16 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from flumekit.figures.style import COLOURS, new_figure, style
+from flumekit.figures.style import (
+    COLOURS,
+    TWO_COLUMNS,
+    condition,
+    label,
+    legend,
+    new_figure,
+    style,
+    title,
+)
 
 PHASES = (0.0, 0.06, 0.15, 0.27, 0.38, 0.44)  # t/T of Figs. 11 and 12
 
@@ -22,18 +31,32 @@ def _depth(field: xr.Dataset) -> float:
     return h
 
 
-def _share(axes, x: bool, y: bool) -> None:
-    first = axes.flat[0]
-    for ax in axes.flat[1:]:
-        if x:
-            ax.sharex(first)
-        if y:
-            ax.sharey(first)
-
-
 def _at_phase(field: xr.Dataset, p: float) -> xr.Dataset:
     k = int(np.argmin(np.abs(((field["phase"].values - p + 0.5) % 1.0) - 0.5)))
     return field.isel(phase=k)
+
+
+def _field_title(field: xr.Dataset, what: str) -> str:
+    n = int(field.attrs.get("n_runs", 0))
+    runs = f"{n} UVP run{'s' if n != 1 else ''}" if n else "UVP runs"
+    cond = condition(field)
+    return f"{what}: {runs}" + (f" ({cond})" if cond else "")
+
+
+def _nice_levels(lim: float, n: int = 10) -> np.ndarray:
+    """Symmetric contour levels on round numbers covering [-lim, lim] (colour-bar ticks at
+    values one can read, not at lim/10 multiples)."""
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(nbins=n, symmetric=True, steps=[1, 2, 2.5, 5, 10]).tick_values(-lim, lim)
+
+
+def _reference_length(vmax: float) -> float:
+    """A round reference vector no longer than the longest arrow."""
+    if not np.isfinite(vmax) or vmax <= 0:
+        return 1.0
+    mag = 10 ** np.floor(np.log10(vmax))
+    return float(max(s * mag for s in (1, 2, 5) if s * mag <= vmax))
 
 
 def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
@@ -44,27 +67,37 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
     ----------
     field : Field dataset (phase, z, x).
     phases : t/T of the panels (the nearest phase of the grid is shown).
-    levels : Contour levels of ⟨u⟩/U0; default symmetric, 21 levels over the field's range.
+    levels : Contour levels of ⟨u⟩/U0; default symmetric, on round numbers over the field's
+        range (the colour-bar ticks).
     stride : Plot every ``stride``-th vector in x and z.
     arrow : Length of the longest arrow in units of the plotted vector spacing.
+
+    Returns
+    -------
+    matplotlib.figure.Figure (two columns wide) with a reference arrow below the panels.
     """
     h = _depth(field)
     x, z = field["x"].values / h, field["z"].values / h
     un = field["u_normalised"].values
     if levels is None:
         lim = np.nanmax(np.abs(un)) if np.any(np.isfinite(un)) else 1.0
-        levels = np.linspace(-lim, lim, 21)
+        levels = _nice_levels(lim)
     speed = np.hypot(un, field["w_normalised"].values)
     vmax = np.nanmax(speed) if np.any(np.isfinite(speed)) else 1.0
     spacing = stride * min(np.min(np.abs(np.diff(x))) if x.size > 1 else 1.0,
                            np.min(np.abs(np.diff(z))) if z.size > 1 else 1.0)
     scale = vmax / (arrow * spacing)  # data units (U0) per unit of x/h
-    ncols = 2
+    # panels shaped like the field (equal axes): three columns when it is taller than wide
+    aspect = float(np.ptp(z) / np.ptp(x)) if x.size > 1 and z.size > 1 else 1.0
+    ncols = min(len(phases), 3 if aspect > 1 else 2)
     nrows = int(np.ceil(len(phases) / ncols))
+    panel = float(np.clip((TWO_COLUMNS - 1.4) / ncols * aspect, 1.0, 3.0))
+    fig, axes = new_figure(nrows, ncols, width=TWO_COLUMNS, height=nrows * (panel + 0.45) + 0.9,
+                           sharex=True, sharey=True)
+    for ax in axes.flat[len(phases):]:
+        fig.delaxes(ax)
     with style():
-        fig, axes = new_figure(nrows, ncols, figsize=(7.0, 2.6 * nrows))
-        _share(axes, x=True, y=True)
-        cs = None
+        cs = q = None
         for ax, p, tag in zip(axes.flat, phases, "abcdefgh"):
             f = _at_phase(field, p)
             u = f["u_normalised"].values
@@ -72,21 +105,26 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
             if np.any(np.isfinite(u)):
                 cs = ax.contourf(x, z, u, levels=levels, cmap="RdBu_r", extend="both")
             sl = (slice(None, None, stride), slice(None, None, stride))
-            ax.quiver(x[::stride], z[::stride], u[sl], w[sl], angles="xy", scale_units="xy",
-                      scale=scale, width=0.004)
+            q = ax.quiver(x[::stride], z[::stride], u[sl], w[sl], angles="xy",
+                          scale_units="xy", scale=scale, width=0.004)
             ax.set_title(f"({tag}) t/T = {float(f['phase']):.2f}")
             ax.set_aspect("equal")
-        for ax in axes[-1]:
-            ax.set_xlabel("x/h")
-        for ax in axes[:, 0]:
-            ax.set_ylabel("z/h")
-        for ax in axes.flat[len(phases):]:
-            ax.set_visible(False)
-        if cs is not None:
-            fig.colorbar(cs, ax=axes, label=r"$\langle u\rangle/U_0$", shrink=0.8)
+            ax.set_xlabel(label(text="$x/h$", units="1"))
+            ax.set_ylabel(label(text="$z/h$", units="1"))
+        for ax in axes.flat[:len(phases)]:
+            ax.label_outer()
+        if cs is not None:  # ticks at the contour levels: round numbers
+            fig.colorbar(cs, ax=axes, shrink=0.8,
+                         label=label(text=r"$\langle u\rangle/U_0$", units="1"))
+        if q is not None:  # the reference arrow, in a strip kept free below the panels
+            ref = _reference_length(vmax)
+            strip = 0.35 / fig.get_size_inches()[1]
+            fig.get_layout_engine().set(rect=(0, strip, 1, 1 - strip))
+            axes.flat[0].quiverkey(q, 0.06, strip / 2, ref,
+                                   rf"reference arrow: velocity = {ref:g} $U_0$",
+                                   labelpos="E", coordinates="figure")
+        title(fig, _field_title(field, "Phase-averaged velocity field in front of the flap"))
     return fig
-
-
 def _column(field: xr.Dataset, name: str, x: float):
     """Values of ``name`` (phase, z) at x, linearly interpolated; where both neighbours are not
     available, the nearest column with data is used and its x is returned."""
@@ -109,39 +147,48 @@ def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
     Where the beams do not resolve a component at that section (with the default mounting the
     inclined beams end at x ≈ -0.12 m, so ⟨w⟩ is not measured at x/h = -0.11), the nearest
     section with data is used and named in the legend. ``truth`` (a field on the same grid,
-    e.g. the virtual flume's) is drawn dashed.
+    e.g. the virtual flume's) is drawn dashed. Phases at which neither component has data
+    at the section get no panel (the figure sizes itself to what it has).
     """
     h = _depth(field)
     x = x_over_h * h
     z = field["z"].values / h
-    ncols = 3
-    nrows = int(np.ceil(len(phases) / ncols))
     cols = {c: _column(field, f"{c}_normalised", x) for c in "uw"}
     tcols = {}
     if truth is not None:  # the truth at the sections actually shown
         tcols = {c: _column(truth, f"{c}_normalised", xc if np.isfinite(xc) else x)
                  for c, (_, xc) in cols.items()}
+
+    def at(col, p):
+        return int(np.argmin(np.abs(((col["phase"].values - p + 0.5) % 1.0) - 0.5)))
+
+    shown = [p for p in phases
+             if any(np.isfinite(cols[c][0].values[at(cols[c][0], p)]).any() for c in "uw")]
+    if not shown:
+        raise ValueError(f"the field has no velocity at or near x/h = {x_over_h:g} at any of "
+                         f"the phases {list(phases)}")
     colour = {"u": COLOURS["experiment"], "w": "tab:purple"}
+    ncols = min(3, len(shown))
+    nrows = int(np.ceil(len(shown) / ncols))
+    fig, axes = new_figure(nrows, ncols, width=TWO_COLUMNS, row_height=2.1, sharey=True)
+    for ax in axes.flat[len(shown):]:
+        fig.delaxes(ax)
     with style():
-        fig, axes = new_figure(nrows, ncols, figsize=(7.0, 2.8 * nrows))
-        _share(axes, x=False, y=True)
-        for ax, p, tag in zip(axes.flat, phases, "abcdefgh"):
+        for ax, p, tag in zip(axes.flat, shown, "abcdefgh"):
             for c in "uw":
                 col, xc = cols[c]
-                k = int(np.argmin(np.abs(((col["phase"].values - p + 0.5) % 1.0) - 0.5)))
+                k = at(col, p)
                 ax.plot(col.values[k], z, "-o", ms=2.5, color=colour[c],
-                        label=rf"$\langle {c}\rangle/U_0$, x/h = {xc / h:.2f}")
+                        label=rf"$\langle {c}\rangle/U_0$ at x/h = {xc / h:.2f}")
                 if c in tcols:
                     tc, _ = tcols[c]
-                    tz = tc["z"].values / h
-                    ax.plot(tc.values[k], tz, "--", color=COLOURS["truth"],
-                            label="truth" if c == "u" else None)
+                    ax.plot(tc.values[k], tc["z"].values / h, "--", color=COLOURS["truth"],
+                            label="truth")
             ax.axvline(0.0, color="0.5", lw=0.6)
             ax.set_title(f"({tag}) t/T = {p:.2f}")
-            ax.set_xlabel(r"velocity $/U_0$")
+            ax.set_xlabel(label(text="Velocity over $U_0$", units="1"))
         for ax in axes[:, 0]:
-            ax.set_ylabel("z/h")
-        for ax in axes.flat[len(phases):]:
-            ax.set_visible(False)
-        axes.flat[0].legend(fontsize=7, loc="best")
+            ax.set_ylabel(label(text="$z/h$", units="1"))
+        title(fig, _field_title(field, f"Velocity profiles at x/h = {x_over_h:g}"))
+        legend(fig)
     return fig

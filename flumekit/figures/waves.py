@@ -1,6 +1,7 @@
-"""Figures 5a and 6a of Brito et al. 2020: normalised free-surface elevation of a regular-wave run.
+"""Wave figures: Figs. 5a and 6a of Brito et al. (2020) and the separation of one run.
 
-Both read the processed waves dataset of one run (:func:`flumekit.waves.analyse_run`).
+All read the processed waves dataset of one run (:func:`flumekit.waves.analyse_run`); the
+separation figure also takes the output of :func:`flumekit.waves.separate`.
 """
 
 from __future__ import annotations
@@ -8,7 +9,19 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from flumekit.figures.style import COLOURS, figure_axes, style
+from flumekit.figures.style import (
+    COLOURS,
+    TWO_COLUMNS,
+    figure_axes,
+    label,
+    legend,
+    new_figure,
+    run_title,
+    style,
+    title,
+)
+
+_TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
 
 
 def _probe(waves: xr.Dataset, probe) -> str:
@@ -31,6 +44,10 @@ def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, 
     return p, waves.time.values / period, waves.eta.sel(probe=p).values / scale, period
 
 
+def _probe_text(waves: xr.Dataset, p: str) -> str:
+    return f"probe {p} at x = {float(waves.x.sel(probe=p)):.2f} m"
+
+
 def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     """Full time series of the normalised elevation η/A_s against t/T (Brito et al. 2020, Fig. 5a).
 
@@ -38,7 +55,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     ----------
     waves : Processed waves dataset of one run (output of ``analyse_run``).
     probe : Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : Axes to draw into; default a new figure.
+    ax : Axes to draw into; default a new two-column figure.
 
     Returns
     -------
@@ -46,16 +63,17 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     vertical line the start of the quasi-steady window.
     """
     p, tt, eta, period = _normalised(waves, probe)
-    fig, ax = figure_axes(ax)
+    fig, ax = figure_axes(ax, height=2.4)
     with style():
-        ax.plot(tt, eta, color=COLOURS["experiment"], lw=0.6, label=f"{p}")
-        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale")
+        ax.plot(tt, eta, color=COLOURS["experiment"], lw=0.5, label=f"measured, {p}")
+        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
         ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9,
-                   label="quasi-steady")
+                   label="start of the quasi-steady window")
         ax.set_xlim(tt[0], tt[-1])
-        ax.set_xlabel("t/T")
-        ax.set_ylabel(r"$\eta/A_s$")
-        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncols=3, fontsize=7)
+        ax.set_xlabel(_TIME_OVER_PERIOD)
+        ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
+        title(fig, run_title(waves, f"Normalised surface elevation, {_probe_text(waves, p)}"))
+        legend(fig)
     return fig
 
 
@@ -68,7 +86,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     start : First t/T shown [-] (the paper: 65).
     n_waves : Number of periods shown [-].
     probe : Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : Axes to draw into; default a new figure.
+    ax : Axes to draw into; default a new two-column figure.
 
     Returns
     -------
@@ -80,11 +98,102 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
         raise ValueError(f"t/T = {start:g}..{stop:g} lies outside the record "
                          f"(t/T = {tt[0]:.1f}..{tt[-1]:.1f})")
     sel = (tt >= start) & (tt <= stop)
-    fig, ax = figure_axes(ax)
+    fig, ax = figure_axes(ax, height=2.2)
     with style():
-        ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"{p}")
-        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9)
+        ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
+        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
         ax.set_xlim(start, stop)
-        ax.set_xlabel("t/T")
-        ax.set_ylabel(r"$\eta/A_s$")
+        ax.set_xlabel(_TIME_OVER_PERIOD)
+        ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
+        title(fig, run_title(waves, f"Five waves, {_probe_text(waves, p)}"))
+        legend(fig)
+    return fig
+
+
+def _spans(mask: np.ndarray) -> list[tuple[int, int]]:
+    """(first, last) indices of each run of True in ``mask``."""
+    edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
+
+
+def separation(waves: xr.Dataset, n_waves: int = 5):
+    """The incident/reflected separation of one run: what a wave engineer checks first.
+
+    (a) Incident and reflected elevation at the reference point ``x_ref`` over ``n_waves``
+    periods from the start of the separated window; (b) their variance density spectra
+    (log scale) with the bins masked as ill-conditioned shaded and the analysis band marked.
+    The title gives Kr, H_I and the masked energy fraction.
+
+    Parameters
+    ----------
+    waves : Output of :func:`flumekit.waves.analyse_run` (a processed waves dataset) or of
+        :func:`flumekit.waves.separate`: ``eta_incident``, ``eta_reflected`` (time),
+        ``spectrum_incident``, ``spectrum_reflected``, ``masked`` (frequency),
+        ``reflection_coefficient``, ``incident_height``.
+    n_waves : Periods shown in (a) [-]; the whole separated series if the dataset gives no
+        period.
+
+    Returns
+    -------
+    matplotlib.figure.Figure (two columns wide).
+    """
+    need = ("eta_incident", "eta_reflected", "spectrum_incident", "spectrum_reflected",
+            "reflection_coefficient", "incident_height")
+    missing = [n for n in need if n not in waves.variables]
+    if missing:
+        raise ValueError(f"the waves dataset lacks {missing}: pass the output of analyse_run "
+                         "or separate")
+    t = waves["time"].values
+    inc, ref = waves["eta_incident"].values, waves["eta_reflected"].values
+    ok = np.isfinite(inc) & np.isfinite(ref)
+    if not ok.any():
+        raise ValueError("the separated series hold no finite sample")
+    t0 = float(t[ok][0])
+    period = next((float(waves[n]) for n in ("measured_period", "period")
+                   if n in waves.variables), None)
+    f1 = waves.attrs.get("fundamental_frequency")  # the output of separate
+    if period is None and f1 is not None and float(f1) > 0:
+        period = 1.0 / float(f1)
+    shown = ok & (t <= t0 + n_waves * period) if period else ok
+    f = waves["frequency"].values
+    masked = (waves["masked"].values.astype(bool) if "masked" in waves.variables
+              else np.zeros(f.size, bool))
+    fig, axes = new_figure(1, 2, width=TWO_COLUMNS, height=2.8)
+    ax_t, ax_f = axes[0]
+    x_ref = float(waves.attrs.get("x_ref", 0.0))
+    with style():
+        for name, series in (("incident", inc), ("reflected", ref)):
+            ax_t.plot(t[shown], series[shown], color=COLOURS[name], label=name)
+        ax_t.set_xlim(t[shown][0], t[shown][-1])
+        ax_t.set_xlabel(label("time", "$t$"))
+        ax_t.set_ylabel(label("eta", r"$\eta$", text="Elevation"))
+        ax_t.set_title(f"(a) at the reference point x = {x_ref:g} m")
+        peak = 0.0
+        for name in ("incident", "reflected"):
+            s = waves[f"spectrum_{name}"].values
+            pos = s > 0
+            ax_f.semilogy(f[pos], s[pos], ".-", ms=2, lw=0.7, color=COLOURS[name])
+            peak = max(peak, float(s[pos].max())) if pos.any() else peak
+        if masked.any():
+            df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
+            for i, j in _spans(masked):
+                ax_f.axvspan(f[i] - df / 2, f[j] + df / 2, color="0.8", lw=0,
+                             label="masked (ill-conditioned)")
+        band = waves.attrs.get("band")
+        if band is not None:
+            for edge in np.ravel(band):
+                ax_f.axvline(float(edge), color="0.4", ls=":", lw=0.9, label="analysis band")
+        if peak > 0:  # seven decades below the peak: the noise floor, not the round-off
+            ax_f.set_ylim(bottom=peak * 1e-7)
+        ax_f.set_xlabel(label("frequency", "$f$"))
+        ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
+        ax_f.set_title("(b) spectra")
+        kr = float(waves["reflection_coefficient"])
+        h_i = float(waves["incident_height"])
+        extra = ""
+        if "masked_energy_fraction" in waves.variables:
+            extra = f", masked energy {100 * float(waves['masked_energy_fraction']):.1f} %"
+        title(fig, run_title(waves, "Wave separation") + "\n"
+              + f"$K_r$ = {kr:.3f}, $H_I$ = {h_i:.3f} m{extra}")
+        legend(fig, ncols=4)
     return fig

@@ -9,6 +9,9 @@ Equation of motion about the hinge (Cummins 1962; Eq. (11)-(13) in Brito et al. 
 * T_g = C θ (``restoring="linear"``, as in Eq. A1) or C sin θ (``"sine"``, exact for a rigid
   submerged flap, :func:`flumekit.flap.torque.gravity_torque`).
 * c_d θ̇|θ̇|: optional quadratic viscous drag torque [N m s2].
+* T_x(t, θ, θ̇): optional further torque acting on the flap (``extra_torque`` of
+  :func:`simulate`), for physics beyond this model's (the virtual flume's losses,
+  :mod:`flumekit.synth.flume`), which records its own parts.
 * PTO: :class:`LinearDamper` (T_PTO = ν_pto θ̇) or :class:`HydraulicCylinder`: Eq. (13) in the
   signed form of :mod:`flumekit.flap.pressure`, P = s (K_p θ̇|θ̇| + I_p θ̈) clamped at the vapour
   pressure, torque T_p = −m A P with the signed lever arm m(θ) of
@@ -272,7 +275,7 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
              radiation: StateSpace | xr.DataArray | None,
              pto: LinearDamper | HydraulicCylinder | None, *, dt: float,
              duration: float | None = None, theta0: float = 0.0,
-             theta_dot0: float = 0.0) -> xr.Dataset:
+             theta_dot0: float = 0.0, extra_torque=None) -> xr.Dataset:
     """Integrate the flap's equation of motion (module notes) with a fixed step.
 
     Parameters
@@ -286,6 +289,10 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
     dt : Time step h [s].
     duration : Simulated time [s]; default the excitation record.
     theta0, theta_dot0 : Initial angle [rad] and angular velocity [rad s-1].
+    extra_torque : Optional callable ``(j, theta, theta_dot) -> torque`` [N m] acting on the
+        flap, with j the half-step index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is
+        called once per step, in order, at the step's start, and held over the step
+        (operator splitting, first order in the term: for slowly varying losses).
 
     Returns
     -------
@@ -304,12 +311,16 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
     if n_steps < 1:
         raise ValueError("duration shorter than one step")
     exc = _half_step_series(excitation, dt, n_steps, t0)
-    out = _run(exc, flap, radiation, pto, dt, n_steps, float(theta0), float(theta_dot0))
+    out = _run(exc, flap, radiation, pto, dt, n_steps, float(theta0), float(theta_dot0),
+               extra_torque)
     time = t0 + dt * np.arange(n_steps + 1)
-    return _dataset(time, np.asarray(exc[::2]), out, flap, radiation, pto, dt)
+    ds = _dataset(time, np.asarray(exc[::2]), out, flap, radiation, pto, dt)
+    if extra_torque is not None:
+        ds.attrs["extra_torque"] = getattr(extra_torque, "description", repr(extra_torque))
+    return ds
 
 
-def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
+def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0, extra=None):
     J0 = flap.inertia + flap.added_inertia_infinite
     C = flap.hydrostatic_stiffness
     sine = flap.restoring == "sine"
@@ -363,9 +374,9 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
                                   f"table [{th_lo:.3g}, {-th_lo:.3g}] rad")
         return mtab[i] + (u - i) * dmtab[i]
 
-    def accel(th, om, mu, te, z, hl):
-        """θ̈, chamber pressure, friction force and lever arm at one stage."""
-        rest = te - mu - (C * sin(th) if sine else C * th) - cd * om * abs(om)
+    def accel(th, om, mu, j, z, hl, xt=0.0):
+        """θ̈, chamber pressure, friction force and lever arm at one stage (half step j)."""
+        rest = exc[j] - mu - (C * sin(th) if sine else C * th) - cd * om * abs(om) + xt
         if not hydraulic:
             return (rest - nu * om) / J0, 0.0, 0.0, 0.0
         m = lever(th)
@@ -409,7 +420,10 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
             mu_f = h * (S1 - (0.5 * kint[n + 1] * w0 if n + 1 <= M + 1 else 0.0))
         else:
             mu1 = 0.0
-        a1, p1, ff1, m1 = accel(th, om, mu1, exc[2 * n], fz, fh)
+        # the extra torque is frozen over the step at its start value (operator splitting, as
+        # the LuGre state): one call per step, in order
+        xt = extra(2 * n, th, om) if extra is not None else 0.0
+        a1, p1, ff1, m1 = accel(th, om, mu1, 2 * n, fz, fh, xt)
         o_th[n], o_om[n], o_acc[n], o_mu[n], o_p[n], o_ff[n] = th, om, a1, mu1, p1, ff1
         o_z[n], o_h[n] = fz, fh
         if not (isfinite(th) and isfinite(om) and isfinite(a1)):
@@ -417,7 +431,6 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
                                   "from the start): reduce the step")
         if last:
             break
-        te_h, te_f = exc[2 * n + 1], exc[2 * n + 2]
         if fr is not None:
             # LuGre state at the stage times: exact frozen-velocity steps at the rod velocities
             # predicted at h/4 and 3h/4 from the first stage
@@ -428,16 +441,16 @@ def _run(exc, flap, radiation, pto, h, n_steps, theta0, omega0):
         # stage 2 (t + h/2)
         om2 = om + hh * a1
         mu2 = ph + g2 * om if ss else (mu_h + hq * K0 * om2 if conv else 0.0)
-        a2 = accel(th + hh * om, om2, mu2, te_h, zm, hm)[0]
+        a2 = accel(th + hh * om, om2, mu2, 2 * n + 1, zm, hm, xt)[0]
         # stage 3 (t + h/2)
         om3 = om + hh * a2
         mu3 = ph + g2 * om2 if ss else (mu_h + hq * K0 * om3 if conv else 0.0)
-        a3 = accel(th + hh * om2, om3, mu3, te_h, zm, hm)[0]
+        a3 = accel(th + hh * om2, om3, mu3, 2 * n + 1, zm, hm, xt)[0]
         # stage 4 (t + h)
         om4 = om + h * a3
         mu4 = pf + g4a * om + g2 * (2.0 * om3 - om) if ss else \
             (mu_f + hh * K0 * om4 if conv else 0.0)
-        a4 = accel(th + h * om3, om4, mu4, te_f, ze, he)[0]
+        a4 = accel(th + h * om3, om4, mu4, 2 * n + 2, ze, he, xt)[0]
         if ss:  # exponential update with Simpson's quadratic θ̇ over the step
             um = 0.5 * (om2 + om3)
             y = [e + a_ * om + b_ * um + c_ * om4 for e, a_, b_, c_ in zip(ey, qa, qm, qb)]
@@ -523,7 +536,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
                  radiation: str | StateSpace | xr.DataArray = "state_space",
                  irf_duration: float = 30.0,
                  order: int | None = None, match_frequency: float | None = None,
-                 max_spread: float | None = None, taper: float = 2.0) -> xr.Dataset:
+                 max_spread: float | None = None, taper: float = 2.0,
+                 extra_torque=None) -> xr.Dataset:
     """Simulate one flume run from its incident elevation at the flap (pure; for the stages).
 
     Parameters
@@ -552,6 +566,8 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     taper : End tapers of the excitation filter [s] (:func:`flumekit.hydro.excitation.
         excitation_torque`): the last ``taper`` seconds of the run are driven by an attenuated
         torque and should be left out of comparisons (a flume record starts in still water).
+    extra_torque : Further torque on the flap, passed to :func:`simulate` (its half steps
+        are those of the elevation's time grid at step ``dt``).
 
     Returns
     -------
@@ -600,7 +616,7 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
     else:
         raise ValueError(f"pto must be 'hydraulic', 'linear' or 'none', got {pto!r}")
     exc = excitation_torque(eta_incident_at_flap, hydro, taper=taper)
-    ds = simulate(exc, flap, rad, model, dt=dt)
+    ds = simulate(exc, flap, rad, model, dt=dt, extra_torque=extra_torque)
     eta = np.interp(ds["time"].values, eta_incident_at_flap["time"].values,
                     eta_incident_at_flap.values)
     ds["eta_incident"] = ("time", eta)

@@ -1,8 +1,11 @@
 """Stage: every figure, drawn from processed datasets only, one rule per figure.
 
 ``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
-those of Senatore & De Simone (2022). Single-run figures use the run named by
-``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m).
+those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflected separation of
+every wave run. Single-run figures use the run named by ``[stages.figures] run`` (default: the
+paper's UVP condition T = 3.5 s, H = 0.25 m). Each figure is written in every format of
+``[stages.figures] formats`` (default PNG at 300 dpi and PDF), after passing the figure test
+(:mod:`flumekit.figures.check`).
 """
 
 from __future__ import annotations
@@ -10,8 +13,9 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "3"
-DEFAULTS = {"run": "auto", "format": "png", "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
+VERSION = "4"
+DEFAULTS = {"run": "auto", "formats": ["png", "pdf"],
+            "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
 
 
 def _figure_run(ctx: Context, wanted: str) -> str | None:
@@ -21,20 +25,28 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
     if wanted != "auto":
         ctx.campaign.run(wanted)  # KeyError names the campaign and the run
         return wanted
-    paper = [r for r in runs if (r.period, r.height) == (3.5, 0.25)]
-    return (paper or list(runs))[0].id
+    waves = [r for r in runs if r.kind == "waves"] or list(runs)
+    paper = [r for r in waves if (r.period, r.height) == (3.5, 0.25)]
+    return (paper or waves)[0].id
 
 
 def rules(ctx: Context) -> list[Rule]:
+    from flumekit.figures.style import FORMATS
     from flumekit.stages.ballscrew import FIGURE_SOURCES
 
     p = ctx.stage_params("figures", DEFAULTS)
-    fmt = p["format"]
+    formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
+    bad = [f for f in formats if f not in FORMATS]
+    if bad or not formats:
+        from flumekit.errors import FlumekitError
+
+        raise FlumekitError(f"pipeline: [stages.figures] formats {formats} must be a non-empty "
+                            f"list of {sorted(FORMATS)}")
     out: list[Rule] = []
 
     def fig(name: str, draw: str, inputs: dict, **params) -> None:
         out.append(Rule(f"figure/{name}", "flumekit.stages.figures:draw", inputs=inputs,
-                        outputs={"figure": ctx.out("figures", f"{name}.{fmt}")},
+                        outputs={f: ctx.out("figures", f"{name}.{f}") for f in formats},
                         params={"draw": draw, **params}, version=VERSION))
 
     run = _figure_run(ctx, p["run"])
@@ -46,13 +58,21 @@ def rules(ctx: Context) -> list[Rule]:
         fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
         fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves,
                                         "comparison": ctx.out("comparison", f"{run}.nc")})
-        pressure = [r.id for r in ctx.campaign.runs
-                    if [r.period, r.height] in p["pressure_runs"] and r.repeat == 0]
+        # one wave run per condition (the UVP runs repeat the paper's condition)
+        pressure = []
+        for cond in p["pressure_runs"]:
+            match = sorted((r for r in ctx.campaign.runs if r.kind == "waves"
+                            and [r.period, r.height] == list(cond)), key=lambda r: r.repeat)
+            pressure += [match[0].id] if match else []
         fig("fig07", "flap:figure_7",
             {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
         every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs}
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
+    for r in ctx.campaign.runs:
+        if r.kind == "waves":
+            fig(f"separation/{r.id}", "waves:separation",
+                {"waves": ctx.out("waves", f"{r.id}.nc")})
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
         fig("fig11", "uvp:fig11", {"field": ctx.out("uvp_field.nc")})
         fig("fig12", "uvp:fig12", {"field": ctx.out("uvp_field.nc")})
@@ -76,7 +96,7 @@ def _function(draw: str):
 def draw(inputs, outputs, params) -> None:
     import numpy as np
 
-    from flumekit.figures import simulator as models
+    from flumekit.figures.check import assert_passes
     from flumekit.figures.style import save, style
     from flumekit.io.netcdf import read_dataset
 
@@ -88,21 +108,20 @@ def draw(inputs, outputs, params) -> None:
             # the measured elevation at the probe nearest the flap, over the whole record
             # (the separated incident wave exists only in the waves' own steady window)
             eta = data["waves"]["eta"]
-            fig = fn(data["flap"], eta=eta.isel(probe=int(np.argmin(np.abs(eta["x"].values)))))
             comp = data["comparison"]
-            for source in comp["source"].values[1:]:
-                models.add_figure_10(fig.axes, comp.sel(source=source), label=str(source))
+            models = {str(s): comp.sel(source=s) for s in comp["source"].values
+                      if str(s) != "experiment"}
+            fig = fn(data["flap"], eta=eta.isel(probe=int(np.argmin(np.abs(eta["x"].values)))),
+                     models=models)
         elif draw in ("flap:figure_8", "flap:figure_9"):
             comps = [data[k] for k in sorted(data)]
-            fig = fn([c.sel(source="experiment") for c in comps])
-            add = models.add_figure_8 if draw.endswith("8") else models.add_figure_9
-            for source in comps[0]["source"].values[1:]:
-                runs = [c.sel(source=source) for c in comps]
-                add(fig.axes[0] if draw.endswith("8") else fig.axes[:2], runs,
-                    label=str(source))
+            models = {str(s): [c.sel(source=s) for c in comps]
+                      for s in comps[0]["source"].values if str(s) != "experiment"}
+            fig = fn([c.sel(source="experiment") for c in comps], models=models)
         elif draw == "flap:figure_7":
             fig = fn([data[k] for k in sorted(data)])
         else:
             (ds,) = data.values()
             fig = fn(ds)
-    save(fig, outputs["figure"])
+    assert_passes(fig, f"figure {draw}")
+    save(fig, *outputs.values())

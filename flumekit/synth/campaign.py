@@ -224,7 +224,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected")}
     flap = flap_record(t100, at_flap["eta_incident"][:n100], period=period, campaign=campaign,
                        rng=rng, height=height, hydro=flap_hydro,
-                       eta_lead_out=at_flap["eta_incident"][n100:])
+                       eta_lead_out=at_flap["eta_incident"][n100:],
+                       eta_front=at_flap["eta_incident"] + at_flap["eta_reflected"])
     write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
                 np.column_stack([t100, flap["encoder_counts"].values,
                                  flap["chamber_pressure"].values / 1e5]),

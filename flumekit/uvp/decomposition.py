@@ -27,14 +27,18 @@ def paired_velocity(v_lower, v_upper, alpha: float) -> tuple[np.ndarray, np.ndar
 
     Parameters
     ----------
-    v_lower : Phase-averaged velocity of the beam at -α (UP1), positive away from the
+    v_lower : array_like
+        Phase-averaged velocity of the beam at -α (UP1), positive away from the
         transducer [m s-1].
-    v_upper : Same for the beam at +α (UP3) [m s-1].
-    alpha : Beam inclination α [rad] (π/6 in Brito et al. 2020).
+    v_upper : array_like
+        Same for the beam at +α (UP3) [m s-1].
+    alpha : float
+        Beam inclination α [rad] (π/6 in Brito et al. 2020).
 
     Returns
     -------
-    u, w [m s-1].
+    tuple[numpy.ndarray, numpy.ndarray]
+        u, w [m s-1].
     """
     if not 0 < alpha < np.pi / 2:
         raise ValueError(f"alpha must lie in (0, pi/2), got {alpha}")
@@ -50,10 +54,13 @@ def least_squares_velocity(v, angles, rcond: float = 1e-6
 
     Parameters
     ----------
-    v : Along-beam velocities [m s-1], shape (..., n_beam); NaN where a beam does not see
+    v : array_like
+        Along-beam velocities [m s-1], shape (..., n_beam); NaN where a beam does not see
         the point.
-    angles : Beam angles above the horizontal [rad], shape (n_beam,).
-    rcond : Points whose normal matrix has det / trace² below this are rank-deficient.
+    angles : array_like
+        Beam angles above the horizontal [rad], shape (n_beam,).
+    rcond : float
+        Points whose normal matrix has det / trace² below this are rank-deficient.
 
     Returns
     -------

@@ -36,8 +36,24 @@ _STATS = ("beam_velocity", "beam_velocity_std", "beam_velocity_ci")
 
 
 def default_grid(uvp: UVP, elevations, dx: float = 0.01) -> tuple[np.ndarray, np.ndarray]:
-    """Grid (x, z) [m] covered by the beams: z at the elevations of the horizontal beam, x on
-    multiples of ``dx`` between the nearest and the farthest channel of any beam.
+    """Grid (x, z) [m] covered by the beams.
+
+    z at the elevations of the horizontal beam, x on multiples of ``dx`` between the nearest
+    and the farthest channel of any beam.
+
+    Parameters
+    ----------
+    uvp : UVP
+        Campaign UVP settings (beams and channels).
+    elevations : array_like
+        UVP elevations of the runs [m].
+    dx : float
+        Grid spacing in x [m].
+
+    Returns
+    -------
+    x, z : numpy.ndarray
+        Grid coordinates [m].
     """
     if dx <= 0:
         raise ValueError("dx must be positive")
@@ -56,15 +72,17 @@ def combine_repeats(runs: Iterable[xr.Dataset]) -> xr.Dataset:
 
     Parameters
     ----------
-    runs : Datasets of :func:`flumekit.uvp.phase.phase_average_beams` (any order; an iterator
+    runs : Iterable[xarray.Dataset]
+        Datasets of :func:`flumekit.uvp.phase.phase_average_beams` (any order; an iterator
         of lazily opened files keeps one run in memory at a time).
 
     Returns
     -------
-    Dataset over (uvp_elevation, beam, channel, phase): ``beam_velocity`` (mean of the repeat
-    means), ``beam_velocity_std`` (pooled within-run fluctuation RMS), ``beam_velocity_ci``
-    (CI of the mean of independent repeats, sqrt(Σ ci²)/n), ``n_repeats`` (per elevation).
-    NaN (masked) values are left out of each mean.
+    xarray.Dataset
+        Dataset over (uvp_elevation, beam, channel, phase): ``beam_velocity`` (mean of the repeat
+        means), ``beam_velocity_std`` (pooled within-run fluctuation RMS), ``beam_velocity_ci``
+        (CI of the mean of independent repeats, sqrt(Σ ci²)/n), ``n_repeats`` (per elevation).
+        NaN (masked) values are left out of each mean.
     """
     acc: dict[float, list] = {}
     ref = None
@@ -129,16 +147,22 @@ def beam_to_grid(values, elevations, distance, beam_x: float, beam_dz: float, an
 
     Parameters
     ----------
-    values : Beam data over (elevation, channel, ...) (e.g. phase last).
-    elevations : UVP elevation of each line [m], increasing.
-    distance : Channel distances from the transducer [m], increasing.
-    beam_x, beam_dz, angle : Transducer face x [m], its offset from the elevation [m] and the
+    values : array_like
+        Beam data over (elevation, channel, ...) (e.g. phase last).
+    elevations : array_like
+        UVP elevation of each line [m], increasing.
+    distance : array_like
+        Channel distances from the transducer [m], increasing.
+    beam_x, beam_dz, angle : float
+        Transducer face x [m], its offset from the elevation [m] and the
         beam angle [rad].
-    x, z : Target grid [m], 1-D.
+    x, z : array_like
+        Target grid [m], 1-D.
 
     Returns
     -------
-    Array over (z, x, ...), NaN outside the lines' coverage or next to a NaN sample.
+    numpy.ndarray
+        Array over (z, x, ...), NaN outside the lines' coverage or next to a NaN sample.
 
     Notes
     -----
@@ -166,7 +190,7 @@ def beam_to_grid(values, elevations, distance, beam_x: float, beam_dz: float, an
 
 
 def _pair(uvp: UVP):
-    """The inclined pair (lower, upper) at ∓α with the same mounting, for Eqs. (9)-(10)."""
+    """Find the inclined pair (lower, upper) at ∓α with the same mounting, for Eqs. (9)-(10)."""
     for lo in uvp.beams:
         for up in uvp.beams:
             if (lo.angle < 0 < up.angle and np.isclose(lo.angle, -up.angle)
@@ -188,24 +212,32 @@ def velocity_field(runs: Iterable[xr.Dataset] | xr.Dataset, uvp: UVP, *, height:
 
     Parameters
     ----------
-    runs : Per-run datasets of :func:`flumekit.uvp.phase.phase_average_beams` (an iterable,
+    runs : Iterable[xarray.Dataset] | xarray.Dataset
+        Per-run datasets of :func:`flumekit.uvp.phase.phase_average_beams` (an iterable,
         combined by :func:`combine_repeats`), or an already combined dataset.
-    uvp : Campaign UVP settings (for the default grid).
-    height, period : Target wave height H [m] and period T [s], for U0 = πH/T.
-    method : ``"least_squares"`` (default) or ``"paired"`` (Eqs. (9)-(10)).
-    x, z : Grid [m]; default :func:`default_grid` with spacing ``dx`` [m].
-    water_depth : Still water depth h [m], stored for x/h, z/h in figures.
-    theta : Optional phase-averaged flap angle on the phase grid [rad]; with
+    uvp : UVP
+        Campaign UVP settings (for the default grid).
+    height, period : float
+        Target wave height H [m] and period T [s], for U0 = πH/T.
+    method : str
+        ``"least_squares"`` (default) or ``"paired"`` (Eqs. (9)-(10)).
+    x, z : array_like
+        Grid [m]; default :func:`default_grid` with spacing ``dx`` [m].
+    water_depth : float, optional
+        Still water depth h [m], stored for x/h, z/h in figures.
+    theta : array_like
+        Optional phase-averaged flap angle on the phase grid [rad]; with
         ``flap_thickness`` [m], points within ``margin`` [m] of the flap or inside it are masked
         at each phase.
 
     Returns
     -------
-    Dataset over (phase, z, x): ``u``, ``w`` [m s-1], ``u_ci``, ``w_ci`` (95 % CI half-widths),
-    ``u_rms``, ``w_rms`` [m s-1] (from variances clipped at 0), ``uu``, ``ww``, ``uw``,
-    ``tke`` [m2 s-2] (unclipped: sampling noise makes single estimates of a small variance
-    negative, and clipping would bias averages), ``u_normalised``, ``w_normalised``,
-    ``n_beams``; scalar coordinates ``velocity_scale`` (U0), ``wave_period``, ``wave_height``.
+    xarray.Dataset
+        Dataset over (phase, z, x): ``u``, ``w`` [m s-1], ``u_ci``, ``w_ci`` (95 % CI half-widths),
+        ``u_rms``, ``w_rms`` [m s-1] (from variances clipped at 0), ``uu``, ``ww``, ``uw``,
+        ``tke`` [m2 s-2] (unclipped: sampling noise makes single estimates of a small variance
+        negative, and clipping would bias averages), ``u_normalised``, ``w_normalised``,
+        ``n_beams``; scalar coordinates ``velocity_scale`` (U0), ``wave_period``, ``wave_height``.
     """
     if method not in ("least_squares", "paired"):
         raise ValueError(f"method must be 'least_squares' or 'paired', got {method!r}")

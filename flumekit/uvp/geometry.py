@@ -23,10 +23,14 @@ def channel_positions(distance, beam_x: float, beam_z: float, angle: float
 
     Parameters
     ----------
-    distance : Distance of each channel from the transducer face along the beam [m].
-    beam_x : x of the transducer face [m].
-    beam_z : z of the transducer face [m].
-    angle : Beam angle above the horizontal, towards +x [rad].
+    distance : array_like
+        Distance of each channel from the transducer face along the beam [m].
+    beam_x : float
+        X of the transducer face [m].
+    beam_z : float
+        Z of the transducer face [m].
+    angle : float
+        Beam angle above the horizontal, towards +x [rad].
 
     Returns
     -------
@@ -46,14 +50,18 @@ def beam_geometry(uvp: UVP, uvp_elevation: float, distance=None) -> xr.Dataset:
 
     Parameters
     ----------
-    uvp : Campaign UVP settings (beams with face x, dz and angle).
-    uvp_elevation : Elevation of the run's UVP mounting (UP2 face) above the hinge [m].
-    distance : Channel distances [m]; default from the campaign settings.
+    uvp : UVP
+        Campaign UVP settings (beams with face x, dz and angle).
+    uvp_elevation : float
+        Elevation of the run's UVP mounting (UP2 face) above the hinge [m].
+    distance : array_like
+        Channel distances [m]; default from the campaign settings.
 
     Returns
     -------
-    Dataset with dims ``(beam, channel)``: ``x`` and ``z`` [m]; coordinates ``beam``,
-    ``channel``, ``distance`` [m] and ``beam_angle`` [rad].
+    xarray.Dataset
+        Dataset with dims ``(beam, channel)``: ``x`` and ``z`` [m]; coordinates ``beam``,
+        ``channel``, ``distance`` [m] and ``beam_angle`` [rad].
     """
     r = channel_distances(uvp) if distance is None else np.asarray(distance, dtype=float)
     names = [b.name for b in uvp.beams]
@@ -69,16 +77,19 @@ def beam_geometry(uvp: UVP, uvp_elevation: float, distance=None) -> xr.Dataset:
 
 
 def flap_face_x(z, theta, thickness: float) -> np.ndarray:
-    """x of the flap's seaward (wavemaker-side) face at elevation z [m].
+    """X of the flap's seaward (wavemaker-side) face at elevation z [m].
 
     The face is the line x' = -thickness/2 of the flap frame rotated by θ about the hinge
     (θ > 0 when the top moves towards the beach): x = z tan θ - thickness / (2 cos θ).
 
     Parameters
     ----------
-    z : Elevation above the hinge [m].
-    theta : Flap angle [rad], broadcastable with ``z``.
-    thickness : Flap thickness [m] (0.17 m in Brito et al. 2020, §2.2).
+    z : array_like
+        Elevation above the hinge [m].
+    theta : array_like
+        Flap angle [rad], broadcastable with ``z``.
+    thickness : float
+        Flap thickness [m] (0.17 m in Brito et al. 2020, §2.2).
     """
     theta = np.asarray(theta, dtype=float)
     if np.any(np.abs(theta) >= np.pi / 2):
@@ -87,7 +98,7 @@ def flap_face_x(z, theta, thickness: float) -> np.ndarray:
 
 
 def inside_flap(x, z, theta, thickness: float, margin: float = 0.0) -> np.ndarray:
-    """True where (x, z) lies within ``margin`` of the flap's seaward face or behind it [bool].
+    """Mask of (x, z) within ``margin`` of the flap's seaward face or behind it [bool].
 
     The region behind the face is masked up to any height (conservative: the beams of the flume
     set-up do not reach over the flap top).

@@ -103,44 +103,62 @@ def phase_average_beams(beams: Mapping[str, xr.Dataset], uvp: UVP, uvp_elevation
 
     Parameters
     ----------
-    beams : ``{beam name: dataset}`` as :func:`flumekit.io.mfprof.read_mfprof` returns (dims
+    beams : Mapping[str, xarray.Dataset]
+        ``{beam name: dataset}`` as :func:`flumekit.io.mfprof.read_mfprof` returns (dims
         time, channel; ``beam_velocity`` with its ``positive`` attribute; optional
         ``amplitude``). Every beam named in ``uvp`` must be present.
-    uvp : Campaign UVP settings: beam mountings and angles.
-    uvp_elevation : The run's UVP elevation above the hinge [m].
-    period : Wave period used for phase averaging [s] (the measured period of the
+    uvp : UVP
+        Campaign UVP settings: beam mountings and angles.
+    uvp_elevation : float
+        The run's UVP elevation above the hinge [m].
+    period : float
+        Wave period used for phase averaging [s] (the measured period of the
         quasi-steady window).
-    start : Time of the zero up-crossing of the incident wave at x = 0 that starts the average
+    start : float
+        Time of the zero up-crossing of the incident wave at x = 0 that starts the average
         [s], on the UVP records' clock (Brito et al. 2020, §2.5-2.6).
-    n_cycles : Number N of waves averaged (Eq. (2); N = 50 in the paper).
-    n_phase : Phases per period.
-    cutoff : Low-pass cut-off [Hz] of the 4th-order zero-phase Butterworth filter (2 Hz in
+    n_cycles : int
+        Number N of waves averaged (Eq. (2); N = 50 in the paper).
+    n_phase : int
+        Phases per period.
+    cutoff : float, optional
+        Low-pass cut-off [Hz] of the 4th-order zero-phase Butterworth filter (2 Hz in
         §2.3); ``None`` for no filter.
-    order : Filter order.
-    pad : Seconds of record filtered on each side of the averaging window (edge transients of
+    order : int
+        Filter order.
+    pad : float, optional
+        Seconds of record filtered on each side of the averaging window (edge transients of
         the zero-phase filter); default max(3 s, 6 / cutoff).
-    min_amplitude : Echo amplitude [counts] below which a sample is "no echo" (out of the
+    min_amplitude : float, optional
+        Echo amplitude [counts] below which a sample is "no echo" (out of the
         water); a channel is masked at the phases where any averaged cycle had no echo.
         ``None``: no amplitude test.
-    theta : Flap angle [rad] as a DataArray over ``time`` (same clock). Its phase average masks
+    theta : xarray.DataArray, optional
+        Flap angle [rad] as a DataArray over ``time`` (same clock). Its phase average masks
         channels inside the flap (within ``margin``) at each phase. Needs ``flap_thickness``.
-    flap_thickness : Flap thickness [m]. Without ``theta`` the flap is masked at θ = 0.
-    x_max : Static limit: channels with x > x_max [m] are masked at every phase.
-    margin : Distance from the flap face within which channels are masked [m] (the sampling
+    flap_thickness : float, optional
+        Flap thickness [m]. Without ``theta`` the flap is masked at θ = 0.
+    x_max : float, optional
+        Static limit: channels with x > x_max [m] are masked at every phase.
+    margin : float
+        Distance from the flap face within which channels are masked [m] (the sampling
         volume is about 2 cm wide near the flap, §2.3).
-    mask_seconds : Masks are widened by this many seconds on each side in phase, because the
+    mask_seconds : float, optional
+        Masks are widened by this many seconds on each side in phase, because the
         filter spreads what the instrument saw there; default 0.5/cutoff.
-    interpolation : Between samples, ``"cubic"`` (default) or ``"linear"``
+    interpolation : str
+        Between samples, ``"cubic"`` (default) or ``"linear"``
         (:func:`flumekit.signal.resample_cycles`; linear biases the phase average low by about
         (ω dt)²/12 of each harmonic).
 
     Returns
     -------
-    Dataset over (beam, channel, phase): ``beam_velocity`` (phase average, positive away from
-    the transducer), ``beam_velocity_std`` (fluctuation RMS about it, over the cycles),
-    ``beam_velocity_ci`` (95 % CI half-width) [m s-1], NaN where masked; coordinates ``x``,
-    ``z``, ``distance`` (beam, channel) [m], ``beam_angle`` [rad]; scalars ``uvp_elevation``,
-    ``wave_period``, ``phase_reference`` [s] and ``n_cycles``.
+    xarray.Dataset
+        Dataset over (beam, channel, phase): ``beam_velocity`` (phase average, positive away from
+        the transducer), ``beam_velocity_std`` (fluctuation RMS about it, over the cycles),
+        ``beam_velocity_ci`` (95 % CI half-width) [m s-1], NaN where masked; coordinates ``x``,
+        ``z``, ``distance`` (beam, channel) [m], ``beam_angle`` [rad]; scalars ``uvp_elevation``,
+        ``wave_period``, ``phase_reference`` [s] and ``n_cycles``.
     """
     if period <= 0 or n_cycles < 2:
         raise ValueError("phase averaging needs period > 0 and at least two cycles")

@@ -25,10 +25,13 @@ def reynolds_stresses(variance, angles, rcond: float = 1e-6
 
     Parameters
     ----------
-    variance : Phase-resolved along-beam fluctuation variances [m² s⁻²], shape (..., n_beam);
+    variance : array_like
+        Phase-resolved along-beam fluctuation variances [m² s⁻²], shape (..., n_beam);
         NaN where a beam does not see the point.
-    angles : Beam angles above the horizontal [rad], shape (n_beam,).
-    rcond : Relative determinant below which the 3x3 system counts as singular.
+    angles : array_like
+        Beam angles above the horizontal [rad], shape (n_beam,).
+    rcond : float
+        Relative determinant below which the 3x3 system counts as singular.
 
     Returns
     -------
@@ -63,5 +66,5 @@ def reynolds_stresses(variance, angles, rcond: float = 1e-6
 
 
 def turbulent_kinetic_energy(uu, ww) -> np.ndarray:
-    """k = (⟨u'²⟩ + ⟨w'²⟩) / 2 from the two measured components [m² s⁻²]."""
+    """K = (⟨u'²⟩ + ⟨w'²⟩) / 2 from the two measured components [m² s⁻²]."""
     return 0.5 * (np.asarray(uu, dtype=float) + np.asarray(ww, dtype=float))

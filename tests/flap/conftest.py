@@ -53,7 +53,7 @@ def _record(campaign, period: float, height: float, n_waves: int, seed: int, mod
     return time, eta, flap_record(time, eta, period=period, campaign=campaign,
                                   rng=np.random.default_rng(seed), height=height,
                                   truth=FlapTruth(model=model),
-                                  hydro=_hydrodynamics(campaign) if model == "simulator" else None,
+                                  hydro=_hydrodynamics(campaign) if model != "linear" else None,
                                   eta_lead_out=lead_out)
 
 

@@ -40,6 +40,7 @@ def test_time_series_figures(runs):
         figs.figure_6bcd(ds, start=500)
     fig = figs.figure_7([runs[1][0], runs[3][0]])
     assert len(fig.axes) == 2 and "R²" in fig.axes[0].get_title(loc="left")
+    assert fig.axes[0].get_title(loc="left") != fig.axes[1].get_title(loc="left")
 
 
 def test_summary_figures_group_by_height(runs):
@@ -64,7 +65,7 @@ def test_figure_10(runs):
     assert np.max(fig.axes[0].lines[0].get_ydata()) == pytest.approx(crest, rel=0.01)
     # panel (b) starts at theta = 0 (zero up-crossing)
     assert abs(fig.axes[1].lines[0].get_ydata()[0]) < 0.01
-    fig = figs.figure_10(ds)  # without eta: panel (a) empty
-    assert len(fig.axes[0].lines) == 0
+    fig = figs.figure_10(ds)  # without eta: no panel (a)
+    assert [ax.get_title(loc="left") for ax in fig.axes] == ["(b)", "(c)", "(d)"]
     with pytest.raises(ValueError, match="lacks"):
         figs.figure_10(ds.drop_vars("theta_phase_mean"))

@@ -414,6 +414,8 @@ def test_against_the_simulated_virtual_flume(campaign):
     fh = synth.flume_hydrodynamics(campaign)
     truth = synth.flap_record(t, eta[: t.size], period=period, campaign=campaign,
                               rng=np.random.default_rng(0), hydro=fh,
+                              truth=synth.FlapTruth(model="simulator",
+                                                    pressure_loss_coefficient=1e6),
                               eta_lead_out=eta[t.size:])
     ds = S.simulate_run(fh.hydro, xr.DataArray(eta[: t.size], dims="time", coords={"time": t}),
                         campaign, pressure_loss_coefficient=1e6, fluid_inertia=2.4e4,

@@ -18,8 +18,8 @@ def field(campaign):
 
 def test_fig11_panels(field):
     fig = fig11(field)
-    axes = [ax for ax in fig.axes if ax.get_visible() and ax.get_title()]
-    assert [ax.get_title() for ax in axes] == [
+    axes = [ax for ax in fig.axes if ax.get_visible() and ax.get_title(loc="left")]
+    assert [ax.get_title(loc="left") for ax in axes] == [
         f"({t}) t/T = {p:.2f}" for t, p in zip("abcdef", PHASES)]
     assert all(ax.collections for ax in axes)  # contours and arrows drawn in every panel
 

@@ -1,0 +1,233 @@
+"""The figure test on every figure function: no empty or hidden axes, every shown axis labelled
+with units, text >= 8 pt at the saved size, one- or two-column width, legends outside the data,
+a title naming the run(s) and condition. And the test itself catches each fault."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+from flumekit.figures import ballscrew as bs
+from flumekit.figures import flap as figs
+from flumekit.figures import uvp
+from flumekit.figures import waves as wave_figs
+from flumekit.figures.check import problems
+from flumekit.figures.style import new_figure, title
+
+from .conftest import comparison_run
+
+
+def _passes(fig):
+    assert isinstance(fig, Figure)
+    assert problems(fig) == []
+    return fig
+
+
+def test_wave_figures(waves):
+    fig = _passes(wave_figs.figure_5a(waves))
+    assert "T2.00_H0.150_r0" in fig._suptitle.get_text()
+    _passes(wave_figs.figure_6a(waves, start=40))
+
+
+def test_separation_figure(waves):
+    fig = _passes(wave_figs.separation(waves))
+    text = fig._suptitle.get_text()
+    assert f"{float(waves.reflection_coefficient):.3f}" in text  # Kr in the title
+    assert f"{float(waves.incident_height):.3f} m" in text  # H_I in the title
+    (ax_t, ax_f) = fig.axes
+    # (a) the separated series at x_ref over five periods of the steady window
+    inc = ax_t.lines[0]
+    assert np.ptp(inc.get_xdata()) == pytest.approx(5 * float(waves.measured_period), abs=0.05)
+    # masked bins are shaded: mask two bins and one span appears
+    masked = waves.copy()
+    m = np.zeros(masked.frequency.size, np.int8)
+    m[10:12] = 1
+    masked["masked"] = ("frequency", m)
+    fig = _passes(wave_figs.separation(masked))
+    assert len(fig.axes[1].patches) == 1
+
+
+def test_separation_figure_of_separate_output(waves):
+    from flumekit.waves import separate
+
+    steady = waves["eta"].sel(time=slice(float(waves.steady_start), float(waves.steady_end)))
+    result = separate(steady.sel(probe=["WP1", "WP2", "WP3"]), 0.825)
+    fig = _passes(wave_figs.separation(result))
+    # five periods of the detected fundamental, not the whole record
+    period = 1.0 / result.attrs["fundamental_frequency"]
+    assert np.ptp(fig.axes[0].lines[0].get_xdata()) == pytest.approx(5 * period, abs=0.05)
+
+
+def test_flap_time_series_figures(flaps):
+    ds = flaps[-1]
+    fig = _passes(figs.figure_5b(ds))
+    # the dash-dotted lines meet the steady crest and trough, whatever the mean lean
+    lines = [ln for ln in fig.axes[0].lines if ln.get_linestyle() == "-."]
+    levels = sorted(float(ln.get_ydata()[0]) for ln in lines)
+    scale = float(ds.theta_amplitude)
+    assert levels == pytest.approx([float(ds.theta_phase_mean.min()) / scale,
+                                    float(ds.theta_phase_mean.max()) / scale])
+    _passes(figs.figure_6bcd(ds, start=30))
+
+
+def test_figure_7_one_panel_per_run_named(flaps):
+    fig = _passes(figs.figure_7(flaps[:2]))
+    titles = [ax.get_title(loc="left") for ax in fig.axes]
+    assert len(titles) == 2 and len(set(titles)) == 2  # no empty axes, distinct titles
+    assert all(str(ds.run.values) in t for ds, t in zip(flaps, titles))
+    fig = _passes(figs.figure_7(flaps[:5]))  # two columns, the sixth slot removed
+    assert len(fig.axes) == 5
+
+
+def test_campaign_figures_with_models(flaps):
+    comps = [comparison_run(f) for f in flaps]
+    exp = [c.sel(source="experiment") for c in comps]
+    models = {s: [c.sel(source=s) for c in comps] for s in ("analytical", "simulator")}
+    fig = _passes(figs.figure_8(exp, models=models))
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert "time-domain simulator" in labels and "simulator" not in labels  # human labels
+    _passes(figs.figure_9(exp, models=models))
+
+
+def test_figure_10_experiment_visible_and_in_the_legend(flaps):
+    ds = flaps[-1]
+    comp = comparison_run(ds)
+    models = {s: comp.sel(source=s) for s in ("analytical", "simulator")}
+    fig = _passes(figs.figure_10(ds, models=models))
+    assert len(fig.axes) == 3  # no elevation given: no empty panel (a)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert len(labels) == 3 and labels[0].startswith("experiment")
+    exp_line = fig.axes[0].lines[0]
+    sim_line = [ln for ln in fig.axes[0].lines if ln.get_color() == "tab:red"][0]
+    # the experiment stays visible under a coinciding simulator: thicker, and the model dashed
+    assert exp_line.get_linewidth() > sim_line.get_linewidth()
+    assert sim_line.get_linestyle() == "--"
+
+
+def test_uvp_figures(field):
+    fig = _passes(uvp.fig11(field))
+    cbar = [ax for ax in fig.axes if getattr(ax, "_colorbar", None)][0]
+    ticks = cbar.get_yticks()
+    # readable colour-bar ticks: round numbers (multiples of 0.05)
+    assert np.allclose(ticks * 20, np.round(ticks * 20))
+    assert any(type(a).__name__ == "QuiverKey" for a in fig.axes[0].texts + fig.axes[0].artists
+               + fig.axes[0].get_children())
+    _passes(uvp.fig12(field))
+
+
+def test_fig12_drops_phases_without_data(field):
+    f = field.copy(deep=True)
+    for name in ("u_normalised", "w_normalised"):
+        f[name][:50] = np.nan  # no data at all in the first half cycle
+    fig = _passes(uvp.fig12(f, phases=(0.1, 0.3, 0.6, 0.8)))
+    assert [ax.get_title(loc="left")[4:] for ax in fig.axes] == ["t/T = 0.60", "t/T = 0.80"]
+
+
+def test_ballscrew_figures(ballscrew):
+    from flumekit.stages.ballscrew import FIGURE_SOURCES
+
+    for n, step in FIGURE_SOURCES.items():
+        assert problems(bs.FIGURES[n](ballscrew[step])) == [], n
+    fig = bs.figure_18(ballscrew["thermal_fem"])
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(lab.startswith("stator end (") for lab in labels)
+    assert not any("_" in lab for lab in labels)
+    fig = bs.figure_10(ballscrew["thermal_fem"])
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert "screw under the nut" in labels and not any("_" in lab for lab in labels)
+
+
+# --- the figure test catches each fault --------------------------------------------------
+
+
+def _good(width=7.0):
+    fig, axes = new_figure(1, 2, width=width, height=2.5)
+    for ax in axes[0]:
+        ax.plot([0, 1], [0, 1], label="line")
+        ax.set_xlabel("Time [s]")
+        ax.set_ylabel("Elevation [m]")
+    title(fig, "Run X (T = 1 s, H = 0.1 m)")
+    return fig, axes[0]
+
+
+def test_check_passes_a_good_figure():
+    fig, _ = _good()
+    assert problems(fig) == []
+
+
+@pytest.mark.parametrize("fault, expect", [
+    (lambda fig, ax: ax[1].lines[0].remove(), "empty axes"),
+    (lambda fig, ax: ax[1].set_visible(False), "hidden axes"),
+    (lambda fig, ax: ax[0].set_ylabel("Elevation"), "no units"),
+    (lambda fig, ax: ax[0].set_xlabel(""), "x axis has no label"),
+    (lambda fig, ax: ax[0].tick_params(labelsize=6), "below 8 pt"),
+    (lambda fig, ax: ax[0].legend(loc="center"), "legend overlaps the data area"),
+    (lambda fig, ax: fig.suptitle(""), "no figure title"),
+    (lambda fig, ax: fig.set_size_inches(6.5, 2.5), "neither one column"),
+    (lambda fig, ax: fig.text(0.98, 0.5, "a long note running off the page"), "cut at the"),
+])
+def test_check_catches(fault, expect):
+    fig, ax = _good()
+    assert problems(fig) == []
+    fault(fig, ax)
+    found = problems(fig)
+    assert any(expect in p for p in found), found
+
+
+# --- deterministic saving ------------------------------------------------------------------
+
+
+def _figure():
+    fig, axes = new_figure(1, 1, width=3.5, height=2.5)
+    axes[0, 0].plot(np.arange(10), np.arange(10) ** 2)
+    axes[0, 0].set_xlabel("Time [s]")
+    axes[0, 0].set_ylabel("Elevation [m]")
+    title(fig, "Run X")
+    return fig
+
+
+def test_same_figure_same_bytes_in_every_format(tmp_path):
+    from flumekit.figures.style import FORMATS, save
+
+    paths = {}
+    for folder in ("one", "two/deeper"):
+        out = [tmp_path / folder / f"fig.{fmt}" for fmt in FORMATS]
+        assert save(_figure(), *out) == out
+        paths[folder] = out
+    for a, b in zip(paths["one"], paths["two/deeper"]):
+        data = a.read_bytes()
+        assert data == b.read_bytes(), a.suffix
+        # no software version, date or absolute path in the file
+        for marker in (b"Matplotlib", b"CreationDate", str(tmp_path).encode()):
+            assert marker not in data, (a.suffix, marker)
+    assert not list(tmp_path.rglob(".*tmp*"))  # no temporary file left
+
+
+def test_png_at_300_dpi_and_print_size(tmp_path):
+    import struct
+
+    from flumekit.figures.style import save
+
+    (path,) = save(_figure(), tmp_path / "f.png")
+    data = path.read_bytes()
+    width, height = struct.unpack(">II", data[16:24])  # the IHDR chunk
+    assert (width, height) == (3.5 * 300, 2.5 * 300)
+    with pytest.raises(ValueError, match="format 'jpg'"):
+        save(_figure(), tmp_path / "f.jpg")
+
+
+def test_figure_rules_write_every_format(campaign, tmp_path):
+    from flumekit.errors import FlumekitError
+    from flumekit.stages import figures as stage
+    from flumekit.stages.context import Context
+
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, params={}))
+    assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
+    assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
+               for r in rules)
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
+    assert all(list(r.outputs) == ["svg"] for r in stage.rules(ctx))
+    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
+    with pytest.raises(FlumekitError, match="formats"):
+        stage.rules(ctx)
