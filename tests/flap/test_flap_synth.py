@@ -313,7 +313,7 @@ def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrody
     from flumekit.flap.analysis import analyse_run
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
-    from flumekit.stages.models import periodic_extension, time_domain_difference
+    from flumekit.flap.comparison import periodic_extension, time_domain_difference
 
     period, height = 3.5, 0.25
     t = np.arange(0, 250, 0.01)
@@ -323,7 +323,8 @@ def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrody
                      truth=FlapTruth(model="simulator"), hydro=hydrodynamics, height=height,
                      eta_lead_out=lead)
     flap = analyse_run(t, ds.encoder_counts.values, ds.chamber_pressure.values,
-                       campaign=campaign, period=period, incident_height=height)
+                       flap=campaign.flap, pto=campaign.pto, encoder=campaign.encoder,
+                       depth=campaign.flume.water_depth, period=period, incident_height=height)
     steady = (t >= float(flap.steady_start)) & (t <= float(flap.steady_end))
     inc = xr.DataArray(np.where(steady, eta, np.nan), dims="time", coords={"time": t})
     sim = simulate_run(hydrodynamics.hydro, periodic_extension(inc, period, 20, 5), campaign,
