@@ -64,6 +64,8 @@ sphinx_gallery_conf = {
     "abort_on_example_error": True,
     "ignore_pattern": r"(__init__|_data)\.py",
     "write_computation_times": False,
+    # pyplot figures, and the pyplot-free Figures flumekit.plot returns (docs/_ext)
+    "image_scrapers": ("matplotlib", "figure_scraper"),
 }
 
 html_theme = "alabaster"

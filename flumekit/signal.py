@@ -1,5 +1,7 @@
-"""Shared signal tools: the uniform-sampling check, zero-phase filtering, differentiation,
-cycles, quasi-steady window, phase averaging, per-cycle amplitude.
+"""Shared signal tools: uniform sampling, filtering, differentiation, cycles, phase averages.
+
+The uniform-sampling check, zero-phase filtering, differentiation, cycles, the quasi-steady
+window, phase averaging and the per-cycle amplitude.
 
 These are the only implementations of these operations in flumekit: waves, flap and UVP code
 call them. Functions take numpy arrays with time along the last axis and uniform sampling.
@@ -62,11 +64,15 @@ def lowpass(x: np.ndarray, sampling_rate: float, cutoff: float, order: int = 4,
 
     Parameters
     ----------
-    x : Signal, time along ``axis``.
-    sampling_rate : Sampling rate [Hz].
-    cutoff : -3 dB cut-off of the single pass [Hz]. Forward-backward filtering squares the
+    x : numpy.ndarray
+        Signal, time along ``axis``.
+    sampling_rate : float
+        Sampling rate [Hz].
+    cutoff : float
+        -3 dB cut-off of the single pass [Hz]. Forward-backward filtering squares the
         magnitude response, so the combined response is -6 dB at ``cutoff``.
-    order : Order of the single-pass Butterworth design (4 in Brito et al. 2020, §2.3).
+    order : int
+        Order of the single-pass Butterworth design (4 in Brito et al. 2020, §2.3).
     """
     _check_rate(sampling_rate, cutoff)
     sos = _sig.butter(order, cutoff, btype="low", fs=sampling_rate, output="sos")
@@ -93,7 +99,20 @@ def smooth_derivatives(x: np.ndarray, sampling_rate: float, cutoff: float, order
 
 
 def zero_upcrossings(x: np.ndarray, time: np.ndarray) -> np.ndarray:
-    """Times of the zero up-crossings of a 1-D signal, linearly interpolated [s]."""
+    """Find the zero up-crossings of a 1-D signal, linearly interpolated.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        Signal, 1-D.
+    time : numpy.ndarray
+        Sample times [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        Times of the up-crossings [s].
+    """
     x = np.asarray(x, dtype=float)
     i = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0))
     frac = -x[i] / (x[i + 1] - x[i])
@@ -111,6 +130,7 @@ class Cycles:
 
     @property
     def height(self) -> np.ndarray:
+        """Crest-to-trough height of each cycle, in the signal's units."""
         return self.crest - self.trough
 
 
@@ -161,7 +181,8 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
     c = cycles(x, time, min_period=min_period)
     if c.crest.size < 4:
         raise ValueError("fewer than four wave cycles: no quasi-steady window can be found")
-    scale = float(np.median(c.crest[c.crest.size // 2:]))
+    # nanmedian: a cycle holding masked (NaN) samples has a NaN crest and is never steady
+    scale = float(np.nanmedian(c.crest[c.crest.size // 2:]))
     ok = np.abs(c.crest - scale) <= tolerance * abs(scale)
     # longest run of consecutive True
     padded = np.concatenate([[False], ok, [False]])

@@ -20,7 +20,8 @@ PACKAGE = ROOT / "flumekit"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "conventions", "campaign", "signal"),
     ("io",),
-    ("waves", "hydro", "qc"),
+    ("qc",),
+    ("waves", "hydro"),
     ("flap", "ballscrew", "uvp"),
     ("synth",),
     ("figures", "plot", "report"),

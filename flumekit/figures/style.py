@@ -101,29 +101,17 @@ def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
 
 # --- human labels -------------------------------------------------------------------------
 
-#: labels of categorical coordinate values that are code identifiers (sources of a comparison,
-#: regions and control points of the ball-screw PTO model)
+#: labels of categorical coordinate values (sources of a comparison, regions and control points
+#: of the ball-screw PTO model) where replacing underscores by spaces does not read well
 VALUE_LABELS = {
-    "experiment": "experiment",
     "analytical": "linear model (Renzi & Dias)",
     "simulator": "time-domain simulator",
-    "bearing_seat": "bearing seat",
     "screw_generator": "screw in the generator",
     "screw_in_generator": "screw in the generator",
     "screw_free": "screw, free length",
     "screw_swept": "screw, swept by the nut",
     "screw_under_nut": "screw under the nut",
     "screw_swept_end": "screw, swept end",
-    "rotor": "rotor",
-    "rotor_hub": "rotor hub",
-    "stator_bore": "stator bore",
-    "air_gap": "air gap",
-    "stator": "stator",
-    "stator_end": "stator end",
-    "ball_track": "ball track",
-    "nut": "nut",
-    "generator": "generator",
-    "screw": "screw",
 }
 
 

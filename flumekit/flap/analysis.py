@@ -62,32 +62,47 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
 
     Parameters
     ----------
-    time : Sample times [s], uniform (100 Hz in the campaign).
-    encoder_counts : Wire-encoder counts, increasing as the wire is reeled in [-].
-    chamber_pressure : Measured gauge pressure in the cylinder chamber [Pa].
-    flap : The flap (inertia, buoyancy stiffness C, width).
-    pto : The PTO (anchors, bore, atmospheric and vapour pressures, LuGre friction or None).
-    encoder : The wire encoder of Eq. (1) (L5, L7, counts per metre).
-    depth : Water depth h [m] (for W_I, Eq. A2).
-    period : Wave period of the run [s] (the quasi-steady window's cycle detection ignores
+    time : array_like
+        Sample times [s], uniform (100 Hz in the campaign).
+    encoder_counts : array_like
+        Wire-encoder counts, increasing as the wire is reeled in [-].
+    chamber_pressure : array_like
+        Measured gauge pressure in the cylinder chamber [Pa].
+    flap : Flap
+        The flap (inertia, buoyancy stiffness C, width).
+    pto : PTO
+        The PTO (anchors, bore, atmospheric and vapour pressures, LuGre friction or None).
+    encoder : Encoder
+        The wire encoder of Eq. (1) (L5, L7, counts per metre).
+    depth : float
+        Water depth h [m] (for W_I, Eq. A2).
+    period : float
+        Wave period of the run [s] (the quasi-steady window's cycle detection ignores
         crossings closer than half of it).
-    incident_height : Incident wave height at the flap from the wave separation [m]; used for
+    incident_height : float
+        Incident wave height at the flap from the wave separation [m]; used for
         W_I (Eq. A2) and C_f.
-    cutoff : Cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
+    cutoff : float
+        Cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
         differentiation [Hz].
-    zero_count : Encoder count at θ = 0.
-    tolerance : Relative crest tolerance of the quasi-steady window (2 %, §2.5).
-    n_phase : Phase points per cycle of the phase averages.
-    max_flagged_fraction : Largest fraction of encoder samples outside the domain of Eq. (1)
+    zero_count : float
+        Encoder count at θ = 0.
+    tolerance : float
+        Relative crest tolerance of the quasi-steady window (2 %, §2.5).
+    n_phase : int
+        Phase points per cycle of the phase averages.
+    max_flagged_fraction : float
+        Largest fraction of encoder samples outside the domain of Eq. (1)
         that may be replaced by interpolation; more is an :class:`InputError`.
 
     Returns
     -------
-    xr.Dataset with dims ``time`` and ``phase``: θ, θ̇, θ̈, rod kinematics, measured and fitted
-    pressure, forces, torques (Eq. 11-12, resisting-torque convention of
-    :mod:`flumekit.flap.torque`), T_h, flow and power time series; phase averages over the
-    quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power, W_I, C_f
-    and the window. Every name is in :mod:`flumekit.conventions`.
+    xarray.Dataset
+        Dims ``time`` and ``phase``: θ, θ̇, θ̈, rod kinematics, measured and fitted pressure,
+        forces, torques (Eq. 11-12, resisting-torque convention of
+        :mod:`flumekit.flap.torque`), T_h, flow and power time series; phase averages over
+        the quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power,
+        W_I, C_f and the window. Every name is in :mod:`flumekit.conventions`.
     """
     t = np.asarray(time, dtype=float)
     fs = 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)

@@ -49,14 +49,18 @@ def _check_lengths(L5: float, L7: float) -> None:
 
 
 def wire_length(theta, L5: float, L7: float) -> np.ndarray:
-    """Wire length L(θ) [m] between the encoder and the flap frame (Eq. 1, sign for θ > 0 to
-    the beach).
+    """Wire length L(θ) [m] between the encoder and the flap frame.
+
+    Eq. (1) of Brito et al. (2020), with the sign for θ > 0 towards the beach.
 
     Parameters
     ----------
-    theta : Flap angle [rad], positive towards the beach.
-    L5 : Height of the wire anchor above the hinge [m].
-    L7 : Wire length at θ = 0 (horizontal distance from the encoder to the flap frame) [m].
+    theta : array_like
+        Flap angle [rad], positive towards the beach.
+    L5 : float
+        Height of the wire anchor above the hinge [m].
+    L7 : float
+        Wire length at θ = 0 (horizontal distance from the encoder to the flap frame) [m].
     """
     _check_lengths(L5, L7)
     th = np.asarray(theta, dtype=float)
@@ -69,15 +73,19 @@ def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
 
     Parameters
     ----------
-    wire_shortening : ΔL7 = L7 − L, shortening of the measuring wire [m] (positive when the
+    wire_shortening : array_like
+        ΔL7 = L7 − L, shortening of the measuring wire [m] (positive when the
         wire is reeled in, i.e. the flap leans towards the encoder and the wavemaker).
-    L5 : Height of the wire anchor above the hinge [m], > 0.
-    L7 : Wire length at θ = 0 [m], > 0.
+    L5 : float
+        Height of the wire anchor above the hinge [m], > 0.
+    L7 : float
+        Wire length at θ = 0 [m], > 0.
 
     Returns
     -------
-    WireAngle(theta, out_of_domain) : θ [rad] (positive towards the beach) and a boolean flag
-        of samples whose argument c/R leaves [−1, 1]; there θ is clipped to the end of the
+    WireAngle
+        ``theta``: θ [rad] (positive towards the beach); ``out_of_domain``: boolean flag of
+        the samples whose argument c/R leaves [−1, 1]; there θ is clipped to the end of the
         branch (never NaN), so callers must look at the flag.
     """
     _check_lengths(L5, L7)
@@ -99,10 +107,13 @@ def wire_from_counts(counts, counts_per_metre: float, zero_count: float = 0.0) -
 
     Parameters
     ----------
-    counts : Encoder counts, increasing as the wire is reeled in [-].
-    counts_per_metre : Counts per metre of wire [m-1], > 0 (e.g. 600 pulses per revolution on
+    counts : array_like
+        Encoder counts, increasing as the wire is reeled in [-].
+    counts_per_metre : float
+        Counts per metre of wire [m-1], > 0 (e.g. 600 pulses per revolution on
         a drum of 0.1 m circumference: 6000 m-1).
-    zero_count : Count at θ = 0 (the flap at rest, usually the start of the record) [-].
+    zero_count : float
+        Count at θ = 0 (the flap at rest, usually the start of the record) [-].
     """
     if not (np.isfinite(counts_per_metre) and counts_per_metre > 0):
         raise ValueError(f"counts_per_metre must be > 0, got {counts_per_metre}")

@@ -69,15 +69,24 @@ class LuGre:
 
     Parameters
     ----------
-    sigma0 : Bristle stiffness σ0 [N m-1].
-    sigma1 : Bristle micro-damping σ1 [N s m-1].
-    sigma2 : Viscous friction coefficient σ2 [N s m-1].
-    coulomb_force : Coulomb friction force F_c [N], > 0.
-    static_force : Maximum static friction force F_s [N], ≥ F_c.
-    stribeck_velocity : Stribeck velocity v_s [m s-1], > 0.
-    stribeck_exponent : Exponent n of the Stribeck curve [-], > 0.
-    minimum_friction_velocity : Velocity v_b of the minimum steady friction [m s-1], > 0.
-    tau_hp, tau_hm, tau_h0 : Film time constants for acceleration, deceleration and dwell [s].
+    sigma0 : float
+        Bristle stiffness σ0 [N m-1].
+    sigma1 : float
+        Bristle micro-damping σ1 [N s m-1].
+    sigma2 : float
+        Viscous friction coefficient σ2 [N s m-1].
+    coulomb_force : float
+        Coulomb friction force F_c [N], > 0.
+    static_force : float
+        Maximum static friction force F_s [N], ≥ F_c.
+    stribeck_velocity : float
+        Stribeck velocity v_s [m s-1], > 0.
+    stribeck_exponent : float
+        Exponent n of the Stribeck curve [-], > 0.
+    minimum_friction_velocity : float
+        Velocity v_b of the minimum steady friction [m s-1], > 0.
+    tau_hp, tau_hm, tau_h0 : float
+        Film time constants for acceleration, deceleration and dwell [s].
     """
 
     sigma0: float
@@ -93,6 +102,7 @@ class LuGre:
     tau_h0: float
 
     def __post_init__(self):
+        """Check that every parameter is physical (positive rates, forces and times)."""
         positive = ("sigma0", "coulomb_force", "stribeck_velocity", "stribeck_exponent",
                     "minimum_friction_velocity", "tau_hp", "tau_hm", "tau_h0")
         for name in positive:
@@ -158,10 +168,14 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
 
     Parameters
     ----------
-    state : Bristle deflection [m] and film thickness [-] at the start of the step.
-    velocity : Rod extension rate held over the step [m s-1].
-    dt : Step [s], > 0.
-    model : Friction parameters.
+    state : FrictionState
+        Bristle deflection [m] and film thickness [-] at the start of the step.
+    velocity : float
+        Rod extension rate held over the step [m s-1].
+    dt : float
+        Step [s], > 0.
+    model : LuGre
+        Friction parameters.
 
     Returns
     -------
@@ -187,10 +201,14 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
 
     Parameters
     ----------
-    state : State at the start of the step.
-    velocity_start, velocity_end : Rod extension rate at the start and end of the step [m s-1].
-    dt : Step [s], > 0.
-    model : Friction parameters.
+    state : FrictionState
+        State at the start of the step.
+    velocity_start, velocity_end : float
+        Rod extension rate at the start and end of the step [m s-1].
+    dt : float
+        Step [s], > 0.
+    model : LuGre
+        Friction parameters.
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
@@ -217,8 +235,10 @@ def friction_force(state: FrictionState, velocity, model: LuGre):
 
 
 def kernel_constants(m: LuGre) -> tuple:
-    """The model's parameters as the plain tuple :func:`kernel_step` and :func:`kernel_advance`
-    take (time-stepping loops call the kernels directly, without a dataclass per step)."""
+    """Return the parameters as the plain tuple :func:`kernel_step` and :func:`kernel_advance` take.
+
+    Time-stepping loops call the kernels directly, without a dataclass per step.
+    """
     return (m.sigma0, m.sigma1, m.sigma2, m.coulomb_force, m.static_force,
             1.0 / m.stribeck_velocity, m.stribeck_exponent, m.minimum_friction_velocity,
             m.film_gain, m.film_max, m.tau_hp, m.tau_hm, m.tau_h0)
@@ -250,8 +270,10 @@ def kernel_step(z, h, v, dt, c):
 
 
 def kernel_advance(z, h, v0, v1, dt, c):
-    """:func:`kernel_step` for a velocity linear from ``v0`` to ``v1`` over the step: split at
-    a reversal, else one mid-velocity step."""
+    """Apply :func:`kernel_step` for a velocity linear from ``v0`` to ``v1`` over the step.
+
+    The step is split at a velocity reversal, else taken at the mid-step velocity.
+    """
     if v0 * v1 < 0.0:
         s = v0 / (v0 - v1)
         z, h = kernel_step(z, h, 0.5 * v0, s * dt, c)
@@ -269,11 +291,16 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
 
     Parameters
     ----------
-    velocity : Rod extension rate at the samples [m s-1], 1-D.
-    dt : Sampling interval [s].
-    model : Friction parameters.
-    state : State at the first sample.
-    substeps : Steps per sampling interval.
+    velocity : array_like
+        Rod extension rate at the samples [m s-1], 1-D.
+    dt : float
+        Sampling interval [s].
+    model : LuGre
+        Friction parameters.
+    state : FrictionState
+        State at the first sample.
+    substeps : int
+        Steps per sampling interval.
 
     Returns
     -------

@@ -80,10 +80,14 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
 
     Parameters
     ----------
-    theta : Flap angle [rad], positive towards the beach.
-    theta_dot : Flap angular velocity [rad s-1].
-    bed_anchor : Fixed rod anchor (x, z) [m].
-    flap_anchor : Rod anchor on the flap at θ = 0, (x, z) [m].
+    theta : array_like
+        Flap angle [rad], positive towards the beach.
+    theta_dot : array_like
+        Flap angular velocity [rad s-1].
+    bed_anchor : array_like
+        Fixed rod anchor (x, z) [m].
+    flap_anchor : array_like
+        Rod anchor on the flap at θ = 0, (x, z) [m].
 
     Raises
     ------

@@ -47,12 +47,18 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
 
     Parameters
     ----------
-    height : Incident wave height H [m] (from the incident/reflected separation).
-    period : Wave period T [s].
-    depth : Water depth h [m].
-    width : Flap width L [m] (1.31 m).
-    rho : Water density [kg m-3].
-    g : Gravitational acceleration [m s-2].
+    height : array_like
+        Incident wave height H [m] (from the incident/reflected separation).
+    period : array_like
+        Wave period T [s].
+    depth : array_like
+        Water depth h [m].
+    width : float
+        Flap width L [m] (1.31 m).
+    rho : float
+        Water density [kg m-3].
+    g : float
+        Gravitational acceleration [m s-2].
     """
     if not width > 0:
         raise ValueError(f"flap width must be > 0, got {width}")

@@ -53,13 +53,20 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
 
     Parameters
     ----------
-    theta_dot : Flap angular velocity [rad s-1].
-    theta_ddot : Flap angular acceleration [rad s-2].
-    pressure_loss_coefficient : K_p [Pa s2 rad-2], ≥ 0.
-    fluid_inertia : I_p [Pa s2 rad-1].
-    atmospheric_pressure : P_atm [Pa].
-    vapour_pressure : P_v, absolute [Pa].
-    compression_sign : +1 if θ̇ > 0 compresses the chamber (the default anchors), −1 otherwise.
+    theta_dot : array_like
+        Flap angular velocity [rad s-1].
+    theta_ddot : array_like
+        Flap angular acceleration [rad s-2].
+    pressure_loss_coefficient : float
+        K_p [Pa s2 rad-2], ≥ 0.
+    fluid_inertia : float
+        I_p [Pa s2 rad-1].
+    atmospheric_pressure : float
+        P_atm [Pa].
+    vapour_pressure : float
+        P_v, absolute [Pa].
+    compression_sign : int
+        +1 if θ̇ > 0 compresses the chamber (the default anchors), −1 otherwise.
     """
     w = compression_sign * np.asarray(theta_dot, dtype=float)
     a = compression_sign * np.asarray(theta_ddot, dtype=float)
@@ -92,8 +99,10 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
 
     Parameters
     ----------
-    chamber_pressure : Measured gauge pressure [Pa].
-    theta_dot, theta_ddot : Flap angular velocity [rad s-1] and acceleration [rad s-2].
+    chamber_pressure : array_like
+        Measured gauge pressure [Pa].
+    theta_dot, theta_ddot : array_like
+        Flap angular velocity [rad s-1] and acceleration [rad s-2].
 
     Raises
     ------

@@ -33,8 +33,10 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
 
     Parameters
     ----------
-    theta : Flap angle [rad].
-    buoyancy_stiffness : Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
+    theta : array_like
+        Flap angle [rad].
+    buoyancy_stiffness : float
+        Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
     """
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
@@ -51,8 +53,10 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
 
     Parameters
     ----------
-    force_pressure : Pressure force pushing the rod out, A P_int [N].
-    lever_arm : Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β.
+    force_pressure : array_like
+        Pressure force pushing the rod out, A P_int [N].
+    lever_arm : array_like
+        Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β.
     """
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
@@ -62,8 +66,10 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
 
     Parameters
     ----------
-    force_friction : Friction force resisting the rod's extension (> 0 while extending) [N].
-    lever_arm : Signed lever arm m of the rod about the hinge [m].
+    force_friction : array_like
+        Friction force resisting the rod's extension (> 0 while extending) [N].
+    lever_arm : array_like
+        Signed lever arm m of the rod about the hinge [m].
     """
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
@@ -74,11 +80,16 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
 
     Parameters
     ----------
-    theta : Flap angle [rad].
-    theta_ddot : Angular acceleration [rad s-2].
-    torque_pto : Resisting PTO torque T_p + T_f [N m].
-    inertia : Moment of inertia about the hinge [kg m2].
-    buoyancy_stiffness : Net buoyancy stiffness C [N m rad-1].
+    theta : array_like
+        Flap angle [rad].
+    theta_ddot : array_like
+        Angular acceleration [rad s-2].
+    torque_pto : array_like
+        Resisting PTO torque T_p + T_f [N m].
+    inertia : float
+        Moment of inertia about the hinge [kg m2].
+    buoyancy_stiffness : float
+        Net buoyancy stiffness C [N m rad-1].
     """
     # Eq. (11) in Brito et al. 2020
     return (inertia_torque(theta_ddot, inertia) + gravity_torque(theta, buoyancy_stiffness)

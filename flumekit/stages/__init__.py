@@ -10,7 +10,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
 #: stage modules in the order their rules are declared
-STAGES = ("calibration", "eta", "waves", "flap", "uvp", "models", "ballscrew", "figures")
+STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "ballscrew", "figures")
 
 
 def build_rules(ctx: Context) -> list[Rule]:

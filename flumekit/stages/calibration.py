@@ -5,11 +5,14 @@ from __future__ import annotations
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
-VERSION = "1"
+VERSION = "2"
+#: ``min_r2``: a fit below it is an error naming the file and probe; ``warn_r2``: a warning
+#: recorded in the dataset (``flumekit_warnings``)
+DEFAULTS = {"order": 1, "min_r2": 0.99, "warn_r2": 0.999}
 
 
 def rules(ctx: Context) -> list[Rule]:
-    params = ctx.stage_params("calibration", {"order": 1})
+    params = ctx.stage_params("calibration", DEFAULTS)
     params["probes"] = list(ctx.campaign.probes.names)
     return [Rule("calibration", "flumekit.stages.calibration:build",
                  inputs={"calibration": ctx.campaign.calibration_file},
@@ -21,15 +24,24 @@ def build(inputs, outputs, params) -> None:
 
     from flumekit.io.instruments import read_calibration
     from flumekit.io.netcdf import write_product
+    from flumekit.qc.checks import check_calibration
+    from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
 
     raw = read_calibration(inputs["calibration"], tuple(params["probes"]))
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", calibration.CalibrationWarning)
+    with warnings.catch_warnings():
+        # the R² is checked below against the stage's thresholds, naming the file
+        warnings.simplefilter("ignore", calibration.CalibrationWarning)
         ds = calibration.fit(raw, order=params["order"])
-    for w in caught:
-        print(f"warning: {inputs['calibration']}: {w.message}")
+    v = raw["calibration_voltage"].transpose("sample", "probe").values
+    mono = [calibration.is_monotonic(ds["calibration_coefficients"].sel(probe=p).values,
+                                     float(v[:, i].min()), float(v[:, i].max()))
+            for i, p in enumerate(params["probes"])]
+    warned = check_calibration(ds["calibration_r2"].values, mono, params["probes"],
+                               inputs["calibration"], params["min_r2"], params["warn_r2"])
     ds = ds.merge(raw[["calibration_voltage"]])
+    if warned:
+        ds.attrs[WARNINGS] = "\n".join(warned)
     write_product(ds, outputs["dataset"],
                   "Wave probe calibration (static submersions, least squares)",
                   f"flumekit calibration stage from {inputs['calibration']}", params)

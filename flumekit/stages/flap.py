@@ -6,7 +6,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "2"
+VERSION = "3"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
 
 
@@ -17,7 +17,8 @@ def rules(ctx: Context) -> list[Rule]:
     for run in c.runs:
         p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
-                        inputs={"flap": run.path / "flap.csv", "campaign": ctx.campaign_file,
+                        inputs={"flap": ctx.out("qc", "flap", f"{run.id}.nc"),
+                                "campaign": ctx.campaign_file,
                                 "waves": ctx.out("waves", f"{run.id}.nc")},
                         outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
@@ -30,11 +31,10 @@ def build(inputs, outputs, params) -> None:
 
     from flumekit.campaign import load_campaign
     from flumekit.flap import analyse_run
-    from flumekit.io.instruments import read_flap
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
-    raw = read_flap(inputs["flap"], params["sampling_rate"])
+    raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
     ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
                      raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,

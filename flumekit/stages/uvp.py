@@ -11,7 +11,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
-VERSION = "1"
+VERSION = "2"
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
 
@@ -26,6 +26,7 @@ def rules(ctx: Context) -> list[Rule]:
     for run in runs:
         inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
         inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
+                      qc=ctx.out("qc", "uvp", f"{run.id}.nc"),
                       flap=ctx.out("flap", f"{run.id}.nc"))
         p = {**params, **run_params(run)}
         out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
@@ -58,6 +59,20 @@ def phase_reference(waves) -> tuple[float, float]:
     return float(ups[0]), float(waves["measured_period"])
 
 
+def clean_beam(beam, qc, name: str):
+    """The beam's velocities with the samples that failed quality control masked and short
+    gaps interpolated (:func:`flumekit.qc.record.clean`, the flags of the qc stage)."""
+    from flumekit.qc.record import clean
+
+    flags = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
+    t = beam["time"].values
+    v = beam["beam_velocity"].transpose("channel", "time").values
+    fs = (t.size - 1) / (t[-1] - t[0])
+    cleaned = clean(v, flags, fs, float(qc.attrs["max_gap"]))
+    return beam.assign(beam_velocity=beam["beam_velocity"].copy(
+        data=cleaned.T if beam["beam_velocity"].dims[0] == "time" else cleaned))
+
+
 def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
@@ -67,7 +82,9 @@ def build(inputs, outputs, params) -> None:
     from flumekit.uvp import phase_average_beams
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
-    beams = {b.name: read_mfprof(inputs[b.name]) for b in campaign.uvp.beams}
+    qc = read_dataset(inputs["qc"])
+    beams = {b.name: clean_beam(read_mfprof(inputs[b.name]), qc, b.name)
+             for b in campaign.uvp.beams}
     start, period = phase_reference(read_dataset(inputs["waves"]))
     theta = read_dataset(inputs["flap"])["theta"]
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,

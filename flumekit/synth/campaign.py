@@ -14,6 +14,7 @@ gives the same files.
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 import tempfile
@@ -29,6 +30,7 @@ from flumekit.campaign import Campaign, load_campaign
 from flumekit.errors import InputError
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
+from flumekit.synth.flume import RepeatScatter
 from flumekit.waves.theory import group_velocity, wavelength
 
 PERIODS = (2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0)  # Table 1 [s]
@@ -71,6 +73,7 @@ class Truth:
     x_wavemaker: float = -32.7  # [m]
     x_wp3: float = -2.0  # WP3 position [m]; WP1, WP2 follow Table 1 spacings
     x_wp4: float = -0.6  # [m]
+    scatter: RepeatScatter = RepeatScatter()  # run-to-run variability (synth/flume.py)
 
 
 def probe_positions(period: float, depth: float, truth: Truth) -> dict[str, float]:
@@ -185,10 +188,17 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
 
 def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
                truth: Truth, rng, n_steady: int, flap_hydro=None) -> None:
-    from flumekit.synth.flap import flap_record
+    from flumekit.synth.flap import FlapTruth, flap_record
+    from flumekit.synth.flume import repeat_conditions
     from flumekit.synth.waves import regular_wave_field
 
     depth = campaign.flume.water_depth
+    # what the wavemaker generated and the flap's losses in this run (run.toml keeps the
+    # nominal condition, the truth the generated one)
+    flap_truth = FlapTruth()
+    generated_period, generated_height, losses = repeat_conditions(
+        rng, period, height, truth.scatter, flap_truth.losses)
+    flap_truth = dataclasses.replace(flap_truth, losses=losses)
     run_dir = root / "runs" / run_id
     run_dir.mkdir(parents=True)
     xp = probe_positions(period, depth, truth)
@@ -202,7 +212,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in xp.items()]
     (run_dir / "run.toml").write_text("\n".join(lines) + "\n")
 
-    wave_kw = dict(period=period, height=height, depth=depth, reflection=truth.reflection,
+    wave_kw = dict(period=generated_period, height=generated_height, depth=depth,
+                   reflection=truth.reflection,
                    reflection_phase=truth.reflection_phase, x_reflector=0.0,
                    ramp_waves=truth.ramp_waves, second_order=True, x_wavemaker=truth.x_wavemaker)
     names = campaign.probes.names
@@ -222,8 +233,9 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
     at_flap = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **wave_kw)
     at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected")}
-    flap = flap_record(t100, at_flap["eta_incident"][:n100], period=period, campaign=campaign,
-                       rng=rng, height=height, hydro=flap_hydro,
+    flap = flap_record(t100, at_flap["eta_incident"][:n100], period=generated_period,
+                       campaign=campaign, rng=rng, height=generated_height, hydro=flap_hydro,
+                       truth=flap_truth,
                        eta_lead_out=at_flap["eta_incident"][n100:],
                        eta_front=at_flap["eta_incident"] + at_flap["eta_reflected"])
     write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
@@ -249,7 +261,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
 
         u = campaign.uvp
         tu = np.arange(int(duration * u.sampling_rate)) / u.sampling_rate
-        beams = uvp_beams(tu, u, z, period=period, height=height, depth=depth,
+        beams = uvp_beams(tu, u, z, period=generated_period, height=generated_height,
+                          depth=depth,
                           hinge_height=campaign.flap.hinge_height, reflection=truth.reflection,
                           reflection_phase=truth.reflection_phase,
                           x_wavemaker=truth.x_wavemaker, ramp_waves=truth.ramp_waves,

@@ -22,6 +22,7 @@ from scipy.ndimage import minimum_filter1d
 
 from flumekit import conventions
 from flumekit.campaign import UVP
+from flumekit.qc.fill import fill_gaps
 from flumekit.signal import lowpass, phase_average, resample_cycles
 from flumekit.uvp.geometry import channel_distances, channel_positions, inside_flap
 
@@ -57,30 +58,6 @@ def uniform(time: np.ndarray, values: np.ndarray, axis: int = 0
     shape = (-1,) + (1,) * (v.ndim - 1)
     out = v[i0] * (1 - frac).reshape(shape) + v[i0 + 1] * frac.reshape(shape)
     return grid, np.moveaxis(out, 0, axis)
-
-
-def fill_gaps(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
-    """Replace invalid samples by linear interpolation between the valid ones around them.
-
-    Vectorised over channels (time along the last axis); before the first or after the last
-    valid sample the nearest valid value is held; a channel without valid samples becomes 0.
-    The filled gaps are masked afterwards: the fill only keeps the no-echo noise from being
-    smeared by the filter into the samples next to the gaps.
-    """
-    n = values.shape[-1]
-    idx = np.arange(n)
-    prev = np.maximum.accumulate(np.where(valid, idx, -1), axis=-1)
-    nxt = np.minimum.accumulate(np.where(valid, idx, n)[..., ::-1], axis=-1)[..., ::-1]
-    has_prev, has_next = prev >= 0, nxt < n
-    p = np.where(has_prev, prev, np.where(has_next, nxt, 0))
-    q = np.where(has_next, nxt, p)
-    vp = np.take_along_axis(values, p, axis=-1)
-    vq = np.take_along_axis(values, q, axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        f = np.where(q > p, (idx - p) / (q - p), 0.0)
-    filled = vp + f * (vq - vp)
-    filled = np.where(has_prev | has_next, filled, 0.0)
-    return np.where(valid, values, filled)
 
 
 def _dilate(keep: np.ndarray, seconds: float, period: float) -> np.ndarray:
@@ -199,15 +176,17 @@ def phase_average_beams(beams: Mapping[str, xr.Dataset], uvp: UVP, uvp_elevation
         v = sign * v.T  # (channel, time), a copy: filter and averaging run along the last axis
         fs = (t.size - 1) / (t[-1] - t[0])
         keep = np.ones((v.shape[0], n_phase), dtype=bool)
+        # samples masked by quality control (NaN) and, with min_amplitude, samples without echo
+        echo = np.isfinite(v)  # (channel, time)
         if min_amplitude is not None and "amplitude" in ds:
             _, amp = uniform(time[sl], np.asarray(ds["amplitude"].values[sl], dtype=float))
-            echo = amp.T >= min_amplitude  # (channel, time)
-            lost = np.flatnonzero(~echo.all(axis=-1))  # treat only the channels with gaps
-            if lost.size:
-                v[lost] = fill_gaps(v[lost], echo[lost])
-                seen = resample_cycles(echo[lost].astype(float), t, period, start, n_cycles,
-                                       n_phase)
-                keep[lost] &= seen.min(axis=-2) >= 1.0
+            echo &= amp.T >= min_amplitude
+        lost = np.flatnonzero(~echo.all(axis=-1))  # treat only the channels with gaps
+        if lost.size:
+            v[lost] = fill_gaps(v[lost], echo[lost])
+            seen = resample_cycles(echo[lost].astype(float), t, period, start, n_cycles,
+                                   n_phase)
+            keep[lost] &= seen.min(axis=-2) >= 1.0
         if cutoff:
             v = lowpass(v, fs, cutoff, order=order, axis=-1)
         pa = phase_average(v, t, period, start, n_cycles, n_phase, kind=interpolation)

@@ -74,7 +74,10 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
         A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
         over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
-    v, t, x, probes = as_probe_time(eta)
+    # samples masked by quality control (NaN) may remain: the cycles holding them fail the
+    # quasi-steady test below, so the window avoids them, and `separate` checks the window
+    v, t, x, probes = as_probe_time(eta.fillna(0.0))
+    v = np.asarray(eta.transpose("probe", "time").values, dtype=float)
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     if n_harmonics < 1:

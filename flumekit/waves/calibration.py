@@ -143,6 +143,30 @@ def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
     return bool(np.all(d > 0) or np.all(d < 0))
 
 
+def non_monotonic(voltage: xr.DataArray,
+                  calibration: xr.Dataset) -> list[tuple[str, float, float]]:
+    """Probes whose calibration polynomial is not monotonic over the voltages of a record.
+
+    Parameters
+    ----------
+    voltage : xarray.DataArray
+        Probe voltages [V], dims ("probe", "time"); NaN (masked samples) ignored.
+    calibration : xarray.Dataset
+        Output of :func:`fit` holding every probe of ``voltage``.
+
+    Returns
+    -------
+    list of (str, float, float)
+        (probe, lowest, highest recorded voltage [V]) of every probe whose polynomial is not
+        monotonic there, where a voltage no longer maps to a unique level.
+    """
+    coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
+    vmin, vmax = voltage.min("time").values, voltage.max("time").values
+    return [(str(p), float(vmin[i]), float(vmax[i]))
+            for i, p in enumerate(voltage["probe"].values)
+            if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i]))]
+
+
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
@@ -162,17 +186,14 @@ def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     -----
     CalibrationWarning
         When a polynomial is not monotonic over the voltage range the record spans, where a
-        voltage no longer maps to a unique level.
+        voltage no longer maps to a unique level (:func:`non_monotonic`).
     """
     coef = calibration["calibration_coefficients"].sel(probe=voltage["probe"])
     powers = calibration["polynomial_order"]
-    eta = (coef * voltage ** powers).sum("polynomial_order")
-    vmin, vmax = voltage.min("time").values, voltage.max("time").values
-    for i, p in enumerate(voltage["probe"].values):
-        if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i])):
-            warnings.warn(f"probe {p}: calibration polynomial is not monotonic over the recorded "
-                          f"voltages [{vmin[i]:.4g}, {vmax[i]:.4g}] V", CalibrationWarning,
-                          stacklevel=2)
+    eta = (coef * voltage ** powers).sum("polynomial_order", skipna=False)
+    for p, lo, hi in non_monotonic(voltage, calibration):
+        warnings.warn(f"probe {p}: calibration polynomial is not monotonic over the recorded "
+                      f"voltages [{lo:.4g}, {hi:.4g}] V", CalibrationWarning, stacklevel=2)
     eta = eta.transpose("probe", "time").rename("eta")
     eta.attrs = conventions.attrs("eta")
     return eta

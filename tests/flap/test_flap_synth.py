@@ -311,9 +311,9 @@ def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrody
     import xarray as xr
 
     from flumekit.flap.analysis import analyse_run
+    from flumekit.flap.comparison import periodic_extension, time_domain_difference
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
-    from flumekit.flap.comparison import periodic_extension, time_domain_difference
 
     period, height = 3.5, 0.25
     t = np.arange(0, 250, 0.01)

@@ -1,0 +1,96 @@
+"""Metadata checked against the records: declared period and height, calibration quality,
+dead channels. Each check raises :class:`~flumekit.errors.InputError` naming the file and the
+key or channel, or returns a warning (text) where a user may knowingly proceed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from flumekit.errors import InputError
+
+
+def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
+    """Period of the spectral peak of a (channel, time) record, channels' spectra averaged [s].
+
+    Each channel is detrended (mean removed) and Hann-windowed; the peak of the mean periodogram
+    (bins above the lowest two) is refined by a parabola through the logarithm of the three
+    bins around it (exact for a Gaussian peak, the Hann window's main lobe nearly is).
+    """
+    x = np.atleast_2d(np.asarray(x, dtype=float))
+    x = np.where(np.isfinite(x), x, np.nan)
+    x = x - np.nanmean(x, axis=-1, keepdims=True)
+    x = np.nan_to_num(x)
+    n = x.shape[-1]
+    p = np.mean(np.abs(np.fft.rfft(x * np.hanning(n), axis=-1)) ** 2, axis=0)
+    k = 2 + int(np.argmax(p[2:-1]))
+    a, b, c = np.log(p[k - 1:k + 2] + 1e-300)
+    den = a - 2 * b + c
+    shift = 0.5 * (a - c) / den if den < 0 else 0.0
+    f = (k + shift) * sampling_rate / n
+    return float(1.0 / f)
+
+
+def check_period(declared: float, measured: float, tolerance: float, run_file: Path,
+                 record: Path) -> None:
+    """Error when the declared period differs from the record's by more than ``tolerance``
+    (relative). The period steers the analysis (cycle detection, separation band), so a wrong
+    one gives wrong results silently (3.5 s declared on a 2 s record: Kr 0.82 instead of 0.2)."""
+    rel = abs(measured / declared - 1.0)
+    if not rel <= tolerance:
+        raise InputError(run_file, f"declared period {declared:g} s disagrees with the record: "
+                         f"the dominant period of {record} is {measured:.3f} s "
+                         f"({rel:.0%} off, tolerance {tolerance:.0%} "
+                         "[stages.qc] period_tolerance)", field="run.period")
+
+
+def check_height(declared: float, measured: float, tolerance: float, warning: float,
+                 run_file: Path, what: str) -> str | None:
+    """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the
+    declared height and the measured one)."""
+    rel = abs(measured / declared - 1.0)
+    msg = (f"declared height {declared:g} m differs from the measured {what} "
+           f"{measured:.4g} m by {rel:.0%}")
+    if not rel <= tolerance:
+        raise InputError(run_file, f"{msg}, more than the tolerance {tolerance:.0%} "
+                         "([stages.waves] height_tolerance)", field="run.height")
+    if rel > warning:
+        return f"{run_file}: run.height: {msg}"
+    return None
+
+
+def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,
+                      min_r2: float, warn_r2: float) -> list[str]:
+    """Errors for probes whose calibration fit has R² below ``min_r2`` or is not monotonic over
+    the calibrated voltages; warnings (returned) for R² below ``warn_r2``."""
+    errors = [f"probe {p}: calibration R² = {r:.4f} is below {min_r2:g} "
+              "([stages.calibration] min_r2): the fit does not describe the probe"
+              for p, r in zip(probes, r2, strict=True) if not r >= min_r2]
+    errors += [f"probe {p}: calibration polynomial is not monotonic over the calibrated "
+               "voltages (a voltage would map to two levels)"
+               for p, m in zip(probes, monotonic, strict=True) if not m]
+    if errors:
+        raise InputError(path, "; ".join(errors))
+    return [f"{path}: probe {p}: calibration R² = {r:.5f} < {warn_r2:g}"
+            for p, r in zip(probes, r2, strict=True) if r < warn_r2]
+
+
+def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray | None = None,
+                max_flat_fraction: float = 0.5, unit: str = "") -> None:
+    """Error naming the file and channel(s) that are dead (constant over the whole record) or
+    stuck (flat lines over more than ``max_flat_fraction`` of the record)."""
+    x = np.atleast_2d(np.asarray(x, dtype=float))
+    problems = []
+    for i, name in enumerate(channels):
+        v = x[i][np.isfinite(x[i])]
+        if v.size == 0:
+            problems.append(f"channel '{name}' has no finite sample")
+        elif np.ptp(v) == 0:
+            problems.append(f"channel '{name}' is dead: constant at {v[0]:g}{unit} over the "
+                            "whole record")
+        elif flat_fraction is not None and flat_fraction[i] > max_flat_fraction:
+            problems.append(f"channel '{name}' is stuck: flat lines over "
+                            f"{flat_fraction[i]:.0%} of the record")
+    if problems:
+        raise InputError(path, "; ".join(problems))

@@ -1,0 +1,51 @@
+"""QARTOD quality flags and their CF description.
+
+One flag per sample, the U.S. IOOS QARTOD scheme (IOOS 2020, *Manual for the Use of Real-Time
+Oceanographic Data Quality Control Flags*, v1.2, Table 2): 1 pass, 2 not evaluated, 3 suspect,
+4 fail, 9 missing. The aggregate of several tests is the worst flag, with 9 (missing) above 4.
+Datasets carry the flags as ``<variable>_qc`` with CF ``flag_values``/``flag_meanings``
+(CF conventions §3.5) and ``ancillary_variables`` on the data variable.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+GOOD = 1
+NOT_EVALUATED = 2
+SUSPECT = 3
+FAIL = 4
+MISSING = 9
+
+FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.uint8)
+FLAG_MEANINGS = "pass not_evaluated suspect fail missing_data"
+
+#: order of severity used to aggregate flags (missing counts as worst)
+_RANK = np.zeros(256, dtype=np.uint8)
+_RANK[[GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING]] = [1, 0, 2, 3, 4]
+
+
+def flag_attrs(variable: str, long_name: str | None = None) -> dict:
+    """CF attributes of the flag variable of ``variable`` (QARTOD values and meanings)."""
+    return {"units": "1", "long_name": long_name or f"QARTOD quality flag of {variable}",
+            "standard_name": "quality_flag", "flag_values": FLAG_VALUES,
+            "flag_meanings": FLAG_MEANINGS,
+            "references": "U.S. IOOS QARTOD flag scheme (1 pass, 2 not evaluated, 3 suspect, "
+                          "4 fail, 9 missing)"}
+
+
+def aggregate(*flags: np.ndarray) -> np.ndarray:
+    """Worst flag per sample over several tests' flags of the same shape.
+
+    ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1.
+    """
+    stack = np.stack([np.asarray(f, dtype=np.uint8) for f in flags])
+    worst = np.take_along_axis(stack, np.argmax(_RANK[stack], axis=0)[None], axis=0)[0]
+    return worst
+
+
+def counts(flags: np.ndarray, axis=None) -> dict[str, np.ndarray]:
+    """Number of samples per flag meaning (``pass``, ``suspect``, ...), summed over ``axis``."""
+    f = np.asarray(flags)
+    return {name: np.sum(f == value, axis=axis)
+            for value, name in zip(FLAG_VALUES, FLAG_MEANINGS.split(), strict=True)}

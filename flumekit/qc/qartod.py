@@ -1,0 +1,237 @@
+"""QARTOD-style quality tests, vectorised over channels (time along the last axis).
+
+The tests follow the U.S. IOOS QARTOD manuals (gross range, spike, rate of change, flat line,
+gap; IOOS 2020, *QARTOD manual for in-situ surface wave data* and *for currents*) and return one
+flag per sample (:mod:`flumekit.qc.flags`). They are written here rather than taken from
+``ioos_qc`` (3.0.0), which does not fit flume records:
+
+* ``rate_of_change_test`` and ``flat_line_test`` convert time steps to whole seconds
+  (``astype("timedelta64[s]")``): at 25-100 Hz every step is 0 s, the rate test then flags
+  nothing (masked division) and the flat-line test raises ``ValueError`` (negative window);
+  flat-line durations are whole seconds and ``time_gap_test`` spans are hours;
+* ``spike_test`` loops in Python over every sample and flattens N-D input, so it cannot run
+  along the time axis of a (probe, time) or (channel, time) block;
+* it pulls in shapely, geographiclib, geojson, jsonschema and ruamel.yaml for location tests
+  a flume does not need.
+
+Thresholds of the spike, rate-of-change and dropout tests are multiples of a *robust, local*
+standard deviation of the tested statistic (1.4826 times its median absolute value, per block
+of ``block`` samples and the larger of the neighbouring blocks), so that one set of defaults
+suits probe voltages, encoder counts, pressures and velocities alike and is not inflated by the
+faults it looks for. A floor (the channel's resolution) keeps a quantised channel at rest from
+having a zero scale.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT
+
+#: ratio of the standard deviation to the median absolute deviation of a normal distribution
+MAD_TO_STD = 1.4826
+
+
+def resolution(x: np.ndarray) -> np.ndarray:
+    """Smallest non-zero step between consecutive samples per channel (quantisation) [x]."""
+    d = np.abs(np.diff(np.asarray(x, dtype=float), axis=-1))
+    d = np.where(np.isfinite(d) & (d > 0), d, np.inf)
+    r = d.min(axis=-1)
+    return np.where(np.isfinite(r), r, 0.0)
+
+
+def local_scale(stat: np.ndarray, block: int, floor: np.ndarray | float = 0.0) -> np.ndarray:
+    """Robust local standard deviation of ``stat`` along the last axis, per sample.
+
+    1.4826 x median |stat| per block of ``block`` samples (NaN ignored), the largest of each
+    block and its two neighbours (so a block at the arrival of the waves is judged with the
+    scale of the waves), at least ``floor`` (per channel or scalar).
+    """
+    s = np.abs(np.asarray(stat, dtype=float))
+    n = s.shape[-1]
+    block = int(max(1, min(block, n)))
+    nb = -(-n // block)
+    pad = [(0, 0)] * (s.ndim - 1) + [(0, nb * block - n)]
+    blocks = np.pad(s, pad, mode="symmetric").reshape(s.shape[:-1] + (nb, block))
+    with np.errstate(all="ignore"):
+        if np.isnan(blocks).any():
+            import warnings
+
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                med = np.nanmedian(blocks, axis=-1)
+        else:
+            med = np.median(blocks, axis=-1)
+    med = np.nan_to_num(MAD_TO_STD * med, nan=0.0)
+    edge = np.pad(med, [(0, 0)] * (med.ndim - 1) + [(1, 1)], mode="edge")
+    med = np.maximum(np.maximum(edge[..., :-2], edge[..., 1:-1]), edge[..., 2:])
+    med = np.maximum(med, np.asarray(floor, dtype=float)[..., None] if np.ndim(floor) else floor)
+    return np.repeat(med, block, axis=-1)[..., :n]
+
+
+def _empty_flags(x: np.ndarray) -> np.ndarray:
+    f = np.full(x.shape, GOOD, dtype=np.uint8)
+    f[~np.isfinite(x)] = MISSING
+    return f
+
+
+def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
+                     suspect_span: tuple[float, float] | None = None) -> np.ndarray:
+    """QARTOD gross range: FAIL outside ``fail_span`` (sensor limits), SUSPECT outside
+    ``suspect_span`` (user limits) [units of x]. ``None``: not evaluated (2)."""
+    x = np.asarray(x, dtype=float)
+    f = _empty_flags(x)
+    finite = f != MISSING
+    if fail_span is None and suspect_span is None:
+        f[finite] = NOT_EVALUATED
+        return f
+    with np.errstate(invalid="ignore"):
+        if suspect_span is not None:
+            lo, hi = sorted(suspect_span)
+            f[finite & ((x < lo) | (x > hi))] = SUSPECT
+        if fail_span is not None:
+            lo, hi = sorted(fail_span)
+            f[finite & ((x < lo) | (x > hi))] = FAIL
+    return f
+
+
+def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: int = 250,
+               floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
+    """QARTOD spike test (the "average" method), robust and local.
+
+    The statistic is d_n = x_n - (x_(n-1) + x_(n+1))/2. A sample is a spike where |d_n| exceeds
+    ``suspect`` (SUSPECT) or ``fail`` (FAIL) robust local standard deviations of d and is the
+    largest |d| of its three neighbours: a spike of size s also moves its neighbours' d by s/2,
+    and those neighbours are good data. After each pass the FAIL samples are replaced by the
+    mean of their neighbours and the test runs again (``passes``), which finds spikes hidden next
+    to larger ones. End samples are not evaluated (2).
+    """
+    x = np.asarray(x, dtype=float)
+    f = _empty_flags(x)
+    if x.shape[-1] < 3:
+        f[f == GOOD] = NOT_EVALUATED
+        return f
+    floor = resolution(x) if floor is None else floor
+    work = x.copy()
+    for _ in range(passes):
+        d = work[..., 1:-1] - 0.5 * (work[..., :-2] + work[..., 2:])
+        ad = np.abs(d)
+        r = ad / np.maximum(local_scale(d, block, floor), np.finfo(float).tiny)
+        nb = np.pad(ad, [(0, 0)] * (ad.ndim - 1) + [(1, 1)], constant_values=0.0)
+        peak = (ad >= nb[..., :-2]) & (ad >= nb[..., 2:])
+        inner = f[..., 1:-1]
+        with np.errstate(invalid="ignore"):
+            sus = peak & (r > suspect) & (inner == GOOD)
+            bad = peak & (r > fail) & (inner != MISSING)
+        inner[sus] = SUSPECT
+        inner[bad] = FAIL
+        if not bad.any():
+            break
+        mid = 0.5 * (work[..., :-2] + work[..., 2:])
+        work[..., 1:-1] = np.where(bad, mid, work[..., 1:-1])
+    f[..., 0] = np.where(f[..., 0] == MISSING, MISSING, NOT_EVALUATED)
+    f[..., -1] = np.where(f[..., -1] == MISSING, MISSING, NOT_EVALUATED)
+    return f
+
+
+def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
+                        floor: np.ndarray | float | None = None) -> np.ndarray:
+    """QARTOD rate of change: SUSPECT where |x_n - x_(n-1)| exceeds ``threshold`` robust local
+    standard deviations of the first difference (QARTOD's "N standard deviations" rule).
+    The first sample is not evaluated (2)."""
+    x = np.asarray(x, dtype=float)
+    f = _empty_flags(x)
+    if x.shape[-1] < 2:
+        f[f == GOOD] = NOT_EVALUATED
+        return f
+    floor = resolution(x) if floor is None else floor
+    dx = np.diff(x, axis=-1)
+    r = np.abs(dx) / np.maximum(local_scale(dx, block, floor), np.finfo(float).tiny)
+    rest = f[..., 1:]
+    with np.errstate(invalid="ignore"):
+        rest[(r > threshold) & (rest == GOOD)] = SUSPECT
+    f[..., 0] = np.where(f[..., 0] == MISSING, MISSING, NOT_EVALUATED)
+    return f
+
+
+def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Runs of True along the last axis of a 2-D mask: (row, first index, length)."""
+    m, n = mask.shape
+    padded = np.zeros((m, n + 2), dtype=bool)
+    padded[:, 1:-1] = mask
+    edges = np.flatnonzero(np.diff(padded.ravel().astype(np.int8)))
+    starts, ends = edges[::2], edges[1::2]
+    row = starts // (n + 2)
+    return row, starts - row * (n + 2), ends - starts
+
+
+def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
+    """Boolean (m, n) array, True over the given runs (vectorised with a cumulative sum)."""
+    m, n = shape
+    mark = np.zeros((m, n + 1), dtype=np.int64)
+    np.add.at(mark, (row, first), 1)
+    np.add.at(mark, (row, first + length), -1)
+    return np.cumsum(mark, axis=-1)[:, :n] > 0
+
+
+def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float = 1.0,
+                   fail_seconds: float = 2.0, tolerance: float = 0.0,
+                   exempt_leading: bool = True) -> np.ndarray:
+    """QARTOD flat line: runs of samples within ``tolerance`` of their predecessor that last at
+    least ``suspect_seconds`` (SUSPECT) or ``fail_seconds`` (FAIL); every sample of the run is
+    flagged. A run from the first sample that ends before the record does is the instrument at
+    rest before the waves arrive (an encoder's count does not change then) and passes when
+    ``exempt_leading``; a run over the whole record fails (a dead channel).
+    """
+    x = np.asarray(x, dtype=float)
+    shape = x.shape
+    x2 = x.reshape(-1, shape[-1])
+    f = _empty_flags(x2)
+    n = x2.shape[-1]
+    if n < 2:
+        return f.reshape(shape)
+    with np.errstate(invalid="ignore"):
+        same = np.abs(np.diff(x2, axis=-1)) <= tolerance
+    row, first, length = _runs(same)  # runs of equal steps; a run of k steps spans k+1 samples
+    dur = length / sampling_rate
+    leading = exempt_leading & (first == 0) & (first + length < n - 1)
+    for level, seconds in ((SUSPECT, suspect_seconds), (FAIL, fail_seconds)):
+        sel = (dur >= seconds) & ~leading
+        paint = _paint(x2.shape, row[sel], first[sel], length[sel] + 1)
+        f[paint & (f != MISSING)] = level
+    return f.reshape(shape)
+
+
+def dropout_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
+    """Dropouts: samples far outside the record's own robust envelope (FAIL).
+
+    A channel that drops to a rail or to zero (a lost connection, a probe out of the water)
+    leaves the range its signal occupies. A sample fails where |x - median(x)| exceeds
+    ``threshold`` robust standard deviations of x over the record (1.4826 MAD); a sinusoid
+    reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water lead-in
+    of up to about half the record.
+    """
+    x = np.asarray(x, dtype=float)
+    f = _empty_flags(x)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        med = np.nanmedian(x, axis=-1, keepdims=True)
+        scale = MAD_TO_STD * np.nanmedian(np.abs(x - med), axis=-1, keepdims=True)
+    scale = np.maximum(scale, resolution(x)[..., None])
+    with np.errstate(invalid="ignore"):
+        f[(np.abs(x - med) > threshold * scale) & (f != MISSING)] = FAIL
+    return f
+
+
+def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:
+    """QARTOD gap (timing) test: FAIL on a sample that follows a time step longer than
+    (1 + ``tolerance``) / ``sampling_rate`` (samples are missing before it); MISSING where the
+    time is not finite."""
+    t = np.asarray(time, dtype=float)
+    f = _empty_flags(t)
+    with np.errstate(invalid="ignore"):
+        late = np.diff(t) > (1.0 + tolerance) / sampling_rate
+    f[1:][late & (f[1:] != MISSING)] = FAIL
+    return f

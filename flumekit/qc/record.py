@@ -1,0 +1,181 @@
+"""Quality control of one instrument record: the QARTOD battery, aggregation, masking, filling.
+
+:func:`check_series` runs the tests on a (channel, time) block and returns the per-test flags;
+:func:`clean` masks what failed and interpolates gaps up to a declared length;
+:func:`qc_dataset` does both for one variable of a dataset and returns it with its flags
+(``<name>_qc``, CF flag attributes), the raw values (``<name>_raw``) and per-channel counts.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+import xarray as xr
+from scipy.ndimage import maximum_filter1d, median_filter
+
+from flumekit.qc import qartod
+from flumekit.qc.despike import goring_nikora
+from flumekit.qc.fill import fill_gaps, gap_spans
+from flumekit.qc.flags import (
+    FAIL,
+    FLAG_MEANINGS,
+    FLAG_VALUES,
+    GOOD,
+    MISSING,
+    NOT_EVALUATED,
+    SUSPECT,
+    aggregate,
+    flag_attrs,
+)
+
+#: profiles on each side of a boundary echo also left out of the despiking
+BOUNDARY_PROFILES = 1
+#: window of the running median removed before despiking [profiles]
+MEDIAN_PROFILES = 3
+
+TESTS = ("gap", "gross_range", "spike", "rate_of_change", "flat_line", "dropout",
+         "goring_nikora")
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """Thresholds of the QC tests (the ``[stages.qc]`` parameters). Defaults pass clean
+    virtual-flume records untouched (measured in tests/qc)."""
+
+    spike_suspect: float = 6.0  # robust local std of x_n - (x_(n-1) + x_(n+1))/2 [-]
+    spike_fail: float = 8.0  # [-]
+    rate_of_change: float = 10.0  # robust local std of the first difference [-]
+    flat_line_suspect: float = 1.0  # [s]
+    flat_line_fail: float = 2.0  # [s]
+    flat_line_tolerance: float = 0.0  # [units of the channel]
+    dropout: float = 6.0  # robust std of the record about its median [-]
+    block: float = 10.0  # length of the blocks of the local robust scale [s]
+    gap_tolerance: float = 0.5  # a time step longer than (1 + this) / rate is a gap [-]
+    max_gap: float = 0.2  # longest run of failed samples interpolated [s]
+    despike_iterations: int = 1  # Goring-Nikora iterations at most [-]
+
+    @classmethod
+    def from_params(cls, params: dict) -> Thresholds:
+        cast = {"int": int, "float": float}
+        return cls(**{f.name: cast[f.type](params[f.name]) for f in fields(cls)
+                      if f.name in params})
+
+
+def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
+                 gross_range: tuple[float, float] | None = None, despike: bool = False,
+                 flat_line: bool = True, floor: np.ndarray | float | None = None,
+                 amplitude: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    """Per-test QARTOD flags of a (channel, time) block (time along the last axis).
+
+    ``despike`` runs the Goring-Nikora phase-space test instead of the spike, rate-of-change,
+    flat-line and dropout tests (velocity records: quantised, turbulent, partly without echo).
+    ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
+    ``amplitude`` (echo amplitude of a velocity record, same shape): samples whose echo is far
+    above the channel's usual one (:func:`~flumekit.qc.qartod.dropout_test` on the amplitude)
+    see a solid boundary, such as the flap crossing the channel, not the fluid; they are not
+    evaluated (2) and do not enter the despiking statistics.
+    """
+    x = np.asarray(x, dtype=float)
+    block = max(3, int(round(th.block * sampling_rate)))
+    gap = np.broadcast_to(qartod.gap_test(time, sampling_rate, th.gap_tolerance), x.shape)
+    out = {"gap": np.where(np.isfinite(x), gap, MISSING).astype(np.uint8),
+           "gross_range": qartod.gross_range_test(x, gross_range)}
+    if despike:
+        boundary = np.zeros(x.shape, dtype=bool)
+        if amplitude is not None:
+            boundary = qartod.dropout_test(np.asarray(amplitude, dtype=float), th.dropout) == FAIL
+            # the sampling volume straddles the boundary for a few profiles before and after
+            boundary = maximum_filter1d(boundary, 2 * BOUNDARY_PROFILES + 1, axis=-1)
+        # despike the fluctuation about a running median: the wave's orbital velocity is not
+        # turbulence, and its steep, periodic rises would leave GN's ellipses (common practice
+        # for wave-dominated records; a spike survives the median untouched)
+        fluid = fill_gaps(x, np.isfinite(x) & ~boundary)
+        resid = x - median_filter(fluid, size=(1,) * (x.ndim - 1) + (MEDIAN_PROFILES,),
+                                  mode="nearest")
+        spikes = goring_nikora(np.where(boundary, np.nan, resid),
+                               floor=0.0 if floor is None else floor,
+                               max_iterations=th.despike_iterations)
+        g = np.where(np.isfinite(x), GOOD, MISSING).astype(np.uint8)
+        g[boundary & np.isfinite(x)] = NOT_EVALUATED
+        g[spikes] = FAIL
+        out["goring_nikora"] = g
+        return out
+    out["spike"] = qartod.spike_test(x, th.spike_suspect, th.spike_fail, block, floor)
+    out["rate_of_change"] = qartod.rate_of_change_test(x, th.rate_of_change, block, floor)
+    if flat_line:
+        out["flat_line"] = qartod.flat_line_test(x, sampling_rate, th.flat_line_suspect,
+                                                 th.flat_line_fail, th.flat_line_tolerance)
+    out["dropout"] = qartod.dropout_test(x, th.dropout)
+    return out
+
+
+def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
+          ) -> np.ndarray:
+    """Values with FAIL and MISSING samples masked, then linearly interpolated across runs of
+    at most ``max_gap`` seconds; longer runs stay NaN."""
+    bad = (flags == FAIL) | (flags == MISSING)
+    if not bad.any():
+        return np.asarray(x, dtype=float)
+    return fill_gaps(x, ~bad, max_gap=int(np.floor(max_gap * sampling_rate + 1e-9)))
+
+
+def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
+               gross_range: tuple[float, float] | None = None, despike: bool = False,
+               flat_line: bool = True, floor=None, keep_raw: bool = True) -> xr.Dataset:
+    """QC of variable ``name`` of ``ds`` (dims (time,) or (channel_dim, time) in any order).
+
+    Returns a dataset with ``name`` cleaned (:func:`clean`), ``<name>_qc`` (aggregate flags),
+    ``<name>_raw`` (the values read, if ``keep_raw``) and ``<name>_qc_count`` (channel,
+    flag meaning) plus ``<name>_qc_test_count`` (channel, test): failed or suspect samples per
+    test. Attributes ``<name>_unfilled_gaps`` list the runs of masked samples longer than
+    ``max_gap``.
+    """
+    da = ds[name]
+    dims = (channel_dim, "time") if channel_dim else ("time",)
+    da = da.transpose(*dims)
+    x = np.atleast_2d(da.values.astype(float))
+    t = ds["time"].values.astype(float)
+    fs = float(ds.attrs.get("sampling_rate") or (t.size - 1) / (t[-1] - t[0]))
+    per_test = check_series(x, t, fs, th, gross_range=gross_range, despike=despike,
+                            flat_line=flat_line, floor=floor)
+    flags = aggregate(*per_test.values())
+    cleaned = clean(x, flags, fs, th.max_gap)
+    chans = list(da[channel_dim].values) if channel_dim else [name]
+    shape = (lambda a: a) if channel_dim else (lambda a: a[0])
+    out = xr.Dataset(coords={"time": ds["time"]})
+    if channel_dim:
+        out = out.assign_coords({channel_dim: da[channel_dim]})
+    attrs = {k: v for k, v in da.attrs.items()}
+    out[name] = (dims, shape(cleaned), {**attrs, "ancillary_variables": f"{name}_qc",
+                                        "comment": "QC'd: failed and missing samples masked, "
+                                        f"gaps up to {th.max_gap:g} s interpolated linearly"})
+    out[f"{name}_qc"] = (dims, shape(flags), flag_attrs(name))
+    if keep_raw:
+        out[f"{name}_raw"] = (dims, shape(x), {**attrs, "long_name": attrs.get(
+            "long_name", name) + " as read, before quality control"})
+    cdim = channel_dim or "channel"
+    meanings = FLAG_MEANINGS.split()
+    counts = np.stack([np.sum(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
+    tests = list(per_test)
+    tcounts = np.stack([np.sum((per_test[k] == FAIL) | (per_test[k] == SUSPECT), axis=-1)
+                        for k in tests], axis=-1)
+    cd = (cdim,) if channel_dim else ()
+    out[f"{name}_qc_count"] = (cd + ("flag_meaning",), shape(counts),
+                               {"units": "1", "long_name": f"samples of {name} per QC flag"})
+    out[f"{name}_qc_test_count"] = (cd + ("qc_test",), shape(tcounts),
+                                    {"units": "1", "long_name": f"samples of {name} that each QC "
+                                     "test flagged suspect or fail"})
+    out = out.assign_coords(flag_meaning=("flag_meaning", meanings,
+                                          {"long_name": "QARTOD flag meaning"}),
+                            qc_test=("qc_test", tests, {"long_name": "QC test"}))
+    still = np.isnan(cleaned) & ~np.isnan(x)
+    spans = [f"{chans[r]} {a:.3f}-{b:.3f} s" for r, a, b in gap_spans(still, t)]
+    out.attrs[f"{name}_unfilled_gaps"] = "; ".join(spans)
+    return out
+
+
+def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
+    """The runs of masked samples of ``name`` longer than the interpolation limit."""
+    text = ds.attrs.get(f"{name}_unfilled_gaps", "")
+    return [s for s in text.split("; ") if s]

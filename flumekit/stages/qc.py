@@ -1,0 +1,211 @@
+"""Stage: quality control of every run's instrument records, before any analysis.
+
+Per run and instrument one rule reads the raw record, checks it against its metadata (dead or
+stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` (and the
+Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.nc``: the QC'd
+values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
+counts. The eta, flap and uvp stages read these instead of the raw files.
+"""
+
+from __future__ import annotations
+
+from flumekit.pipeline.rules import Rule
+from flumekit.stages.context import Context
+from flumekit.stages.runs import run_params
+
+VERSION = "1"
+#: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
+#: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
+DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
+            "flat_line_suspect": 3.0, "flat_line_fail": 5.0, "flat_line_tolerance": 0.0,
+            "dropout": 6.0, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
+            "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
+            "probe_range": None, "encoder_range": None, "pressure_range": None,
+            "velocity_range": None}
+WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
+
+
+def rules(ctx: Context) -> list[Rule]:
+    c = ctx.campaign
+    params = ctx.stage_params("qc", DEFAULTS)
+    out = []
+    for run in c.runs:
+        rp = {**params, **run_params(run)}
+        out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
+                        inputs={"probes": run.path / "probes.csv", "run": run.path / "run.toml"},
+                        outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
+                        params={**rp, "probes": list(c.probes.names),
+                                "sampling_rate": c.probes.sampling_rate},
+                        version=VERSION, run=run.id))
+        out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
+                        inputs={"flap": run.path / "flap.csv"},
+                        outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
+                        params={**rp, "sampling_rate": c.encoder.sampling_rate},
+                        version=VERSION, run=run.id))
+        if c.uvp is not None and run.kind == "uvp":
+            out.append(Rule(f"qc/uvp/{run.id}", "flumekit.stages.qc:uvp",
+                            inputs={b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams},
+                            outputs={"dataset": ctx.out("qc", "uvp", f"{run.id}.nc")},
+                            params=rp, version=VERSION, run=run.id))
+    inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
+              for r in c.runs for kind in ("probes", "flap")}
+    out.append(Rule("qc_summary", "flumekit.stages.qc:summary", inputs=inputs,
+                    outputs={"dataset": ctx.out("qc_summary.nc")}, version=VERSION))
+    return out
+
+
+def _span(value):
+    return None if value is None else (float(value[0]), float(value[1]))
+
+
+def _write(ds, outputs, params, title, source, warnings=()):
+    from flumekit.stages.runs import write_run
+
+    if warnings:
+        ds.attrs[WARNINGS] = "\n".join(warnings)
+    ds.attrs["max_gap"] = float(params["max_gap"])
+    write_run(ds, outputs, params, title, source)
+
+
+def _stuck(ds, name, path, max_gap):
+    """Error naming the file and channel of masked spans longer than the interpolation limit
+    (a stuck or dropped-out channel the flap analysis cannot bridge)."""
+    from flumekit.errors import InputError
+    from flumekit.qc.record import unfilled_gaps
+
+    gaps = unfilled_gaps(ds, name)
+    if gaps:
+        raise InputError(path, f"channel '{name}': failed quality control over "
+                         + ", ".join(gaps[:5]) + (" ..." if len(gaps) > 5 else "")
+                         + f" (flat line, dropout or spikes longer than [stages.qc] max_gap = "
+                         f"{max_gap:g} s, which is what may be interpolated)")
+
+
+def probes(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    import numpy as np
+
+    from flumekit.io.instruments import read_probes
+    from flumekit.qc import checks
+    from flumekit.qc.flags import FAIL
+    from flumekit.qc.record import Thresholds, qc_dataset
+
+    path = Path(inputs["probes"])
+    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"])
+    th = Thresholds.from_params(params)
+    ds = qc_dataset(raw, "probe_voltage", th, channel_dim="probe",
+                    gross_range=_span(params["probe_range"]))
+    flat = ds["probe_voltage_qc_test_count"].sel(qc_test="flat_line").values / raw.sizes["time"]
+    checks.check_alive(raw["probe_voltage"].transpose("probe", "time").values,
+                       raw["probe"].values, path, flat, params["max_flat_fraction"], " V")
+    v = ds["probe_voltage"].transpose("probe", "time").values
+    ok = ds["probe_voltage_qc"].transpose("probe", "time").values != FAIL
+    period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
+    checks.check_period(params["period"], period, params["period_tolerance"],
+                        Path(inputs["run"]), path)
+    ds["record_period"] = ((), period, {"units": "s", "long_name": "dominant period of the "
+                                        "probe records (spectral peak)"})
+    warnings = [f"{path}: probe_voltage: masked and not interpolated: {g}"
+                for g in ds.attrs["probe_voltage_unfilled_gaps"].split("; ") if g]
+    ds.attrs["source_file"] = str(path)
+    _write(ds, outputs, params, "Quality-controlled wave probe voltages",
+           f"flumekit qc stage from {path}", warnings)
+
+
+def flap(inputs, outputs, params) -> None:
+    from pathlib import Path
+
+    import xarray as xr
+
+    from flumekit.io.instruments import read_flap
+    from flumekit.qc import checks
+    from flumekit.qc.record import Thresholds, qc_dataset
+
+    path = Path(inputs["flap"])
+    raw = read_flap(path, params["sampling_rate"])
+    raw["encoder_counts"] = raw["encoder_counts"].astype(float)
+    th = Thresholds.from_params(params)
+    parts = []
+    for name, rng, unit in (("encoder_counts", "encoder_range", " counts"),
+                            ("chamber_pressure", "pressure_range", " Pa")):
+        ds = qc_dataset(raw, name, th, gross_range=_span(params[rng]))
+        flat = float(ds[f"{name}_qc_test_count"].sel(qc_test="flat_line")) / raw.sizes["time"]
+        checks.check_alive(raw[name].values, [name], path, [flat],
+                           params["max_flat_fraction"], unit)
+        _stuck(ds, name, path, params["max_gap"])
+        parts.append(ds)
+    ds = xr.merge(parts, combine_attrs="drop_conflicts")
+    ds.attrs["source_file"] = str(path)
+    _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
+           f"flumekit qc stage from {path}")
+
+
+def uvp(inputs, outputs, params) -> None:
+    """Goring-Nikora despiking of every beam; the flags (not the velocities) are written."""
+    import numpy as np
+    import xarray as xr
+
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.qc.flags import FAIL, FLAG_MEANINGS, FLAG_VALUES, aggregate, flag_attrs
+    from flumekit.qc.record import Thresholds, check_series
+
+    th = Thresholds.from_params(params)
+    flags, counts, names = [], [], sorted(inputs)
+    for name in names:
+        b = read_mfprof(inputs[name])
+        t = b["time"].values
+        v = b["beam_velocity"].transpose("channel", "time").values
+        fs = (t.size - 1) / (t[-1] - t[0])
+        per = check_series(v, t, fs, th, gross_range=_span(params["velocity_range"]),
+                           despike=True, floor=float(b.attrs.get("velocity_resolution", 0.0)),
+                           amplitude=(b["amplitude"].transpose("channel", "time").values
+                                      if "amplitude" in b else None))
+        f = aggregate(*per.values())
+        flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
+        counts.append([np.sum(f == val) for val in FLAG_VALUES])
+    ds = xr.Dataset()
+    for name, fl in zip(names, flags, strict=True):
+        # beams may differ in profile count: each beam keeps its own time axis
+        tdim = f"time_{name}"
+        ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), fl.values,
+                                          flag_attrs(f"beam_velocity of beam {name}"))
+        ds = ds.assign_coords({tdim: (tdim, fl["time"].values,
+                                      {"units": "s", "long_name": f"time of beam {name}"})})
+    ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), np.array(counts),
+                                    {"units": "1", "long_name": "UVP samples per QC flag"})
+    ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
+                          flag_meaning=("flag_meaning", FLAG_MEANINGS.split(),
+                                        {"long_name": "QARTOD flag meaning"}))
+    ds["beam_velocity_failed_fraction"] = (
+        ("beam",), np.array(counts)[:, list(FLAG_VALUES).index(FAIL)]
+        / np.array([fl.size for fl in flags]),
+        {"units": "1", "long_name": "fraction of UVP samples that failed quality control"})
+    _write(ds, outputs, params, "Quality-control flags of the UVP beam velocities",
+           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names))
+
+
+def summary(inputs, outputs, params) -> None:
+    """Per run: samples per QC flag of every probe and flap channel, and the warnings."""
+    import xarray as xr
+
+    from flumekit.io.netcdf import read_dataset, write_product
+
+    runs = sorted({k.split("/", 1)[1] for k in inputs})
+    rows = []
+    for run in runs:
+        p = read_dataset(inputs[f"probes/{run}"])
+        f = read_dataset(inputs[f"flap/{run}"])
+        row = {"probe_voltage_qc_count": p["probe_voltage_qc_count"].sum("probe"),
+               "encoder_counts_qc_count": f["encoder_counts_qc_count"],
+               "chamber_pressure_qc_count": f["chamber_pressure_qc_count"],
+               "record_period": p["record_period"]}
+        ds = xr.Dataset(row).expand_dims(run=[run])
+        rows.append(ds)
+    out = xr.concat(rows, dim="run")
+    warn = [w for run in runs for k in ("probes", "flap")
+            for w in read_dataset(inputs[f"{k}/{run}"]).attrs.get("flumekit_warnings",
+                                                                   "").splitlines() if w]
+    out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
+    write_product(out, outputs["dataset"], "Quality-control counts of every run",
+                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs})
