@@ -57,6 +57,22 @@ def bem_container(depth: float, flap_width: float, hinge_height: float, thicknes
                                               max_spread=None)
 
 
+def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Dataset:
+    """The coefficient container as the comparison stores it: real and imaginary parts, and the
+    simulator's radiation model fitted once for every run.
+
+    The radiation kernel K(t) over ``irf_duration`` [s] (sampled at 0.01 s) is fitted by the
+    state-space model of :func:`flumekit.hydro.radiation.fit_state_space`, stored by
+    :func:`flumekit.hydro.radiation.state_space_dataset` (read back by :func:`simulated`).
+    """
+    from flumekit.hydro.coefficients import split_complex
+    from flumekit.hydro.radiation import fit_state_space, impulse_response, state_space_dataset
+
+    radiation = state_space_dataset(fit_state_space(impulse_response(container, irf_duration,
+                                                                     0.01)))
+    return split_complex(container).merge(radiation, combine_attrs="no_conflicts")
+
+
 def energy_equivalent_damping(flap: xr.Dataset) -> float:
     """ν_pto [N m s] absorbing the measured mean power at the measured θ̇ (steady window)."""
     t = flap["time"].values
@@ -149,7 +165,7 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
     Parameters
     ----------
     flap, waves : The run's flap and waves datasets.
-    hydro : Coefficient container as written (real and imaginary parts).
+    hydro : Coefficient container as stored (:func:`stored_container`).
     flap_params : The flap (inertia, width).
     pto : The PTO (anchors, bore, pressures, LuGre friction).
     depth : Water depth [m].
@@ -164,11 +180,14 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
     from flumekit.hydro.coefficients import merge_complex
+    from flumekit.hydro.radiation import state_space_from_dataset
 
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=spin_up_periods, after=5)
-    # restoring C sin(theta): the torque balance of the flap stage (flumekit.flap.torque)
-    sim = simulate_run(merge_complex(hydro), eta, _Device(flap_params, pto),
+    # restoring C sin(theta): the torque balance of the flap stage (flumekit.flap.torque);
+    # the campaign's radiation model, fitted once (stored_container)
+    sim = simulate_run(merge_complex(hydro.drop_dims("radiation_mode")), eta,
+                       _Device(flap_params, pto), radiation=state_space_from_dataset(hydro),
                        pressure_loss_coefficient=float(flap["pressure_loss_coefficient"]),
                        fluid_inertia=float(flap["fluid_inertia"]), friction=friction,
                        restoring="sine", dt=dt)

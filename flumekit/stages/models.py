@@ -16,11 +16,11 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "4"
+VERSION = "5"
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
             "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
             "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
-            "spin_up_periods": 20}
+            "spin_up_periods": 20, "irf_duration": 30.0}
 
 
 def rules(ctx: Context) -> list[Rule]:
@@ -40,7 +40,8 @@ def rules(ctx: Context) -> list[Rule]:
                                "bem_n_omega", "bem_panel_size"))
     out = [Rule("models/hydro", "flumekit.stages.models:hydro", inputs={},
                 outputs={"dataset": hydro},
-                params={**geometry, "thickness": c.flap.thickness, **{k: p[k] for k in keys}},
+                params={**geometry, "thickness": c.flap.thickness,
+                        **{k: p[k] for k in (*keys, "irf_duration")}},
                 version=VERSION)]
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
@@ -57,7 +58,7 @@ def rules(ctx: Context) -> list[Rule]:
 
 
 def hydro(inputs, outputs, params) -> None:
-    from flumekit.hydro.coefficients import split_complex
+    from flumekit.flap.comparison import stored_container
     from flumekit.io.netcdf import write_product
 
     if params["coefficients"] == "bem":
@@ -76,7 +77,7 @@ def hydro(inputs, outputs, params) -> None:
                                omega=(params["omega_min"], params["omega_max"],
                                       params["n_omega"]))
         title = "Renzi-Dias coefficients of the thin flap in the flume's channel (RD12)"
-    ds = split_complex(ds)
+    ds = stored_container(ds, params["irf_duration"])
     ds.attrs.update(depth=params["depth"], flap_width=params["flap_width"], rho=1000.0, g=9.81)
     write_product(ds, outputs["dataset"], title, "flumekit models/hydro stage", params)
 

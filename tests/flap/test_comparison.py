@@ -19,7 +19,8 @@ def hydro(tmp_path_factory):
     # through the stage: the file the comparison reads
     out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
     params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
-                             ("coefficients", "omega_min", "omega_max", "n_omega")}}
+                             ("coefficients", "omega_min", "omega_max", "n_omega",
+                              "irf_duration")}}
     stage.hydro({}, {"dataset": out}, params)
     return read_dataset(out)
 
@@ -30,6 +31,23 @@ def test_the_stage_writes_the_one_channel_container(hydro):
     for name in ("added_inertia", "radiation_damping", "excitation_torque_real",
                  "excitation_torque_imag", "added_inertia_infinite"):
         np.testing.assert_array_equal(hydro[name].values, direct[name].values)
+
+
+def test_radiation_model_fitted_once_in_the_container(hydro):
+    """models/hydro stores the simulator's state-space model; every run reads it back."""
+    from flumekit.hydro.radiation import impulse_response, state_space_from_dataset
+
+    ss = state_space_from_dataset(hydro)
+    assert ss.order >= 2 and ss.fit_error_time <= 0.01
+    irf = impulse_response(_container(hydro), 30.0, 0.01)
+    k = irf.values
+    assert np.sqrt(np.mean((ss.impulse(irf["lag"].values) - k) ** 2) / np.mean(k**2)) < 0.011
+
+
+def _container(hydro):
+    from flumekit.hydro.coefficients import merge_complex
+
+    return merge_complex(hydro.drop_dims("radiation_mode"))
 
 
 @pytest.mark.parametrize("period", [2.0, 2.6, 3.5, 4.0])
