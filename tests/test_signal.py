@@ -127,3 +127,22 @@ def test_lowpass_keeps_the_band_and_removes_the_rest():
     # Butterworth order 4 run forward-backward: |H|² = 1/(1 + (f/fc)^8)
     gain = 1 / (1 + (0.3 / 2.0) ** 8)
     np.testing.assert_allclose(y[500:-500], gain * slow[500:-500], atol=1e-4)
+
+
+def test_steady_window_of_a_leaning_signal():
+    # a ramped sinusoid that, once steady, stays below zero (a flap leaning to the sea) has no
+    # steady zero up-crossings; its cycles are then those about its median. A signal that does
+    # cross zero keeps the zero-crossing window exactly.
+    from flumekit.signal import quasi_steady_window, steady_window_or_centred
+
+    t = np.arange(0, 200, 0.01)
+    env = np.clip(t / 40, 0, 1)
+    wave = 0.2 * env * np.sin(2 * np.pi * t / 2.0)
+    leaning = wave - 0.25 * env
+    with pytest.raises(ValueError):
+        quasi_steady_window(leaning, t, min_period=1.0)
+    win = steady_window_or_centred(leaning, t, min_period=1.0)
+    assert win.period == pytest.approx(2.0, rel=1e-3)
+    assert win.n_cycles > 60 and win.start > 35  # the envelope is within 2 % from t = 39 s
+    assert steady_window_or_centred(wave, t, min_period=1.0) == quasi_steady_window(
+        wave, t, min_period=1.0)
