@@ -215,13 +215,14 @@ CAMPAIGN: dict[str, Key] = {
         "length": _num("flume length", "m", positive=True, required=False)}),
     "flap": Key("table", "bottom-hinged flap (with [pto] and [encoder])", required=False,
                 table={
-        "height": _num("flap height", "m", positive=True),
+        "height": _num("flap height (descriptive)", "m", positive=True, required=False),
         "width": _num("flap width", "m", positive=True),
         "thickness": _num("flap thickness", "m", positive=True),
-        "mass": _num("flap mass", "kg", positive=True),
+        "mass": _num("flap mass (descriptive)", "kg", positive=True, required=False),
         "inertia": _num("moment of inertia about the hinge", "kg m2", positive=True),
         "hinge_height": _num("hinge above the bed", "m", nonnegative=True),
-        "cog_height": _num("centre of mass above the hinge", "m"),
+        "cog_height": _num("centre of mass above the hinge (descriptive)", "m",
+                           required=False),
         "buoyancy_stiffness": _num("linearised net buoyancy torque per radian C",
                                    "N m rad-1")}),
     "pto": Key("table", "hydraulic cylinder power take-off", required=False, table={
@@ -302,22 +303,26 @@ RUN: dict[str, Key] = {
 @dataclass(frozen=True)
 class Flume:
     water_depth: float  # [m]
-    width: float | None = None  # [m]
-    length: float | None = None  # [m]
+    width: float | None = None  # [m], required with the flap (the channel of its models)
+    length: float | None = None  # [m], descriptive: no computation reads it
 
 
 @dataclass(frozen=True)
 class Flap:
-    """Bottom-hinged flap (Brito et al. 2020, §2.2). Heights are above the hinge unless named."""
+    """Bottom-hinged flap (Brito et al. 2020, §2.2). Heights are above the hinge unless named.
 
-    height: float  # [m]
+    ``height``, ``mass`` and ``cog_height`` describe the flap but no computation reads them
+    (the dynamics use ``inertia`` and ``buoyancy_stiffness``): they are optional.
+    """
+
     width: float  # [m]
     thickness: float  # [m]
-    mass: float  # [kg]
     inertia: float  # moment of inertia about the hinge [kg m2]
     hinge_height: float  # hinge above the bed [m]
-    cog_height: float  # centre of mass above the hinge [m]
     buoyancy_stiffness: float  # linearised net buoyancy torque per radian C [N m rad-1]
+    height: float | None = None  # [m]
+    mass: float | None = None  # [kg]
+    cog_height: float | None = None  # centre of mass above the hinge [m]
 
 
 @dataclass(frozen=True)
@@ -584,7 +589,7 @@ def load_campaign(root: str | Path) -> Campaign:
     flume = Flume(float(fl["water_depth"]), fl.get("width"), fl.get("length"))
     flap = pto = enc = None
     if f:
-        flap = Flap(**{k: float(f[k]) for k in Flap.__dataclass_fields__})
+        flap = Flap(**{k: float(f[k]) for k in Flap.__dataclass_fields__ if k in f})
         fr = p.get("friction")
         pto = PTO(tuple(map(float, p["bed_anchor"])), tuple(map(float, p["flap_anchor"])),
                   float(p["bore_diameter"]), float(p.get("atmospheric_pressure", 101325.0)),

@@ -13,6 +13,7 @@ from scipy import linalg
 from flumekit import conventions
 from flumekit.campaign import load_campaign
 from flumekit.flap import simulator as S
+from flumekit.flap.renzi_dias.model import two_dimensional_excitation
 from flumekit.hydro import coefficients as H
 from flumekit.hydro import radiation as R
 from flumekit.hydro.excitation import excitation_torque
@@ -375,7 +376,7 @@ def test_against_the_virtual_flume(campaign):
     truth = synth.FlapTruth()
     depth, flap = campaign.flume.water_depth, campaign.flap
     w = np.linspace(0.2, 25.0, 600)
-    x = synth.excitation_coefficient(w, depth, flap.hinge_height, flap.width)
+    x = two_dimensional_excitation(w, depth, flap.hinge_height, flap.width)
     nu = synth.radiation_damping(w, depth, flap.hinge_height, flap.width)
     hy = H.hydro_dataset(w, np.full_like(w, truth.added_inertia), nu, x.astype(complex),
                          flap.buoyancy_stiffness)
@@ -488,3 +489,20 @@ def test_drag_coefficient_dissipates_as_integrated_strip_drag():
     r = np.linspace(0, 0.725, 20001)
     torque = np.trapezoid(0.5 * 1000 * 2.0 * 1.31 * (r * 0.3) ** 2 * r, r)
     assert cd * 0.3**2 == pytest.approx(torque, rel=1e-6)
+
+
+def test_simulate_run_reuses_a_given_radiation_model(hydro, ss, campaign, monkeypatch):
+    """A campaign's model is shared: simulate_run with a StateSpace fits nothing."""
+    from flumekit.hydro import radiation as radiation_module
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the radiation model was refitted")
+
+    monkeypatch.setattr(radiation_module, "fit_state_space", refuse)
+    monkeypatch.setattr(radiation_module, "impulse_response", refuse)
+    t = np.arange(0.0, 30.0, 0.02)
+    eta = xr.DataArray(0.02 * np.cos(2 * np.pi / 3.5 * t) * np.clip(t / 7, 0, 1), dims="time",
+                       coords={"time": t})
+    ds = S.simulate_run(hydro, eta, campaign, pto="linear", pto_damping=150.0, dt=0.02,
+                        radiation=ss)
+    assert ds.attrs["radiation"] == "state space" and ds.attrs["radiation_order"] == ss.order
