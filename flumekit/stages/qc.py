@@ -21,7 +21,7 @@ DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "dropout": 6.0, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None}
+            "velocity_range": None, "clock_tolerance": 0.05}
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 
 
@@ -35,6 +35,7 @@ def rules(ctx: Context) -> list[Rule]:
                         inputs={"probes": run.path / "probes.csv", "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
                         params={**rp, "probes": list(c.probes.names),
+                                "probe_x": run.probe_x,
                                 "sampling_rate": c.probes.sampling_rate},
                         version=VERSION, run=run.id))
         out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
@@ -50,7 +51,8 @@ def rules(ctx: Context) -> list[Rule]:
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
               for r in c.runs for kind in ("probes", "flap")}
     out.append(Rule("qc_summary", "flumekit.stages.qc:summary", inputs=inputs,
-                    outputs={"dataset": ctx.out("qc_summary.nc")}, version=VERSION))
+                    outputs={"dataset": ctx.out("qc_summary.nc")},
+                    params={"clock_tolerance": params["clock_tolerance"]}, version=VERSION))
     return out
 
 
@@ -104,6 +106,7 @@ def probes(inputs, outputs, params) -> None:
     period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
     checks.check_period(params["period"], period, params["period_tolerance"],
                         Path(inputs["run"]), path)
+    ds = ds.assign_coords(x=("probe", [float(params["probe_x"][p]) for p in params["probes"]]))
     ds["record_period"] = ((), period, {"units": "s", "long_name": "dominant period of the "
                                         "probe records (spectral peak)"})
     warnings = [f"{path}: probe_voltage: masked and not interpolated: {g}"
@@ -186,30 +189,51 @@ def uvp(inputs, outputs, params) -> None:
 
 
 def summary(inputs, outputs, params) -> None:
-    """Per run: samples per QC flag of every probe and flap channel, and the warnings."""
+    """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
+    its departure from the runs of the same wave condition (a clock offset beyond
+    ``clock_tolerance`` is a warning naming the run), and every warning of the QC datasets."""
+    import numpy as np
     import xarray as xr
 
     from flumekit import conventions
     from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows = []
+    rows, lags, periods, groups, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         f = read_dataset(inputs[f"flap/{run}"])
-        row = {"probe_voltage_qc_count": p["probe_voltage_qc_count"].sum("probe"),
-               "encoder_counts_qc_count": f["encoder_counts_qc_count"],
-               "chamber_pressure_qc_count": f["chamber_pressure_qc_count"],
-               "record_period": p["record_period"]}
-        ds = xr.Dataset(row).expand_dims(run=[run])
-        rows.append(ds)
-    out = xr.concat(rows, dim="run")
-    warn = [w for run in runs for k in ("probes", "flap")
-            for w in read_dataset(inputs[f"{k}/{run}"]).attrs.get("flumekit_warnings",
-                                                                   "").splitlines() if w]
+        near = p["probe_voltage"].isel(probe=int(np.argmin(np.abs(p["x"].values))))
+        period = float(p["wave_period"])
+        lags.append(probe_flap_lag(near.values, p["time"].values, f["encoder_counts"].values,
+                                   f["time"].values, period))
+        periods.append(period)
+        groups.append((period, float(p["wave_height"])))
+        rows.append(xr.Dataset({
+            "probe_voltage_qc_count": p["probe_voltage_qc_count"].sum("probe"),
+            "encoder_counts_qc_count": f["encoder_counts_qc_count"],
+            "chamber_pressure_qc_count": f["chamber_pressure_qc_count"],
+            "record_period": p["record_period"]}).drop_vars(
+                ["run", "wave_period", "wave_height", "repeat", "uvp_elevation"],
+                errors="ignore").expand_dims(run=[run]))
+        warn += [w for d in (p, f) for w in d.attrs.get(WARNINGS, "").splitlines() if w]
+    out = xr.concat(rows, dim="run", coords="minimal", compat="override")
+    dep = clock_departures(np.array(lags), np.array(periods), groups)
+    out["probe_flap_lag"] = ("run", np.array(lags), {
+        "units": "s", "long_name": "cross-correlation lag of the encoder behind the probe "
+        "nearest the flap"})
+    out["clock_departure"] = ("run", dep, {
+        "units": "s", "long_name": "lag minus the median lag of the runs of the same wave "
+        "condition (a clock offset where large; NaN with fewer than three such runs)"})
+    tol = float(params["clock_tolerance"])
+    warn += [f"run {r}: the flap lags the probes by {lag:+.3f} s, {d:+.3f} s off the other runs "
+             f"of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and the "
+             f"flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
+             for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
     out.attrs = conventions.global_attrs("Quality-control counts of every run",
                                          f"flumekit qc summary of {len(runs)} runs",
-                                         {"runs": runs})
+                                         {"runs": runs, **params})
     if warn:
         out.attrs[WARNINGS] = "\n".join(warn)
     write_dataset(out, outputs["dataset"])
