@@ -7,8 +7,8 @@ with faults injected into its raw files with a known truth of which samples are 
 * probes: 10 single-sample spikes per probe (±15-40 % of the record's range), a 1 s dropout to
   0 V on WP1 and an 8 s flat line (the value held) on WP3, at random times;
 * flap: 10 spikes on the encoder and 10 on the pressure;
-* clocks: the flap record of one of the three T = 3.5 s, H = 0.25 m runs starts 0.3 s late
-  (a 0.3 s clock offset between the probes and the flap);
+* clocks: the flap record of one of the three T = 3.5 s, H = 0.25 m runs is stamped 0.3 s
+  late (a 0.3 s clock offset between the probes and the flap);
 * UVP: 200 spikes per beam (±0.1-0.3 m s-1) into fluid samples, in memory (the raw
   ``.mfprof`` files are left clean).
 
@@ -60,7 +60,7 @@ def inject(raw: Path, rng: np.random.Generator) -> dict:
             if c.name == "WP3":
                 i0 = int(rng.integers(int(0.1 * n), int(0.8 * n)))
                 x[i0:i0 + int(8 * fs)] = x[i0]
-                bad[i0 + 1:i0 + int(8 * fs)] = True  # the first sample of the hold is good
+                bad[i0:i0 + int(8 * fs)] = True  # the held run as a whole
             truth[(run.name, "probes", c.name)] = bad
         write_table(run / "probes.csv", [(c.name, "s" if c.name == "time" else "V")
                                          for c in cols], data)
@@ -77,9 +77,12 @@ def inject(raw: Path, rng: np.random.Generator) -> dict:
             truth[(run.name, "flap", name)] = bad
         if run.name == SHIFTED_RUN:
             k = int(round(CLOCK_OFFSET / (data[1, 0] - data[0, 0])))
-            data = np.column_stack([data[:-k, 0], data[k:, 1:]])
+            # the flap's clock runs 0.3 s behind: each sample is stamped 0.3 s late (the first
+            # 0.3 s repeat the flap at rest)
+            data[:, 1:] = np.concatenate([np.repeat(data[:1, 1:], k, axis=0), data[:-k, 1:]])
             for key in ("encoder_counts", "chamber_pressure"):
-                truth[(run.name, "flap", key)] = truth[(run.name, "flap", key)][k:]
+                truth[(run.name, "flap", key)] = np.r_[np.zeros(k, bool),
+                                                       truth[(run.name, "flap", key)][:-k]]
         write_table(run / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "Pa")],
                     data, fmt=["%.4f", "%d", "%.3f"])
     return truth

@@ -18,7 +18,7 @@ VERSION = "1"
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "flat_line_suspect": 3.0, "flat_line_fail": 5.0, "flat_line_tolerance": 0.0,
-            "dropout": 6.0, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
+            "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
             "velocity_range": None, "clock_tolerance": 0.05}
