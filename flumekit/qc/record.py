@@ -32,9 +32,6 @@ from flumekit.qc.flags import (
 #: profiles on each side of a boundary echo also left out of the despiking
 BOUNDARY_PROFILES = 1
 
-TESTS = ("gap", "gross_range", "spike", "rate_of_change", "flat_line", "dropout",
-         "goring_nikora")
-
 
 @dataclass(frozen=True)
 class Thresholds:
