@@ -4,8 +4,9 @@ The page lives in the processed folder (``processed/<pipeline>/report.html``) an
 figures and datasets beside it by relative paths, so it opens from disk or any copy of the
 folder, with no server, script or network. It shows the run conditions (one row per run), the
 summary statistics of every campaign dataset, the counts of every quality-control flag (any
-variable with CF ``flag_values`` and ``flag_meanings``), every figure, and a link to every
-dataset. Same processed folder, same bytes: nothing depends on the clock or absolute paths.
+variable with CF ``flag_values`` and ``flag_meanings`` in a campaign dataset or under ``qc/``),
+every figure, and a link to every dataset. Same processed folder, same bytes: nothing depends
+on the clock or absolute paths.
 """
 
 from __future__ import annotations
@@ -201,11 +202,12 @@ def write_report(processed: str | Path, out: str | Path | None = None,
     title = title or f"flumekit report: {root.resolve().name}"
     summaries = {p.stem: _open(p) for p in sorted(root.glob("*.nc"))}
     stats = "".join(_statistics(n, ds) for n, ds in summaries.items() if "run" in ds.dims)
+    qc = {f"qc/{p.stem}": _open(p) for p in sorted((root / "qc").glob("*.nc"))}
     sections = [
         ("conditions", "Run conditions", _conditions(summaries)),
         ("statistics", "Summary statistics over the runs", stats or
          '<p class="muted">No campaign summary datasets.</p>'),
-        ("qc", "Quality control", _flag_counts(summaries)),
+        ("qc", "Quality control", _flag_counts({**summaries, **qc})),
         ("figures", "Figures", _figures(root)),
         ("datasets", "Datasets", _datasets(root)),
     ]

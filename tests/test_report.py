@@ -47,6 +47,11 @@ def processed(tmp_path):
                coords={"run": RUNS, "probe": ["WP1", "WP2"]}).to_netcdf(root / "qc_summary.nc")
     for r in RUNS:
         xr.Dataset({"eta": ("time", np.zeros(4))}).to_netcdf(root / "waves" / f"{r}.nc")
+    (root / "qc").mkdir()
+    xr.Dataset({"record_flag": ("time", np.array([1, 9, 9], np.int8),
+                                {"flag_values": np.array([1, 9], np.int8),
+                                 "flag_meanings": "good missing"})}
+               ).to_netcdf(root / "qc" / f"{RUNS[0]}.nc")
     for name in ("fig05a", "fig08"):
         fig, ax = plt.subplots(figsize=(2, 1.5))
         ax.plot([0, 1], [0, 1])
@@ -68,7 +73,7 @@ def test_report_content(processed):
     assert "theta_amplitude (source = experiment)" in page
     assert "theta_amplitude (source = model)" in page
     # QC counts from flag_values / flag_meanings: pass 4, suspect 1, fail 1
-    for meaning, n in (("pass", 4), ("suspect", 1), ("fail", 1)):
+    for meaning, n in (("pass", 4), ("suspect", 1), ("fail", 1), ("missing", 2)):
         assert f'<td class="l">{meaning}</td><td>{n}</td>' in page
     # every figure shown once (PNG) with a link to its vector twin; every dataset linked
     assert page.count("<img ") == 2
@@ -131,7 +136,7 @@ def render(page):
         res = subprocess.run(
             [CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
              "--virtual-time-budget=10000", "--enable-logging=stderr", "--v=0", "--dump-dom",
-             probe.as_uri()], capture_output=True, text=True, timeout=120)
+             probe.resolve().as_uri()], capture_output=True, text=True, timeout=120)
     finally:
         probe.unlink()
     dom = res.stdout

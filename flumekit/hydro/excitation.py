@@ -8,7 +8,9 @@ e^{-iωt}, referenced to the incident wave at x = 0) the excitation torque is th
 
 Method (FFT filter of a non-periodic record):
 
-1. the mean elevation is removed (F(0) is not part of the coefficients; it is recorded);
+1. the mean elevation (the still-water offset) is removed and recorded; F continues to ω = 0
+   (step 5: a jump of F at zero frequency would spread a slowly decaying tail over the whole
+   record);
 2. both ends are tapered with half-cosine ramps of ``taper`` seconds, so that the abrupt end of a
    record does not ring through the filter (the first and last ``taper`` seconds of the torque
    are therefore attenuated; a flume record starts in still water, so only its end matters);
@@ -18,8 +20,19 @@ Method (FFT filter of a non-periodic record):
 4. numpy's FFT uses e^{+iωt}, so a component â e^{+iωt} of η gives conj(F(ω)) â e^{+iωt} of the
    torque (η = Re{a e^{-iωt}} ⇔ the e^{+iωt} coefficient is conj(a)/2);
 5. F is interpolated linearly (real and imaginary parts) inside the coefficients' band, held at
-   F(ω₁) below the first frequency and set to zero above the last; the fractions of the
+   F(ω₁) below the first frequency (its imaginary part ramped to zero at ω = 0) and set to zero
+   above the last; the fractions of the
    elevation variance below and above the band are reported.
+
+End effects, bounded. The torque at t needs the elevation over the filter's impulse response
+k(τ) = (1/2π) ∫ F̄(ω) e^{iωτ} dω around t (causal part τ > 0: the past; the rest: the future).
+From k on the FFT grid, L_past and L_future are the shortest lags beyond which the tails hold
+less than ``tail_tolerance`` (1e-4) of ∫|k|; the result's ``valid_start`` = t₀ + taper + L_past
+and ``valid_end`` = t_end − taper − L_future bound the window where the missing elevation
+outside the record (and the tapers) changes the torque by less than that fraction of
+∫|k| max|η| (measured below 1e-4 of the torque amplitude in
+``tests/hydro/test_simulation.py``). A flume record starts in still water, so only the end
+matters there: extend the record, or keep to ``valid_end``.
 """
 
 from __future__ import annotations
@@ -43,17 +56,41 @@ def _uniform_step(t: np.ndarray) -> float:
 
 
 def transfer_function(hydro: xr.Dataset, omega) -> np.ndarray:
-    """F(ω) [N m m-1] on ``omega`` ≥ 0: linear inside the band, F(ω₁) below, 0 above."""
+    """F(ω) [N m m-1] on ``omega`` ≥ 0: linear inside the band, 0 above; below the first
+    frequency ω₁ the real part is held and the imaginary part falls linearly to zero at ω = 0
+    (F of a real filter is real at zero frequency: a jump there would leave a 1/t tail)."""
     w = hydro[DIM].values
     f = hydro["excitation_torque"].values
     om = np.asarray(omega, dtype=float)
     out = np.interp(om, w, f.real) + 1j * np.interp(om, w, f.imag)
+    low = om < w[0]
+    out[low] = f[0].real + 1j * f[0].imag * om[low] / w[0]
     out[om > w[-1]] = 0.0
     return out
 
 
+def _effective_length(hydro: xr.Dataset, dt: float, tol: float) -> tuple[int, int]:
+    """Lags (in steps) of the filter's impulse response beyond which its past and future
+    tails hold less than ``tol`` of ∫|k| (module notes)."""
+    w = hydro[DIM].values
+    nfft = sfft.next_fast_len(max(4096, 8 * int(np.ceil(2 * np.pi / w[0] / dt))), real=True)
+    f = transfer_function(hydro, 2 * np.pi * sfft.rfftfreq(nfft, dt))
+    k = np.abs(sfft.irfft(np.conj(f), nfft))  # torque response to a unit elevation sample
+    total = k.sum()
+    half = nfft // 2
+    causal, anti = k[:half], k[half:][::-1]  # lags 0, 1, ... and -1, -2, ...
+
+    def length(part):
+        tail = np.cumsum(part[::-1])[::-1]  # mass at lags >= j
+        beyond = np.flatnonzero(tail > tol * total)
+        return int(beyond[-1]) + 1 if beyond.size else 0
+
+    return length(causal), length(anti) + 1
+
+
 def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: float = 2.0,
-                      padding: float | None = None) -> xr.DataArray:
+                      padding: float | None = None,
+                      tail_tolerance: float = 1e-4) -> xr.DataArray:
     """Excitation torque time series [N m] from the incident elevation at x = 0 [m].
 
     Parameters
@@ -61,13 +98,16 @@ def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: f
     eta_incident : Incident elevation at the hinge line over ``time`` [s], uniformly sampled.
     hydro : Coefficient container with ``excitation_torque`` (complex, per unit amplitude).
     taper : Half-cosine ramp at each end of the record [s] (0 for a periodic record).
-    padding : Zero padding [s]; default the longest period of the band plus 20 s.
+    padding : Zero padding [s]; default the longest period of the band plus 20 s, extended to
+        the filter's effective length (module notes).
+    tail_tolerance : Fraction of ∫|k| left outside the effective length (module notes).
 
     Returns
     -------
     DataArray ``torque_excitation`` over the same ``time``; attrs: the method, ``eta_mean``
     [m], ``variance_below_band`` and ``variance_above_band`` (fractions of the elevation
-    variance outside the coefficients' frequency band).
+    variance outside the coefficients' frequency band), ``valid_start`` and ``valid_end`` [s]
+    (module notes).
     """
     if "time" not in eta_incident.dims or eta_incident.ndim != 1:
         raise ValueError("eta_incident must be a 1-D DataArray over 'time'")
@@ -89,11 +129,12 @@ def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: f
     w_band = hydro[DIM].values
     if padding is None:
         padding = 2 * np.pi / w_band[0] + 20.0
+    past, future = _effective_length(hydro, dt, tail_tolerance)
+    padding = max(padding, (past + future) * dt)
     nfft = sfft.next_fast_len(n + int(np.ceil(padding / dt)), real=True)
     spec = sfft.rfft(x, nfft)
     omega = 2 * np.pi * sfft.rfftfreq(nfft, dt)
-    f = transfer_function(hydro, omega)
-    f[0] = 0.0  # mean removed
+    f = transfer_function(hydro, omega)  # continued to ω = 0 (module notes)
     torque = sfft.irfft(np.conj(f) * spec, nfft)[:n]
     power = np.abs(spec) ** 2
     total = power[1:].sum()
@@ -103,6 +144,9 @@ def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: f
                       attrs={"method": "FFT filter: mean removed, half-cosine end tapers, zero "
                                        "padding, F(omega) linear in band, held below, 0 above",
                              "taper": float(taper), "padding": float(padding),
+                             "valid_start": float(t[0] + taper + past * dt),
+                             "valid_end": float(t[-1] - taper - future * dt),
+                             "tail_tolerance": float(tail_tolerance),
                              "eta_mean": mean, "variance_below_band": below,
                              "variance_above_band": above})
     return conventions.annotate(da)

@@ -336,3 +336,41 @@ def fit_state_space(irf: xr.DataArray, order: int | None = None, *, rtol: float 
         if ss.fit_error_time <= rtol:
             return ss
     return best
+
+
+def state_space_dataset(ss: StateSpace) -> xr.Dataset:
+    """The model as netCDF-ready variables over ``radiation_mode`` (real and imaginary parts
+    of the poles [s-1] and residues [N m]), with its fit errors in ``attrs``; to fit the model
+    once (per campaign) and share it (:func:`state_space_from_dataset`)."""
+    p, r = np.asarray(ss.poles, complex), np.asarray(ss.residues, complex)
+    dim = "radiation_mode"
+    ds = xr.Dataset({
+        "radiation_pole_real": (dim, p.real, {"units": "s-1",
+                                              "long_name": "radiation state-space pole (real)"}),
+        "radiation_pole_imag": (dim, p.imag, {"units": "s-1",
+                                              "long_name": "radiation state-space pole (imag)"}),
+        "radiation_residue_real": (dim, r.real, {"units": "N m", "long_name":
+                                                 "radiation state-space residue (real)"}),
+        "radiation_residue_imag": (dim, r.imag, {"units": "N m", "long_name":
+                                                 "radiation state-space residue (imag)"})})
+    ds.attrs.update(radiation_fit_error_time=float(ss.fit_error_time),
+                    radiation_fit_error_frequency=float(ss.fit_error_frequency),
+                    radiation_fit_dt=float(ss.fit_dt), radiation_n_reflected=int(ss.n_reflected))
+    return ds
+
+
+def state_space_from_dataset(ds: xr.Dataset) -> StateSpace:
+    """Inverse of :func:`state_space_dataset` (also once the parts are merged into complex
+    ``radiation_pole``/``radiation_residue`` by ``hydro.coefficients.merge_complex``)."""
+
+    def get(name):
+        if name in ds:
+            return np.asarray(ds[name].values, dtype=complex)
+        return ds[f"{name}_real"].values + 1j * ds[f"{name}_imag"].values
+
+    a = ds.attrs
+    return StateSpace(get("radiation_pole"), get("radiation_residue"),
+                      float(a.get("radiation_fit_error_time", np.nan)),
+                      float(a.get("radiation_fit_error_frequency", np.nan)),
+                      float(a.get("radiation_fit_dt", np.nan)),
+                      int(a.get("radiation_n_reflected", 0)))

@@ -18,11 +18,11 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "4"
+VERSION = "5"
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
             "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
             "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
-            "spin_up_periods": 20}
+            "spin_up_periods": 20, "irf_duration": 30.0}
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
 PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
 
@@ -44,7 +44,8 @@ def rules(ctx: Context) -> list[Rule]:
                                "bem_n_omega", "bem_panel_size"))
     out = [Rule("models/hydro", "flumekit.stages.models:hydro", inputs={},
                 outputs={"dataset": hydro},
-                params={**geometry, "thickness": c.flap.thickness, **{k: p[k] for k in keys}},
+                params={**geometry, "thickness": c.flap.thickness,
+                        **{k: p[k] for k in (*keys, "irf_duration")}},
                 version=VERSION)]
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
@@ -91,7 +92,12 @@ def hydro(inputs, outputs, params) -> None:
         title = "Renzi-Dias coefficients of the thin flap in the flume's channel (RD12)"
     ds = hy.with_infinite_frequency_inertia(hy.from_renzi_dias(coeffs, params["stiffness"]),
                                             max_spread=None)
-    ds = hy.split_complex(ds)
+    # the simulator's radiation model, fitted once here and shared by every run's comparison
+    from flumekit.hydro.radiation import fit_state_space, impulse_response, state_space_dataset
+
+    radiation = state_space_dataset(fit_state_space(impulse_response(
+        ds, params["irf_duration"], 0.01)))
+    ds = hy.split_complex(ds).merge(radiation, combine_attrs="no_conflicts")
     ds.attrs.update(conventions.global_attrs(title, "flumekit models/hydro stage", params))
     ds.attrs.update(depth=params["depth"], flap_width=params["flap_width"], rho=1000.0, g=9.81)
     write_dataset(ds, outputs["dataset"])
@@ -172,11 +178,15 @@ def _simulated(params, flap, waves, hydro, campaign):
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
     from flumekit.hydro.coefficients import merge_complex
+    from flumekit.hydro.radiation import state_space_from_dataset
 
     eta = periodic_extension(waves["eta_incident"], float(waves["measured_period"]),
                              before=params["spin_up_periods"], after=5)
-    # restoring C sin(theta): the torque balance of the flap stage (flumekit.flap.torque)
-    sim = simulate_run(merge_complex(hydro), eta, campaign,
+    # restoring C sin(theta): the torque balance of the flap stage (flumekit.flap.torque);
+    # the campaign's radiation model, fitted once by models/hydro
+    radiation = state_space_from_dataset(hydro)
+    sim = simulate_run(merge_complex(hydro.drop_dims("radiation_mode")), eta, campaign,
+                       radiation=radiation,
                        pressure_loss_coefficient=float(flap["pressure_loss_coefficient"]),
                        fluid_inertia=float(flap["fluid_inertia"]), friction=params["friction"],
                        restoring="sine", dt=params["dt"])

@@ -11,21 +11,25 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
+from flumekit.waves.records import probe_record
 from flumekit.waves.separation import as_probe_time, separate
 from flumekit.waves.theory import G, energy_flux
 
 
-def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0.0, *,
-                method: str = "mansard_funke", separation_probes=None, n_harmonics: int = 4,
+def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
+                x=None, sampling_rate: float | None = None, method: str = "mansard_funke",
+                separation_probes=None, n_harmonics: int = 4,
                 bound_harmonics: bool = True, tolerance: float = 0.02, min_cycles: int = 10,
                 max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
     Parameters
     ----------
-    eta : xarray.DataArray
+    eta : xarray.DataArray, pandas.DataFrame or array_like
         Calibrated surface elevation [m], dims ("probe", "time"), coordinate ``x`` [m] on
-        ``probe``, ``time`` [s] since the start of the record (uniform sampling).
+        ``probe``, ``time`` [s] since the start of the record (uniform sampling); or a
+        DataFrame (one column per probe) or an array (probe, time) with ``x`` and
+        ``sampling_rate`` (:func:`flumekit.waves.probe_record`).
     depth : float
         Still water depth [m].
     period : float
@@ -34,6 +38,10 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
     x_ref : float
         Position where the incident and reflected waves are returned [m] (the flap hinge,
         x = 0, for the comparison with the flap).
+    x : sequence of float, optional
+        Probe positions [m] when ``eta`` does not carry them.
+    sampling_rate : float, optional
+        Sampling rate [Hz] when ``eta`` has no time coordinate.
     method : str
         Separation method (see :func:`flumekit.waves.separate`).
     separation_probes : sequence of str, optional
@@ -74,6 +82,8 @@ def analyse_run(eta: xr.DataArray, depth: float, period: float, x_ref: float = 0
         A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
         over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
+    if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
+        eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
     # quasi-steady test below, so the window avoids them, and `separate` checks the window
     v, t, x, probes = as_probe_time(eta.fillna(0.0))

@@ -16,9 +16,27 @@ GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_w
 def hydro(tmp_path_factory):
     out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
     params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
-                             ("coefficients", "omega_min", "omega_max", "n_omega")}}
+                             ("coefficients", "omega_min", "omega_max", "n_omega",
+                              "irf_duration")}}
     stage.hydro({}, {"dataset": out}, params)
     return read_dataset(out)
+
+
+def test_radiation_model_fitted_once_in_the_container(hydro):
+    """models/hydro stores the simulator's state-space model; every run reads it back."""
+    from flumekit.hydro.radiation import impulse_response, state_space_from_dataset
+
+    ss = state_space_from_dataset(hydro)
+    assert ss.order >= 2 and ss.fit_error_time <= 0.01
+    irf = impulse_response(_container(hydro), 30.0, 0.01)
+    k = irf.values
+    assert np.sqrt(np.mean((ss.impulse(irf["lag"].values) - k) ** 2) / np.mean(k**2)) < 0.011
+
+
+def _container(hydro):
+    from flumekit.hydro.coefficients import merge_complex
+
+    return merge_complex(hydro.drop_dims("radiation_mode"))
 
 
 @pytest.mark.parametrize("period", [2.0, 2.6, 3.5, 4.0])

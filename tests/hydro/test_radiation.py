@@ -99,3 +99,24 @@ def test_frequency_error_is_measured_against_the_coefficients():
     w = np.linspace(0.1, 20, 100)
     kh = H.kernel_response(w, **KERNEL)
     assert np.max(np.abs(ss.frequency_response(w) - kh)) < 0.01 * np.max(np.abs(kh))
+
+
+def test_state_space_survives_netcdf_and_complex_merge(tmp_path):
+    """One fit per campaign: the model written by the models/hydro stage reads back exactly."""
+    from flumekit.hydro.coefficients import merge_complex
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    w = np.linspace(0.05, 25.0, 300)
+    hy = H.from_kernel(w, [400.0, 300.0], [1.0, 3.0], [2.5, 6.0], added_inertia_infinite=25.0,
+                       excitation_torque=np.ones_like(w) + 0j, hydrostatic_stiffness=605.0)
+    ss = R.fit_state_space(R.impulse_response(hy, 20.0, 0.01), order=6)
+    from flumekit import conventions
+
+    out = R.state_space_dataset(ss)
+    out.attrs.update(conventions.global_attrs("radiation model", "test", {}))
+    write_dataset(out, tmp_path / "ss.nc")
+    ds = read_dataset(tmp_path / "ss.nc")
+    for back in (R.state_space_from_dataset(ds), R.state_space_from_dataset(merge_complex(ds))):
+        np.testing.assert_array_equal(back.poles, ss.poles)
+        np.testing.assert_array_equal(back.residues, ss.residues)
+        assert back.fit_error_time == ss.fit_error_time and back.order == ss.order

@@ -120,3 +120,19 @@ def test_wavelabx_record_from_pandas_gets_the_first_harmonic_kr():
                       coords={"x": ("probe", [0.0, 0.6, 0.9]),
                               "time": np.arange(len(data)) / 100.0})
     assert float(separate(da, 0.25).reflection_coefficient) == float(auto.reflection_coefficient)
+
+
+def test_analyse_run_takes_an_array_with_positions_and_rate():
+    from flumekit.waves import analyse_run
+
+    period = 2.5
+    t = np.arange(int(200 * FS)) / FS  # from the start of generation: ramp-up included
+    field = regular_wave_field(t, _layout(period), period=period, height=0.15, depth=H,
+                               reflection=0.2, second_order=False)
+    da = xr.DataArray(field.eta.values, dims=("probe", "time"),
+                      coords={"probe": ["0", "1", "2"], "x": ("probe", field.x.values),
+                              "time": t})
+    ref = analyse_run(da, H, period)
+    arr = analyse_run(field.eta.values, H, period, x=field.x.values, sampling_rate=FS)
+    assert float(arr.reflection_coefficient) == float(ref.reflection_coefficient)
+    assert abs(float(arr.reflection_coefficient) - 0.2) < 0.01  # the virtual flume's truth
