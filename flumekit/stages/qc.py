@@ -195,8 +195,7 @@ def summary(inputs, outputs, params) -> None:
     import numpy as np
     import xarray as xr
 
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
@@ -231,9 +230,6 @@ def summary(inputs, outputs, params) -> None:
              f"of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and the "
              f"flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
              for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
-    out.attrs = conventions.global_attrs("Quality-control counts of every run",
-                                         f"flumekit qc summary of {len(runs)} runs",
-                                         {"runs": runs, **params})
-    if warn:
-        out.attrs[WARNINGS] = "\n".join(warn)
-    write_dataset(out, outputs["dataset"])
+    out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
+    write_product(out, outputs["dataset"], "Quality-control counts of every run",
+                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})
