@@ -103,21 +103,25 @@ class Table:
 class Flume:
     water_depth: float  # [m]
     width: float  # [m]
-    length: float  # [m]
+    length: float | None = None  # [m], descriptive: no computation reads it
 
 
 @dataclass(frozen=True)
 class Flap:
-    """Bottom-hinged flap (Brito et al. 2020, §2.2). Heights are above the hinge unless named."""
+    """Bottom-hinged flap (Brito et al. 2020, §2.2). Heights are above the hinge unless named.
 
-    height: float  # [m]
+    ``height``, ``mass`` and ``cog_height`` describe the flap but no computation reads them
+    (the dynamics use ``inertia`` and ``buoyancy_stiffness``): they are optional.
+    """
+
     width: float  # [m]
     thickness: float  # [m]
-    mass: float  # [kg]
     inertia: float  # moment of inertia about the hinge [kg m2]
     hinge_height: float  # hinge above the bed [m]
-    cog_height: float  # centre of mass above the hinge [m]
     buoyancy_stiffness: float  # linearised net buoyancy torque per radian C [N m rad-1]
+    height: float | None = None  # [m]
+    mass: float | None = None  # [kg]
+    cog_height: float | None = None  # centre of mass above the hinge [m]
 
 
 @dataclass(frozen=True)
@@ -256,12 +260,14 @@ def load_campaign(root: str | Path) -> Campaign:
     c = t.sub("campaign")
     fl = t.sub("flume")
     flume = Flume(fl.number("water_depth", positive=True), fl.number("width", positive=True),
-                  fl.number("length", positive=True))
+                  fl.number("length", positive=True) if fl.has("length") else None)
     f = t.sub("flap")
-    flap = Flap(f.number("height", positive=True), f.number("width", positive=True),
-                f.number("thickness", positive=True), f.number("mass", positive=True),
+    flap = Flap(f.number("width", positive=True), f.number("thickness", positive=True),
                 f.number("inertia", positive=True), f.number("hinge_height", nonnegative=True),
-                f.number("cog_height"), f.number("buoyancy_stiffness"))
+                f.number("buoyancy_stiffness"),
+                height=f.number("height", positive=True) if f.has("height") else None,
+                mass=f.number("mass", positive=True) if f.has("mass") else None,
+                cog_height=f.number("cog_height") if f.has("cog_height") else None)
     if flap.width > flume.width:
         raise InputError(path, f"flap width {flap.width} m exceeds the flume width {flume.width} m",
                          field="flap.width")

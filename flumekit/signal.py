@@ -1,6 +1,7 @@
-"""Shared signal tools: filtering, differentiation, cycles, quasi-steady window, phase averages.
+"""Shared signal tools: uniform sampling, filtering, differentiation, cycles, phase averages.
 
-Zero-phase filtering, differentiation, cycles, the quasi-steady window and phase averaging.
+The uniform-sampling check, zero-phase filtering, differentiation, cycles, the quasi-steady
+window, phase averaging and the per-cycle amplitude.
 
 These are the only implementations of these operations in flumekit: waves, flap and UVP code
 call them. Functions take numpy arrays with time along the last axis and uniform sampling.
@@ -13,6 +14,39 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as _sig
 from scipy import stats as _stats
+
+#: largest deviation of a sampling interval from the mean step, relative to the step: far above
+#: the rounding of float times (1e-16 relative per value, 1e-10 of a 0.01 s step at t = 1e4 s)
+#: and far below any real clock irregularity worth resampling for
+UNIFORM_RTOL = 1e-6
+
+
+def uniform_step(time, what: str = "time", min_samples: int = 2) -> float:
+    """Step [s] of a finite, 1-D, increasing, uniformly sampled time.
+
+    The one uniform-sampling check of flumekit: every interval within :data:`UNIFORM_RTOL` of
+    the mean step (t[-1] − t[0]) / (n − 1), which is returned.
+
+    Parameters
+    ----------
+    time : Sample times [s].
+    what : What the times belong to, for the error message.
+    min_samples : Fewest samples accepted.
+
+    Raises
+    ------
+    ValueError : naming ``what`` and the failed condition.
+    """
+    t = np.asarray(time, dtype=float)
+    if t.ndim != 1 or t.size < max(min_samples, 2):
+        raise ValueError(f"{what} needs a 1-D time of at least {max(min_samples, 2)} samples, "
+                         f"got shape {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError(f"{what}: the time holds non-finite values")
+    step = (t[-1] - t[0]) / (t.size - 1)
+    if not step > 0 or np.max(np.abs(np.diff(t) - step)) > UNIFORM_RTOL * step:
+        raise ValueError(f"{what} must be sampled uniformly in increasing time")
+    return float(step)
 
 
 def _check_rate(sampling_rate: float, cutoff: float) -> None:
@@ -189,9 +223,7 @@ def resample_cycles(x: np.ndarray, time: np.ndarray, period: float, start: float
     if kind not in ("linear", "cubic"):
         raise ValueError(f"kind must be 'linear' or 'cubic', got {kind!r}")
     time = np.asarray(time, dtype=float)
-    dt = (time[-1] - time[0]) / (time.size - 1)
-    if not np.allclose(np.diff(time), dt, rtol=1e-6, atol=1e-9 * dt):
-        raise ValueError("phase averaging needs uniformly sampled time")
+    dt = uniform_step(time, "phase averaging")
     t_end = start + n_cycles * period
     if start < time[0] - 1e-9 or t_end > time[-1] + dt:
         raise ValueError(
@@ -237,3 +269,15 @@ def phase_average(x: np.ndarray, time: np.ndarray, period: float, start: float, 
     ci = _stats.t.ppf(0.975, n_cycles - 1) * std / np.sqrt(n_cycles)
     return PhaseAverage(phase=np.arange(n_phase) / n_phase, mean=mean, std=std, ci95=ci,
                         n_cycles=n_cycles)
+
+
+def cycle_amplitude(x: np.ndarray, time: np.ndarray, period: float, start: float,
+                    n_cycles: int, n_phase: int = 100) -> float:
+    """Half the difference of the mean per-cycle maximum and minimum of ``x``.
+
+    The amplitude of Brito et al. (2020, §3.2, Fig. 8) over ``n_cycles`` periods from ``start``
+    [s], each cycle resampled on ``n_phase`` points (:func:`resample_cycles`); in the unit of
+    ``x``.
+    """
+    cyc = resample_cycles(x, time, period, start, n_cycles, n_phase)
+    return float(0.5 * (cyc.max(axis=-1).mean() - cyc.min(axis=-1).mean()))

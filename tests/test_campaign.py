@@ -54,3 +54,16 @@ def test_bad_fields_are_named(root, file, old, new, message):
 def test_missing_campaign_file(tmp_path):
     with pytest.raises(InputError, match="campaign.toml: file not found"):
         load_campaign(tmp_path)
+
+
+def test_descriptive_fields_are_optional(root):
+    """Fields no computation reads (flume length, flap height, mass, centre of mass) may be
+    left out; given, they are still checked."""
+    for line in ("length = 60.0", "height = 0.84", "mass = 72.3", "cog_height = 0.33"):
+        edit(root / "campaign.toml", line, "")
+    c = load_campaign(root)
+    assert c.flume.length is None and c.flap.mass is None and c.flap.height is None
+    assert c.flap.cog_height is None and c.flap.inertia == 14.74
+    edit(root / "campaign.toml", "[flap]", "[flap]\nmass = -1.0")
+    with pytest.raises(InputError, match=r"flap\.mass.*> 0"):
+        load_campaign(root)

@@ -202,8 +202,13 @@ def title(fig, text: str) -> None:
     """The figure's title (left-aligned above every panel, wrapped to the figure's width)."""
     import textwrap
 
-    # about 13 characters per inch at 9 pt
+    # about 13 characters per inch at 9 pt; "T = 3.8 s" stays on one line (no-break spaces
+    # outside mathtext, where textwrap does not break)
     width = int(fig.get_size_inches()[0] * 13)
+    parts = text.split("$")
+    parts[::2] = [re.sub(r" ?= ", "\u00a0=\u00a0", p) for p in parts[::2]]
+    parts[::2] = [re.sub(r"(\d) (s|m|%|°|K|min|W)\b", "\\1\u00a0\\2", p) for p in parts[::2]]
+    text = "$".join(parts)
     lines = [textwrap.fill(line, width) for line in text.split("\n")]
     fig.suptitle("\n".join(lines), x=0.01, ha="left", fontsize=STYLE["figure.titlesize"])
 

@@ -149,17 +149,40 @@ def split_complex(hydro: xr.Dataset) -> xr.Dataset:
     return conventions.annotate(out)
 
 
+_PARTS = (("_real", "_imag"), ("_re", "_im"))
+
+
+def join_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """The complex variable ``name`` of ``ds``, joined from its real and imaginary parts.
+
+    The parts are ``name_real``/``name_imag`` (as :func:`split_complex` writes them) or
+    ``name_re``/``name_im``. The result keeps the real part's attributes, its long name without
+    the "real part of the " prefix or " (real part)" suffix.
+    """
+    for re_s, im_s in _PARTS:
+        if name + re_s in ds and name + im_s in ds:
+            re = ds[name + re_s]
+            out = re + 1j * ds[name + im_s]
+            out.name = name
+            long_name = str(re.attrs.get("long_name", name))
+            long_name = long_name.replace("real part of the ", "").replace(" (real part)", "")
+            out.attrs = {**re.attrs, "long_name": long_name}
+            return out
+    raise KeyError(f"no real and imaginary parts of '{name}' among {sorted(ds.data_vars)}")
+
+
 def merge_complex(ds: xr.Dataset) -> xr.Dataset:
     """Inverse of :func:`split_complex`: join ``X_real``/``X_imag`` (or ``_re``/``_im``) pairs."""
     out = ds.copy()
     for name in list(ds.data_vars):
-        for re_s, im_s in (("_real", "_imag"), ("_re", "_im")):
+        for re_s, im_s in _PARTS:
             if name.endswith(re_s) and name[: -len(re_s)] + im_s in ds:
                 base = name[: -len(re_s)]
-                re, im = out[name], out[base + im_s]
+                joined = join_complex(ds, base)
                 out = out.drop_vars([name, base + im_s])
-                attrs = {k: v for k, v in re.attrs.items() if k != "long_name"}
-                out[base] = (re + 1j * im).assign_attrs(attrs)
+                # the registry's long name of the complex variable, where it has one
+                out[base] = joined.assign_attrs(
+                    {k: v for k, v in joined.attrs.items() if k != "long_name"})
     return conventions.annotate(out)
 
 

@@ -66,12 +66,10 @@ def rules(ctx: Context) -> list[Rule]:
 
 
 def _write(ds, outputs, title, params):
-    from flumekit import conventions
-    from flumekit.io.netcdf import write_dataset
+    from flumekit.io.netcdf import write_product
 
-    ds.attrs.update(conventions.global_attrs(
-        title, "flumekit ballscrew stage (Senatore & De Simone 2022 models)", params))
-    write_dataset(ds, outputs["dataset"])
+    write_product(ds, outputs["dataset"], title,
+                  "flumekit ballscrew stage (Senatore & De Simone 2022 models)", params)
 
 
 def _previous(inputs):

@@ -22,9 +22,8 @@ def rules(ctx: Context) -> list[Rule]:
 def build(inputs, outputs, params) -> None:
     import warnings
 
-    from flumekit import conventions
     from flumekit.io.instruments import read_calibration
-    from flumekit.io.netcdf import write_dataset
+    from flumekit.io.netcdf import write_product
     from flumekit.qc.checks import check_calibration
     from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
@@ -41,9 +40,8 @@ def build(inputs, outputs, params) -> None:
     warned = check_calibration(ds["calibration_r2"].values, mono, params["probes"],
                                inputs["calibration"], params["min_r2"], params["warn_r2"])
     ds = ds.merge(raw[["calibration_voltage"]])
-    ds.attrs.update(conventions.global_attrs(
-        "Wave probe calibration (static submersions, least squares)",
-        f"flumekit calibration stage from {inputs['calibration']}", params))
     if warned:
         ds.attrs[WARNINGS] = "\n".join(warned)
-    write_dataset(ds, outputs["dataset"])
+    write_product(ds, outputs["dataset"],
+                  "Wave probe calibration (static submersions, least squares)",
+                  f"flumekit calibration stage from {inputs['calibration']}", params)

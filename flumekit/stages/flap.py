@@ -37,7 +37,9 @@ def build(inputs, outputs, params) -> None:
     raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
     ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
-                     raw["chamber_pressure"].values, campaign=campaign, period=params["period"],
+                     raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,
+                     encoder=campaign.encoder, depth=campaign.flume.water_depth,
+                     period=params["period"],
                      incident_height=float(waves["incident_height"]), cutoff=params["cutoff"],
                      tolerance=params["tolerance"], n_phase=params["n_phase"],
                      max_flagged_fraction=params["max_flagged_fraction"])

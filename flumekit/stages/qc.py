@@ -189,8 +189,7 @@ def summary(inputs, outputs, params) -> None:
     """Per run: samples per QC flag of every probe and flap channel, and the warnings."""
     import xarray as xr
 
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset, write_product
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
     rows = []
@@ -207,9 +206,6 @@ def summary(inputs, outputs, params) -> None:
     warn = [w for run in runs for k in ("probes", "flap")
             for w in read_dataset(inputs[f"{k}/{run}"]).attrs.get("flumekit_warnings",
                                                                    "").splitlines() if w]
-    out.attrs = conventions.global_attrs("Quality-control counts of every run",
-                                         f"flumekit qc summary of {len(runs)} runs",
-                                         {"runs": runs})
-    if warn:
-        out.attrs[WARNINGS] = "\n".join(warn)
-    write_dataset(out, outputs["dataset"])
+    out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
+    write_product(out, outputs["dataset"], "Quality-control counts of every run",
+                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs})

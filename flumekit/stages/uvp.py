@@ -100,9 +100,8 @@ def build(inputs, outputs, params) -> None:
 def field(inputs, outputs, params) -> None:
     from pathlib import Path
 
-    from flumekit import conventions
     from flumekit.campaign import load_campaign
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.uvp import velocity_field
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
@@ -110,7 +109,5 @@ def field(inputs, outputs, params) -> None:
     ds = velocity_field(runs, campaign.uvp, height=params["height"], period=params["period"],
                         method=params["method"], dx=params["dx"],
                         water_depth=campaign.flume.water_depth)
-    ds.attrs.update(conventions.global_attrs(
-        "Phase-averaged velocity field in front of the flap",
-        f"flumekit uvp_field stage from {len(runs)} UVP runs", params))
-    write_dataset(ds, outputs["dataset"])
+    write_product(ds, outputs["dataset"], "Phase-averaged velocity field in front of the flap",
+                  f"flumekit uvp_field stage from {len(runs)} UVP runs", params)

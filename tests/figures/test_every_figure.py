@@ -32,7 +32,7 @@ def test_wave_figures(waves):
 
 def test_separation_figure(waves):
     fig = _passes(wave_figs.separation(waves))
-    text = fig._suptitle.get_text()
+    text = fig._suptitle.get_text().replace("\xa0", " ")  # no-break spaces in the title
     assert f"{float(waves.reflection_coefficient):.3f}" in text  # Kr in the title
     assert f"{float(waves.incident_height):.3f} m" in text  # H_I in the title
     (ax_t, ax_f) = fig.axes
