@@ -198,6 +198,27 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
         period=float(np.mean(c.period[a:b])), height=float(np.mean(c.height[a:b])))
 
 
+def steady_window_or_centred(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,
+                             min_period: float = 0.0, min_cycles: int = 2) -> SteadyWindow:
+    """:func:`quasi_steady_window` of x, or of x about its median when that finds none.
+
+    A flap that leans far to one side (short steep waves against a single-acting PTO) may
+    cross θ = 0 barely or not at all once steady, so its zero up-crossings give no cycles whose
+    crests repeat within the tolerance. The paper's reference (t/T = 0 at the up-crossing of
+    θ = 0) is kept wherever it works; otherwise the cycles are those of x minus its median
+    over the second half of the record (the crests then measured from that median).
+    """
+    try:
+        win = quasi_steady_window(x, time, tolerance=tolerance, min_period=min_period)
+        if win.n_cycles >= min_cycles:
+            return win
+    except ValueError:
+        pass
+    x = np.asarray(x, dtype=float)
+    return quasi_steady_window(x - np.median(x[x.size // 2:]), time, tolerance=tolerance,
+                               min_period=min_period)
+
+
 @dataclass(frozen=True)
 class PhaseAverage:
     """Phase average over N cycles (Brito et al. 2020, Eqs. 2-3) and its statistics."""

@@ -23,10 +23,13 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     """Quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
 
     Crests within ``tolerance`` of the amplitude scale (:func:`flumekit.signal.
-    quasi_steady_window`), cycle crossings closer than half the wave ``period`` [s] ignored; at
-    least two cycles, else ``ValueError``.
+    quasi_steady_window`), cycle crossings closer than half the wave ``period`` [s] ignored;
+    about the median of θ if it leans so far to one side that its zero up-crossings give no
+    steady cycles (:func:`flumekit.signal.steady_window_or_centred`); at least two cycles, else
+    ``ValueError``.
     """
-    win = sig.quasi_steady_window(theta, time, tolerance=tolerance, min_period=0.5 * period)
+    win = sig.steady_window_or_centred(theta, time, tolerance=tolerance,
+                                       min_period=0.5 * period)
     if win.n_cycles < 2:
         raise ValueError("the run has fewer than two quasi-steady cycles")
     return win
