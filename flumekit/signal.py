@@ -370,3 +370,51 @@ def cycle_amplitude(x: np.ndarray, time: np.ndarray, period: float, start: float
     """
     cyc = resample_cycles(x, time, period, start, n_cycles, n_phase)
     return float(0.5 * (cyc.max(axis=-1).mean() - cyc.min(axis=-1).mean()))
+
+
+def estimate_time_offset(reference: np.ndarray, reference_time: np.ndarray, other: np.ndarray,
+                         other_time: np.ndarray, max_offset: float | None = None) -> float:
+    """Clock offset of a second instrument from a signal both record, by cross-correlation.
+
+    The two records are interpolated onto one uniform grid (the finer of their sampling
+    intervals), standardised, and cross-correlated by FFT; the peak is refined by a parabola
+    through its three samples (sub-sample resolution).
+
+    Parameters
+    ----------
+    reference : Common signal as recorded by the reference instrument (any unit).
+    reference_time : Its time stamps [s], increasing.
+    other : The same signal as recorded by the other instrument (any unit, any gain).
+    other_time : Its time stamps on its own clock [s], increasing.
+    max_offset : Largest offset searched [s]; default half the shorter record.
+
+    Returns
+    -------
+    The offset [s] to add to ``other_time`` to put it on the reference clock (the value of
+    ``[clock] <instrument>`` in run.toml). Only meaningful for a signal both instruments
+    record (a trigger pulse, the same probe): between different physical quantities it
+    includes their physical phase lag. Reported to the user, never applied by itself.
+    """
+    tr, to = np.asarray(reference_time, float), np.asarray(other_time, float)
+    dt = min(np.median(np.diff(tr)), np.median(np.diff(to)))
+    span = min(tr[-1] - tr[0], to[-1] - to[0])
+    max_offset = 0.5 * span if max_offset is None else float(max_offset)
+    t0, t1 = min(tr[0], to[0]), max(tr[-1], to[-1])
+    grid = t0 + dt * np.arange(int(np.floor((t1 - t0) / dt)) + 1)
+
+    def standard(x, t):
+        y = np.interp(grid, t, np.asarray(x, float), left=np.nan, right=np.nan)
+        ok = np.isfinite(y)
+        y = np.where(ok, y - np.nanmean(y), 0.0)
+        return y / (np.sqrt(np.sum(y**2)) or 1.0)
+
+    a, b = standard(reference, tr), standard(other, to)
+    n = 1 << int(np.ceil(np.log2(2 * grid.size)))
+    c = np.fft.irfft(np.fft.rfft(a, n) * np.conj(np.fft.rfft(b, n)), n)
+    lags = np.concatenate([np.arange(0, n // 2), np.arange(-n // 2, 0)]) * dt
+    c[np.abs(lags) > max_offset] = -np.inf
+    k = int(np.argmax(c))
+    y0, y1, y2 = c[k - 1], c[k], c[(k + 1) % n]
+    denom = y0 - 2 * y1 + y2
+    frac = 0.5 * (y0 - y2) / denom if np.isfinite(denom) and denom != 0 else 0.0
+    return float(lags[k] + frac * dt)

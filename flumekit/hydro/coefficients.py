@@ -217,9 +217,6 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
                          source=coefficients.attrs.get("source", "Renzi & Dias (2012)"))
 
 
-_FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
-
-
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
                    hydrostatic_stiffness: float | None = None,
                    failed: str = "drop") -> xr.Dataset:
@@ -252,19 +249,18 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     :func:`flumekit.hydro.capytaine.read_capytaine` and
     :func:`flumekit.hydro.rigid_body.about_hinge` instead.
     """
-    ds = bem
-    if "complex" in ds.dims:
-        ds = ds.copy()
-        for name in [n for n in ds.data_vars if "complex" in ds[n].dims]:
-            ds[name] = ds[name].sel(complex="re") + 1j * ds[name].sel(complex="im")
-        ds = ds.drop_dims("complex", errors="ignore").drop_vars("complex", errors="ignore")
-    fdim = next((d for d in _FREQ_DIMS if d in ds.dims), None)
-    if fdim is None:
-        raise HydroError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one of "
-                         f"{list(_FREQ_DIMS)}")
-    if "omega" not in ds.coords:
-        raise HydroError(f"the Capytaine dataset has frequency dim '{fdim}' but no 'omega' "
-                         "coordinate")
+    from flumekit.hydro.capytaine import (
+        excitation_of,
+        frequency_dim,
+        merge_complex_dim,
+        select_direction,
+    )
+
+    ds = merge_complex_dim(bem)
+    try:
+        fdim = frequency_dim(ds)
+    except ValueError as e:
+        raise HydroError(f"the Capytaine dataset: {e}") from None
     for name in ("added_mass", "radiation_damping"):
         if name not in ds:
             raise HydroError(f"the Capytaine dataset has no '{name}' (radiation problems)")
@@ -281,14 +277,10 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
         for d in ("radiating_dof", "influenced_dof"):
             if d in da.dims:
                 sel[d] = da[d].values[[str(v) for v in da[d].values].index(dof)]
-        da = da.sel(sel)
-        if "wave_direction" in da.dims:
-            dirs = da["wave_direction"].values.astype(float)
-            j = int(np.argmin(np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))))
-            if abs(np.angle(np.exp(1j * (dirs[j] - wave_direction)))) > 1e-6:
-                raise HydroError(f"wave direction {wave_direction} rad not computed; "
-                                 f"available: {dirs.tolist()}")
-            da = da.isel(wave_direction=j)
+        try:
+            da = select_direction(da.sel(sel), wave_direction)
+        except ValueError as e:
+            raise HydroError(str(e)) from None
         extra = [d for d in da.dims if d != fdim]
         if extra:
             if any(da.sizes[d] != 1 for d in extra):
@@ -296,13 +288,10 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
             da = da.squeeze(extra, drop=True)
         return da
 
-    if "excitation_force" in ds:
-        exc = pick(ds["excitation_force"])
-    elif "diffraction_force" in ds and "Froude_Krylov_force" in ds:
-        exc = pick(ds["diffraction_force"] + ds["Froude_Krylov_force"])
-    else:
-        raise HydroError("the Capytaine dataset has neither 'excitation_force' nor "
-                         "'diffraction_force' + 'Froude_Krylov_force'")
+    try:
+        exc = pick(excitation_of(ds))
+    except ValueError as e:
+        raise HydroError(str(e)) from None
     a, b = pick(ds["added_mass"]), pick(ds["radiation_damping"])
     omega = np.asarray(ds["omega"].values, dtype=float).ravel()
     if omega.size != ds.sizes[fdim]:

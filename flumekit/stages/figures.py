@@ -78,6 +78,9 @@ def rules(ctx: Context) -> list[Rule]:
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
     for r in ctx.campaign.runs:
+        fig(f"qc/{r.id}", "qc:figure_qc", {"probes": ctx.out("qc", "probes", f"{r.id}.nc"),
+                                           "flap": ctx.out("qc", "flap", f"{r.id}.nc")})
+    for r in ctx.campaign.runs:
         if r.kind == "waves":
             fig(f"separation/{r.id}", "waves:separation",
                 {"waves": ctx.out("waves", f"{r.id}.nc")})
@@ -126,6 +129,8 @@ def draw(inputs, outputs, params) -> None:
             models = {str(s): [c.sel(source=s) for c in comps]
                       for s in comps[0]["source"].values if str(s) != "experiment"}
             fig = fn([c.sel(source="experiment") for c in comps], models=models)
+        elif draw == "qc:figure_qc":
+            fig = fn(data["probes"], data.get("flap"))
         elif draw == "flap:figure_7":
             fig = fn([data[k] for k in sorted(data)])
         else:

@@ -18,10 +18,10 @@ VERSION = "1"
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "flat_line_suspect": 3.0, "flat_line_fail": 5.0, "flat_line_tolerance": 0.0,
-            "dropout": 6.0, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
+            "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None}
+            "velocity_range": None, "clock_tolerance": 0.05}
 DOCS = {
     "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
                      "x_n - (x_(n-1) + x_(n+1))/2 [-]",
@@ -32,6 +32,7 @@ DOCS = {
     "flat_line_fail": "flat-line test: fail after this long [s]",
     "flat_line_tolerance": "flat-line test: changes below this count as none [channel units]",
     "dropout": "dropout test: robust standard deviations of the record about its median [-]",
+    "hold": "dropout test: a dropout holds its value at least this long [s]",
     "block": "length of the blocks of the local robust scale [s]",
     "gap_tolerance": "a time step longer than (1 + this) / rate is a gap [-]",
     "max_gap": "longest run of failed samples interpolated [s]",
@@ -44,6 +45,8 @@ DOCS = {
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
+    "clock_tolerance": "probe-to-flap lag departing from the runs of the same condition by more "
+                       "than this is reported as a possible clock offset [s]",
 }
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 
@@ -59,6 +62,7 @@ def rules(ctx: Context) -> list[Rule]:
                         inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
                         params={**rp, "probes": list(c.probes.names),
+                                "probe_x": run.probe_x,
                                 "sampling_rate": c.probes.sampling_rate,
                                 "dialect": c.dialect("probes"), "units": c.probes.units,
                                 "time_offset": run.clock.get("probes", 0.0)},
@@ -80,7 +84,8 @@ def rules(ctx: Context) -> list[Rule]:
               for r in c.runs for kind in ("probes", "flap")
               if kind == "probes" or "flap" in c.instruments}
     out.append(Rule("qc_summary", "flumekit.stages.qc:summary", inputs=inputs,
-                    outputs={"dataset": ctx.out("qc_summary.nc")}, version=VERSION))
+                    outputs={"dataset": ctx.out("qc_summary.nc")},
+                    params={"clock_tolerance": params["clock_tolerance"]}, version=VERSION))
     return out
 
 
@@ -140,6 +145,7 @@ def probes(inputs, outputs, params) -> None:
     period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
     checks.check_period(params["period"], period, params["period_tolerance"],
                         Path(inputs["run"]), path)
+    ds = ds.assign_coords(x=("probe", [float(params["probe_x"][p]) for p in params["probes"]]))
     ds["record_period"] = ((), period, {"units": "s", "long_name": "dominant period of the "
                                         "probe records (spectral peak)"})
     warnings = [f"{path}: {name}: masked and not interpolated: {g}"
@@ -223,28 +229,52 @@ def uvp(inputs, outputs, params) -> None:
 
 
 def summary(inputs, outputs, params) -> None:
-    """Per run: samples per QC flag of every probe and flap channel, and the warnings."""
+    """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
+    its departure from the runs of the same wave condition (a clock offset beyond
+    ``clock_tolerance`` is a warning naming the run), and every warning of the QC datasets.
+    A campaign without the flap instruments has the probe counts only."""
+    import numpy as np
     import xarray as xr
 
     from flumekit.io.netcdf import read_dataset, write_product
+    from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows = []
+    rows, lags, periods, groups, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
-        name = "probe_voltage" if "probe_voltage_qc_count" in p else "probe_elevation"
+        name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
         row = {f"{name}_qc_count": p[f"{name}_qc_count"].sum("probe"),
                "record_period": p["record_period"]}
-        if f"flap/{run}" in inputs:  # a campaign with the flap instruments
+        warn += [w for w in p.attrs.get(WARNINGS, "").splitlines() if w]
+        if f"flap/{run}" in inputs:
             f = read_dataset(inputs[f"flap/{run}"])
+            near = p[name].isel(probe=int(np.argmin(np.abs(p["x"].values))))
+            period = float(p["wave_period"])
+            lags.append(probe_flap_lag(near.values, p["time"].values,
+                                       f["encoder_counts"].values, f["time"].values, period))
+            periods.append(period)
+            groups.append((period, float(p["wave_height"])))
             row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
                        chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
-        ds = xr.Dataset(row).expand_dims(run=[run])
-        rows.append(ds)
-    out = xr.concat(rows, dim="run")
-    warn = [w for run in runs for k in ("probes", "flap") if f"{k}/{run}" in inputs
-            for w in read_dataset(inputs[f"{k}/{run}"]).attrs.get("flumekit_warnings",
-                                                                   "").splitlines() if w]
+            warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
+        rows.append(xr.Dataset(row).drop_vars(
+            ["run", "wave_period", "wave_height", "repeat", "uvp_elevation"],
+            errors="ignore").expand_dims(run=[run]))
+    out = xr.concat(rows, dim="run", coords="minimal", compat="override")
+    if lags:
+        dep = clock_departures(np.array(lags), np.array(periods), groups)
+        out["probe_flap_lag"] = ("run", np.array(lags), {
+            "units": "s", "long_name": "cross-correlation lag of the encoder behind the probe "
+            "nearest the flap"})
+        out["clock_departure"] = ("run", dep, {
+            "units": "s", "long_name": "lag minus the median lag of the runs of the same wave "
+            "condition (a clock offset where large; NaN with fewer than three such runs)"})
+        tol = float(params["clock_tolerance"])
+        warn += [f"run {r}: the flap lags the probes by {lag:+.3f} s, {d:+.3f} s off the other "
+                 f"runs of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and "
+                 f"the flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
+                 for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
     write_product(out, outputs["dataset"], "Quality-control counts of every run",
-                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs})
+                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})
