@@ -14,11 +14,13 @@ FLAG_STYLE = {3: ("suspect", "tab:orange", "o"), 4: ("fail", "tab:red", "x"),
 
 def _channels(probes, flap):
     out = []
+    # voltages to calibrate, or the elevations of calibrated probes
+    name, units = (("probe_voltage", "V") if "probe_voltage" in probes
+                   else ("probe_elevation", "m"))
     for p in probes["probe"].values:
         sel = {"probe": p}
-        out.append((str(p), probes["time"].values, probes["probe_voltage_raw"].sel(sel).values,
-                    probes["probe_voltage"].sel(sel).values,
-                    probes["probe_voltage_qc"].sel(sel).values, "V"))
+        out.append((str(p), probes["time"].values, probes[f"{name}_raw"].sel(sel).values,
+                    probes[name].sel(sel).values, probes[f"{name}_qc"].sel(sel).values, units))
     if flap is not None:
         for name, label, units in (("encoder_counts", "encoder", "counts"),
                                    ("chamber_pressure", "pressure", "Pa")):

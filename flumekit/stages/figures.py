@@ -78,8 +78,10 @@ def rules(ctx: Context) -> list[Rule]:
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
     for r in ctx.campaign.runs:
-        fig(f"qc/{r.id}", "qc:figure_qc", {"probes": ctx.out("qc", "probes", f"{r.id}.nc"),
-                                           "flap": ctx.out("qc", "flap", f"{r.id}.nc")})
+        qc = {"probes": ctx.out("qc", "probes", f"{r.id}.nc")}
+        if "flap" in ctx.campaign.instruments:
+            qc["flap"] = ctx.out("qc", "flap", f"{r.id}.nc")
+        fig(f"qc/{r.id}", "qc:figure_qc", qc)
     for r in ctx.campaign.runs:
         if r.kind == "waves":
             fig(f"separation/{r.id}", "waves:separation",
