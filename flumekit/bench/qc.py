@@ -212,7 +212,7 @@ def _uvp_recall(raw: Path, rng) -> tuple[float, float]:
 
 
 def _timings(processed: Path, raw: Path) -> list[tuple[str, float, float]]:
-    """QC time against analysis time per run (one core, best of three)."""
+    """QC time against analysis time (eta, waves, flap, uvp) per run (best of three)."""
     from flumekit.bench import best_time
     from flumekit.campaign import load_campaign
     from flumekit.pipeline.config import load_pipeline
@@ -226,8 +226,8 @@ def _timings(processed: Path, raw: Path) -> list[tuple[str, float, float]]:
     out = []
     for run in sorted(r.id for r in ctx.campaign.runs):
         qc = [t for t in rules if t.startswith("qc/") and t.endswith("/" + run)]
-        ana = [t for t in (f"eta/{run}", f"waves/{run}", f"flap/{run}", f"uvp/{run}",
-                           f"comparison/{run}") if t in rules]
+        ana = [t for t in (f"eta/{run}", f"waves/{run}", f"flap/{run}", f"uvp/{run}")
+               if t in rules]
         t_qc = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in qc)
         t_ana = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in ana)
         out.append((run, t_qc, t_ana))
