@@ -50,7 +50,7 @@ def _graph(pipe):
     import json
 
     from flumekit.pipeline.engine import Graph
-    from flumekit.stages import build_rules, virtual
+    from flumekit.stages import build_rules, check_stage_params, virtual
     from flumekit.stages.context import Context
 
     raw = pipe.raw
@@ -71,6 +71,7 @@ def _graph(pipe):
             raise FlumekitError(f"{raw / 'campaign.toml'}: campaign file not found{why}. "
                                 f"Check 'raw' in {pipe.path}")
         lazy = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
+    check_stage_params(pipe.stages, pipe.path)
     if lazy is None:
         ctx = Context(campaign=_campaign(raw, pipe.processed), processed=pipe.processed,
                       params=pipe.stages)
@@ -118,7 +119,9 @@ def _campaign(raw: Path, processed: Path):
 
 def _targets(pipe, graph, names: list[str]) -> list[str]:
     if not names:
-        names = [t for targets in pipe.scenes.values() for t in targets] or ["*"]
+        # every scene the campaign's instruments allow (a waves study has no flap scenes)
+        names = [t for targets in pipe.scenes.values() for t in targets
+                 if graph.match_any(t)] or ["*"]
     patterns: list[str] = []
     for n in names:
         patterns += pipe.scenes.get(n, [n])
@@ -214,6 +217,7 @@ def cmd_make(args) -> int:
             report = make(graph, targets, state, ex, force=forceall, force_targets=forced,
                           root=pipe.path.parent.resolve(),
                           keep_going=args.keep_going, events=_events(args))
+    _results(graph, report)
     _summary(args, pipe, graph, report)
     return 1 if report.failed else 0
 
@@ -260,6 +264,17 @@ def _summary(args, pipe, graph, report) -> None:
     print(f"next: {nxt}", file=sys.stderr)
 
 
+def _results(graph, report) -> None:
+    """The make summary's results: each waves run built now, with its first-harmonic Kr."""
+    built = [t for t, *_ in report.ran if t.startswith("waves/")]
+    if built:
+        from flumekit.stages.waves import report as waves_report
+
+        print("results:")
+        for t in built:
+            print(f"  {t}: {waves_report(graph.rules[t].outputs['dataset'])}")
+
+
 def cmd_list(args) -> int:
     from flumekit.pipeline.engine import plan
     from flumekit.pipeline.state import State
@@ -270,6 +285,10 @@ def cmd_list(args) -> int:
     stale = dict(plan(graph, list(graph.rules), state))
     print("scenes:")
     for name, targets in pipe.scenes.items():
+        if not all(graph.match_any(t) for t in targets):
+            print(f"  {name:<20} {'not available':<22} (needs instruments this campaign "
+                  "does not declare)")
+            continue
         needed = graph.closure(graph.match(targets))
         n_stale = sum(t in stale for t in needed)
         status = "up to date" if n_stale == 0 else f"{n_stale} of {len(needed)} to build"
@@ -343,6 +362,84 @@ def cmd_synth(args) -> int:
     write_campaign(out, size=args.size, seed=args.seed, progress=_progress)
     print(f"wrote the '{args.size}' virtual-flume campaign to {out} in "
           f"{time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def cmd_new(args) -> int:
+    """A commented campaign skeleton (campaign, one run, pipeline) in an absent or empty folder."""
+    from importlib import resources
+
+    out = Path(args.dir)
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise FlumekitError(f"{out}: not an empty folder; `flumekit new` writes only into an "
+                            "absent or empty one (nothing was changed)")
+    skel = resources.files("flumekit.data").joinpath("skeleton")
+    name = out.resolve().name
+    files = {"campaign.toml": "campaign.toml", "runs/run01/run.toml": "run.toml",
+             "pipeline.toml": "pipeline.toml"}
+    for dest, src in files.items():
+        text = skel.joinpath(src).read_text().replace("my_campaign", name)
+        (out / dest).parent.mkdir(parents=True, exist_ok=True)
+        (out / dest).write_text(text)
+    print(f"wrote {', '.join(files)} to {out}: edit them, put each run's files in "
+          f"runs/<run>/, then `flumekit make --pipeline {out / 'pipeline.toml'}`")
+    return 0
+
+
+def cmd_params(args) -> int:
+    from flumekit.stages import parameters, parameters_markdown
+
+    if args.markdown:
+        print(parameters_markdown())
+        return 0
+    known = parameters()
+    stages = [args.stage] if args.stage else list(known)
+    for s in stages:
+        if s not in known:
+            from flumekit.schema import suggest
+
+            raise FlumekitError(f"no stage '{s}' with parameters; known: {', '.join(known)}"
+                                + suggest(s, list(known)))
+        print(f"[stages.{s}]")
+        for k, (default, doc) in known[s].items():
+            print(f"  {k} = {default!r}\n      {doc}")
+    return 0
+
+
+def cmd_clock(args) -> int:
+    """Estimate (never apply) an instrument's clock offset from a signal two instruments share."""
+    from flumekit.campaign import load_campaign
+    from flumekit.io.instruments import read_flap, read_probes
+    from flumekit.signal import estimate_time_offset
+
+    pipe = _pipeline(args)
+    c = load_campaign(pipe.raw)
+    try:
+        run = c.run(args.run)
+    except KeyError as e:
+        raise FlumekitError(str(e.args[0])) from None
+
+    def channel(spec: str):
+        inst, _, name = spec.partition(":")
+        if inst == "probes" and name in c.probes.names:
+            ds = read_probes(run.file("probes"), c.probes.names, c.probes.sampling_rate,
+                             c.dialect("probes"), units=c.probes.units)
+            v = next(iter(ds.data_vars.values())).sel(probe=name)
+            return v.values, ds["time"].values
+        if inst == "flap" and c.encoder and name in ("encoder", "pressure"):
+            ds = read_flap(run.file("flap"), c.encoder.sampling_rate, c.dialect("flap"))
+            v = ds["encoder_counts" if name == "encoder" else "chamber_pressure"]
+            return v.values.astype(float), ds["time"].values
+        raise FlumekitError(f"unknown channel {spec!r}: probes:<probe> or flap:encoder|pressure")
+
+    (a, ta), (b, tb) = channel(args.reference), channel(args.other)
+    offset = estimate_time_offset(a, ta, b, tb)
+    inst = args.other.partition(":")[0]
+    print(f"{args.other} matches {args.reference} when its time stamps are shifted by "
+          f"{offset:+.4f} s. If both record the same signal, declare it in "
+          f"{run.path / 'run.toml'}:\n  [clock]\n  {inst} = {offset:.4f}\n"
+          "(nothing was changed; between different quantities the estimate includes their "
+          "physical phase lag)")
     return 0
 
 
@@ -451,6 +548,23 @@ def parser() -> argparse.ArgumentParser:
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
+
+    n = sub.add_parser("new", help="write a commented campaign skeleton into an empty folder")
+    n.add_argument("dir")
+    n.set_defaults(func=cmd_new)
+
+    pa = sub.add_parser("params", help="stage parameters: defaults and meaning")
+    pa.add_argument("stage", nargs="?", help="one stage (default: all)")
+    pa.add_argument("--markdown", action="store_true", help="the reference as Markdown")
+    pa.set_defaults(func=cmd_params)
+
+    ck = sub.add_parser("clock", help="estimate a clock offset by cross-correlation (reported, "
+                        "never applied)")
+    ck.add_argument("run")
+    ck.add_argument("reference", help="probes:<probe> or flap:encoder|pressure")
+    ck.add_argument("other", help="the channel whose clock offset is estimated")
+    pipeline_opts(ck)
+    ck.set_defaults(func=cmd_clock)
 
     r = sub.add_parser("report", help="one static HTML page for the processed campaign",
                        parents=common)

@@ -57,6 +57,9 @@ VARIABLES: dict[str, Variable] = {
     "polynomial_order": _V("1", "power of the calibration polynomial term"),
     # --- raw instruments ---
     "probe_voltage": _V("V", "wave probe output voltage"),
+    "probe_elevation": _V("m", "water surface elevation recorded by a calibrated wave probe, "
+                          "still-water level not removed"),
+    "still_water_level": _V("m", "still-water level removed from the probe's record"),
     "encoder_counts": _V("1", "wire encoder count"),
     "wire_shortening": _V("m", "shortening of the encoder measuring wire, Delta L7"),
     "chamber_pressure": _V("Pa", "gauge pressure in the PTO cylinder chamber",
@@ -94,6 +97,7 @@ VARIABLES: dict[str, Variable] = {
     "measured_period": _V("s", "mean wave period of the quasi-steady window"),
     "measured_height": _V("m", "mean wave height of the quasi-steady window"),
     "amplitude_scale": _V("m", "amplitude scale of the quasi-steady window"),
+    "steady_tolerance": _V("1", "relative crest tolerance of the quasi-steady window"),
     "energy_flux": _V("W m-1", "period-averaged incident energy flux per unit crest width"),
     "probe_spacing": _V("m", "distance between the probes of a pair"),
     "pair": _V("1", "wave probe pair"),

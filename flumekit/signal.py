@@ -1,6 +1,7 @@
-"""Shared signal tools: filtering, differentiation, cycles, quasi-steady window, phase averages.
+"""Shared signal tools: uniform sampling, filtering, differentiation, cycles, phase averages.
 
-Zero-phase filtering, differentiation, cycles, the quasi-steady window and phase averaging.
+The uniform-sampling check, zero-phase filtering, differentiation, cycles, the quasi-steady
+window, phase averaging and the per-cycle amplitude.
 
 These are the only implementations of these operations in flumekit: waves, flap and UVP code
 call them. Functions take numpy arrays with time along the last axis and uniform sampling.
@@ -13,6 +14,39 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal as _sig
 from scipy import stats as _stats
+
+#: largest deviation of a sampling interval from the mean step, relative to the step: far above
+#: the rounding of float times (1e-16 relative per value, 1e-10 of a 0.01 s step at t = 1e4 s)
+#: and far below any real clock irregularity worth resampling for
+UNIFORM_RTOL = 1e-6
+
+
+def uniform_step(time, what: str = "time", min_samples: int = 2) -> float:
+    """Step [s] of a finite, 1-D, increasing, uniformly sampled time.
+
+    The one uniform-sampling check of flumekit: every interval within :data:`UNIFORM_RTOL` of
+    the mean step (t[-1] − t[0]) / (n − 1), which is returned.
+
+    Parameters
+    ----------
+    time : Sample times [s].
+    what : What the times belong to, for the error message.
+    min_samples : Fewest samples accepted.
+
+    Raises
+    ------
+    ValueError : naming ``what`` and the failed condition.
+    """
+    t = np.asarray(time, dtype=float)
+    if t.ndim != 1 or t.size < max(min_samples, 2):
+        raise ValueError(f"{what} needs a 1-D time of at least {max(min_samples, 2)} samples, "
+                         f"got shape {t.shape}")
+    if not np.all(np.isfinite(t)):
+        raise ValueError(f"{what}: the time holds non-finite values")
+    step = (t[-1] - t[0]) / (t.size - 1)
+    if not step > 0 or np.max(np.abs(np.diff(t) - step)) > UNIFORM_RTOL * step:
+        raise ValueError(f"{what} must be sampled uniformly in increasing time")
+    return float(step)
 
 
 def _check_rate(sampling_rate: float, cutoff: float) -> None:
@@ -134,21 +168,40 @@ class SteadyWindow:
     n_cycles: int
     period: float  # mean period of the window [s]
     height: float  # mean crest-to-trough height of the window
+    tolerance: float = 0.02  # relative crest tolerance applied [-]
 
 
 def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,
-                        min_period: float = 0.0) -> SteadyWindow:
-    """Longest run of cycles whose crest lies within ``tolerance`` of the amplitude scale.
+                        min_period: float = 0.0, noise_factor: float = 0.0) -> SteadyWindow:
+    """Longest run of cycles whose crest lies within a tolerance of the amplitude scale.
 
     Brito et al. (2020, §2.5) compare each cycle's maximum with the amplitude scale and call the
     record quasi-steady where the relative difference is below 2 %. The amplitude scale is taken
     as the median crest of the second half of the cycles (the ramp-up lies in the first half).
+
+    Parameters
+    ----------
+    x : Signal (surface elevation about still water) [m].
+    time : Sample times [s].
+    tolerance : Relative crest tolerance [-] (the paper: 0.02).
+    min_period : Up-crossings closer than this to the previous one are merged [s].
+    noise_factor : When > 0, the tolerance is at least ``noise_factor`` times the crests' own
+        relative scatter (1.4826 × median absolute deviation of the second-half crests about the
+        scale, a robust standard deviation) [-]. On a record whose cycle-to-cycle crest noise
+        (probe resolution, short-crested disturbances, seiching) exceeds the paper's 2 %, a
+        fixed 2 % rejects steady cycles at random and the "longest run" is a few cycles long;
+        with 3 σ a steady cycle is rejected with probability 0.3 % (Gaussian scatter) while a
+        ramp-up still is. 0 applies ``tolerance`` alone.
     """
     c = cycles(x, time, min_period=min_period)
     if c.crest.size < 4:
         raise ValueError("fewer than four wave cycles: no quasi-steady window can be found")
     # nanmedian: a cycle holding masked (NaN) samples has a NaN crest and is never steady
-    scale = float(np.nanmedian(c.crest[c.crest.size // 2:]))
+    half = c.crest[c.crest.size // 2:]
+    scale = float(np.nanmedian(half))
+    if noise_factor > 0:
+        scatter = 1.4826 * float(np.nanmedian(np.abs(half - scale))) / abs(scale)
+        tolerance = max(tolerance, noise_factor * scatter)
     ok = np.abs(c.crest - scale) <= tolerance * abs(scale)
     # longest run of consecutive True
     padded = np.concatenate([[False], ok, [False]])
@@ -161,7 +214,29 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
     return SteadyWindow(
         start=float(c.start[a]), end=float(c.start[b - 1] + c.period[b - 1]),
         amplitude_scale=scale, n_cycles=int(b - a),
-        period=float(np.mean(c.period[a:b])), height=float(np.mean(c.height[a:b])))
+        period=float(np.mean(c.period[a:b])), height=float(np.mean(c.height[a:b])),
+        tolerance=float(tolerance))
+
+
+def steady_window_or_centred(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,
+                             min_period: float = 0.0, min_cycles: int = 2) -> SteadyWindow:
+    """:func:`quasi_steady_window` of x, or of x about its median when that finds none.
+
+    A flap that leans far to one side (short steep waves against a single-acting PTO) may
+    cross θ = 0 barely or not at all once steady, so its zero up-crossings give no cycles whose
+    crests repeat within the tolerance. The paper's reference (t/T = 0 at the up-crossing of
+    θ = 0) is kept wherever it works; otherwise the cycles are those of x minus its median
+    over the second half of the record (the crests then measured from that median).
+    """
+    try:
+        win = quasi_steady_window(x, time, tolerance=tolerance, min_period=min_period)
+        if win.n_cycles >= min_cycles:
+            return win
+    except ValueError:
+        pass
+    x = np.asarray(x, dtype=float)
+    return quasi_steady_window(x - np.median(x[x.size // 2:]), time, tolerance=tolerance,
+                               min_period=min_period)
 
 
 @dataclass(frozen=True)
@@ -189,9 +264,7 @@ def resample_cycles(x: np.ndarray, time: np.ndarray, period: float, start: float
     if kind not in ("linear", "cubic"):
         raise ValueError(f"kind must be 'linear' or 'cubic', got {kind!r}")
     time = np.asarray(time, dtype=float)
-    dt = (time[-1] - time[0]) / (time.size - 1)
-    if not np.allclose(np.diff(time), dt, rtol=1e-6, atol=1e-9 * dt):
-        raise ValueError("phase averaging needs uniformly sampled time")
+    dt = uniform_step(time, "phase averaging")
     t_end = start + n_cycles * period
     if start < time[0] - 1e-9 or t_end > time[-1] + dt:
         raise ValueError(
@@ -237,3 +310,63 @@ def phase_average(x: np.ndarray, time: np.ndarray, period: float, start: float, 
     ci = _stats.t.ppf(0.975, n_cycles - 1) * std / np.sqrt(n_cycles)
     return PhaseAverage(phase=np.arange(n_phase) / n_phase, mean=mean, std=std, ci95=ci,
                         n_cycles=n_cycles)
+
+
+def estimate_time_offset(reference: np.ndarray, reference_time: np.ndarray, other: np.ndarray,
+                         other_time: np.ndarray, max_offset: float | None = None) -> float:
+    """Clock offset of a second instrument from a signal both record, by cross-correlation.
+
+    The two records are interpolated onto one uniform grid (the finer of their sampling
+    intervals), standardised, and cross-correlated by FFT; the peak is refined by a parabola
+    through its three samples (sub-sample resolution).
+
+    Parameters
+    ----------
+    reference : Common signal as recorded by the reference instrument (any unit).
+    reference_time : Its time stamps [s], increasing.
+    other : The same signal as recorded by the other instrument (any unit, any gain).
+    other_time : Its time stamps on its own clock [s], increasing.
+    max_offset : Largest offset searched [s]; default half the shorter record.
+
+    Returns
+    -------
+    The offset [s] to add to ``other_time`` to put it on the reference clock (the value of
+    ``[clock] <instrument>`` in run.toml). Only meaningful for a signal both instruments
+    record (a trigger pulse, the same probe): between different physical quantities it
+    includes their physical phase lag. Reported to the user, never applied by itself.
+    """
+    tr, to = np.asarray(reference_time, float), np.asarray(other_time, float)
+    dt = min(np.median(np.diff(tr)), np.median(np.diff(to)))
+    span = min(tr[-1] - tr[0], to[-1] - to[0])
+    max_offset = 0.5 * span if max_offset is None else float(max_offset)
+    t0, t1 = min(tr[0], to[0]), max(tr[-1], to[-1])
+    grid = t0 + dt * np.arange(int(np.floor((t1 - t0) / dt)) + 1)
+
+    def standard(x, t):
+        y = np.interp(grid, t, np.asarray(x, float), left=np.nan, right=np.nan)
+        ok = np.isfinite(y)
+        y = np.where(ok, y - np.nanmean(y), 0.0)
+        return y / (np.sqrt(np.sum(y**2)) or 1.0)
+
+    a, b = standard(reference, tr), standard(other, to)
+    n = 1 << int(np.ceil(np.log2(2 * grid.size)))
+    c = np.fft.irfft(np.fft.rfft(a, n) * np.conj(np.fft.rfft(b, n)), n)
+    lags = np.concatenate([np.arange(0, n // 2), np.arange(-n // 2, 0)]) * dt
+    c[np.abs(lags) > max_offset] = -np.inf
+    k = int(np.argmax(c))
+    y0, y1, y2 = c[k - 1], c[k], c[(k + 1) % n]
+    denom = y0 - 2 * y1 + y2
+    frac = 0.5 * (y0 - y2) / denom if np.isfinite(denom) and denom != 0 else 0.0
+    return float(lags[k] + frac * dt)
+
+
+def cycle_amplitude(x: np.ndarray, time: np.ndarray, period: float, start: float,
+                    n_cycles: int, n_phase: int = 100) -> float:
+    """Half the difference of the mean per-cycle maximum and minimum of ``x``.
+
+    The amplitude of Brito et al. (2020, §3.2, Fig. 8) over ``n_cycles`` periods from ``start``
+    [s], each cycle resampled on ``n_phase`` points (:func:`resample_cycles`); in the unit of
+    ``x``.
+    """
+    cyc = resample_cycles(x, time, period, start, n_cycles, n_phase)
+    return float(0.5 * (cyc.max(axis=-1).mean() - cyc.min(axis=-1).mean()))

@@ -18,7 +18,7 @@ PACKAGE = ROOT / "flumekit"
 
 #: layers in import order; a module may import from its own layer and the ones before it
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("errors", "conventions", "campaign", "signal"),
+    ("errors", "conventions", "units", "schema", "campaign", "signal"),
     ("io",),
     ("qc",),
     ("waves", "hydro"),
@@ -30,6 +30,9 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("bench", "cli"),
 )
 LAYER_OF = {part: i for i, parts in enumerate(LAYERS) for part in parts}
+#: imports that the layers would allow but the architecture does not: readers know file formats,
+#: not campaign configuration (the caller passes what a reader needs)
+FORBIDDEN = {"flumekit.io": ("flumekit.campaign",)}
 #: the package root (``flumekit/__init__.py``) is the public facade over every layer: nothing
 #: inside the package may import a name from it except the version string
 FACADE = len(LAYERS)
@@ -112,6 +115,10 @@ def violations(source: str, module: str, modules: set[str], is_package: bool = F
         if lay > own:
             later = "the package root" if lay == FACADE else "/".join(LAYERS[lay])
             out.append(f"{module}:{line}: `{shown}` imports from a later layer ({later})")
+        for package, names in FORBIDDEN.items():
+            if (module + ".").startswith(package + ".") and any(
+                    (target + ".").startswith(n + ".") for n in names):
+                out.append(f"{module}:{line}: `{shown}`: {package} may not import {target}")
         private_module = any(_is_private(p) for p in target.split(".")) and not (
             module + ".").startswith(_owner(target) + ".")
         if private_module or (name is not None and _is_private(name)
@@ -191,6 +198,10 @@ NAMES = {"flumekit", "flumekit.errors", "flumekit.signal", "flumekit.io", "flume
     ("from flumekit.io._private import x", "flumekit.waves.theory",
      "flumekit.waves.theory:1: `from flumekit.io._private import x` imports a private name of "
      "another module"),
+    # allowed by the layers, not by the architecture
+    ("from flumekit.campaign import UVP", "flumekit.io.mfprof",
+     "flumekit.io.mfprof:1: `from flumekit.campaign import UVP`: flumekit.io may not import "
+     "flumekit.campaign"),
 ])
 def test_violations_are_named(source, module, expected):
     assert violations(source, module, NAMES) == [expected]

@@ -62,7 +62,9 @@ def derivative_table(campaign: Campaign, cutoffs, cases, n_waves: int) -> str:
         for fc in cutoffs:
             t0 = _time.perf_counter()
             ds = analyse_run(t, truth.encoder_counts.values, truth.chamber_pressure.values,
-                             campaign=campaign, period=period, incident_height=height,
+                             flap=campaign.flap, pto=campaign.pto, encoder=campaign.encoder,
+                             depth=campaign.flume.water_depth, period=period,
+                             incident_height=height,
                              cutoff=fc)
             el = _time.perf_counter() - t0
 

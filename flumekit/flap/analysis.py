@@ -10,13 +10,14 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit import signal as sig
-from flumekit.campaign import Campaign
+from flumekit.campaign import PTO, Encoder, Flap
 from flumekit.errors import InputError
 from flumekit.flap.encoder import angle_from_wire, wire_from_counts
 from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
-from flumekit.flap.power import capture_factor, flow_rate, incident_power, pto_power, window_mean
+from flumekit.flap.power import flow_rate, pto_power
 from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model, pressure_force
+from flumekit.flap.summary import steady_window, summary
 from flumekit.flap.torque import (
     friction_torque,
     gravity_torque,
@@ -32,18 +33,6 @@ from flumekit.flap.torque import (
 #: within 0.02 % and θ̈ within 0.13-0.19 % RMS of their amplitudes; 2-3 Hz would be marginally
 #: better for these linear motions, 12-20 Hz lets the quantisation noise through (θ̈ 2-7 %).
 DEFAULT_CUTOFF = 4.0
-
-
-def _uniform_rate(time: np.ndarray) -> float:
-    if time.ndim != 1 or time.size < 16:
-        raise ValueError("flap analysis needs a 1-D time of at least 16 samples")
-    if not np.all(np.isfinite(time)):
-        raise ValueError("flap analysis: non-finite time values")
-    dt = np.diff(time)
-    step = (time[-1] - time[0]) / (time.size - 1)
-    if not step > 0 or np.max(np.abs(dt - step)) > 1e-6 * step + 1e-9:
-        raise ValueError("flap analysis needs uniformly sampled, increasing time")
-    return 1.0 / step
 
 
 def _fill_flagged(theta: np.ndarray, flag: np.ndarray, time: np.ndarray,
@@ -64,13 +53,8 @@ def _fill_flagged(theta: np.ndarray, flag: np.ndarray, time: np.ndarray,
     return out
 
 
-def _per_cycle_amplitude(x, time, period, start, n_cycles, n_phase) -> float:
-    """Half the difference of the mean per-cycle maximum and minimum (§3.2, Fig. 8)."""
-    cyc = sig.resample_cycles(x, time, period, start, n_cycles, n_phase)
-    return float(0.5 * (cyc.max(axis=-1).mean() - cyc.min(axis=-1).mean()))
-
-
-def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, period: float,
+def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
+                encoder: Encoder, depth: float, period: float,
                 incident_height: float, cutoff: float = DEFAULT_CUTOFF,
                 zero_count: float = 0.0, tolerance: float = 0.02, n_phase: int = 100,
                 max_flagged_fraction: float = 0.0) -> xr.Dataset:
@@ -84,8 +68,14 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
         Wire-encoder counts, increasing as the wire is reeled in [-].
     chamber_pressure : array_like
         Measured gauge pressure in the cylinder chamber [Pa].
-    campaign : Campaign
-        Campaign metadata (flume depth, flap, PTO anchors/bore/friction, encoder).
+    flap : Flap
+        The flap (inertia, buoyancy stiffness C, width).
+    pto : PTO
+        The PTO (anchors, bore, atmospheric and vapour pressures, LuGre friction or None).
+    encoder : Encoder
+        The wire encoder of Eq. (1) (L5, L7, counts per metre).
+    depth : float
+        Water depth h [m] (for W_I, Eq. A2).
     period : float
         Wave period of the run [s] (the quasi-steady window's cycle detection ignores
         crossings closer than half of it).
@@ -115,7 +105,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
         W_I, C_f and the window. Every name is in :mod:`flumekit.conventions`.
     """
     t = np.asarray(time, dtype=float)
-    fs = _uniform_rate(t)
+    fs = 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)
     counts = np.asarray(encoder_counts)
     p = np.asarray(chamber_pressure, dtype=float)
     if counts.shape != t.shape or p.shape != t.shape:
@@ -126,13 +116,9 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
                          "not finite")
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
-    if not (np.isfinite(incident_height) and incident_height > 0):
-        raise ValueError(f"incident height must be > 0, got {incident_height}")
-    enc, flap, pto = campaign.encoder, campaign.flap, campaign.pto
-
     # Eq. (1): encoder -> wire -> angle
-    wire = wire_from_counts(counts, enc.counts_per_metre, zero_count)
-    wa = angle_from_wire(wire, enc.L5, enc.L7)
+    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
+    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
     theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
     theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
 
@@ -153,7 +139,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
     w_out = pto_power(p, q)
 
     # quasi-steady window on θ (§2.5), pressure fit (Eqs. 13-14) inside it
-    win = sig.quasi_steady_window(theta, t, tolerance=tolerance, min_period=0.5 * period)
+    win = steady_window(theta, t, period, tolerance)
     inside = (t >= win.start) & (t <= win.end)
     fit = fit_pressure_model(p[inside], theta_dot[inside], theta_ddot[inside],
                              atmospheric_pressure=pto.atmospheric_pressure,
@@ -165,20 +151,14 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
     cav = p_fit <= pto.vapour_pressure - pto.atmospheric_pressure
     t_p_fit = pressure_torque(pressure_force(p_fit, pto.bore_area), rod.lever_arm)
 
-    # power capture (§3.2, Eq. A2)
-    mean_w = window_mean(w_out, t, win.start, win.end)
-    w_i = float(incident_power(incident_height, period, campaign.flume.water_depth, flap.width))
-    c_f = float(capture_factor(mean_w, w_i))
-
-    # phase averages over the window, cycles starting at a zero up-crossing of θ (Fig. 10)
-    pa = {name: sig.phase_average(x, t, win.period, win.start, win.n_cycles, n_phase)
-          for name, x in (("theta", theta), ("theta_dot", theta_dot), ("power", w_out),
-                          ("chamber_pressure", p), ("torque_hydrodynamic", t_h))}
-    amp_theta = _per_cycle_amplitude(theta, t, win.period, win.start, win.n_cycles, n_phase)
-    amp_th = _per_cycle_amplitude(t_h, t, win.period, win.start, win.n_cycles, n_phase)
+    # phase averages, amplitudes, power capture over the window (§3.2, Eq. A2; Fig. 10)
+    summ = summary(t, {"theta": theta, "theta_dot": theta_dot, "power": w_out,
+                       "chamber_pressure": p, "torque_hydrodynamic": t_h}, win,
+                   period=period, incident_height=incident_height, depth=depth,
+                   flap_width=flap.width, n_phase=n_phase,
+                   ci95=("theta", "torque_hydrodynamic"))
 
     T = ("time",)
-    P = ("phase",)
     ds = xr.Dataset(
         {
             "encoder_counts": (T, counts),
@@ -196,22 +176,11 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
             "torque_gravity": (T, gravity_torque(theta, flap.buoyancy_stiffness)),
             "torque_inertia": (T, inertia_torque(theta_ddot, flap.inertia)),
             "torque_hydrodynamic": (T, t_h), "flow_rate": (T, q), "power": (T, w_out),
-            "theta_phase_mean": (P, pa["theta"].mean), "theta_phase_ci95": (P, pa["theta"].ci95),
-            "theta_dot_phase_mean": (P, pa["theta_dot"].mean),
-            "power_phase_mean": (P, pa["power"].mean),
-            "chamber_pressure_phase_mean": (P, pa["chamber_pressure"].mean),
-            "torque_hydrodynamic_phase_mean": (P, pa["torque_hydrodynamic"].mean),
-            "torque_hydrodynamic_phase_ci95": (P, pa["torque_hydrodynamic"].ci95),
             "pressure_loss_coefficient": fit.pressure_loss_coefficient,
             "fluid_inertia": fit.fluid_inertia, "pressure_fit_r2": fit.r2,
-            "theta_amplitude": amp_theta, "torque_amplitude": amp_th,
-            "mean_power": mean_w, "incident_height": float(incident_height),
-            "incident_power": w_i, "capture_factor": c_f,
-            "steady_start": win.start, "steady_end": win.end,
-            "measured_period": win.period, "steady_cycles": win.n_cycles,
             "domain_flagged_fraction": float(wa.out_of_domain.mean()),
         },
-        coords={"time": t, "phase": pa["theta"].phase, "wave_period": float(period)},
+        coords={"time": t},
         attrs={"derivative_cutoff_hz": float(cutoff), "derivative_filter":
                "zero-phase 4th-order Butterworth low-pass, central differences",
                "friction_model": "modified LuGre (Appendix B)" if pto.friction is not None
@@ -219,4 +188,4 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, campaign: Campaign, p
                "torque_sign_convention": "T_h positive towards the beach; T_g, T_PTO, T_p, T_f "
                "resisting (positive when opposing theta > 0), Eq. (11)"},
     )
-    return conventions.annotate(ds)
+    return conventions.annotate(ds.merge(summ))

@@ -50,6 +50,28 @@ def frequency_dim(ds: xr.Dataset) -> str:
     return fdim
 
 
+def select_direction(da: xr.DataArray, wave_direction: float) -> xr.DataArray:
+    """``da`` at the incident direction ``wave_direction`` [rad] (modulo 2π), if it has one."""
+    if "wave_direction" not in da.dims:
+        return da
+    dirs = da["wave_direction"].values.astype(float)
+    gap = np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))
+    if gap.min() > 1e-6:
+        raise ValueError(f"wave direction {wave_direction} rad not computed; "
+                         f"available: {dirs.tolist()}")
+    return da.isel(wave_direction=int(np.argmin(gap)))
+
+
+def excitation_of(ds: xr.Dataset) -> xr.DataArray:
+    """``excitation_force``, or ``diffraction_force`` + ``Froude_Krylov_force``."""
+    if "excitation_force" in ds:
+        return ds["excitation_force"]
+    if "diffraction_force" in ds and "Froude_Krylov_force" in ds:
+        return ds["diffraction_force"] + ds["Froude_Krylov_force"]
+    raise ValueError("the Capytaine dataset has neither 'excitation_force' nor "
+                     "'diffraction_force' + 'Froude_Krylov_force'")
+
+
 def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
                    wave_direction: float = 0.0, reference_point=None) -> xr.Dataset:
     """Six-dof coefficients of one body from a Capytaine dataset or netCDF file.
@@ -98,23 +120,10 @@ def _read(raw: xr.Dataset, body, wave_direction, reference_point, name) -> xr.Da
     sel = {"radiating_dof": wanted, "influenced_dof": wanted}
 
     def pick(da):
-        da = da.sel({k: v for k, v in sel.items() if k in da.dims})
-        if "wave_direction" in da.dims:
-            dirs = da["wave_direction"].values.astype(float)
-            gap = np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))
-            if gap.min() > 1e-6:
-                raise ValueError(f"wave direction {wave_direction} rad not computed; "
-                                 f"available: {dirs.tolist()}")
-            da = da.isel(wave_direction=int(np.argmin(gap)))
-        return da
+        return select_direction(da.sel({k: v for k, v in sel.items() if k in da.dims}),
+                                wave_direction)
 
-    if "excitation_force" in ds:
-        exc = pick(ds["excitation_force"])
-    elif "diffraction_force" in ds and "Froude_Krylov_force" in ds:
-        exc = pick(ds["diffraction_force"] + ds["Froude_Krylov_force"])
-    else:
-        raise ValueError("neither 'excitation_force' nor 'diffraction_force' + "
-                         "'Froude_Krylov_force'")
+    exc = pick(excitation_of(ds))
     a = pick(ds["added_mass"]).transpose(fdim, "radiating_dof", "influenced_dof")
     b = pick(ds["radiation_damping"]).transpose(fdim, "radiating_dof", "influenced_dof")
     exc = exc.transpose(fdim, "influenced_dof")

@@ -149,17 +149,40 @@ def split_complex(hydro: xr.Dataset) -> xr.Dataset:
     return conventions.annotate(out)
 
 
+_PARTS = (("_real", "_imag"), ("_re", "_im"))
+
+
+def join_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
+    """The complex variable ``name`` of ``ds``, joined from its real and imaginary parts.
+
+    The parts are ``name_real``/``name_imag`` (as :func:`split_complex` writes them) or
+    ``name_re``/``name_im``. The result keeps the real part's attributes, its long name without
+    the "real part of the " prefix or " (real part)" suffix.
+    """
+    for re_s, im_s in _PARTS:
+        if name + re_s in ds and name + im_s in ds:
+            re = ds[name + re_s]
+            out = re + 1j * ds[name + im_s]
+            out.name = name
+            long_name = str(re.attrs.get("long_name", name))
+            long_name = long_name.replace("real part of the ", "").replace(" (real part)", "")
+            out.attrs = {**re.attrs, "long_name": long_name}
+            return out
+    raise KeyError(f"no real and imaginary parts of '{name}' among {sorted(ds.data_vars)}")
+
+
 def merge_complex(ds: xr.Dataset) -> xr.Dataset:
     """Inverse of :func:`split_complex`: join ``X_real``/``X_imag`` (or ``_re``/``_im``) pairs."""
     out = ds.copy()
     for name in list(ds.data_vars):
-        for re_s, im_s in (("_real", "_imag"), ("_re", "_im")):
+        for re_s, im_s in _PARTS:
             if name.endswith(re_s) and name[: -len(re_s)] + im_s in ds:
                 base = name[: -len(re_s)]
-                re, im = out[name], out[base + im_s]
+                joined = join_complex(ds, base)
                 out = out.drop_vars([name, base + im_s])
-                attrs = {k: v for k, v in re.attrs.items() if k != "long_name"}
-                out[base] = (re + 1j * im).assign_attrs(attrs)
+                # the registry's long name of the complex variable, where it has one
+                out[base] = joined.assign_attrs(
+                    {k: v for k, v in joined.attrs.items() if k != "long_name"})
     return conventions.annotate(out)
 
 
@@ -194,9 +217,6 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
                          source=coefficients.attrs.get("source", "Renzi & Dias (2012)"))
 
 
-_FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
-
-
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
                    hydrostatic_stiffness: float | None = None,
                    failed: str = "drop") -> xr.Dataset:
@@ -229,19 +249,18 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     :func:`flumekit.hydro.capytaine.read_capytaine` and
     :func:`flumekit.hydro.rigid_body.about_hinge` instead.
     """
-    ds = bem
-    if "complex" in ds.dims:
-        ds = ds.copy()
-        for name in [n for n in ds.data_vars if "complex" in ds[n].dims]:
-            ds[name] = ds[name].sel(complex="re") + 1j * ds[name].sel(complex="im")
-        ds = ds.drop_dims("complex", errors="ignore").drop_vars("complex", errors="ignore")
-    fdim = next((d for d in _FREQ_DIMS if d in ds.dims), None)
-    if fdim is None:
-        raise HydroError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one of "
-                         f"{list(_FREQ_DIMS)}")
-    if "omega" not in ds.coords:
-        raise HydroError(f"the Capytaine dataset has frequency dim '{fdim}' but no 'omega' "
-                         "coordinate")
+    from flumekit.hydro.capytaine import (
+        excitation_of,
+        frequency_dim,
+        merge_complex_dim,
+        select_direction,
+    )
+
+    ds = merge_complex_dim(bem)
+    try:
+        fdim = frequency_dim(ds)
+    except ValueError as e:
+        raise HydroError(f"the Capytaine dataset: {e}") from None
     for name in ("added_mass", "radiation_damping"):
         if name not in ds:
             raise HydroError(f"the Capytaine dataset has no '{name}' (radiation problems)")
@@ -258,14 +277,10 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
         for d in ("radiating_dof", "influenced_dof"):
             if d in da.dims:
                 sel[d] = da[d].values[[str(v) for v in da[d].values].index(dof)]
-        da = da.sel(sel)
-        if "wave_direction" in da.dims:
-            dirs = da["wave_direction"].values.astype(float)
-            j = int(np.argmin(np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))))
-            if abs(np.angle(np.exp(1j * (dirs[j] - wave_direction)))) > 1e-6:
-                raise HydroError(f"wave direction {wave_direction} rad not computed; "
-                                 f"available: {dirs.tolist()}")
-            da = da.isel(wave_direction=j)
+        try:
+            da = select_direction(da.sel(sel), wave_direction)
+        except ValueError as e:
+            raise HydroError(str(e)) from None
         extra = [d for d in da.dims if d != fdim]
         if extra:
             if any(da.sizes[d] != 1 for d in extra):
@@ -273,13 +288,10 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
             da = da.squeeze(extra, drop=True)
         return da
 
-    if "excitation_force" in ds:
-        exc = pick(ds["excitation_force"])
-    elif "diffraction_force" in ds and "Froude_Krylov_force" in ds:
-        exc = pick(ds["diffraction_force"] + ds["Froude_Krylov_force"])
-    else:
-        raise HydroError("the Capytaine dataset has neither 'excitation_force' nor "
-                         "'diffraction_force' + 'Froude_Krylov_force'")
+    try:
+        exc = pick(excitation_of(ds))
+    except ValueError as e:
+        raise HydroError(str(e)) from None
     a, b = pick(ds["added_mass"]), pick(ds["radiation_damping"])
     omega = np.asarray(ds["omega"].values, dtype=float).ravel()
     if omega.size != ds.sizes[fdim]:

@@ -42,17 +42,9 @@ import xarray as xr
 from scipy import fft as sfft
 
 from flumekit import conventions
+from flumekit.signal import uniform_step
 
 DIM = "angular_frequency"
-
-
-def _uniform_step(t: np.ndarray) -> float:
-    if t.ndim != 1 or t.size < 4 or not np.all(np.isfinite(t)):
-        raise ValueError("the elevation needs a finite 1-D time coordinate of >= 4 samples")
-    dt = (t[-1] - t[0]) / (t.size - 1)
-    if not dt > 0 or np.max(np.abs(np.diff(t) - dt)) > 1e-6 * dt:
-        raise ValueError("the elevation must be uniformly sampled in time")
-    return float(dt)
 
 
 def transfer_function(hydro: xr.Dataset, omega) -> np.ndarray:
@@ -112,7 +104,7 @@ def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: f
     if "time" not in eta_incident.dims or eta_incident.ndim != 1:
         raise ValueError("eta_incident must be a 1-D DataArray over 'time'")
     t = eta_incident["time"].values.astype(float)
-    dt = _uniform_step(t)
+    dt = uniform_step(t, "the incident elevation", min_samples=4)
     eta = eta_incident.values.astype(float)
     if not np.all(np.isfinite(eta)):
         raise ValueError("eta_incident has non-finite samples")

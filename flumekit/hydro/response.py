@@ -28,15 +28,12 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.hydro.coefficients import join_complex
 from flumekit.waves.theory import energy_flux
 
 
 def _omega(coefficients: xr.Dataset) -> xr.DataArray:
     return 2 * np.pi / coefficients["period"]
-
-
-def _excitation(coefficients: xr.Dataset) -> xr.DataArray:
-    return coefficients["excitation_torque_real"] + 1j * coefficients["excitation_torque_imag"]
 
 
 def _nonnegative(name: str, value) -> None:
@@ -106,7 +103,7 @@ def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness
     a = coefficients.attrs
     omega = _omega(coefficients)
     mu, nu = coefficients["added_inertia"], coefficients["radiation_damping"]
-    force = _excitation(coefficients) * wave_amplitude
+    force = join_complex(coefficients, "excitation_torque") * wave_amplitude
     nu_pto = xr.DataArray(pto_damping) if np.ndim(pto_damping) == 0 else pto_damping
     # Eq. (A1) in Brito et al. 2020; RD12 Eq. (2.33)
     denom = (-omega**2 * (inertia + pto_inertia + mu) + stiffness + pto_stiffness

@@ -67,7 +67,8 @@ from scipy.interpolate import CubicSpline
 
 from flumekit import conventions
 from flumekit.errors import FlumekitError
-from flumekit.hydro.coefficients import HydroError, check_passive
+from flumekit.hydro.coefficients import check_passive
+from flumekit.hydro.excitation import excitation_torque, transfer_function
 from flumekit.hydro.radiation import StateSpace
 
 DIM = "angular_frequency"
@@ -211,12 +212,6 @@ class CallablePTO:
 
 # --- waves -----------------------------------------------------------------------------------
 
-def _transfer(hydro: xr.Dataset, omega) -> np.ndarray:
-    from flumekit.hydro.excitation import transfer_function
-
-    return transfer_function(hydro, omega)
-
-
 def _ramp(t: np.ndarray, ramp: float) -> np.ndarray:
     if ramp <= 0:
         return np.ones_like(t)
@@ -240,7 +235,7 @@ class RegularWave:
 
     def excitation(self, hydro):
         w = 2 * np.pi / self.period
-        f = complex(_transfer(hydro, [w])[0]) * self.height / 2
+        f = complex(transfer_function(hydro, [w])[0]) * self.height / 2
 
         def torque(t):
             return np.real(f * np.exp(-1j * w * t)) * _ramp(t, self.ramp)
@@ -280,7 +275,7 @@ class IrregularWave:
         dw = np.gradient(w)
         phase = np.random.default_rng(self.seed).uniform(0, 2 * np.pi, w.size)
         a = np.sqrt(2 * s * dw) * np.exp(1j * phase)
-        fa = _transfer(hydro, w) * a
+        fa = transfer_function(hydro, w) * a
 
         def series(coef):
             def f(t):
@@ -308,8 +303,6 @@ class MeasuredWave:
     taper: float = 2.0
 
     def excitation(self, hydro):
-        from flumekit.hydro.excitation import excitation_torque
-
         exc = excitation_torque(self.eta, hydro, taper=self.taper)
         t = exc["time"].values
         f = CubicSpline(t, exc.values)
@@ -824,6 +817,6 @@ def radiation_model(hydro: xr.Dataset, radiation, dt: float, irf_duration: float
 
 
 __all__ = ["BadParameterError", "BodyDynamics", "CallablePTO", "DivergenceError",
-           "HydroError", "IrregularWave", "LinearPTO", "MeasuredWave", "PTO", "PTOKernel",
+           "IrregularWave", "LinearPTO", "MeasuredWave", "PTO", "PTOKernel",
            "RegularWave", "SimulationError", "integrate", "radiation_model", "simulate",
            "stable_step", "to_dataset", "check_parameter"]

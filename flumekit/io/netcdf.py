@@ -84,6 +84,15 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     return path
 
 
+def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
+                  parameters: dict | None = None) -> Path:
+    """Write a product of flumekit: the global attributes of
+    :func:`flumekit.conventions.global_attrs` (title, source, history with the parameters) set
+    on ``ds``, then :func:`write_dataset`."""
+    ds.attrs.update(conventions.global_attrs(title, source, parameters))
+    return write_dataset(ds, path)
+
+
 def read_dataset(path: str | Path) -> xr.Dataset:
     """Open a flumekit netCDF file fully into memory (the file is closed on return)."""
     with xr.open_dataset(path, engine="netcdf4", decode_times=False,

@@ -83,6 +83,10 @@ class Graph:
             found += [t for t in hits if t not in found]
         return found
 
+    def match_any(self, pattern: str) -> bool:
+        """True if some target matches ``pattern``."""
+        return any(fnmatch.fnmatchcase(t, pattern) for t in self.rules)
+
     def closure(self, targets: Iterable[str]) -> list[str]:
         """The targets and everything they depend on, in dependency (topological) order."""
         order: list[str] = []

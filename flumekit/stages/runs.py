@@ -22,12 +22,10 @@ def run_coords(params: dict) -> dict:
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str) -> None:
     """Write one run's dataset: run coordinates (those the dataset lacks), global attributes."""
-    from flumekit import conventions
-    from flumekit.io.netcdf import write_dataset
+    from flumekit.io.netcdf import write_product
 
     ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
-    ds.attrs.update(conventions.global_attrs(f"{title} of run {params['run']}", source, params))
-    write_dataset(ds, outputs["dataset"])
+    write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params)
 
 
 def summary_rule(ctx, stage: str, version: str, module: str | None = None):
@@ -48,8 +46,7 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     """
     import xarray as xr
 
-    from flumekit import conventions
-    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.netcdf import read_dataset, write_product
 
     rows = []
     for name in sorted(inputs):
@@ -57,6 +54,6 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
         names = keep(ds) if keep else [v for v in ds.data_vars if ds[v].ndim == 0]
         rows.append(ds[list(names)].expand_dims("run"))
     out = xr.concat(rows, dim="run", coords="all", compat="override")
-    out.attrs = conventions.global_attrs(title, "flumekit campaign summary of "
-                                         f"{len(rows)} runs", {"runs": sorted(inputs)})
-    write_dataset(out, outputs["dataset"])
+    out.attrs = {}
+    write_product(out, outputs["dataset"], title,
+                  f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})

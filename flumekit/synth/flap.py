@@ -60,9 +60,10 @@ ramps the flap), per unit incident amplitude
   With these θ reaches 0.08-0.19 rad for H = 0.15 m and 0.16-0.34 rad for H = 0.3 m over
   T = 2-4 s (the paper measured 0.19 rad at T = 3.5 s, H = 0.25 m), and C_f of the nonlinear
   PTO below is 0.075-0.16.
-* K_p = 1.0e6 Pa s² rad⁻² and I_p = 2.4e4 Pa s² rad⁻¹ (a water column of about 3 m in a 12 mm
-  line behind the 50 mm bore: ρ L (A/a) |m| ≈ 2.4e4): the chamber reaches 0.65-4.8 bar in
-  compression and cavitates on the suction stroke for the larger heights.
+* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 1.75e6) and I_p = 2.4e4 Pa s² rad⁻¹
+  (a water column of about 3 m in a 12 mm line behind the 50 mm bore: ρ L (A/a) |m| ≈ 2.4e4):
+  the chamber reaches 0.65-4.8 bar in compression and cavitates on the suction stroke for the
+  larger heights (with K_p = 1.0e6).
 
 For the linear model, the truth of the PTO follows from θ(t) through flumekit's own models,
 exactly as the analysis assumes them: the rod kinematics of :mod:`flumekit.flap.geometry`, the
@@ -101,15 +102,13 @@ from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
 from flumekit.flap.power import flow_rate, pto_power
 from flumekit.flap.pressure import chamber_pressure_model, pressure_force
+from flumekit.flap.renzi_dias.model import channel_container, two_dimensional_excitation
 from flumekit.flap.torque import friction_torque, gravity_torque, inertia_torque, pressure_torque
+from flumekit.signal import uniform_step
 from flumekit.synth.flume import ExtraTorque, FlumeLosses
-from flumekit.waves.theory import G, wavenumber
+from flumekit.waves.theory import G, group_velocity
 
 MODELS = ("flume", "simulator", "linear")
-
-#: frequency grid of the Renzi-Dias container, as the pipeline's models/hydro stage builds it
-#: (flumekit.stages.models.DEFAULTS): ω from 0.4 to 25 rad/s, 400 points
-HYDRO_OMEGA = (0.4, 25.0, 400)
 
 
 @dataclass(frozen=True)
@@ -171,9 +170,8 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
                         irf_step: float = 0.005, rtol: float = 1e-3) -> FlumeHydrodynamics:
     """Renzi-Dias coefficients of the campaign's flap in the flume and their radiation model.
 
-    The container is built as the pipeline's ``models/hydro`` stage builds it
-    (:data:`HYDRO_OMEGA`, channel width = flume width; Renzi & Dias 2012 in a channel,
-    :func:`flumekit.hydro.coefficients.from_renzi_dias`, A∞ from the Ogilvie relation, median), and
+    The container is the pipeline's ``models/hydro`` one
+    (:func:`flumekit.flap.renzi_dias.model.channel_container`, channel width = flume width), and
     the radiation kernel K(t) over ``truth.irf_duration`` is fitted by the state-space model of
     :func:`flumekit.hydro.radiation.fit_state_space` (about 1.5 s in all: build it once per
     campaign and pass it to :func:`flap_record`). The fit is tighter than the simulator's
@@ -189,67 +187,25 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     irf_step : Sampling step of K(t) for the fit [s].
     rtol : Target relative error of the state-space fit of K(t).
     """
-    from flumekit.flap.renzi_dias.model import coefficients
-    from flumekit.hydro import coefficients as hy
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     flap = campaign.flap
-    omega = np.linspace(*HYDRO_OMEGA)
-    rd = coefficients(2 * np.pi / omega[::-1], campaign.flume.water_depth, flap.width,
-                      flap.hinge_height, channel_width=campaign.flume.width, rho=truth.rho)
-    hydro = hy.with_infinite_frequency_inertia(
-        hy.from_renzi_dias(rd, flap.buoyancy_stiffness), max_spread=None)
+    hydro = channel_container(campaign.flume.water_depth, flap.width, flap.hinge_height,
+                              campaign.flume.width, flap.buoyancy_stiffness, rho=truth.rho)
     radiation = fit_state_space(impulse_response(hydro, truth.irf_duration, irf_step),
                                 rtol=rtol)
     return FlumeHydrodynamics(hydro, radiation)
-
-
-def excitation_coefficient(omega, depth: float, hinge_height: float, width: float,
-                           rho: float = 1000.0, g: float = G) -> np.ndarray:
-    """Excitation torque per unit incident amplitude X(ω) [N m m-1] of a 2-D reflecting flap.
-
-    X = 2 ρ g w [(h − c) tanh(kh)/k − (cosh kh − cosh kc)/(k² cosh kh)], written without
-    overflow for large kh; X(0) = ρ g w (h − c)² (long-wave limit).
-
-    Parameters
-    ----------
-    omega : Angular frequency [rad s-1], ≥ 0.
-    depth : Water depth h [m].
-    hinge_height : Hinge height above the bed c [m], < h.
-    width : Flap width w [m].
-    """
-    w = np.asarray(omega, dtype=float)
-    d = depth - hinge_height
-    out = np.full(w.shape, rho * g * width * d**2)
-    pos = w > 0
-    k = wavenumber(w[pos], depth, g)
-    kh, kc = k * depth, k * hinge_height
-    # cosh(kc)/cosh(kh) = e^{k(c-h)} (1 + e^{-2kc}) / (1 + e^{-2kh})
-    ratio = np.exp(kc - kh) * (1 + np.exp(-2 * kc)) / (1 + np.exp(-2 * kh))
-    out[pos] = 2 * rho * g * width * (d * np.tanh(kh) / k - (1.0 - ratio) / k**2)
-    return out
 
 
 def radiation_damping(omega, depth: float, hinge_height: float, width: float,
                       rho: float = 1000.0, g: float = G) -> np.ndarray:
     """Radiation damping ν(ω) = X² / (2 ρ g c_g w) [N m s] from the 2-D Haskind relation."""
     w = np.asarray(omega, dtype=float)
-    x = excitation_coefficient(w, depth, hinge_height, width, rho, g)
+    x = two_dimensional_excitation(w, depth, hinge_height, width, rho, g)
     cg = np.full(w.shape, np.sqrt(g * depth))
     pos = w > 0
-    k = wavenumber(w[pos], depth, g)
-    y = 2 * k * depth
-    cg[pos] = w[pos] / (2 * k) * (1 + 2 * y * np.exp(-y) / -np.expm1(-2 * y))
+    cg[pos] = group_velocity(2 * np.pi / w[pos], depth, g)
     return x**2 / (2 * rho * g * cg * width)
-
-
-def _uniform(time: np.ndarray) -> float:
-    if time.ndim != 1 or time.size < 4 or not np.all(np.isfinite(time)):
-        raise ValueError("flap_record needs a finite 1-D time of at least 4 samples")
-    dt = (time[-1] - time[0]) / (time.size - 1)
-    if not dt > 0 or np.max(np.abs(np.diff(time) - dt)) > 1e-6 * dt + 1e-9:
-        raise ValueError("flap_record needs uniformly sampled, increasing time")
-    return dt
 
 
 def flap_motion(time, eta_incident_at_flap, *, campaign: Campaign, truth: FlapTruth = FlapTruth(),
@@ -270,7 +226,7 @@ def flap_motion(time, eta_incident_at_flap, *, campaign: Campaign, truth: FlapTr
     theta [rad], theta_dot [rad s-1], theta_ddot [rad s-2], torque_excitation [N m].
     """
     t = np.asarray(time, dtype=float)
-    dt = _uniform(t)
+    dt = uniform_step(t, "flap_record", min_samples=4)
     eta = np.asarray(eta_incident_at_flap, dtype=float)
     if eta.shape != t.shape or not np.all(np.isfinite(eta)):
         raise ValueError("eta_incident_at_flap must be finite and match time")
@@ -281,7 +237,7 @@ def flap_motion(time, eta_incident_at_flap, *, campaign: Campaign, truth: FlapTr
     nfft = sfft.next_fast_len(2 * n + int(np.ceil(20.0 / dt)))
     spec = sfft.rfft(eta, nfft)
     omega = 2 * np.pi * sfft.rfftfreq(nfft, dt)
-    x = excitation_coefficient(omega, depth, flap.hinge_height, flap.width, truth.rho)
+    x = two_dimensional_excitation(omega, depth, flap.hinge_height, flap.width, truth.rho)
     nu = radiation_damping(omega, depth, flap.hinge_height, flap.width, truth.rho)
     z = (flap.buoyancy_stiffness - (flap.inertia + truth.added_inertia) * omega**2
          + 1j * omega * (nu + truth.pto_damping + truth.viscous_damping))
@@ -504,7 +460,7 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
     (linear).
     """
     t = np.asarray(time, dtype=float)
-    dt = _uniform(t)
+    dt = uniform_step(t, "flap_record", min_samples=4)
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
     eta = np.asarray(eta_incident_at_flap, dtype=float)

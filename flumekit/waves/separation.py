@@ -29,6 +29,7 @@ import xarray as xr
 from scipy import signal as _sig
 
 from flumekit import conventions
+from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
     REGULAR_FRACTION,
@@ -146,9 +147,7 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
         raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
     if t.size < 8:
         raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
-    dt = (t[-1] - t[0]) / (t.size - 1)
-    if not dt > 0 or not np.allclose(np.diff(t), dt, rtol=1e-6, atol=1e-9 * dt):
-        raise ValueError("eta must be sampled uniformly in increasing time")
+    uniform_step(t, "eta")
     bad = ~np.isfinite(v)
     if bad.any():
         p = int(np.flatnonzero(bad.any(axis=1))[0])

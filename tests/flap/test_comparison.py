@@ -1,10 +1,12 @@
-"""The comparison stage's pieces: coefficient container, interpolation, spin-up, PTO damping."""
+"""The comparison's pieces: coefficient container, interpolation, spin-up, PTO damping."""
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from flumekit.flap import comparison as cmp
 from flumekit.flap.renzi_dias import model as rd
+from flumekit.hydro.coefficients import split_complex
 from flumekit.io.netcdf import read_dataset
 from flumekit.stages import models as stage
 
@@ -14,12 +16,21 @@ GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_w
 
 @pytest.fixture(scope="module")
 def hydro(tmp_path_factory):
+    # through the stage: the file the comparison reads
     out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
     params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
                              ("coefficients", "omega_min", "omega_max", "n_omega",
                               "irf_duration")}}
     stage.hydro({}, {"dataset": out}, params)
     return read_dataset(out)
+
+
+def test_the_stage_writes_the_one_channel_container(hydro):
+    """The virtual flume and the stage share rd.channel_container: the file holds it exactly."""
+    direct = split_complex(rd.channel_container(0.825, 1.31, 0.10, 1.5, 605.0))
+    for name in ("added_inertia", "radiation_damping", "excitation_torque_real",
+                 "excitation_torque_imag", "added_inertia_infinite"):
+        np.testing.assert_array_equal(hydro[name].values, direct[name].values)
 
 
 def test_radiation_model_fitted_once_in_the_container(hydro):
@@ -42,7 +53,7 @@ def _container(hydro):
 @pytest.mark.parametrize("period", [2.0, 2.6, 3.5, 4.0])
 def test_container_at_a_period_matches_the_model_there(hydro, period):
     """Cubic interpolation over the 400-point grid: 1e-4 relative on every coefficient."""
-    at = stage.coefficients_at(hydro, period)
+    at = cmp.coefficients_at(hydro, period)
     direct = rd.coefficients([period], 0.825, 1.31, 0.10, channel_width=1.5)
     for name in ("added_inertia", "radiation_damping"):
         np.testing.assert_allclose(at[name], direct[name], rtol=1e-4)
@@ -53,7 +64,7 @@ def test_container_at_a_period_matches_the_model_there(hydro, period):
 def test_periodic_extension_continues_the_steady_wave():
     t = np.arange(0, 100, 0.04)
     eta = np.where((t > 30) & (t < 80), np.sin(2 * np.pi * t / 2.5), np.nan)
-    ext = stage.periodic_extension(xr.DataArray(eta, dims="time", coords={"time": t}), 2.5,
+    ext = cmp.periodic_extension(xr.DataArray(eta, dims="time", coords={"time": t}), 2.5,
                                    before=10, after=4)
     tt = ext.time.values
     assert tt[0] == pytest.approx(30.04 - 25.0, abs=0.05) and tt[-1] > 79.9 + 9.9
@@ -72,7 +83,7 @@ def test_energy_equivalent_damping_reproduces_the_mean_power():
     flap = xr.Dataset({"theta_dot": ("time", theta_dot),
                        "mean_power": nu * np.mean(theta_dot[(t >= 50) & (t <= 150)] ** 2),
                        "steady_start": 50.0, "steady_end": 150.0}, coords={"time": t})
-    assert stage.energy_equivalent_damping(flap) == pytest.approx(nu, rel=1e-12)
+    assert cmp.energy_equivalent_damping(flap) == pytest.approx(nu, rel=1e-12)
 
 
 def test_bem_container(tmp_path):
@@ -83,5 +94,5 @@ def test_bem_container(tmp_path):
     stage.hydro({}, {"dataset": out}, params)
     h = read_dataset(out)
     assert h.sizes["angular_frequency"] == 6 and np.all(h.radiation_damping > 0)
-    at = stage.coefficients_at(h, 3.0)
+    at = cmp.coefficients_at(h, 3.0)
     assert at.added_inertia.item() > 0

@@ -18,13 +18,18 @@ CASES = [(3.5, 0.25, "simulator"), (2.0, 0.15, "simulator"), (3.5, 0.25, "linear
          (2.0, 0.15, "linear")]
 
 
+def device(c):
+    """What analyse_run takes of a campaign."""
+    return dict(flap=c.flap, pto=c.pto, encoder=c.encoder, depth=c.flume.water_depth)
+
+
 @pytest.fixture(scope="module")
 def analysed(record, campaign):
     out = {}
     for period, height, model in CASES:
         t, _, truth = record(period, height, model=model)
         ds = analyse_run(t, truth.encoder_counts.values, truth.chamber_pressure.values,
-                         campaign=campaign, period=period, incident_height=height)
+                         **device(campaign), period=period, incident_height=height)
         out[(period, height, model)] = (t, truth, ds)
     return out
 
@@ -87,8 +92,8 @@ def test_out_of_domain_encoder_samples(record, campaign):
     counts[[5000, 9000]] = 10**7  # impossible wire lengths (glitches)
     args = (t, counts, truth.chamber_pressure.values)
     with pytest.raises(InputError, match="outside the domain of Eq. \\(1\\)"):
-        analyse_run(*args, campaign=campaign, period=3.5, incident_height=0.25)
-    ds = analyse_run(*args, campaign=campaign, period=3.5, incident_height=0.25,
+        analyse_run(*args, **device(campaign), period=3.5, incident_height=0.25)
+    ds = analyse_run(*args, **device(campaign), period=3.5, incident_height=0.25,
                      max_flagged_fraction=0.001)
     assert int(ds.domain_flag.sum()) == 2
     assert np.degrees(_rms(ds.theta - truth.theta)) < 0.05
@@ -97,7 +102,7 @@ def test_out_of_domain_encoder_samples(record, campaign):
 def test_bad_input_and_geometry(record, campaign):
     t, _, truth = record(2.0, 0.15)
     c, p = truth.encoder_counts.values, truth.chamber_pressure.values
-    kw = dict(campaign=campaign, period=2.0, incident_height=0.15)
+    kw = dict(**device(campaign), period=2.0, incident_height=0.15)
     with pytest.raises(ValueError, match="same length"):
         analyse_run(t, c[:-1], p, **kw)
     bad_p = p.copy()
@@ -107,13 +112,13 @@ def test_bad_input_and_geometry(record, campaign):
     with pytest.raises(ValueError, match="uniform"):
         analyse_run(np.sort(t + np.random.default_rng(0).uniform(0, 0.005, t.size)), c, p, **kw)
     with pytest.raises(ValueError, match="incident height"):
-        analyse_run(t, c, p, campaign=campaign, period=2.0, incident_height=0.0)
+        analyse_run(t, c, p, **device(campaign), period=2.0, incident_height=0.0)
     pto = dataclasses.replace(campaign.pto, flap_anchor=campaign.pto.bed_anchor)
     with pytest.raises(GeometryError, match="coincide"):
-        analyse_run(t, c, p, **{**kw, "campaign": dataclasses.replace(campaign, pto=pto)})
+        analyse_run(t, c, p, **{**kw, "pto": pto})
     enc = dataclasses.replace(campaign.encoder, L5=-1.0)
     with pytest.raises(GeometryError, match="L5"):
-        analyse_run(t, c, p, **{**kw, "campaign": dataclasses.replace(campaign, encoder=enc)})
+        analyse_run(t, c, p, **{**kw, "encoder": enc})
 
 
 def test_incident_power_against_independent_dispersion():

@@ -10,13 +10,18 @@ from flumekit.flap.analysis import analyse_run
 from flumekit.waves.theory import stokes2_coefficient, wavenumber
 
 
+def device(c):
+    """What analyse_run takes of a campaign."""
+    return dict(flap=c.flap, pto=c.pto, encoder=c.encoder, depth=c.flume.water_depth)
+
+
 @pytest.fixture(scope="module")
 def runs(record, campaign):
     out = []
     for period, height in ((2.0, 0.15), (3.5, 0.15), (2.0, 0.25), (3.5, 0.25)):
         t, eta, truth = record(period, height, n_waves=40)
         ds = analyse_run(t, truth.encoder_counts.values, truth.chamber_pressure.values,
-                         campaign=campaign, period=period, incident_height=height)
+                         **device(campaign), period=period, incident_height=height)
         out.append((ds.assign_coords(wave_height=height), xr.DataArray(eta, coords={"time": t})))
     return out
 

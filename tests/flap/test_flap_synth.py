@@ -9,13 +9,8 @@ from scipy.integrate import quad
 from flumekit import conventions
 from flumekit.flap.encoder import wire_length
 from flumekit.flap.pressure import chamber_pressure_model
-from flumekit.synth.flap import (
-    FlapTruth,
-    excitation_coefficient,
-    flap_motion,
-    flap_record,
-    radiation_damping,
-)
+from flumekit.flap.renzi_dias.model import two_dimensional_excitation
+from flumekit.synth.flap import FlapTruth, flap_motion, flap_record, radiation_damping
 from flumekit.waves.theory import group_velocity, wavenumber
 
 H_DEPTH, C_HINGE, WIDTH = 0.825, 0.10, 1.31
@@ -30,7 +25,7 @@ def test_excitation_is_the_pressure_integral(period):
     integral, _ = quad(lambda s: s * np.cosh(k * (s + C_HINGE)) / np.cosh(k * H_DEPTH),
                        0.0, H_DEPTH - C_HINGE, epsabs=0, epsrel=1e-13)
     expected = 2 * 1000.0 * 9.81 * WIDTH * integral
-    got = excitation_coefficient(np.array([omega]), H_DEPTH, C_HINGE, WIDTH)[0]
+    got = two_dimensional_excitation(np.array([omega]), H_DEPTH, C_HINGE, WIDTH)[0]
     assert got == pytest.approx(expected, rel=1e-10)
     # Haskind: nu = X^2 / (2 rho g c_g w)
     nu = radiation_damping(np.array([omega]), H_DEPTH, C_HINGE, WIDTH)[0]
@@ -40,7 +35,7 @@ def test_excitation_is_the_pressure_integral(period):
 
 def test_excitation_limits():
     # long waves: rho g w (h - c)^2, continuous from omega = 0; short waves: no overflow
-    x = excitation_coefficient(np.array([0.0, 1e-4, 300.0]), H_DEPTH, C_HINGE, WIDTH)
+    x = two_dimensional_excitation(np.array([0.0, 1e-4, 300.0]), H_DEPTH, C_HINGE, WIDTH)
     assert x[0] == pytest.approx(9810.0 * WIDTH * (H_DEPTH - C_HINGE) ** 2, rel=1e-12)
     assert x[1] == pytest.approx(x[0], rel=1e-6)
     assert np.isfinite(x[2]) and 0 < x[2] < 1e-3 * x[0]
@@ -56,7 +51,7 @@ def test_steady_response_is_the_transfer_function(campaign):
     theta, theta_dot, theta_ddot, _ = flap_motion(t, env * a * np.cos(omega * t),
                                                   campaign=campaign, truth=truth)
     fl = campaign.flap
-    X = excitation_coefficient(np.array([omega]), H_DEPTH, fl.hinge_height, fl.width)[0]
+    X = two_dimensional_excitation(np.array([omega]), H_DEPTH, fl.hinge_height, fl.width)[0]
     nu = radiation_damping(np.array([omega]), H_DEPTH, fl.hinge_height, fl.width)[0]
     Z = (fl.buoyancy_stiffness - (fl.inertia + truth.added_inertia) * omega**2
          + 1j * omega * (nu + truth.pto_damping + truth.viscous_damping))
@@ -316,9 +311,9 @@ def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrody
     import xarray as xr
 
     from flumekit.flap.analysis import analyse_run
+    from flumekit.flap.comparison import periodic_extension, time_domain_difference
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
-    from flumekit.stages.models import periodic_extension, time_domain_difference
 
     period, height = 3.5, 0.25
     t = np.arange(0, 250, 0.01)
@@ -328,7 +323,8 @@ def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrody
                      truth=FlapTruth(model="simulator"), hydro=hydrodynamics, height=height,
                      eta_lead_out=lead)
     flap = analyse_run(t, ds.encoder_counts.values, ds.chamber_pressure.values,
-                       campaign=campaign, period=period, incident_height=height)
+                       flap=campaign.flap, pto=campaign.pto, encoder=campaign.encoder,
+                       depth=campaign.flume.water_depth, period=period, incident_height=height)
     steady = (t >= float(flap.steady_start)) & (t <= float(flap.steady_end))
     inc = xr.DataArray(np.where(steady, eta, np.nan), dims="time", coords={"time": t})
     sim = simulate_run(hydrodynamics.hydro, periodic_extension(inc, period, 20, 5), campaign,

@@ -306,6 +306,21 @@ def test_two_dimensional_reference_and_its_long_wave_limit():
     assert f2 == pytest.approx(1000.0 * G * B * (H - C) ** 2, rel=1e-5)
 
 
+def test_two_dimensional_excitation_has_no_overflow_in_short_waves():
+    """kh = 1328 and 922 (T = 0.05, 0.06 s): cosh kh overflows, the written form does not; F_2d
+    equals its deep-water form 2ρgw[(h-c)/k - 1/k²] (cosh kc / cosh kh ≈ e^{-k(h-c)} < 1e-300)
+    to 1e-12. The copy in two_dimensional() returned NaN here before it used this one."""
+    periods = np.array([0.05, 0.06])
+    two = rd.two_dimensional(periods, H, C, B)
+    k = two.wave_number.values
+    assert np.all(k * H > 710)
+    expected = 2 * 1000.0 * G * B * ((H - C) / k - 1 / k**2)
+    np.testing.assert_allclose(two.excitation_torque_real.values, expected, rtol=1e-12)
+    # and the Haskind relation (RD12 Eq. C3) holds there too, written without overflow as well
+    np.testing.assert_allclose(rd.haskind_damping(two.excitation_torque_real.values, periods, H,
+                                                  C), two.radiation_damping.values, rtol=1e-10)
+
+
 def test_channel_model_tends_to_two_dimensional_as_the_gaps_close():
     """w/b → 1: |F| and ν approach the 2-D values monotonically; at a gap of 0.1 % of b, T =
     1.2 s, within 1 % (F) and 1.5 % (ν), |R0| > 0.99, arg F within 7° of 0. The gap flow makes

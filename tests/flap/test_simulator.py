@@ -13,6 +13,7 @@ from scipy import linalg
 from flumekit import conventions
 from flumekit.campaign import load_campaign
 from flumekit.flap import simulator as S
+from flumekit.flap.renzi_dias.model import two_dimensional_excitation
 from flumekit.hydro import coefficients as H
 from flumekit.hydro import radiation as R
 from flumekit.hydro.excitation import excitation_torque
@@ -375,7 +376,7 @@ def test_against_the_virtual_flume(campaign):
     truth = synth.FlapTruth()
     depth, flap = campaign.flume.water_depth, campaign.flap
     w = np.linspace(0.2, 25.0, 600)
-    x = synth.excitation_coefficient(w, depth, flap.hinge_height, flap.width)
+    x = two_dimensional_excitation(w, depth, flap.hinge_height, flap.width)
     nu = synth.radiation_damping(w, depth, flap.hinge_height, flap.width)
     hy = H.hydro_dataset(w, np.full_like(w, truth.added_inertia), nu, x.astype(complex),
                          flap.buoyancy_stiffness)

@@ -29,6 +29,7 @@ import xarray as xr
 from scipy import optimize, signal
 
 from flumekit import conventions
+from flumekit.signal import UNIFORM_RTOL, uniform_step
 
 COMPONENTS = ("generator", "screw", "nut")
 
@@ -200,7 +201,7 @@ def step_means(time, values, period: float, edges) -> np.ndarray:
     t = np.asarray(time, float)
     x = np.asarray(values, float)
     dt = period / t.size
-    if not np.allclose(np.diff(t), dt, rtol=1e-6, atol=1e-9 * period):
+    if abs(uniform_step(t, "periodic signal") - dt) > UNIFORM_RTOL * dt:
         raise ValueError("periodic signal must be uniformly sampled over exactly one period "
                          "(time[-1] + dt = period)")
     cum = np.concatenate([[0.0], np.cumsum(x) * dt])

@@ -33,7 +33,9 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.errors import GeometryError
 from flumekit.flap.renzi_dias import eigenmodes, hypersingular
-from flumekit.waves.theory import G, group_velocity
+from flumekit.hydro import coefficients as hy
+from flumekit.hydro.coefficients import join_complex
+from flumekit.waves.theory import G, group_velocity, wavenumber
 
 #: Default truncation orders. With these, μ, ν and |F| are within 1e-5 (relative) of the
 #: converged values for the flume (h = 0.825 m, w = 1.31 m, b = 1.5 m, c = 0.1 m) at
@@ -47,6 +49,10 @@ DEFAULT_TRUNCATION = {
     "lattice": "spectral",
     "images": 400,
 }
+
+
+#: frequency grid (ω_min [rad s-1], ω_max [rad s-1], points) of :func:`channel_container`
+CONTAINER_OMEGA = (0.4, 25.0, 400)
 
 
 class Solution(NamedTuple):
@@ -207,6 +213,35 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
     return dataset(sol, depth, hinge_height, rho, g)
 
 
+def channel_container(depth: float, flap_width: float, hinge_height: float,
+                      channel_width: float, hydrostatic_stiffness: float, *,
+                      omega: tuple[float, float, int] = CONTAINER_OMEGA, rho: float = 1000.0,
+                      g: float = G) -> xr.Dataset:
+    """The coefficient container of a thin flap in a channel (RD12), with A∞.
+
+    The one container of the flume's flap: the comparison stage's linear model and simulator
+    and the virtual flume use it. :func:`coefficients` on ``omega`` = (ω_min, ω_max, n) evenly
+    spaced angular frequencies [rad s-1], :func:`flumekit.hydro.coefficients.from_renzi_dias`,
+    and A∞ from the Ogilvie relation (median estimate, spread reported, not checked).
+
+    Parameters
+    ----------
+    depth : Water depth h [m].
+    flap_width : Flap width w [m].
+    hinge_height : Hinge height above the bed c [m].
+    channel_width : Channel (flume) width b [m].
+    hydrostatic_stiffness : C [N m rad-1].
+    omega : Frequency grid.
+    rho : Water density [kg m-3].
+    g : Gravitational acceleration [m s-2].
+    """
+    w = np.linspace(*omega)
+    rd = coefficients(2 * np.pi / w[::-1], depth, flap_width, hinge_height,
+                      channel_width=channel_width, rho=rho, g=g)
+    return hy.with_infinite_frequency_inertia(hy.from_renzi_dias(rd, hydrostatic_stiffness),
+                                              max_spread=None)
+
+
 def dataset(sol: Solution, depth: float, hinge_height: float, rho: float = 1000.0,
             g: float = G) -> xr.Dataset:
     """The coefficients dataset of a :class:`Solution` (see :func:`coefficients`)."""
@@ -254,28 +289,19 @@ def dataset(sol: Solution, depth: float, hinge_height: float, rho: float = 1000.
     return conventions.annotate(ds)
 
 
-def _complex(ds: xr.Dataset, name: str) -> xr.DataArray:
-    out = ds[f"{name}_real"] + 1j * ds[f"{name}_imag"]
-    out.name = name
-    out.attrs = {"units": ds[f"{name}_real"].attrs.get("units", ""),
-                 "long_name": ds[f"{name}_real"].attrs.get("long_name", name).replace(
-                     "real part of the ", "")}
-    return out
-
-
 def excitation(ds: xr.Dataset) -> xr.DataArray:
     """Complex excitation torque per metre of wave amplitude F [N m m-1] from a dataset."""
-    return _complex(ds, "excitation_torque")
+    return join_complex(ds, "excitation_torque")
 
 
 def reflection(ds: xr.Dataset) -> xr.DataArray:
     """Complex plane-wave reflection coefficient R_0 [-] of the fixed flap (channel datasets)."""
-    return _complex(ds, "reflection_coefficient")
+    return join_complex(ds, "reflection_coefficient")
 
 
 def transmission(ds: xr.Dataset) -> xr.DataArray:
     """Complex plane-wave transmission coefficient T_0 [-] of the fixed flap (channel datasets)."""
-    return _complex(ds, "transmission_coefficient")
+    return join_complex(ds, "transmission_coefficient")
 
 
 def haskind_damping(excitation_torque, period, depth: float, hinge_height: float,
@@ -292,8 +318,41 @@ def haskind_damping(excitation_torque, period, depth: float, hinge_height: float
     k, h, c = modes.wavenumber, float(depth), float(hinge_height)
     kh = k * h
     cg = group_velocity(period, h, g)
-    bracket = h - c + (np.cosh(k * c) - np.cosh(kh)) / (k * np.sinh(kh))
+    # (cosh kc - cosh kh) / sinh kh without overflow for kh > 710
+    e = np.exp(-2 * kh)
+    ratio = (np.exp(k * c - kh) * (1 + np.exp(-2 * k * c)) - (1 + e)) / -np.expm1(-2 * kh)
+    bracket = h - c + ratio / k
     return np.tanh(kh) / (k * cg) * bracket * np.real(excitation_torque)
+
+
+def two_dimensional_excitation(omega, depth: float, hinge_height: float, width: float,
+                               rho: float = 1000.0, g: float = G) -> np.ndarray:
+    """Excitation torque per unit incident amplitude of a flap spanning the channel [N m m-1].
+
+    F_2d = 2 ρ g w [(h − c) tanh(kh)/k − (cosh kh − cosh kc)/(k² cosh kh)] (RD12 Eq. 3.1):
+    twice the incident dynamic pressure ρ g cosh k(z+h)/cosh kh of a fully reflecting wall
+    integrated over the wetted flap with the lever arm about the hinge. The cosh ratio is
+    written as e^{k(c−h)} (1 + e^{−2kc}) / (1 + e^{−2kh}), so it does not overflow for
+    kh > 710; at ω = 0 the long-wave limit ρ g w (h − c)² (RD12 Eq. 3.2).
+
+    Parameters
+    ----------
+    omega : Angular frequency [rad s-1], ≥ 0.
+    depth : Water depth h [m].
+    hinge_height : Hinge height above the bed c [m], < h.
+    width : Flap width w [m].
+    rho : Water density [kg m-3].
+    g : Gravitational acceleration [m s-2].
+    """
+    w = np.asarray(omega, dtype=float)
+    d = depth - hinge_height
+    out = np.full(w.shape, rho * g * width * d**2)  # Eq. (3.2) in RD12
+    pos = w > 0
+    k = wavenumber(w[pos], depth, g)
+    kh, kc = k * depth, k * hinge_height
+    ratio = np.exp(kc - kh) * (1 + np.exp(-2 * kc)) / (1 + np.exp(-2 * kh))  # cosh kc / cosh kh
+    out[pos] = 2 * rho * g * width * (d * np.tanh(kh) / k - (1.0 - ratio) / k**2)  # Eq. (3.1)
+    return out
 
 
 def two_dimensional(period, depth: float, hinge_height: float, width: float,
@@ -314,9 +373,7 @@ def two_dimensional(period, depth: float, hinge_height: float, width: float,
     kn = np.sqrt(-m.kappa2[:, 1:])
     mu = 2 * rho * width * np.sum(m.f[:, 1:] ** 2 / kn, axis=-1)
     nu = 2 * rho * width * omega * m.f[:, 0] ** 2 / k
-    # Eq. (3.1) in RD12
-    f2d = 2 * rho * g * width * ((h - c) * np.tanh(k * h) / k
-                                 + (np.cosh(k * c) - np.cosh(k * h)) / (k**2 * np.cosh(k * h)))
+    f2d = two_dimensional_excitation(omega, h, c, width, rho, g)
     ds = xr.Dataset(
         {"added_inertia": ("period", mu), "radiation_damping": ("period", nu),
          "excitation_torque_real": ("period", f2d),
