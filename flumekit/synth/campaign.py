@@ -26,7 +26,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.campaign import Campaign, Run, load_campaign
+from flumekit.campaign import Campaign, load_campaign
 from flumekit.errors import InputError
 from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
@@ -217,23 +217,31 @@ def _hydro(campaign: Campaign):
 
 def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
     """The campaign :func:`write_campaign` would write at ``root``, without writing anything
-    there: what a pipeline plans with before the virtual flume has run."""
+    there: what a pipeline plans with before the virtual flume has run. The campaign and run
+    files are written to a temporary folder and read by :func:`load_campaign` itself, so the
+    plan is what the campaign reader makes of the files the virtual flume will write."""
     import dataclasses
 
     root = Path(root)
-    if (root / "campaign.toml").is_file():
-        base = load_campaign(root)
-    else:
-        with tempfile.TemporaryDirectory() as tmp:
-            (Path(tmp) / "campaign.toml").write_text(_campaign_toml(root.name))
-            base = load_campaign(tmp)
-    depth, truth = base.flume.water_depth, Truth()
-    runs = tuple(sorted((Run(id=r.id, path=root / "runs" / r.id, kind=r.kind, period=r.period,
-                             height=r.height, repeat=r.repeat,
-                             probe_x=probe_positions(r.period, depth, truth),
-                             uvp_elevation=r.uvp_elevation) for r in plan_runs(size)),
-                        key=lambda r: r.id))
-    return dataclasses.replace(base, root=root, runs=runs)
+    truth = Truth()
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "campaign.toml").write_text(_campaign_toml(root.name))
+        depth = load_campaign(tmp).flume.water_depth
+        for r in plan_runs(size):
+            (tmp / "runs" / r.id).mkdir(parents=True)
+            (tmp / "runs" / r.id / "run.toml").write_text(run_toml(
+                r.kind, r.period, r.height, r.repeat, r.uvp_elevation,
+                probe_positions(r.period, depth, truth)))
+        planned = load_campaign(tmp)
+
+        def moved(p: Path) -> Path:
+            return root / os.path.relpath(p, tmp)
+
+        runs = tuple(dataclasses.replace(r, path=moved(r.path),
+                                         files={k: moved(v) for k, v in r.files.items()})
+                     for r in planned.runs)
+    return dataclasses.replace(planned, root=root, runs=runs)
 
 
 def _campaign_toml(name: str) -> str:
