@@ -178,6 +178,22 @@ class _BarEvents:
             self.bar.close()
 
 
+def _interrupts():
+    """Count Ctrl-C: the first raises KeyboardInterrupt as usual, and the engine also stops
+    before its next target if some library swallowed that exception."""
+    import signal
+
+    seen: list[int] = []
+
+    def on_int(signum, frame):
+        seen.append(signum)
+        raise KeyboardInterrupt
+
+    if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+        signal.signal(signal.SIGINT, on_int)
+    return lambda: bool(seen)
+
+
 def _forced(args, pipe, graph) -> tuple[bool, list[str]]:
     if args.forceall:
         return True, []
@@ -215,6 +231,7 @@ def cmd_make(args) -> int:
         state = State(pipe.state_file)
         with executor_for(args.jobs, args.scheduler, args.executor, args.dask_timeout) as ex:
             report = make(graph, targets, state, ex, force=forceall, force_targets=forced,
+                          interrupted=_interrupts(),
                           root=pipe.path.parent.resolve(),
                           keep_going=args.keep_going, events=_events(args))
     _results(graph, report)

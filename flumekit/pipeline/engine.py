@@ -251,7 +251,7 @@ def invalidate(graph: Graph, state: State, target: str) -> list[str]:
 def make(graph: Graph, targets: list[str], state: State, executor: Executor, force: bool = False,
          log: Callable[[str], None] | None = None, *, force_targets: Iterable[str] = (),
          keep_going: bool = False, events: Events | None = None,
-         root: Path | None = None) -> Report:
+         root: Path | None = None, interrupted: Callable[[], bool] = lambda: False) -> Report:
     """Build ``targets``; rules run on ``executor`` as soon as their inputs are up to date.
 
     A rule is judged just before it would run, with the real hashes of freshly built inputs, so
@@ -297,6 +297,8 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
 
     try:
         while len(done) < n_total:
+            if interrupted():  # a Ctrl-C that a library swallowed still stops the build
+                raise KeyboardInterrupt
             if first_error is None or keep_going:
                 for t in order:
                     if t in done or t in busy or not pending[t] <= done:
