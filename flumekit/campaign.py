@@ -1,12 +1,15 @@
 """Typed campaign and run metadata, read from the TOML files of a raw campaign (raw/README.md).
 
-Every field is checked when read; a bad or missing field is an :class:`InputError` naming the
-file and the field.
+Each file is validated against its schema (:data:`CAMPAIGN`, :data:`RUN`) before anything is
+built from it: every problem of a file is reported at once, naming the file, the key and what
+was expected; an unknown key is an error with the closest known name.
 """
 
 from __future__ import annotations
 
+import difflib
 import math
+import os
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,6 +21,7 @@ else:  # pragma: no cover
     import tomli as tomllib
 
 from flumekit.errors import InputError
+from flumekit.schema import Key, Problem, raise_problems, suggest, validate
 
 
 def read_toml(path: Path) -> dict[str, Any]:
@@ -99,10 +103,207 @@ class Table:
         return tuple(v)
 
 
+# --------------------------------------------------------------------------------------------
+# Schemas: what each file may hold (flumekit.schema validates them, every problem at once)
+# --------------------------------------------------------------------------------------------
+
+def _num(doc: str, unit: str = "", **kw) -> Key:
+    return Key("number", doc, unit, **kw)
+
+
+def _still_water_check(v: Any) -> str | None:
+    if isinstance(v, str):
+        return None if v in STILL_WATER_RULES else (
+            f"expected one of {list(STILL_WATER_RULES)}, a level [m], [start, end] [s] or a "
+            f"table probe = level [m], got {v!r}")
+    if isinstance(v, list):
+        if len(v) != 2 or not v[0] < v[1]:
+            return f"a still segment is [start, end] in seconds with start < end, got {v!r}"
+    if isinstance(v, dict):
+        bad = [k for k, x in v.items() if not isinstance(x, (int, float)) or isinstance(x, bool)]
+        if bad:
+            return f"levels must be numbers [m], not for {bad}"
+    return None
+
+
+#: still-water rules by name (a number, a segment or a table per probe are the other forms)
+STILL_WATER_RULES = {
+    "mean": "the record mean of each probe",
+    "none": "nothing removed (calibrated voltages already refer to the still-water level)",
+}
+STILL_WATER = Key(
+    "text", "still-water level removed from each probe's elevation: 'mean' (record mean), "
+    "'none', a level [m] for every probe, [start, end] [s] (mean of a still segment before the "
+    "waves arrive) or a table probe = level [m]", required=False,
+    kinds=("number", "numbers", "table"), check=_still_water_check)
+
+
+def _columns_check(v: Any) -> str | None:
+    vals = v.values() if isinstance(v, dict) else v
+    if not all((isinstance(c, str) or (isinstance(c, int) and not isinstance(c, bool) and c >= 1))
+               for c in vals):
+        return "columns are header names (strings) or 1-based column numbers"
+    return None
+
+
+def _units_check(v: Any) -> str | None:
+    from flumekit.units import UNITS
+
+    vals = list(v.values()) if isinstance(v, dict) else [v]
+    bad = [u for u in vals if not isinstance(u, str) or u not in UNITS]
+    return f"unknown unit(s) {bad}; known: {' '.join(UNITS)}" if bad else None
+
+
+def _delimiter_check(v: str) -> str | None:
+    return None if len(v) == 1 or v == "whitespace" else \
+        f"a delimiter is one character (',', ';', '\\t') or 'whitespace', got {v!r}"
+
+
+#: how an instrument's file is written (io.dialects reads it): one schema for every instrument
+DIALECT: dict[str, Key] = {
+    "file": Key("text", "file name in each run folder (calibration: relative to the campaign "
+                "folder); a run's [files] table may override it", required=False),
+    "format": Key("text", "file format", required=False, default="csv",
+                  choices=("csv", "tdms", "hdf5", "netcdf")),
+    "delimiter": Key("text", "csv: column delimiter (',', ';', '\\t' or 'whitespace')",
+                     required=False, default=",", check=_delimiter_check),
+    "decimal": Key("text", "csv: decimal mark", required=False, default=".",
+                   choices=(".", ",")),
+    "comment": Key("text", "csv: lines starting with this text are skipped", required=False,
+                   default=""),
+    "skip_lines": Key("integer", "csv: preamble lines before the header (or the data)",
+                      required=False, default=0, nonnegative=True),
+    "header": Key("bool", "csv: the first (non-preamble) line names the columns",
+                  required=False, default=True),
+    "columns": Key("table", "channel -> column: a header name or a 1-based column number "
+                   "(csv), 'group/channel' or a channel name (tdms), a variable path (hdf5, "
+                   "netcdf); a list gives them in channel order; default: the channel names",
+                   required=False, kinds=("any",), items=Key("any"), check=_columns_check),
+    "units": Key("text", "one unit for every channel, or a table channel = unit (also 'time'); "
+                 "default: the unit in the header cell 'name [unit]' or the file's unit "
+                 "attribute", required=False, kinds=("table",), items=Key("text"),
+                 check=_units_check),
+    "time": Key("text", "the time column (numbers, or datetimes taken relative to the first "
+                "sample), or 'rate' for time from the sampling rate", required=False,
+                default="time", kinds=("integer",)),
+    "group": Key("text", "tdms, hdf5, netcdf: the group holding the channels", required=False,
+                 default=""),
+}
+
+FRICTION = {k: _num(d, u, nonnegative=True) for k, d, u in (
+    ("sigma0", "bristle stiffness", "N m-1"), ("sigma1", "bristle micro-damping", "N s m-1"),
+    ("sigma2", "viscous friction coefficient", "N s m-1"), ("coulomb_force", "F_c", "N"),
+    ("static_force", "F_s", "N"), ("stribeck_velocity", "x_s", "m s-1"),
+    ("stribeck_exponent", "n", "1"), ("minimum_friction_velocity", "x_b", "m s-1"),
+    ("tau_hp", "film time constant, acceleration", "s"),
+    ("tau_hm", "film time constant, deceleration", "s"),
+    ("tau_h0", "film time constant, dwell", "s"))}
+
+BEAM = {"x": _num("x of the transducer face", "m"),
+        "dz": _num("face elevation relative to the run's UVP elevation", "m"),
+        "angle_deg": _num("beam angle above the horizontal, towards +x", "degree")}
+
+#: campaign.toml; [flap], [pto] and [encoder] together declare the flap instruments, [uvp] the
+#: velocity profiler; a campaign with [probes] only is a waves study
+CAMPAIGN: dict[str, Key] = {
+    "campaign": Key("table", "name and title", table={
+        "name": Key("text", "short name of the campaign"),
+        "title": Key("text", "title written into every dataset", required=False)}),
+    "flume": Key("table", "the flume", table={
+        "water_depth": _num("still water depth h", "m", positive=True),
+        "width": _num("flume width", "m", positive=True, required=False),
+        "length": _num("flume length", "m", positive=True, required=False)}),
+    "flap": Key("table", "bottom-hinged flap (with [pto] and [encoder])", required=False,
+                table={
+        "height": _num("flap height (descriptive)", "m", positive=True, required=False),
+        "width": _num("flap width", "m", positive=True),
+        "thickness": _num("flap thickness", "m", positive=True),
+        "mass": _num("flap mass (descriptive)", "kg", positive=True, required=False),
+        "inertia": _num("moment of inertia about the hinge", "kg m2", positive=True),
+        "hinge_height": _num("hinge above the bed", "m", nonnegative=True),
+        "cog_height": _num("centre of mass above the hinge (descriptive)", "m",
+                           required=False),
+        "buoyancy_stiffness": _num("linearised net buoyancy torque per radian C",
+                                   "N m rad-1")}),
+    "pto": Key("table", "hydraulic cylinder power take-off", required=False, table={
+        "bed_anchor": Key("point", "bed anchor (x, z)", "m"),
+        "flap_anchor": Key("point", "flap anchor (x, z) at theta = 0", "m"),
+        "bore_diameter": _num("cylinder bore", "m", positive=True),
+        "atmospheric_pressure": _num("atmospheric pressure", "Pa", positive=True,
+                                     required=False, default=101325.0),
+        "vapour_pressure": _num("vapour pressure (absolute)", "Pa", positive=True,
+                                required=False, default=2339.0),
+        "friction": Key("table", "modified LuGre friction (Appendix B)", required=False,
+                        table=FRICTION)}),
+    "encoder": Key("table", "wire encoder of Eq. (1) (also the pressure sensor's rate)",
+                   required=False, table={
+        "L5": _num("hinge to wire anchor", "m", positive=True),
+        "L7": _num("wire length at theta = 0", "m", positive=True),
+        "counts_per_metre": _num("encoder counts per metre of wire", "m-1", positive=True),
+        "sampling_rate": _num("sampling rate of encoder and pressure", "Hz", positive=True)}),
+    "probes": Key("table", "wave probes", table={
+        "names": Key("names", "probe names"),
+        "separation": Key("names", "probes used for the incident/reflected separation "
+                          "(default: all)", required=False),
+        "sampling_rate": _num("sampling rate", "Hz", positive=True),
+        "units": Key("text", "unit of the recorded probe channels: a voltage unit (V, mV) "
+                     "needs the static calibration; a length unit (m, cm, mm) is already "
+                     "calibrated", required=False, default="V", check=_units_check),
+        "still_water": STILL_WATER}),
+    "uvp": Key("table", "ultrasonic velocity profiler; one [uvp.<beam>] table per beam",
+               required=False, table={
+        "frequency": _num("emitting frequency", "Hz", positive=True),
+        "sampling_rate": _num("profile rate per beam", "Hz", positive=True),
+        "n_channels": Key("integer", "channels per profile", positive=True),
+        "start_channel": _num("distance of channel 0", "m", nonnegative=True),
+        "channel_distance": _num("channel spacing", "m", positive=True),
+        "channel_width": _num("channel width", "m", positive=True),
+        "sound_speed": _num("speed of sound", "m s-1", positive=True),
+        "beams": Key("names", "beam (transducer) names")},
+        items=Key("table", "one beam", table=BEAM)),
+    "files": Key("table", "how each instrument's files are written (default: the flumekit CSV)",
+                 required=False, table={
+        "probes": Key("table", "wave probe records", required=False, table=DIALECT),
+        "flap": Key("table", "encoder and pressure records", required=False, table=DIALECT),
+        "calibration": Key("table", "static probe calibration", required=False,
+                           table=DIALECT)}),
+}
+
+INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
+                    "calibration": "calibration/probes.csv"}
+
+RUN: dict[str, Key] = {
+    "run": Key("table", "the wave condition", table={
+        "kind": Key("text", "waves, or uvp (the run also has .mfprof files)", required=False,
+                    default="waves", choices=("waves", "uvp")),
+        "period": _num("target wave period", "s", positive=True),
+        "height": _num("target wave height", "m", positive=True, required=False),
+        "repeat": Key("integer", "repeat number of the condition", required=False, default=0),
+        "uvp_elevation": _num("UVP runs: elevation of the horizontal transducer", "m",
+                              required=False)}),
+    "probes": Key("table", "x of every probe named in campaign.toml", "m", table={},
+                  items=_num("probe position", "m")),
+    "still_water": Key("table", "this run's still-water rule, overriding [probes] still_water "
+                       "of campaign.toml: rule = ...", required=False,
+                       table={"rule": STILL_WATER}),
+    "clock": Key("table", "time offset added to each instrument's time stamps to put them on "
+                 "the probes' clock [s] (`flumekit clock` estimates one)", required=False,
+                 table={k: _num(f"{k} time offset", "s", required=False, default=0.0)
+                        for k in ("probes", "flap", "uvp")}),
+    "files": Key("table", "this run's instrument files, relative to the run folder, when not "
+                 "named as in [files] of campaign.toml", required=False,
+                 table={k: Key("text", f"{k} record", required=False) for k in ("probes", "flap")}),
+}
+
+
+# --------------------------------------------------------------------------------------------
+# Typed metadata
+# --------------------------------------------------------------------------------------------
+
 @dataclass(frozen=True)
 class Flume:
     water_depth: float  # [m]
-    width: float  # [m]
+    width: float | None = None  # [m], required with the flap (the channel of its models)
     length: float | None = None  # [m], descriptive: no computation reads it
 
 
@@ -172,6 +373,17 @@ class Probes:
     names: tuple[str, ...]
     sampling_rate: float  # [Hz]
     separation: tuple[str, ...]  # probes used for incident/reflected separation
+    units: str = "V"  # unit of the recorded channels (voltage: calibrate; length: calibrated)
+    # still-water rule (None: 'none' for voltages, 'mean' for lengths); a list or table is
+    # unhashable, and a campaign is hashed (cached hydrodynamics): left out of the hash
+    still_water: Any = field(default=None, hash=False)
+
+    @property
+    def calibrated(self) -> bool:
+        """True when the channels are recorded in length units (no calibration needed)."""
+        from flumekit.units import UNITS
+
+        return UNITS[self.units][0] == "length"
 
 
 @dataclass(frozen=True)
@@ -202,10 +414,16 @@ class Run:
     path: Path
     kind: str  # "waves" or "uvp"
     period: float  # [s]
-    height: float  # [m]
+    height: float | None  # [m], None when not declared
     repeat: int
     probe_x: dict[str, float]  # probe name -> x [m]
     uvp_elevation: float | None  # [m]
+    files: dict[str, Path] = field(default_factory=dict)  # instrument -> file
+    clock: dict[str, float] = field(default_factory=dict)  # instrument -> time offset [s]
+    still_water: Any = None  # the run's still-water rule (None: the campaign's)
+
+    def file(self, instrument: str) -> Path:
+        return self.files[instrument]
 
 
 @dataclass(frozen=True)
@@ -214,16 +432,29 @@ class Campaign:
     title: str
     root: Path
     flume: Flume
-    flap: Flap
-    pto: PTO
-    encoder: Encoder
+    flap: Flap | None
+    pto: PTO | None
+    encoder: Encoder | None
     probes: Probes
     uvp: UVP | None
     runs: tuple[Run, ...] = field(default_factory=tuple)
+    # instrument -> dialect (io.dialects); not hashed (a dict), see Probes.still_water
+    files: dict[str, dict] = field(default_factory=dict, hash=False)
 
     @property
     def calibration_file(self) -> Path:
-        return self.root / "calibration" / "probes.csv"
+        return self.root / self.files.get("calibration", {}).get(
+            "file", INSTRUMENT_FILES["calibration"])
+
+    @property
+    def instruments(self) -> tuple[str, ...]:
+        """The instruments declared: 'probes', then 'flap' (flap, PTO, encoder and pressure),
+        then 'uvp'."""
+        return ("probes",) + (("flap",) if self.flap else ()) + (("uvp",) if self.uvp else ())
+
+    def dialect(self, instrument: str) -> dict:
+        """How ``instrument``'s files are written (a dict for ``io.dialects.Dialect``)."""
+        return dict(self.files.get(instrument, {}))
 
     def run(self, run_id: str) -> Run:
         for r in self.runs:
@@ -232,88 +463,157 @@ class Campaign:
         raise KeyError(f"campaign '{self.name}' has no run '{run_id}'")
 
 
-def _read_run(path: Path, probes: Probes) -> Run:
-    t = Table(read_toml(path), path)
-    r = t.sub("run")
-    kind = r.text("kind", "waves")
-    if kind not in ("waves", "uvp"):
-        raise InputError(path, f"kind must be 'waves' or 'uvp', got {kind!r}", field="run.kind")
-    px = t.sub("probes")
-    probe_x = {}
-    for name in probes.names:
-        probe_x[name] = px.number(name)
-    unknown = set(px.data) - set(probes.names)
-    if unknown:
-        raise InputError(path, f"unknown probe(s) {sorted(unknown)}; the campaign declares "
-                         f"{list(probes.names)}", field="probes")
-    uvp_z = r.number("uvp_elevation") if kind == "uvp" else None
-    return Run(id=path.parent.name, path=path.parent, kind=kind,
-               period=r.number("period", positive=True), height=r.number("height", positive=True),
-               repeat=r.integer("repeat", 0), probe_x=probe_x, uvp_elevation=uvp_z)
+def _table(data: dict, key: str) -> dict:
+    v = data.get(key)
+    return v if isinstance(v, dict) else {}
+
+
+def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | None:
+    data = read_toml(path)
+    found = validate(data, RUN, path)
+    names = campaign.probes.names
+    px = _table(data, "probes")
+    for name in names:
+        if name not in px:
+            found.append(Problem(path, f"probes.{name}", "missing key: x of the probe [m]"))
+    for name in px:
+        if name not in names:
+            found.append(Problem(path, f"probes.{name}", f"unknown probe '{name}'; the campaign "
+                                 f"declares {list(names)}" + suggest(name, list(names))))
+    r = _table(data, "run")
+    kind = r.get("kind", "waves")
+    if kind == "uvp" and "uvp_elevation" not in r:
+        found.append(Problem(path, "run.uvp_elevation", "missing key: UVP runs need the "
+                             "elevation of the horizontal transducer [m]"))
+    if kind == "uvp" and campaign.uvp is None:
+        found.append(Problem(path, "run.kind", "a 'uvp' run needs [uvp] in campaign.toml"))
+    clock = _table(data, "clock")
+    for k in clock:
+        if k in ("flap", "uvp") and k not in campaign.instruments:
+            found.append(Problem(path, f"clock.{k}", f"the campaign declares no {k} instrument"))
+    files = {}
+    for inst in ("probes", "flap"):
+        given = _table(data, "files").get(inst)
+        default = campaign.files.get(inst, {}).get("file", INSTRUMENT_FILES[inst])
+        # normalised, not resolved: "../../record.csv" reads as the file it names
+        files[inst] = Path(os.path.normpath(path.parent / (given if isinstance(given, str)
+                                                           else default)))
+    if found:
+        problems += found
+        return None
+    sw = _table(data, "still_water").get("rule")
+    return Run(id=path.parent.name, path=path.parent, kind=kind, period=float(r["period"]),
+               height=float(r["height"]) if "height" in r else None,
+               repeat=int(r.get("repeat", 0)), probe_x={n: float(px[n]) for n in names},
+               uvp_elevation=float(r["uvp_elevation"]) if kind == "uvp" else None,
+               files=files, clock={k: float(clock.get(k, 0.0)) for k in ("probes", "flap", "uvp")},
+               still_water=sw)
+
+
+def _check_channels(path: Path, files: dict, channels: dict[str, list[str]],
+                    problems: list[Problem]) -> None:
+    """Columns and units of each [files.<instrument>] must name that instrument's channels."""
+    for inst, d in files.items():
+        known = channels[inst]
+        for key in ("columns", "units"):
+            v = d.get(key)
+            if isinstance(v, dict):
+                extra = [k for k in v if k not in known and not (key == "units" and k == "time")]
+                for k in extra:
+                    problems.append(Problem(path, f"files.{inst}.{key}.{k}", f"unknown channel; "
+                                            f"{inst} has {known}" + suggest(k, known)))
+            if key == "columns" and isinstance(v, list) and len(v) != len(known):
+                problems.append(Problem(path, f"files.{inst}.columns", f"a list of {len(known)} "
+                                        f"columns in channel order {known}, got {len(v)}"))
 
 
 def load_campaign(root: str | Path) -> Campaign:
-    """Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``."""
+    """Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``.
+
+    Every problem of a file is reported at once (one :class:`InputError` listing them); the run
+    files are read only when the campaign file is sound.
+    """
     root = Path(root)
     path = root / "campaign.toml"
-    t = Table(read_toml(path), path)
-    c = t.sub("campaign")
-    fl = t.sub("flume")
-    flume = Flume(fl.number("water_depth", positive=True), fl.number("width", positive=True),
-                  fl.number("length", positive=True) if fl.has("length") else None)
-    f = t.sub("flap")
-    flap = Flap(f.number("width", positive=True), f.number("thickness", positive=True),
-                f.number("inertia", positive=True), f.number("hinge_height", nonnegative=True),
-                f.number("buoyancy_stiffness"),
-                height=f.number("height", positive=True) if f.has("height") else None,
-                mass=f.number("mass", positive=True) if f.has("mass") else None,
-                cog_height=f.number("cog_height") if f.has("cog_height") else None)
-    if flap.width > flume.width:
-        raise InputError(path, f"flap width {flap.width} m exceeds the flume width {flume.width} m",
-                         field="flap.width")
-    if flap.hinge_height >= flume.water_depth:
-        raise InputError(path, "hinge above the still water level", field="flap.hinge_height")
-    p = t.sub("pto")
-    pto = PTO(p.point("bed_anchor"), p.point("flap_anchor"),
-              p.number("bore_diameter", positive=True),
-              p.number("atmospheric_pressure", positive=True, default=101325.0),
-              p.number("vapour_pressure", positive=True, default=2339.0))
-    if p.has("friction"):
-        fr = p.sub("friction")
-        fields = Friction.__dataclass_fields__
-        pto = PTO(**{**pto.__dict__, "friction": Friction(
-            **{k: fr.number(k, nonnegative=True) for k in fields})})
-        if pto.friction.static_force < pto.friction.coulomb_force:
-            raise InputError(path, "static friction force below the Coulomb force",
-                             field="pto.friction.static_force")
-    if math.dist(pto.bed_anchor, pto.flap_anchor) <= 0:
-        raise InputError(path, "PTO anchors coincide", field="pto")
-    e = t.sub("encoder")
-    enc = Encoder(e.number("L5", positive=True), e.number("L7", positive=True),
-                  e.number("counts_per_metre", positive=True),
-                  e.number("sampling_rate", positive=True))
-    pr = t.sub("probes")
-    names = pr.names("names")
-    sep = pr.names("separation") if pr.has("separation") else names
-    if set(sep) - set(names):
-        raise InputError(path, f"separation names unknown probes {sorted(set(sep) - set(names))}",
-                         field="probes.separation")
-    probes = Probes(names, pr.number("sampling_rate", positive=True), sep)
+    data = read_toml(path)
+    problems = validate(data, CAMPAIGN, path)
+    flap_parts = [k for k in ("flap", "pto", "encoder") if k in data]
+    if flap_parts and len(flap_parts) < 3:
+        missing = sorted({"flap", "pto", "encoder"} - set(flap_parts))
+        problems.append(Problem(path, missing[0], f"[flap], [pto] and [encoder] declare the "
+                                f"flap instruments together; missing: {missing}"))
+    if "uvp" in data and not flap_parts:
+        problems.append(Problem(path, "uvp", "the UVP analysis is phased on the flap: declare "
+                                "[flap], [pto] and [encoder] too"))
+    pr = _table(data, "probes")
+    names = pr.get("names") if isinstance(pr.get("names"), list) else []
+    sep = pr.get("separation")
+    if isinstance(sep, list) and set(sep) - set(names):
+        problems.append(Problem(path, "probes.separation",
+                                f"names unknown probes {sorted(set(sep) - set(names))}"))
+    u = _table(data, "uvp")
+    beams = u.get("beams") if isinstance(u.get("beams"), list) else []
+    strays = [k for k, v in u.items() if isinstance(v, dict) and k not in beams]
+    typos = {c for k in strays for c in difflib.get_close_matches(k, [str(b) for b in beams], 1)}
+    for b in beams:
+        if b not in u and b not in typos:
+            problems.append(Problem(path, f"uvp.{b}", "missing table: x, dz, angle_deg of the "
+                                    "beam"))
+    for k, v in u.items():
+        if isinstance(v, dict) and k not in beams:
+            problems.append(Problem(path, f"uvp.{k}", f"a beam not listed in uvp.beams {beams}"
+                                    + suggest(k, [str(b) for b in beams])))
+    files = {k: v for k, v in _table(data, "files").items() if isinstance(v, dict)}
+    _check_channels(path, files, {"probes": list(names), "flap": ["encoder", "pressure"],
+                                  "calibration": ["level", *names]}, problems)
+    fl, f, p = _table(data, "flume"), _table(data, "flap"), _table(data, "pto")
+    if not problems and f:
+        if "width" not in fl:
+            problems.append(Problem(path, "flume.width", "missing key [m]: the flap's models "
+                                    "need the channel width"))
+        elif f["width"] > fl["width"]:
+            problems.append(Problem(path, "flap.width", f"flap width {f['width']} m exceeds the "
+                                    f"flume width {fl['width']} m"))
+        if f["hinge_height"] >= fl["water_depth"]:
+            problems.append(Problem(path, "flap.hinge_height", "hinge above the still water "
+                                    "level"))
+        fr = p.get("friction", {})
+        if fr and fr["static_force"] < fr["coulomb_force"]:
+            problems.append(Problem(path, "pto.friction.static_force",
+                                    "static friction force below the Coulomb force"))
+        if math.dist(p["bed_anchor"], p["flap_anchor"]) <= 0:
+            problems.append(Problem(path, "pto", "PTO anchors coincide"))
+    raise_problems(path, problems)
+
+    c = data["campaign"]
+    flume = Flume(float(fl["water_depth"]), fl.get("width"), fl.get("length"))
+    flap = pto = enc = None
+    if f:
+        flap = Flap(**{k: float(f[k]) for k in Flap.__dataclass_fields__ if k in f})
+        fr = p.get("friction")
+        pto = PTO(tuple(map(float, p["bed_anchor"])), tuple(map(float, p["flap_anchor"])),
+                  float(p["bore_diameter"]), float(p.get("atmospheric_pressure", 101325.0)),
+                  float(p.get("vapour_pressure", 2339.0)),
+                  Friction(**{k: float(fr[k]) for k in FRICTION}) if fr else None)
+        e = data["encoder"]
+        enc = Encoder(*(float(e[k]) for k in ("L5", "L7", "counts_per_metre", "sampling_rate")))
+    probes = Probes(tuple(names), float(pr["sampling_rate"]), tuple(sep or names),
+                    pr.get("units", "V"), pr.get("still_water"))
     uvp = None
-    if t.has("uvp"):
-        u = t.sub("uvp")
-        beams = []
-        for name in u.names("beams"):
-            b = u.sub(name)
-            beams.append(Beam(name, b.number("x"), b.number("dz"),
-                              math.radians(b.number("angle_deg"))))
-        uvp = UVP(u.number("frequency", positive=True), u.number("sampling_rate", positive=True),
-                  u.integer("n_channels"), u.number("start_channel", nonnegative=True),
-                  u.number("channel_distance", positive=True),
-                  u.number("channel_width", positive=True),
-                  u.number("sound_speed", positive=True), tuple(beams))
+    if u:
+        uvp = UVP(float(u["frequency"]), float(u["sampling_rate"]), int(u["n_channels"]),
+                  float(u["start_channel"]), float(u["channel_distance"]),
+                  float(u["channel_width"]), float(u["sound_speed"]),
+                  tuple(Beam(b, float(u[b]["x"]), float(u[b]["dz"]),
+                             math.radians(u[b]["angle_deg"])) for b in beams))
+    campaign = Campaign(name=c["name"], title=c.get("title", c["name"]), root=root,
+                        flume=flume, flap=flap, pto=pto, encoder=enc, probes=probes, uvp=uvp,
+                        files=files)
     runs_dir = root / "runs"
     run_files = sorted(runs_dir.glob("*/run.toml")) if runs_dir.is_dir() else []
-    runs = tuple(_read_run(rp, probes) for rp in run_files)
-    return Campaign(name=c.text("name"), title=c.text("title", c.text("name")), root=root,
-                    flume=flume, flap=flap, pto=pto, encoder=enc, probes=probes, uvp=uvp, runs=runs)
+    run_problems: list[Problem] = []
+    runs = [_read_run(rp, campaign, run_problems) for rp in run_files]
+    if run_problems:
+        raise_problems(run_problems[0].path if len({q.path for q in run_problems}) == 1
+                       else runs_dir, run_problems)
+    return Campaign(**{**campaign.__dict__, "runs": tuple(runs)})

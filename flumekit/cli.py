@@ -1,4 +1,9 @@
-"""The ``flumekit`` command line: parses arguments and calls the pipeline; nothing else."""
+"""The ``flumekit`` command line: parses arguments and calls the pipeline; nothing else.
+
+Flags follow make and snakemake: ``-n`` dry run, ``-j N`` jobs, ``-k`` keep going, ``-f``/
+``--force`` rebuilds the named targets only, ``-F``/``--forceall`` everything they need;
+``--debug``, ``-q`` and ``-v`` work before or after the subcommand.
+"""
 
 from __future__ import annotations
 
@@ -10,9 +15,20 @@ from pathlib import Path
 from flumekit.errors import FlumekitError
 
 DEFAULT_PIPELINE = Path("pipelines") / "default.toml"
+#: how much `make` says: 0 quiet (errors and the closing summary), 1 normal, 2 verbose
+_VERBOSITY = {"quiet": 0, "normal": 1, "verbose": 2}
 
 
-def _progress(i: int, n: int, run_id: str) -> None:
+def _say(args, level: int, text: str) -> None:
+    if _verbosity(args) >= level:
+        print(text, file=sys.stderr)
+
+
+def _verbosity(args) -> int:
+    return 1 - getattr(args, "quiet", 0) + getattr(args, "verbose", 0)
+
+
+def _progress(i: int, n: int, run_id: str) -> None:  # for `flumekit synth`
     print(f"    [{i + 1}/{n}] {run_id}", file=sys.stderr)
 
 
@@ -26,63 +42,237 @@ def _pipeline(args):
     return load_pipeline(path, processed=getattr(args, "processed", None))
 
 
-def _graph(pipe, synthesise: bool):
-    from flumekit.campaign import load_campaign
+def _graph(pipe):
+    """The pipeline's rules. A campaign the virtual flume is to write (``[synth]`` in the
+    pipeline, and its raw folder absent, empty or partly synthesised) is planned from the
+    virtual flume's design, with rules that synthesise only the raw files a requested target
+    reads; planning itself writes nothing."""
+    import json
+
     from flumekit.pipeline.engine import Graph
-    from flumekit.stages import build_rules
+    from flumekit.stages import build_rules, check_stage_params, virtual
     from flumekit.stages.context import Context
 
-    if not (pipe.raw / "campaign.toml").exists():
+    raw = pipe.raw
+    marker = raw / virtual.MARKER
+    lazy = None
+    if (raw / "campaign.toml").exists():
+        if marker.is_file():
+            info = json.loads(marker.read_text())
+            if not all((raw / "runs" / r / "run.toml").exists() for r in info["runs"]):
+                lazy = info["size"], int(info["seed"])
+    else:
         # The virtual flume is written only into an absent or empty folder: a raw path one
         # folder off or a renamed campaign.toml must never cost a laboratory its files.
-        empty = not pipe.raw.exists() or (pipe.raw.is_dir() and not any(pipe.raw.iterdir()))
-        if not (synthesise and pipe.synth and empty):
+        empty = not raw.exists() or (raw.is_dir() and not any(raw.iterdir()))
+        if not (pipe.synth and empty):
             why = ("" if empty else "; the folder holds other files, so no virtual campaign is "
                    "written there (nothing was changed)")
-            raise FlumekitError(f"{pipe.raw / 'campaign.toml'}: campaign file not found{why}. "
+            raise FlumekitError(f"{raw / 'campaign.toml'}: campaign file not found{why}. "
                                 f"Check 'raw' in {pipe.path}")
-        from flumekit.synth.campaign import write_campaign
+        lazy = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
+    check_stage_params(pipe.stages, pipe.path)
+    if lazy is None:
+        ctx = Context(campaign=_campaign(raw, pipe.processed), processed=pipe.processed,
+                      params=pipe.stages)
+        return Graph(build_rules(ctx))
+    from flumekit.synth.campaign import virtual_campaign
 
-        size, seed = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
-        print(f"synthesising the '{size}' virtual-flume campaign into {pipe.raw} ...",
-              file=sys.stderr)
-        t0 = time.perf_counter()
-        write_campaign(pipe.raw, size=size, seed=seed, progress=_progress)
-        print(f"    done in {time.perf_counter() - t0:.1f} s", file=sys.stderr)
-    campaign = load_campaign(pipe.raw)
-    ctx = Context(campaign=campaign, processed=pipe.processed, params=pipe.stages)
-    return Graph(build_rules(ctx))
+    campaign = virtual_campaign(raw, *lazy)
+    rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages))
+    return Graph(rules + virtual.rules(rules, raw, *lazy, [r.id for r in campaign.runs]))
+
+
+def _campaign(raw: Path, processed: Path):
+    """``load_campaign(raw)``, from a cache in the processed folder while no TOML file of the
+    campaign changed (size and modification time): parsing 141 run files is most of a no-op
+    make on the paper campaign."""
+    import os
+    import pickle
+
+    import flumekit.campaign as code
+    from flumekit.campaign import load_campaign
+
+    runs = raw / "runs"
+    files = [Path(code.__file__), raw / "campaign.toml",
+             *(sorted(runs.glob("*/run.toml")) if runs.is_dir() else [])]
+    key = []
+    for f in files:
+        st = os.stat(f)
+        key.append((str(f), st.st_size, st.st_mtime_ns))
+    cache = processed / ".flumekit-campaign.pickle"
+    try:
+        with open(cache, "rb") as fh:
+            old_key, campaign = pickle.load(fh)
+        if old_key == key:
+            return campaign
+    except (OSError, pickle.UnpicklingError, EOFError, ValueError, AttributeError, TypeError):
+        pass  # no cache, or one from another flumekit version: read the TOML files
+    campaign = load_campaign(raw)
+    if processed.is_dir():
+        from flumekit.io.atomic import atomic_path
+
+        with atomic_path(cache) as tmp:
+            tmp.write_bytes(pickle.dumps((key, campaign)))
+    return campaign
 
 
 def _targets(pipe, graph, names: list[str]) -> list[str]:
     if not names:
-        names = [t for targets in pipe.scenes.values() for t in targets] or ["*"]
+        # every scene the campaign's instruments allow (a waves study has no flap scenes)
+        names = [t for targets in pipe.scenes.values() for t in targets
+                 if graph.match_any(t)] or ["*"]
     patterns: list[str] = []
     for n in names:
         patterns += pipe.scenes.get(n, [n])
     return graph.match(patterns)
 
 
+def _events(args):
+    """Progress of a build: a bar with rate and time left on a terminal, plain lines in logs."""
+    from flumekit.pipeline.engine import Events
+
+    level = _verbosity(args)
+    if level <= 0:
+        return Events(lambda s: None)
+    if sys.stderr.isatty():
+        return _BarEvents(verbose=level >= 2)
+    ev = Events()
+    if level < 2:
+        ev.finished = lambda target, seconds: None
+    return ev
+
+
+class _BarEvents:
+    """tqdm progress bar: targets done of those needed, rate, elapsed and time left."""
+
+    def __init__(self, verbose: bool):
+        self.verbose, self.bar = verbose, None
+
+    def start(self, n_total: int) -> None:
+        from tqdm import tqdm
+
+        self.bar = tqdm(total=n_total, unit="target", file=sys.stderr, dynamic_ncols=True,
+                        bar_format="{l_bar}{bar}| {n}/{total} [{elapsed}<{remaining}, "
+                                   "{rate_fmt}] {postfix}")
+
+    def started(self, i, n, target, reason) -> None:
+        self.bar.set_postfix_str(target, refresh=True)
+        if self.verbose:
+            self.bar.write(f"[{i}/{n}] {target}: {reason}", file=sys.stderr)
+
+    def finished(self, target, seconds) -> None:
+        if self.verbose:
+            self.bar.write(f"    {target} done in {seconds:.2f} s", file=sys.stderr)
+        self.bar.update(1)
+
+    def skipped(self, target) -> None:
+        self.bar.update(1)
+
+    def failed(self, failure) -> None:
+        self.bar.write(f"    {failure.target} FAILED: {failure.problem}", file=sys.stderr)
+        self.bar.update(1)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _forced(args, pipe, graph) -> tuple[bool, list[str]]:
+    if args.forceall:
+        return True, []
+    if args.force:
+        return False, _targets(pipe, graph, args.targets)
+    return False, []
+
+
 def cmd_make(args) -> int:
+    from flumekit.io.atomic import remove_orphans
     from flumekit.pipeline.engine import make, plan
     from flumekit.pipeline.executors import executor_for
+    from flumekit.pipeline.lock import build_lock
     from flumekit.pipeline.state import State
 
     pipe = _pipeline(args)
-    graph = _graph(pipe, synthesise=not args.dry_run)
-    targets = _targets(pipe, graph, args.targets)
-    state = State(pipe.state_file)
     if args.dry_run:
-        steps = plan(graph, targets, state, force=args.force)
-        state.save()
+        graph = _graph(pipe)
+        targets = _targets(pipe, graph, args.targets)
+        forceall, forced = _forced(args, pipe, graph)
+        steps = plan(graph, targets, State(pipe.state_file), force=forceall,
+                     force_targets=forced)
         for t, reason in steps:
             print(f"would build {t}: {reason}")
         if not steps:
             print(f"nothing to do: {len(graph.closure(targets))} target(s) up to date")
         return 0
-    with executor_for(args.jobs, args.scheduler, args.executor) as ex:
-        make(graph, targets, state, ex, force=args.force)
-    return 0
+    with build_lock(pipe.processed, say=lambda s: _say(args, 0, s)):
+        orphans = remove_orphans(pipe.processed)
+        if orphans:
+            _say(args, 2, f"removed {len(orphans)} temporary file(s) of an interrupted build")
+        graph = _graph(pipe)
+        targets = _targets(pipe, graph, args.targets)
+        forceall, forced = _forced(args, pipe, graph)
+        state = State(pipe.state_file)
+        with executor_for(args.jobs, args.scheduler, args.executor, args.dask_timeout) as ex:
+            report = make(graph, targets, state, ex, force=forceall, force_targets=forced,
+                          root=pipe.path.parent.resolve(),
+                          keep_going=args.keep_going, events=_events(args))
+    _results(graph, report)
+    _summary(args, pipe, graph, report)
+    return 1 if report.failed else 0
+
+
+def _summary(args, pipe, graph, report) -> None:
+    """The closing lines of a build: counts, failures, where the outputs are, what next."""
+    import os
+
+    try:
+        where = os.path.relpath(pipe.processed)
+    except ValueError:
+        where = str(pipe.processed)
+    counts = [f"built {len(report.ran)}", f"up to date {len(report.skipped)}"]
+    if report.failed:
+        counts.append(f"failed {len(report.failed)}")
+    if report.blocked:
+        counts.append(f"not built (input failed) {len(report.blocked)}")
+    if not report.ran and not report.failed:
+        print(f"nothing to do: all {len(report.skipped)} target(s) up to date "
+              f"({report.seconds:.2f} s)", file=sys.stderr)
+    else:
+        print(f"{', '.join(counts)} in {report.seconds:.1f} s", file=sys.stderr)
+    if report.failed:
+        print("failures (target, run, file: problem):", file=sys.stderr)
+        for f in report.failed:
+            print(f"  {f.target}  run {f.run or '-'}  {f.file or '-'}: {f.problem}",
+                  file=sys.stderr)
+        if report.removed:
+            print(f"removed the outputs of {len(report.removed)} target(s) built from the "
+                  "failed ones (no stale result stays readable)", file=sys.stderr)
+    figures = [str(p) for t, _, _ in report.ran if t.startswith("figure/")
+               for p in graph.rules[t].outputs.values()]
+    print(f"outputs in {where}/", file=sys.stderr)
+    if figures:
+        shown = ", ".join(os.path.relpath(f) for f in figures[:4])
+        more = f" and {len(figures) - 4} more" if len(figures) > 4 else ""
+        print(f"figures written: {shown}{more}", file=sys.stderr)
+    pipe_opt = "" if Path(args.pipeline) == DEFAULT_PIPELINE else f" --pipeline {args.pipeline}"
+    if report.failed:
+        nxt = (f"fix the files named above, then `flumekit make{pipe_opt}` (add -k to build "
+               "everything else meanwhile)")
+    else:
+        nxt = f"`flumekit list{pipe_opt}` for every target and scene"
+    print(f"next: {nxt}", file=sys.stderr)
+
+
+def _results(graph, report) -> None:
+    """The make summary's results: each waves run built now, with its first-harmonic Kr."""
+    built = [t for t, *_ in report.ran if t.startswith("waves/")]
+    if built:
+        from flumekit.stages.waves import report as waves_report
+
+        print("results:")
+        for t in built:
+            print(f"  {t}: {waves_report(graph.rules[t].outputs['dataset'])}")
 
 
 def cmd_list(args) -> int:
@@ -90,11 +280,15 @@ def cmd_list(args) -> int:
     from flumekit.pipeline.state import State
 
     pipe = _pipeline(args)
-    graph = _graph(pipe, synthesise=False)
+    graph = _graph(pipe)
     state = State(pipe.state_file)
     stale = dict(plan(graph, list(graph.rules), state))
     print("scenes:")
     for name, targets in pipe.scenes.items():
+        if not all(graph.match_any(t) for t in targets):
+            print(f"  {name:<20} {'not available':<22} (needs instruments this campaign "
+                  "does not declare)")
+            continue
         needed = graph.closure(graph.match(targets))
         n_stale = sum(t in stale for t in needed)
         status = "up to date" if n_stale == 0 else f"{n_stale} of {len(needed)} to build"
@@ -102,6 +296,61 @@ def cmd_list(args) -> int:
     print("targets:")
     for t in graph.rules:
         print(f"  {t:<40} {stale.get(t, 'up to date')}")
+    return 0
+
+
+def cmd_graph(args) -> int:
+    """The dependency graph of the targets (default: every scene) as DOT or Mermaid."""
+    pipe = _pipeline(args)
+    graph = _graph(pipe)
+    nodes = graph.closure(_targets(pipe, graph, args.targets))
+    ids = {t: f"n{i}" for i, t in enumerate(nodes)}
+    if args.format == "dot":
+        lines = ["digraph flumekit {", "  rankdir=LR;", "  node [shape=box];"]
+        lines += [f'  {ids[t]} [label="{t}"];' for t in nodes]
+        lines += [f"  {ids[d]} -> {ids[t]};" for t in nodes for d in graph.deps(t)]
+        lines.append("}")
+    else:
+        lines = ["flowchart LR"]
+        lines += [f'  {ids[t]}["{t}"]' for t in nodes]
+        lines += [f"  {ids[d]} --> {ids[t]}" for t in nodes for d in graph.deps(t)]
+    print("\n".join(lines))
+    return 0
+
+
+def cmd_clean(args) -> int:
+    """Remove the outputs of the targets (default: every target) and forget their builds.
+
+    Only files the pipeline declares as outputs under the processed folder are removed; raw
+    data (and the virtual flume's synthesised campaign) is never touched.
+    """
+    from flumekit.pipeline.lock import build_lock
+    from flumekit.pipeline.state import State
+
+    pipe = _pipeline(args)
+    graph = _graph(pipe)
+    targets = _targets(pipe, graph, args.targets) if args.targets else list(graph.rules)
+    removed = 0
+    with build_lock(pipe.processed, say=lambda s: _say(args, 0, s)):
+        state = State(pipe.state_file)
+        for t in targets:
+            rule = graph.rules[t]
+            if rule.source:
+                continue
+            for p in rule.outputs.values():
+                p = Path(p)
+                if p.is_file() and p.resolve().is_relative_to(pipe.processed.resolve()):
+                    if args.dry_run:
+                        print(f"would remove {p}")
+                    else:
+                        p.unlink()
+                    removed += 1
+            if not args.dry_run:
+                state.targets.pop(t, None)
+        if not args.dry_run:
+            state.save()
+    verb = "would remove" if args.dry_run else "removed"
+    _say(args, 0, f"{verb} {removed} file(s) of {len(targets)} target(s) under {pipe.processed}")
     return 0
 
 
@@ -113,6 +362,84 @@ def cmd_synth(args) -> int:
     write_campaign(out, size=args.size, seed=args.seed, progress=_progress)
     print(f"wrote the '{args.size}' virtual-flume campaign to {out} in "
           f"{time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def cmd_new(args) -> int:
+    """A commented campaign skeleton (campaign, one run, pipeline) in an absent or empty folder."""
+    from importlib import resources
+
+    out = Path(args.dir)
+    if out.exists() and (not out.is_dir() or any(out.iterdir())):
+        raise FlumekitError(f"{out}: not an empty folder; `flumekit new` writes only into an "
+                            "absent or empty one (nothing was changed)")
+    skel = resources.files("flumekit.data").joinpath("skeleton")
+    name = out.resolve().name
+    files = {"campaign.toml": "campaign.toml", "runs/run01/run.toml": "run.toml",
+             "pipeline.toml": "pipeline.toml"}
+    for dest, src in files.items():
+        text = skel.joinpath(src).read_text().replace("my_campaign", name)
+        (out / dest).parent.mkdir(parents=True, exist_ok=True)
+        (out / dest).write_text(text)
+    print(f"wrote {', '.join(files)} to {out}: edit them, put each run's files in "
+          f"runs/<run>/, then `flumekit make --pipeline {out / 'pipeline.toml'}`")
+    return 0
+
+
+def cmd_params(args) -> int:
+    from flumekit.stages import parameters, parameters_markdown
+
+    if args.markdown:
+        print(parameters_markdown())
+        return 0
+    known = parameters()
+    stages = [args.stage] if args.stage else list(known)
+    for s in stages:
+        if s not in known:
+            from flumekit.schema import suggest
+
+            raise FlumekitError(f"no stage '{s}' with parameters; known: {', '.join(known)}"
+                                + suggest(s, list(known)))
+        print(f"[stages.{s}]")
+        for k, (default, doc) in known[s].items():
+            print(f"  {k} = {default!r}\n      {doc}")
+    return 0
+
+
+def cmd_clock(args) -> int:
+    """Estimate (never apply) an instrument's clock offset from a signal two instruments share."""
+    from flumekit.campaign import load_campaign
+    from flumekit.io.instruments import read_flap, read_probes
+    from flumekit.signal import estimate_time_offset
+
+    pipe = _pipeline(args)
+    c = load_campaign(pipe.raw)
+    try:
+        run = c.run(args.run)
+    except KeyError as e:
+        raise FlumekitError(str(e.args[0])) from None
+
+    def channel(spec: str):
+        inst, _, name = spec.partition(":")
+        if inst == "probes" and name in c.probes.names:
+            ds = read_probes(run.file("probes"), c.probes.names, c.probes.sampling_rate,
+                             c.dialect("probes"), units=c.probes.units)
+            v = next(iter(ds.data_vars.values())).sel(probe=name)
+            return v.values, ds["time"].values
+        if inst == "flap" and c.encoder and name in ("encoder", "pressure"):
+            ds = read_flap(run.file("flap"), c.encoder.sampling_rate, c.dialect("flap"))
+            v = ds["encoder_counts" if name == "encoder" else "chamber_pressure"]
+            return v.values.astype(float), ds["time"].values
+        raise FlumekitError(f"unknown channel {spec!r}: probes:<probe> or flap:encoder|pressure")
+
+    (a, ta), (b, tb) = channel(args.reference), channel(args.other)
+    offset = estimate_time_offset(a, ta, b, tb)
+    inst = args.other.partition(":")[0]
+    print(f"{args.other} matches {args.reference} when its time stamps are shifted by "
+          f"{offset:+.4f} s. If both record the same signal, declare it in "
+          f"{run.path / 'run.toml'}:\n  [clock]\n  {inst} = {offset:.4f}\n"
+          "(nothing was changed; between different quantities the estimate includes their "
+          "physical phase lag)")
     return 0
 
 
@@ -143,10 +470,31 @@ def cmd_report(args) -> int:
     return 0
 
 
+def _version() -> str:
+    from flumekit import __version__  # not importlib.metadata: 0.2 s on every call
+
+    return __version__
+
+
+def _global_options(sub: bool) -> argparse.ArgumentParser:
+    """--debug, -q, -v: accepted before and after the subcommand (the subcommand's copy must
+    not reset what was given before it, hence SUPPRESS)."""
+    g = argparse.ArgumentParser(add_help=False)
+    kw = {"default": argparse.SUPPRESS} if sub else {}
+    g.add_argument("--debug", action="store_true", help="show tracebacks", **kw)
+    g.add_argument("-q", "--quiet", action="count", help="say less (errors and the summary)",
+                   **({"default": argparse.SUPPRESS} if sub else {"default": 0}))
+    g.add_argument("-v", "--verbose", action="count", help="say more (every target)",
+                   **({"default": argparse.SUPPRESS} if sub else {"default": 0}))
+    return g
+
+
 def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="flumekit", description=__doc__)
-    p.add_argument("--debug", action="store_true", help="show tracebacks")
+    p = argparse.ArgumentParser(prog="flumekit", description=__doc__,
+                                parents=[_global_options(sub=False)])
+    p.add_argument("--version", action="version", version=f"flumekit {_version()}")
     sub = p.add_subparsers(dest="command", required=True)
+    common = [_global_options(sub=True)]
 
     def pipeline_opts(sp):
         sp.add_argument("--pipeline", default=str(DEFAULT_PIPELINE),
@@ -154,35 +502,78 @@ def parser() -> argparse.ArgumentParser:
         sp.add_argument("--processed", default=None,
                         help="write processed data here instead of the pipeline's folder")
 
-    m = sub.add_parser("make", help="build targets or scenes (default: every scene)")
+    m = sub.add_parser("make", help="build targets or scenes (default: every scene)",
+                       parents=common)
     m.add_argument("targets", nargs="*", help="scene names, target names or glob patterns")
     m.add_argument("-n", "--dry-run", action="store_true", help="print what would run and why")
     m.add_argument("-j", "--jobs", type=int, default=1, help="rules run in parallel locally")
+    m.add_argument("-k", "--keep-going", action="store_true",
+                   help="after a failure, build everything that does not depend on it; list "
+                        "the failures at the end (exit status 1)")
     m.add_argument("--executor", choices=("processes", "threads"), default="processes")
-    m.add_argument("--force", action="store_true", help="rebuild even if up to date")
+    m.add_argument("-f", "--force", action="store_true",
+                   help="rebuild the named targets even if up to date (not their inputs)")
+    m.add_argument("-F", "--forceall", action="store_true",
+                   help="rebuild the named targets and everything they need")
     m.add_argument("--scheduler", default=None,
                    help="dask.distributed scheduler address (or DASK_SCHEDULER_ADDRESS)")
+    m.add_argument("--dask-timeout", type=float, default=30.0,
+                   help="seconds to reach the scheduler, and that a cluster may stay without "
+                        "workers, before the build stops (default 30)")
     pipeline_opts(m)
     m.set_defaults(func=cmd_make)
 
-    ls = sub.add_parser("list", help="targets and scenes with their state")
+    ls = sub.add_parser("list", help="targets and scenes with their state", parents=common)
     pipeline_opts(ls)
     ls.set_defaults(func=cmd_list)
 
-    s = sub.add_parser("synth", help="write a virtual-flume raw campaign and its truth")
+    g = sub.add_parser("graph", help="dependency graph of targets (DOT or Mermaid)",
+                       parents=common)
+    g.add_argument("targets", nargs="*", help="scene names, target names or glob patterns")
+    g.add_argument("--format", choices=("dot", "mermaid"), default="dot")
+    pipeline_opts(g)
+    g.set_defaults(func=cmd_graph)
+
+    c = sub.add_parser("clean", help="remove built outputs (never raw data)", parents=common)
+    c.add_argument("targets", nargs="*", help="scene names, target names or glob patterns "
+                                              "(default: every target)")
+    c.add_argument("-n", "--dry-run", action="store_true", help="print what would be removed")
+    pipeline_opts(c)
+    c.set_defaults(func=cmd_clean)
+
+    s = sub.add_parser("synth", help="write a virtual-flume raw campaign and its truth",
+                       parents=common)
     s.add_argument("--size", choices=("small", "default", "paper"), default="small")
     s.add_argument("--seed", type=int, default=2020)
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
 
-    r = sub.add_parser("report", help="one static HTML page for the processed campaign")
+    n = sub.add_parser("new", help="write a commented campaign skeleton into an empty folder")
+    n.add_argument("dir")
+    n.set_defaults(func=cmd_new)
+
+    pa = sub.add_parser("params", help="stage parameters: defaults and meaning")
+    pa.add_argument("stage", nargs="?", help="one stage (default: all)")
+    pa.add_argument("--markdown", action="store_true", help="the reference as Markdown")
+    pa.set_defaults(func=cmd_params)
+
+    ck = sub.add_parser("clock", help="estimate a clock offset by cross-correlation (reported, "
+                        "never applied)")
+    ck.add_argument("run")
+    ck.add_argument("reference", help="probes:<probe> or flap:encoder|pressure")
+    ck.add_argument("other", help="the channel whose clock offset is estimated")
+    pipeline_opts(ck)
+    ck.set_defaults(func=cmd_clock)
+
+    r = sub.add_parser("report", help="one static HTML page for the processed campaign",
+                       parents=common)
     r.add_argument("--out", default=None,
                    help="file name in the processed folder (default: report.html there)")
     pipeline_opts(r)
     r.set_defaults(func=cmd_report)
 
-    b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks")
+    b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks", parents=common)
     b.add_argument("area", help="waves, flap, uvp, renzi_dias, simulator, ballscrew, pipeline")
     b.add_argument("--quick", action="store_true")
     b.set_defaults(func=cmd_bench)
@@ -199,7 +590,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"flumekit: error: {e}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("flumekit: interrupted", file=sys.stderr)
+        print("flumekit: interrupted (finished targets are kept; `flumekit make` goes on from "
+              "there)", file=sys.stderr)
         return 130
 
 

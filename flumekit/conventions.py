@@ -8,7 +8,8 @@ name. Units follow UDUNITS spelling. ``time`` is seconds since the start of a re
 
 from __future__ import annotations
 
-import datetime as _dt
+import contextvars
+import hashlib
 import json
 from dataclasses import dataclass
 
@@ -56,14 +57,19 @@ VARIABLES: dict[str, Variable] = {
     "polynomial_order": _V("1", "power of the calibration polynomial term"),
     # --- raw instruments ---
     "probe_voltage": _V("V", "wave probe output voltage"),
+    "probe_elevation": _V("m", "water surface elevation recorded by a calibrated wave probe, "
+                          "still-water level not removed"),
+    "still_water_level": _V("m", "still-water level removed from the probe's record"),
     "encoder_counts": _V("1", "wire encoder count"),
     "wire_shortening": _V("m", "shortening of the encoder measuring wire, Delta L7"),
     "chamber_pressure": _V("Pa", "gauge pressure in the PTO cylinder chamber",
                            "sea_water_pressure"),
     "calibration_voltage": _V("V", "probe voltage at a static calibration level"),
     # --- calibration ---
-    "calibration_coefficients": _V("m V-n",
-                                   "calibration polynomial coefficients, eta = sum c_n V^n"),
+    # c_n has the unit m V-n, which differs per order: UDUNITS has no such unit, so the
+    # variable is declared dimensionless and its long name says the unit of each c_n
+    "calibration_coefficients": _V("1", "calibration polynomial coefficients, eta = sum c_n V^n "
+                                   "with c_n in m V-n"),
     "calibration_r2": _V("1", "coefficient of determination of the calibration fit"),
     "calibration_residual": _V("m", "calibration fit residual"),
     "calibration_rms_residual": _V("m", "root-mean-square calibration residual"),
@@ -91,6 +97,7 @@ VARIABLES: dict[str, Variable] = {
     "measured_period": _V("s", "mean wave period of the quasi-steady window"),
     "measured_height": _V("m", "mean wave height of the quasi-steady window"),
     "amplitude_scale": _V("m", "amplitude scale of the quasi-steady window"),
+    "steady_tolerance": _V("1", "relative crest tolerance of the quasi-steady window"),
     "energy_flux": _V("W m-1", "period-averaged incident energy flux per unit crest width"),
     "probe_spacing": _V("m", "distance between the probes of a pair"),
     "pair": _V("1", "wave probe pair"),
@@ -153,7 +160,7 @@ VARIABLES: dict[str, Variable] = {
     "beam_velocity": _V("m s-1", "velocity along the beam"),
     "amplitude": _V("1", "echo amplitude (raw counts)"),
     "u": _V("m s-1", "longitudinal velocity", "sea_water_x_velocity"),
-    "w": _V("m s-1", "vertical velocity", "sea_water_upward_velocity"),
+    "w": _V("m s-1", "vertical velocity", "upward_sea_water_velocity"),
     "u_rms": _V("m s-1", "RMS of the longitudinal velocity fluctuation"),
     "w_rms": _V("m s-1", "RMS of the vertical velocity fluctuation"),
     "tke": _V("m2 s-2", "turbulent kinetic energy from the available components"),
@@ -350,15 +357,99 @@ def check(ds: xr.Dataset) -> None:
 
 
 def global_attrs(title: str, source: str, parameters: dict | None = None) -> dict[str, str]:
-    """Global attributes: Conventions, title, source and a history line with version and
-    parameters."""
+    """Global attributes: Conventions, title, source, history (the flumekit version) and the
+    parameters. No clock time: identical inputs give identical bytes (the time of a build is in
+    the engine's state, ``.flumekit-state.json``)."""
     from flumekit import __version__
 
-    stamp = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
     params = json.dumps(parameters or {}, sort_keys=True, default=str)
     return {
         "Conventions": CONVENTIONS,
         "title": title,
         "source": source,
-        "history": f"{stamp} flumekit {__version__}: {title}; parameters {params}",
+        "history": f"flumekit {__version__}: {title}",
+        "flumekit_parameters": params,
     }
+
+
+#: the rule being built in this process (set by :func:`flumekit.pipeline.rules.execute`):
+#: its target, version, parameters, inputs with their content hashes and relative paths
+_PROVENANCE: contextvars.ContextVar[dict | None] = contextvars.ContextVar("flumekit_provenance",
+                                                                           default=None)
+#: global attributes that describe how a file was made rather than what it holds; left out of
+#: :func:`content_digest` so that a rebuild with other settings but identical data is identical
+PROVENANCE_ATTRS = ("history", "flumekit_parameters", "flumekit_rule", "flumekit_version",
+                    "flumekit_rule_version", "flumekit_inputs", "flumekit_dependencies")
+
+
+def set_provenance(prov: dict | None):
+    """Declare the rule being built (``None``: none); returns a token for :func:`reset`."""
+    return _PROVENANCE.set(prov)
+
+
+def reset_provenance(token) -> None:
+    _PROVENANCE.reset(token)
+
+
+def _dependency_versions() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    out = []
+    for name in ("numpy", "scipy", "xarray", "netCDF4", "pandas", "matplotlib"):
+        try:
+            out.append(f"{name} {version(name)}")
+        except PackageNotFoundError:
+            pass
+    return "; ".join(out)
+
+
+def provenance(attrs: dict) -> dict:
+    """``attrs`` plus the provenance of the rule being built: flumekit version, rule, its
+    version and parameters, every input with its path relative to the pipeline file and its
+    content hash, and the versions of the numerical libraries. Absolute input paths in string
+    attributes (a stage's ``source``) become those relative paths, so that the same campaign
+    built in two folders gives the same bytes."""
+    from flumekit import __version__
+
+    prov = _PROVENANCE.get()
+    out = dict(attrs)
+    out["flumekit_version"] = __version__
+    out["flumekit_dependencies"] = _dependency_versions()
+    if prov is None:
+        return out
+    for k, v in out.items():
+        if isinstance(v, str):
+            for absolute, rel in prov["paths"].items():
+                v = v.replace(absolute, rel)
+            out[k] = v
+    out["flumekit_rule"] = prov["target"]
+    out["flumekit_rule_version"] = prov["version"]
+    out["flumekit_parameters"] = json.dumps(prov["params"], sort_keys=True, default=str)
+    out["flumekit_inputs"] = json.dumps(prov["inputs"], sort_keys=True)
+    return out
+
+
+def content_digest(ds: xr.Dataset) -> str:
+    """SHA-256 of what a dataset holds (values, dimensions, attributes), without the attributes
+    that say how it was made (:data:`PROVENANCE_ATTRS`). Two datasets with the same digest are
+    the same data: the engine stops a rebuild's cascade there."""
+    import numpy as np
+
+    h = hashlib.sha256()
+    for name in sorted(map(str, ds.variables)):
+        var = ds.variables[name]
+        h.update(json.dumps([name, list(map(str, var.dims)), str(var.dtype),
+                             {str(k): str(v) for k, v in sorted(var.attrs.items())}]).encode())
+        values = np.asarray(var.values)
+        h.update(values.tobytes() if values.dtype.kind not in "OUS"
+                 else "\x00".join(map(str, values.ravel())).encode())
+    h.update(json.dumps({str(k): str(v) for k, v in sorted(ds.attrs.items())
+                         if k not in PROVENANCE_ATTRS}).encode())
+    return h.hexdigest()
+
+
+def record_written(path, digest: str) -> None:
+    """Tell the rule being built the content digest of a file it wrote."""
+    prov = _PROVENANCE.get()
+    if prov is not None:
+        prov.setdefault("written", {})[str(path)] = digest

@@ -34,7 +34,7 @@ def edit(path, old, new):
 
 
 @pytest.mark.parametrize("file, old, new, message", [
-    ("runs/r1/run.toml", "height = 0.25\n", "", r"run\.toml.*'run\.height'.*missing"),
+    ("runs/r1/run.toml", "period = 3.5\n", "", r"run\.toml.*'run\.period'.*missing"),
     ("runs/r1/run.toml", "period = 3.5", 'period = "long"', r"'run\.period'.*finite number"),
     ("runs/r1/run.toml", "period = 3.5", "period = -1", r"'run\.period'.*> 0"),
     ("runs/r1/run.toml", "WP4 = -0.6", "WP4 = -0.6\nWP9 = 1", r"unknown probe.*WP9"),
@@ -54,6 +54,59 @@ def test_bad_fields_are_named(root, file, old, new, message):
 def test_missing_campaign_file(tmp_path):
     with pytest.raises(InputError, match="campaign.toml: file not found"):
         load_campaign(tmp_path)
+
+
+def test_five_typos_reported_at_once_with_suggestions(root):
+    edit(root / "campaign.toml", "water_depth = 0.825", "water_dept = 0.825")
+    edit(root / "campaign.toml", "sampling_rate = 25.0", "sampling_rat = 25.0")
+    edit(root / "campaign.toml", "thickness = 0.17", "thicknes = 0.17")
+    edit(root / "campaign.toml", "counts_per_metre = 6000.0", "counts_per_meter = 6000.0")
+    edit(root / "campaign.toml", "[uvp.UP2]", "[uvp.UP02]")
+    with pytest.raises(InputError) as e:
+        load_campaign(root)
+    text = str(e.value)
+    assert "5 problems" in text
+    for typo, right in [("flume.water_dept", "water_depth"), ("probes.sampling_rat",
+                        "sampling_rate"), ("flap.thicknes", "thickness"),
+                        ("encoder.counts_per_meter", "counts_per_metre"), ("uvp.UP02", "UP2")]:
+        line = next(x for x in text.splitlines() if f"'{typo}'" in x)
+        assert str(root / "campaign.toml") in line and f"did you mean '{right}'" in line
+    # the keys the typos left missing are not reported again: the typo is the one problem
+    assert "missing" not in text
+
+
+def test_run_file_problems_reported_at_once(root):
+    edit(root / "runs/r1/run.toml", "period = 3.5", "periode = 3.5")
+    edit(root / "runs/r1/run.toml", "WP4 = -0.6", "WP5 = -0.6")
+    with pytest.raises(InputError) as e:
+        load_campaign(root)
+    text = str(e.value)
+    assert "did you mean 'period'" in text and "'probes.WP4'" in text and "WP5" in text
+
+
+def test_waves_only_campaign(tmp_path):
+    (tmp_path / "campaign.toml").write_text(
+        '[campaign]\nname = "w"\n[flume]\nwater_depth = 0.5\n'
+        '[probes]\nnames = ["A", "B", "C"]\nsampling_rate = 50.0\nunits = "cm"\n')
+    run = tmp_path / "runs" / "r1"
+    run.mkdir(parents=True)
+    (run / "run.toml").write_text("[run]\nperiod = 1.5\n[probes]\nA = 0\nB = 0.3\nC = 0.8\n"
+                                  "[clock]\nprobes = 0.25\n")
+    c = load_campaign(tmp_path)
+    assert c.instruments == ("probes",) and c.flap is None and c.probes.calibrated
+    assert c.runs[0].height is None and c.runs[0].clock["probes"] == 0.25
+    (run / "run.toml").write_text("[run]\nperiod = 1.5\n[probes]\nA = 0\nB = 0.3\nC = 0.8\n"
+                                  "[clock]\nflap = 0.25\n")
+    with pytest.raises(InputError, match="clock.flap.*no flap instrument"):
+        load_campaign(tmp_path)
+
+
+def test_flap_instruments_go_together(root):
+    text = (root / "campaign.toml").read_text()
+    start = text.index("[encoder]")
+    (root / "campaign.toml").write_text(text[:start] + text[text.index("[probes]"):])
+    with pytest.raises(InputError, match=r"'encoder'.*together"):
+        load_campaign(root)
 
 
 def test_descriptive_fields_are_optional(root):

@@ -86,7 +86,7 @@ def test_every_dataset_has_units_long_names_and_history(built_once):
     files = sorted((built_once / "processed" / "small").rglob("*.nc"))
     assert files
     for f in files:
-        with xr.open_dataset(f) as ds:
+        with xr.open_dataset(f, decode_times=False) as ds:  # time: seconds since start
             assert {"history", "source", "Conventions", "title"} <= set(ds.attrs), f
             for name, var in {**ds.coords, **ds.data_vars}.items():
                 assert "long_name" in var.attrs, (f, name)
@@ -158,3 +158,364 @@ def test_list_shows_scenes_and_state(project):
     result = flumekit("list", "--pipeline", "pipelines/small.toml", cwd=project)
     assert result.returncode == 0, result.stderr
     assert "1 of 1 to build" in result.stdout and "output dataset missing" in result.stdout
+
+
+# --- safety of the engine (issue 12, point 0) ---------------------------------------------------
+
+def _popen(project, *args, **kw):
+    return subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                             "pipelines/small.toml", *args], cwd=project, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, **kw)
+
+
+def _temporaries(folder):
+    return sorted(p for p in folder.rglob("*") if ".flumekit-tmp" in p.name or ".tmp" in p.name)
+
+
+def test_failed_rebuild_leaves_no_stale_output_downstream(built_project):
+    """A run whose raw file changes and whose rebuild fails loses its outputs and every output
+    made from them (summaries, figures); the other runs' files stay."""
+    project = built_project
+    out = project / "processed/small"
+    runs = sorted(d.name for d in (project / "raw/small/runs").iterdir())
+    bad = runs[0]
+    probes = project / "raw/small/runs" / bad / "probes.csv"
+    text = probes.read_text()
+    probes.write_text(text[: len(text) // 2].rsplit(",", 1)[0])  # truncated mid-line
+    result = make(project, "-k")
+    assert result.returncode == 1
+    for stage in ("eta", "waves", "flap", "comparison"):
+        assert not (out / stage / f"{bad}.nc").exists(), stage
+        assert (out / stage / f"{runs[1]}.nc").exists(), stage  # other runs are kept
+    assert not (out / "waves_summary.nc").exists()
+    assert not (out / "flap_summary.nc").exists()
+    assert (out / "calibration.nc").exists()
+    # the failure list names the target, the run, the file and the problem
+    tail = result.stderr.split("failures (target, run, file: problem):", 1)[1]
+    # (the first rule to read the file fails: quality control or calibration of that run)
+    assert f"/{bad}  run {bad}  {probes}:" in tail
+    assert "truncated" in tail
+    # -k built what does not depend on the bad run: the ball-screw figures, the other runs
+    assert (out / "figures" / "bs_fig11.png").exists()
+    # the README's way to read a folder of runs sees only runs built from the current data
+    assert sorted(p.stem for p in (out / "flap").glob("*.nc")) == runs[1:]
+
+
+def test_keep_going_builds_every_other_run_and_lists_both_failures(project):
+    runs = sorted((project / "raw/small/runs").iterdir())
+    (runs[0] / "probes.csv").write_text("time [s],WP1 [V]\n0.0,oops\n")
+    flap = runs[1] / "flap.csv"
+    flap.write_text(flap.read_text().splitlines()[0] + "\n")
+    result = make(project, "-k", "eta/*", "flap/*")
+    assert result.returncode == 1
+    tail = result.stderr.split("failures (target, run, file: problem):", 1)[1]
+    assert f"/{runs[0].name}  run {runs[0].name}  {runs[0] / 'probes.csv'}:" in tail
+    assert f"/{runs[1].name}  run {runs[1].name}  {flap}:" in tail
+    out = project / "processed/small"
+    built_eta = sorted(p.stem for p in (out / "eta").glob("*.nc"))
+    assert built_eta == sorted(r.name for r in runs[1:])
+    assert (out / "flap" / f"{runs[2].name}.nc").exists()
+
+
+def test_outputs_honour_the_umask(project):
+    import stat
+
+    result = subprocess.run(f"umask 022 && {sys.executable} -m flumekit.cli make --pipeline "
+                            "pipelines/small.toml calibration", shell=True, cwd=project,
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    files = [p for p in (project / "processed/small").rglob("*") if p.is_file()]
+    assert len(files) >= 2  # the dataset and the build state
+    for f in files:
+        mode = stat.S_IMODE(f.stat().st_mode)
+        assert mode & 0o044 == 0o044, (f, oct(mode))  # group and others can read
+
+
+def test_two_concurrent_makes_end_with_a_correct_build_state(project):
+    first = _popen(project, "eta/*")
+    second = _popen(project, "eta/*")
+    out1, err1 = first.communicate(timeout=600)
+    out2, err2 = second.communicate(timeout=600)
+    assert first.returncode == 0 and second.returncode == 0, err1 + err2
+    assert "waiting for the build lock" in err1 + err2
+    assert "held by pid" in err1 + err2
+    # the builds were not duplicated: the one that waited found everything up to date
+    both = (built(subprocess.CompletedProcess([], 0, "", err1)) +
+            built(subprocess.CompletedProcess([], 0, "", err2)))
+    assert len(both) == len(set(both))
+    assert {f"eta/{d.name}" for d in (project / "raw/small/runs").iterdir()} <= set(both)
+    assert "nothing to do" in make(project, "-n", "eta/*").stdout
+
+
+def _children(pid):
+    try:
+        text = Path(f"/proc/{pid}/task/{pid}/children").read_text()
+    except OSError:
+        return []
+    return [int(x) for x in text.split()]
+
+
+def _alive(pid):
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0] != "Z"
+    except OSError:
+        return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+def test_kill_9_of_a_parallel_driver_leaves_no_worker(project):
+    import signal
+    import time
+
+    # output to a file, not a pipe: a surviving worker would hold a pipe open forever
+    with open(project / "make.log", "w") as log:
+        driver = subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                                   "pipelines/small.toml", "-j", "2", "waves/*", "flap/*"],
+                                  cwd=project, stdout=log, stderr=log)
+    workers: list[int] = []
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and len(workers) < 2:
+        workers = _children(driver.pid)
+        time.sleep(0.2)
+    assert len(workers) >= 2, "the pool workers did not start"
+    time.sleep(2.0)  # the workers are busy building
+    driver.send_signal(signal.SIGKILL)
+    driver.wait()
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline and any(_alive(p) for p in workers):
+        time.sleep(0.2)
+    assert not any(_alive(p) for p in workers), workers
+    # the next make cleans the temporaries of the killed build and completes it
+    result = make(project, "waves/*", "flap/*")
+    assert result.returncode == 0, result.stderr
+    assert _temporaries(project / "processed") == []
+
+
+@pytest.mark.parametrize("jobs", ["1", "2"])
+def test_ctrl_c_exits_130_and_leaves_no_temporary_file(project, jobs):
+    import signal
+    import time
+
+    log = open(project / "make.log", "w+")
+    driver = subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                               "pipelines/small.toml", "-j", jobs, "waves/*", "flap/*"],
+                              cwd=project, stdout=log, stderr=log, start_new_session=True)
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and not (project / "processed/small/eta").exists():
+        time.sleep(0.2)
+    time.sleep(1.0)
+    os.killpg(driver.pid, signal.SIGINT)  # what a terminal's Ctrl-C sends: the whole group
+    driver.wait(timeout=120)
+    log.seek(0)
+    err = log.read()
+    log.close()
+    assert driver.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    assert _temporaries(project / "processed") == []
+    assert _temporaries(project / "raw") == []
+
+
+def test_unreachable_dask_scheduler_is_a_clear_error_within_its_timeout(project):
+    import socket
+    import time
+
+    pytest.importorskip("distributed")
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]  # nothing listens there once the socket is closed
+    t0 = time.monotonic()
+    result = make(project, "calibration", "--scheduler", f"tcp://127.0.0.1:{port}",
+                  "--dask-timeout", "3")
+    elapsed = time.monotonic() - t0
+    assert result.returncode == 1
+    assert "cannot reach the Dask scheduler" in result.stderr and "3 s" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert elapsed < 30, elapsed
+
+
+# --- determinism, cascade stop, provenance (issue 12, points 1-2) -------------------------------
+
+def test_two_builds_in_different_folders_give_identical_bytes(tmp_path, built_once, small_raw):
+    other = _project(tmp_path, small_raw)
+    targets = ["calibration", "eta/*", "waves/*", "waves_summary", "figure/fig05a",
+               "figure/fig06a", "figure/bs_fig11"]
+    result = make(other, *targets)
+    assert result.returncode == 0, result.stderr
+    files = sorted(p.relative_to(other) for p in (other / "processed").rglob("*")
+                   if p.is_file() and p.suffix in (".nc", ".png"))
+    assert len(files) >= 2 * 4 + 5
+    differ = [str(f) for f in files if (other / f).read_bytes() != (built_once / f).read_bytes()]
+    assert differ == []
+
+
+def test_parameter_that_leaves_the_output_unchanged_rebuilds_nothing_below(built_project):
+    """The flap stage's tolerance for encoder samples outside Eq. (1): the virtual runs have
+    none, so the flap datasets hold the same data and nothing built from them is rebuilt."""
+    project = built_project
+    pipe = project / "pipelines" / "small.toml"
+    pipe.write_text(pipe.read_text() + "\n[stages.flap]\nmax_flagged_fraction = 0.01\n")
+    rebuilt = built(make(project))
+    runs = sorted(d.name for d in (project / "raw/small/runs").iterdir())
+    assert rebuilt == [f"flap/{r}" for r in runs]
+
+
+def test_provenance_names_rule_parameters_inputs_and_versions(built_once):
+    import json
+
+    import numpy
+
+    with xr.open_dataset(built_once / "processed/small/flap" / "T3.50_H0.250_r0.nc") as ds:
+        attrs = dict(ds.attrs)
+    assert attrs["flumekit_rule"] == "flap/T3.50_H0.250_r0"
+    assert json.loads(attrs["flumekit_parameters"])["cutoff"] == 4.0
+    inputs = json.loads(attrs["flumekit_inputs"])
+    raw = built_once / "raw/small/campaign.toml"
+    assert inputs["campaign"]["file"] == "../raw/small/campaign.toml"
+    assert inputs["campaign"]["sha256"] == hashlib.sha256(raw.read_bytes()).hexdigest()
+    assert inputs["waves"]["file"] == "../processed/small/waves/T3.50_H0.250_r0.nc"
+    assert len(inputs["waves"]["sha256"]) == 64
+    assert f"numpy {numpy.__version__}" in attrs["flumekit_dependencies"]
+    assert "flumekit_version" in attrs
+    assert str(built_once) not in json.dumps(attrs)  # no absolute path
+
+
+# --- lazy synthesis (issue 12, point 3) ---------------------------------------------------------
+
+def _fresh(tmp_path):
+    (tmp_path / "pipelines").mkdir()
+    for name in ("default.toml", "small.toml"):
+        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
+    return tmp_path
+
+
+def test_a_scene_that_reads_no_raw_data_synthesises_nothing(tmp_path):
+    project = _fresh(tmp_path)
+    result = make(project, "figure/bs_fig11")
+    assert result.returncode == 0, result.stderr
+    assert not (project / "raw").exists()
+    assert (project / "processed/small/figures/bs_fig11.png").exists()
+
+
+def test_fig10_plans_the_synthesis_of_one_run(tmp_path):
+    project = _fresh(tmp_path)
+    result = make(project, "-n", "fig10")
+    steps = [line.split()[2].rstrip(":") for line in result.stdout.splitlines()]
+    assert [s for s in steps if s.startswith("synth/")] == ["synth/campaign",
+                                                            "synth/T3.50_H0.250_r0"]
+    assert not (project / "raw").exists()
+
+
+def test_one_run_synthesised_alone_is_the_run_of_the_whole_campaign(tmp_path, small_raw):
+    from flumekit.synth.campaign import write_virtual_base, write_virtual_run
+
+    root = tmp_path / "small"
+    write_virtual_base(root, "small", 7)
+    write_virtual_run(root, "T2.00_H0.150_r0")
+    assert sorted(p.name for p in (root / "runs").iterdir()) == ["T2.00_H0.150_r0"]
+    for rel in ("calibration/probes.csv", "runs/T2.00_H0.150_r0/probes.csv",
+                "runs/T2.00_H0.150_r0/flap.csv", "runs/T2.00_H0.150_r0/run.toml",
+                "truth/T2.00_H0.150_r0/flap.nc"):
+        assert (root / rel).read_bytes() == (small_raw / rel).read_bytes(), rel
+    with pytest.raises(Exception, match="never writes over"):
+        write_virtual_run(root, "T2.00_H0.150_r0")
+
+
+# --- analyst-ready datasets (issue 12, point 6) -------------------------------------------------
+
+def _readme_snippet() -> str:
+    text = (ROOT / "README.md").read_text()
+    blocks = [b.split("```", 1)[0] for b in text.split("```python")[1:]]
+    (snippet,) = [b for b in blocks if "open_mfdataset" in b]
+    return snippet
+
+
+@pytest.mark.parametrize("stage", ["eta", "waves", "flap", "comparison", "uvp"])
+def test_readme_open_mfdataset_keeps_every_run_and_its_coordinates(built_once, stage):
+    import warnings
+
+    files = sorted((built_once / "processed/small" / stage).glob("*.nc"))
+    assert files
+    code = _readme_snippet().replace("processed/default/flap/*.nc",
+                                     str(built_once / "processed/small" / stage / "*.nc"))
+    scope: dict = {}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FutureWarning)  # no default that xarray is changing
+        exec(code, scope)
+    ds = scope["ds"]
+    assert ds.sizes["run"] == len(files)
+    for i, f in enumerate(files):
+        with xr.open_dataset(f) as one:
+            for c in ("run", "wave_period", "wave_height", "repeat", "uvp_elevation"):
+                got = ds[c].values if ds[c].ndim == 0 else ds[c].values[i]
+                assert got == one[c].values or (got != got and one[c].values != one[c].values), (
+                    f, c, got, one[c].values)
+
+
+# --- CF (issue 12, point 7) ---------------------------------------------------------------------
+
+_CF_CHECK = """
+import json, sys, warnings
+warnings.simplefilter("ignore")
+from compliance_checker.runner import CheckSuite
+suite = CheckSuite()
+suite.load_all_available_checkers()
+out = {}
+for path in sys.argv[1:]:
+    results, _ = suite.run_all(suite.load_dataset(path), ["cf:1.8"], skip_checks=[])["cf:1.8"]
+    errors = []
+    def walk(rs):
+        for r in rs:
+            if r.weight == 3 and r.value is not None:
+                ok = r.value if isinstance(r.value, bool) else r.value[0] == r.value[1]
+                if not ok:
+                    errors.extend(r.msgs or [r.name])
+            walk(r.children or [])
+    walk(results)
+    out[path] = errors
+print(json.dumps(out))
+"""
+
+
+def _cf_errors(paths) -> dict[str, list[str]]:
+    """The CF 1.8 errors (high-priority failures) compliance-checker finds in each file; in its
+    own process (it and xarray opening the same HDF5 files in one process can crash)."""
+    import json
+
+    result = subprocess.run([sys.executable, "-c", _CF_CHECK, *map(str, paths)],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout.strip().splitlines()[-1])
+
+
+def test_every_kind_of_file_has_no_cf_error(built_once):
+    pytest.importorskip("compliance_checker")
+    out = built_once / "processed/small"
+    kinds = ["calibration.nc", "eta/T3.50_H0.250_r0.nc", "waves/T3.50_H0.250_r0.nc",
+             "flap/T3.50_H0.250_r0.nc", "comparison/T3.50_H0.250_r0.nc",
+             "uvp/uvp_z0.300_r0.nc", "uvp_field.nc", "waves_summary.nc", "flap_summary.nc",
+             "comparison_summary.nc", "models/hydro.nc", "ballscrew/kinematics.nc",
+             "ballscrew/efficiency.nc", "ballscrew/thermal_lumped.nc",
+             "ballscrew/thermal_fem.nc"]
+    errors = _cf_errors([out / k for k in kinds])
+    assert len(errors) == len(kinds)
+    assert {k: e for k, e in errors.items() if e} == {}
+    # time in seconds since the record start, read back by flumekit as plain seconds
+    from flumekit.io.netcdf import read_dataset
+
+    with xr.open_dataset(out / "eta/T3.50_H0.250_r0.nc", decode_times=False) as ds:
+        assert ds["time"].attrs["units"].startswith("seconds since ")
+    assert read_dataset(out / "eta/T3.50_H0.250_r0.nc")["time"].dtype.kind == "f"
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in (ROOT / "pipelines").glob("*.toml")))
+def test_every_shipped_pipeline_plans_on_a_fresh_clone(tmp_path, name):
+    """Each pipeline plans its whole build without writing anything (the small one is built by
+    the tests above)."""
+    project = _fresh(tmp_path)
+    shutil.copy(ROOT / "pipelines" / name, project / "pipelines" / name)
+    result = flumekit("make", "-n", "--pipeline", f"pipelines/{name}", cwd=project)
+    assert result.returncode == 0, result.stderr
+    steps = result.stdout.splitlines()
+    assert any(s.startswith("would build synth/campaign") for s in steps)
+    assert any(s.startswith("would build figure/fig10") for s in steps)
+    assert not (project / "raw").exists() and not (project / "processed").exists()

@@ -37,8 +37,8 @@ def runs(truth: Path) -> list[str]:
 
 def test_calibration_recovers_probe_gains_and_offsets(built):
     processed, truth = built
-    with xr.open_dataset(processed / "calibration.nc") as cal, \
-            xr.open_dataset(truth / "calibration.nc") as true:
+    with xr.open_dataset(processed / "calibration.nc", decode_times=False) as cal, \
+            xr.open_dataset(truth / "calibration.nc", decode_times=False) as true:
         np.testing.assert_allclose(cal.gain, true.gain, rtol=1e-3)
         np.testing.assert_allclose(cal.offset, true.offset, rtol=1e-3)
 
@@ -46,8 +46,8 @@ def test_calibration_recovers_probe_gains_and_offsets(built):
 def test_separation_recovers_reflection_and_incident_height(built):
     processed, truth = built
     for run in runs(truth):
-        with xr.open_dataset(processed / "waves" / f"{run}.nc") as w, \
-                xr.open_dataset(truth / run / "waves.nc") as t:
+        with xr.open_dataset(processed / "waves" / f"{run}.nc", decode_times=False) as w, \
+                xr.open_dataset(truth / run / "waves.nc", decode_times=False) as t:
             assert abs(float(w.reflection_coefficient) - t.attrs["reflection_coefficient"]) < 5e-3
             assert float(w.incident_height) == pytest.approx(t.attrs["wave_height"], rel=5e-3)
 
@@ -59,8 +59,8 @@ def _rms(a, b, mask):
 def test_flap_motion_torque_and_power_against_truth(built):
     processed, truth = built
     for run in runs(truth):
-        with xr.open_dataset(processed / "flap" / f"{run}.nc") as f, \
-                xr.open_dataset(truth / run / "flap.nc") as t:
+        with xr.open_dataset(processed / "flap" / f"{run}.nc", decode_times=False) as f, \
+                xr.open_dataset(truth / run / "flap.nc", decode_times=False) as t:
             time = f.time.values
             win = (time >= float(f.steady_start)) & (time <= float(f.steady_end))
             assert np.degrees(_rms(f.theta.values, t.theta.values, win)) < 0.05
@@ -84,8 +84,8 @@ def test_flap_motion_torque_and_power_against_truth(built):
 
 def test_uvp_field_against_truth(built):
     processed, truth = built
-    with xr.open_dataset(processed / "uvp_field.nc") as f, \
-            xr.open_dataset(truth / "uvp_field.nc") as t:
+    with xr.open_dataset(processed / "uvp_field.nc", decode_times=False) as f, \
+            xr.open_dataset(truth / "uvp_field.nc", decode_times=False) as t:
         true = t.interp(z=f.z, x=f.x)
         u0 = float(t.velocity_scale)
         for name in ("u", "w"):
@@ -102,7 +102,7 @@ def test_experiment_simulator_and_linear_model_differ(built):
     flume of its own physics (issue 7) are tested in tests/flap/test_flap_synth.py."""
     processed, truth = built
     for run in runs(truth):
-        with xr.open_dataset(processed / "comparison" / f"{run}.nc") as c:
+        with xr.open_dataset(processed / "comparison" / f"{run}.nc", decode_times=False) as c:
             amp = c.theta_amplitude
             exp = float(amp.sel(source="experiment"))
             assert float(amp.sel(source="simulator")) > 1.2 * exp, run

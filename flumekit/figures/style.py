@@ -165,11 +165,13 @@ def label(name: str | None = None, symbol: str | None = None, units: str | None 
 
 def condition(ds) -> str:
     """"T = 3.5 s, H = 0.25 m" from a run dataset's ``wave_period``/``wave_height``."""
+    import math
+
     parts = []
-    if "wave_period" in ds.coords or "wave_period" in ds.variables:
-        parts.append(f"T = {float(ds['wave_period']):g} s")
-    if "wave_height" in ds.coords or "wave_height" in ds.variables:
-        parts.append(f"H = {float(ds['wave_height']):g} m")
+    for name, symbol in (("wave_period", "T = {:g} s"), ("wave_height", "H = {:g} m")):
+        # a run file may leave the height undeclared (NaN): not shown
+        if (name in ds.coords or name in ds.variables) and math.isfinite(float(ds[name])):
+            parts.append(symbol.format(float(ds[name])))
     return ", ".join(parts)
 
 

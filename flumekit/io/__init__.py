@@ -8,12 +8,27 @@ what the pipeline wrote; :func:`read_dataset` and :func:`write_dataset` read and
 netCDF file.
 """
 
-from flumekit.io.instruments import read_calibration, read_flap, read_probes
-from flumekit.io.mfprof import read_mfprof, write_mfprof
-from flumekit.io.netcdf import read_dataset, write_dataset
-from flumekit.io.processed import open_processed, processed_names
+import importlib
 
-__all__ = [
-    "open_processed", "processed_names", "read_calibration", "read_dataset", "read_flap",
-    "read_mfprof", "read_probes", "write_dataset", "write_mfprof",
-]
+#: public name -> module (imported on first use: the pipeline's planning imports
+#: flumekit.io.atomic, and must not pay for numpy and xarray on a no-op make)
+_LAZY = {
+    "read_calibration": "instruments", "read_flap": "instruments", "read_probes": "instruments",
+    "read_mfprof": "mfprof", "write_mfprof": "mfprof",
+    "read_dataset": "netcdf", "write_dataset": "netcdf",
+    "open_processed": "processed", "processed_names": "processed",
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module 'flumekit.io' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"flumekit.io.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -8,23 +8,74 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+#: every temporary name :func:`atomic_path` makes contains this, so that a build can find the
+#: temporaries a killed build left behind (and nothing else)
+TMP_MARK = ".flumekit-tmp"
+#: temporaries being written in this process, for :func:`remove_active` on a fatal signal
+_ACTIVE: set[str] = set()
+
+
+def umask() -> int:
+    """The process umask, read without changing it (``os.umask`` sets it, which races with
+    threads writing files meanwhile)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except OSError:
+        pass
+    old = os.umask(0o022)
+    os.umask(old)
+    return old
+
 
 @contextmanager
 def atomic_path(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` if the block succeeds.
 
-    The temporary name keeps the suffix (``.x.nc.tmp.nc``) so that writers which infer the
-    format from it work. On any failure the temporary file is removed and ``path`` is left as it
-    was: a failed write never leaves a partial output.
+    The temporary name keeps the suffix (``.x.nc.flumekit-tmp.abc.nc``) so that writers which
+    infer the format from it work. On any failure the temporary file is removed and ``path`` is
+    left as it was: a failed write never leaves a partial output. The file gets the mode a plain
+    ``open`` would give it (0666 minus the umask), not ``mkstemp``'s private 0600, which would
+    otherwise survive the rename and hide shared outputs from colleagues.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp" + path.suffix,
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,
                                dir=path.parent)
-    os.close(fd)
+    try:
+        os.fchmod(fd, 0o666 & ~umask())
+    finally:
+        os.close(fd)
+    _ACTIVE.add(tmp)
     try:
         yield Path(tmp)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+    finally:
+        _ACTIVE.discard(tmp)
+
+
+def remove_active() -> None:
+    """Remove the temporaries this process is writing (called by a process about to die of a
+    signal, which will not unwind through :func:`atomic_path`)."""
+    for tmp in list(_ACTIVE):
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+
+
+def remove_orphans(folder: Path) -> list[Path]:
+    """Remove the temporary files of :func:`atomic_path` that a killed process left in
+    ``folder`` (recursively). Call it only while no other writer can be active there (under the
+    build lock)."""
+    if not folder.is_dir():
+        return []
+    gone = [p for p in folder.rglob(f".*{TMP_MARK}.*") if p.is_file()]
+    for p in gone:
+        p.unlink(missing_ok=True)
+    return gone

@@ -1,11 +1,17 @@
-"""Readers of the raw campaign's instrument files, returning CF-annotated xarray objects.
+"""One reader per instrument, from its file in any declared dialect to CF-annotated xarray.
 
-One function per instrument file (raw/README.md):
+The declarative part is :data:`CHANNELS`: what each instrument records (channel, physical
+quantity, default unit). Where and how a file is written is its :class:`Dialect`
+(``[files.<instrument>]`` of campaign.toml, raw/README.md); the default is the raw campaign's
+own CSV:
 
 * ``calibration/probes.csv``: static submersions, ``level [m]`` then one voltage column per probe;
-* ``runs/<run>/probes.csv``: ``time [s]`` then one voltage column per probe, 25 Hz;
-* ``runs/<run>/flap.csv``: ``time [s]``, ``encoder [counts]``, ``pressure [<pressure unit>]``,
-  100 Hz.
+* ``runs/<run>/probes.csv``: ``time [s]`` then one column per probe (voltages, or lengths when the
+  probes are already calibrated);
+* ``runs/<run>/flap.csv``: ``time [s]``, ``encoder [counts]``, ``pressure [<pressure unit>]``.
+
+The readers are pure (a file in, a dataset out) so that quality control and analysis stages can
+both call them. A declared clock offset [s] is added to the time stamps and recorded.
 """
 
 from __future__ import annotations
@@ -17,76 +23,109 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.errors import InputError
-from flumekit.io.tables import Column, check_time, read_table
+from flumekit.io.dialects import Channel, Dialect, Record, read_channels
+from flumekit.io.tables import check_time
+from flumekit.units import UNITS
 
 
-def _require(path: Path, cols: list[Column], name: str, quantity: str) -> int:
-    for j, c in enumerate(cols):
-        if c.name == name:
-            if c.quantity != quantity:
-                raise InputError(path, f"column '{name}' has unit [{c.unit}], expected a "
-                                 f"{quantity} unit", field=name)
-            return j
-    raise InputError(path, f"missing column '{name}' (columns: {[c.name for c in cols]})")
+def _probe_channels(probes: tuple[str, ...], units: str) -> list[Channel]:
+    return [Channel(p, UNITS[units][0], units) for p in probes]
 
 
-def _probe_columns(path: Path, cols: list[Column], probes: tuple[str, ...],
-                   first: str) -> list[int]:
-    known = {first, *probes}
-    unknown = [c.name for c in cols if c.name not in known]
-    if unknown:
-        raise InputError(path, f"unknown probe column(s) {unknown}; the campaign declares "
-                         f"{list(probes)}")
-    return [_require(path, cols, p, "voltage") for p in probes]
+#: instrument -> its channels (probes: one per probe name, see :func:`read_probes`)
+CHANNELS = {
+    "flap": [Channel("encoder", "count", "counts"), Channel("pressure", "pressure")],
+}
 
 
-def read_calibration(path: str | Path, probes: tuple[str, ...]) -> xr.Dataset:
+def _dialect(dialect: Dialect | dict | None) -> Dialect:
+    return dialect if isinstance(dialect, Dialect) else Dialect.from_dict(dialect)
+
+
+def _read(path: Path, dialect: Dialect, channels: list[Channel], what: str) -> Record:
+    return read_channels(path, dialect, channels, strict=what)
+
+
+def _time(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> np.ndarray:
+    n = rec.values.shape[1]
+    if rec.time is None:
+        if n < 2:
+            raise InputError(path, "fewer than two samples")
+        time = np.arange(n) / sampling_rate
+    else:
+        time = rec.time
+        check_time(path, time, sampling_rate, rec.first_line)
+    return time + time_offset
+
+
+def _attrs(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> dict:
+    return {"source_file": str(path), "sampling_rate": sampling_rate,
+            "time_offset": time_offset,
+            "time_offset_comment": "declared clock offset [s] added to the file's time stamps",
+            "recorded_units": ", ".join(f"{c} [{u}]" for c, u in zip(rec.labels, rec.units))}
+
+
+def read_calibration(path: str | Path, probes: tuple[str, ...],
+                     dialect: Dialect | dict | None = None) -> xr.Dataset:
     """Static calibration: voltage of each probe at known water levels (relative to still water)."""
     path = Path(path)
-    cols, data = read_table(path)
-    jl = _require(path, cols, "level", "length")
-    jp = _probe_columns(path, cols, probes, "level")
-    levels = data[:, jl]
+    d = _dialect(dialect)
+    if d.time == "time":  # a calibration file has no time column
+        d = Dialect(**{**d.__dict__, "time": "rate"})
+    channels = [Channel("level", "length", "m"), *_probe_channels(probes, "V")]
+    rec = _read(path, d, channels, "probe")
+    levels = rec.values[0]
     if np.unique(levels).size < 2:
         raise InputError(path, "calibration needs at least two distinct levels")
     ds = xr.Dataset(
-        {"calibration_voltage": (("sample", "probe"), data[:, jp])},
+        {"calibration_voltage": (("sample", "probe"), rec.values[1:].T)},
         coords={"level": ("sample", levels), "probe": list(probes)},
         attrs={"source_file": str(path)})
     return conventions.annotate(ds)
 
 
-def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float) -> xr.Dataset:
-    """Wave probe voltages, dims (probe, time)."""
+def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
+                dialect: Dialect | dict | None = None, *, units: str = "V",
+                time_offset: float = 0.0) -> xr.Dataset:
+    """Wave probe records, dims (probe, time).
+
+    Parameters
+    ----------
+    path : The run's probe file.
+    probes : Probe names, in the campaign's order.
+    sampling_rate : Declared sampling rate [Hz] (checked against a time column, or the time axis
+        when the dialect has none).
+    dialect : How the file is written (default: the raw campaign's CSV).
+    units : Unit of channels whose unit the file does not state: a voltage unit gives
+        ``probe_voltage`` [V] (to calibrate), a length unit ``probe_elevation`` [m] (calibrated,
+        still-water level not yet removed).
+    time_offset : Declared clock offset added to the time stamps [s].
+    """
     path = Path(path)
-    cols, data = read_table(path)
-    jt = _require(path, cols, "time", "time")
-    jp = _probe_columns(path, cols, probes, "time")
-    time = data[:, jt]
-    check_time(path, time, sampling_rate)
-    ds = xr.Dataset({"probe_voltage": (("probe", "time"), data[:, jp].T)},
+    d = _dialect(dialect)
+    quantity = UNITS[units][0]
+    if quantity not in ("voltage", "length"):
+        raise InputError(path, f"probe channels are voltages or lengths, not [{units}]")
+    rec = _read(path, d, _probe_channels(probes, units), "probe")
+    time = _time(path, rec, sampling_rate, time_offset)
+    name = "probe_voltage" if quantity == "voltage" else "probe_elevation"
+    ds = xr.Dataset({name: (("probe", "time"), rec.values)},
                     coords={"probe": list(probes), "time": time},
-                    attrs={"source_file": str(path), "sampling_rate": sampling_rate})
+                    attrs=_attrs(path, rec, sampling_rate, time_offset))
     return conventions.annotate(ds)
 
 
-def read_flap(path: str | Path, sampling_rate: float) -> xr.Dataset:
+def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | None = None, *,
+              time_offset: float = 0.0) -> xr.Dataset:
     """Encoder counts and cylinder chamber gauge pressure [Pa], dim time."""
     path = Path(path)
-    cols, data = read_table(path)
-    jt = _require(path, cols, "time", "time")
-    je = _require(path, cols, "encoder", "count")
-    jp = _require(path, cols, "pressure", "pressure")
-    extra = {c.name for c in cols} - {"time", "encoder", "pressure"}
-    if extra:
-        raise InputError(path, f"unexpected column(s) {sorted(extra)}")
-    time = data[:, jt]
-    check_time(path, time, sampling_rate)
-    counts = data[:, je]
+    d = _dialect(dialect)
+    rec = read_channels(path, d, CHANNELS["flap"], strict="flap")
+    time = _time(path, rec, sampling_rate, time_offset)
+    counts = rec.values[0]
     if np.any(counts != np.round(counts)):
         raise InputError(path, "encoder counts must be integers", field="encoder")
     ds = xr.Dataset({"encoder_counts": ("time", counts.astype(np.int64)),
-                     "chamber_pressure": ("time", data[:, jp])},
-                    coords={"time": time},
-                    attrs={"source_file": str(path), "sampling_rate": sampling_rate})
+                     "chamber_pressure": ("time", rec.values[1])},
+                    coords={"time": time}, attrs=_attrs(path, rec, sampling_rate, time_offset))
     return conventions.annotate(ds)

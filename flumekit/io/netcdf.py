@@ -1,8 +1,9 @@
 """Atomic netCDF writing with explicit encoding and the CF checks of flumekit.conventions.
 
-Time coordinates are seconds since the start of the record (float64, ``units = "s"``), which
-analysts can use directly; absolute instants, where known, are datetime64 variables whose CF
-units are set in the encoding.
+Time coordinates are seconds since the start of the record (float64): ``units = "s"`` in
+memory, ``seconds since <record start>`` in the file (CF 4.4), which :func:`read_dataset` reads
+back as plain seconds; absolute instants, where known, are datetime64 variables whose CF units
+are set in the encoding.
 """
 
 from __future__ import annotations
@@ -22,9 +23,17 @@ def _encoding(ds: xr.Dataset) -> dict[str, dict]:
         e: dict = {}
         if var.dtype.kind == "f":
             e["dtype"] = "float64" if var.dtype == np.float64 else str(var.dtype)
-            e["_FillValue"] = np.nan
+            # CF 2.5.1: a coordinate variable must not have a _FillValue
+            e["_FillValue"] = None if name in ds.dims else np.nan
             if var.ndim >= 1 and var.size > 4096:
                 e.update(zlib=True, complevel=1)
+        elif var.dtype.kind in "iu" and var.dtype.itemsize == 8:
+            # CF 1.8 knows no 64-bit integers; counts and indices fit in 32 bits
+            info = np.iinfo(np.int32)
+            if var.size == 0 or (info.min <= var.values.min() and var.values.max() <= info.max):
+                e["dtype"] = "int32"
+            if name in ds.dims:
+                e["_FillValue"] = None
         elif var.dtype.kind == "c":
             raise TypeError(f"variable '{name}' is complex: store real and imaginary parts")
         if np.issubdtype(var.dtype, np.datetime64):
@@ -32,6 +41,28 @@ def _encoding(ds: xr.Dataset) -> dict[str, dict]:
         if e:
             enc[str(name)] = e
     return enc
+
+
+#: global attribute a reader sets when the raw file gives the record's start (ISO 8601, UTC)
+RECORD_START = "record_start"
+_UNKNOWN_START = "1970-01-01T00:00:00Z"
+
+
+def _cf_time(ds: xr.Dataset) -> xr.Dataset:
+    """``time`` in seconds since the record's start, as CF 4.4 wants a time coordinate: the
+    start from the raw file when known (global attribute ``record_start``), else a nominal
+    origin said to stand for the start of the record. :func:`read_dataset` does not decode
+    it, so code and analysts keep plain seconds."""
+    if "time" not in ds.variables or ds["time"].dtype.kind not in "fiu":
+        return ds
+    ds = ds.copy()
+    start = ds.attrs.get(RECORD_START)
+    attrs = dict(ds["time"].attrs, units=f"seconds since {start or _UNKNOWN_START}")
+    if not start:
+        attrs["comment"] = ("the record's start time is not known: the origin of the units "
+                            "stands for the start of the record")
+    ds["time"].attrs = attrs
+    return ds
 
 
 def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
@@ -45,8 +76,11 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     missing = [a for a in ("Conventions", "title", "source", "history") if a not in ds.attrs]
     if missing:
         raise ValueError(f"{path}: dataset lacks global attributes {missing}")
+    ds.attrs = conventions.provenance(ds.attrs)
+    ds = _cf_time(ds)
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
+    conventions.record_written(path, conventions.content_digest(ds))
     return path
 
 
@@ -61,5 +95,6 @@ def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
 
 def read_dataset(path: str | Path) -> xr.Dataset:
     """Open a flumekit netCDF file fully into memory (the file is closed on return)."""
-    with xr.open_dataset(path, engine="netcdf4") as ds:
+    with xr.open_dataset(path, engine="netcdf4", decode_times=False,
+                         decode_timedelta=False) as ds:
         return ds.load()

@@ -1,8 +1,11 @@
-"""Instrument CSV tables: one header line of ``name [unit]`` columns, then numeric rows.
+"""Delimited text tables (CSV/ASCII) in any declared dialect, read fast and checked thoroughly.
 
-This is the text format of the raw campaign (raw/README.md) for probe voltages, encoder counts,
-cylinder pressure and static calibrations. Reading converts every column to SI and checks the
-file thoroughly, naming the file, line and column of any problem.
+The raw campaign's own format (raw/README.md: one header line of ``name [unit]`` cells, comma,
+decimal point) is the default dialect; a laboratory's files may use another delimiter (``;``,
+tab, whitespace), a decimal comma, comment and preamble lines, no header row, datetime time
+stamps. A UTF-8 byte-order mark, CRLF line ends and trailing blank lines are accepted; a file
+cut inside its last field, a malformed cell or a wrong delimiter is an error naming the file,
+the line and the column.
 """
 
 from __future__ import annotations
@@ -18,91 +21,184 @@ import pandas as pd
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
 
-#: unit -> (quantity, factor to SI)
-UNITS: dict[str, tuple[str, float]] = {
-    "s": ("time", 1.0), "ms": ("time", 1e-3),
-    "V": ("voltage", 1.0), "mV": ("voltage", 1e-3),
-    "Pa": ("pressure", 1.0), "kPa": ("pressure", 1e3), "bar": ("pressure", 1e5),
-    "mbar": ("pressure", 1e2),
-    "m": ("length", 1.0), "cm": ("length", 1e-2), "mm": ("length", 1e-3),
-    "counts": ("count", 1.0),
-}
-
-_HEADER = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_ ]*?)\s*\[([^\]]*)\]\s*$")
+_HEADER = re.compile(r"^\s*(.*?)\s*\[([^\]]*)\]\s*$")
 
 
 @dataclass(frozen=True)
-class Column:
-    name: str
-    unit: str
-    quantity: str
-    factor: float
+class Text:
+    """A delimited text table: column labels, header units and the raw cells of each column."""
+
+    labels: list[str]  # header names, or "1", "2", ... without a header
+    units: list[str | None]  # unit from a 'name [unit]' header cell
+    columns: list[np.ndarray]  # float64, or object (strings) for a non-numeric column
+    first_line: int  # 1-based file line of the first data row
 
 
-def _parse_header(path: Path, line: str) -> list[Column]:
-    cols = []
-    for j, cell in enumerate(line.rstrip("\r\n").split(",")):
-        m = _HEADER.match(cell)
-        if not m:
-            raise InputError(path, f"header cell {j + 1} {cell!r} is not of the form 'name [unit]'",
-                             line=1)
-        name, unit = m.group(1), m.group(2).strip()
-        if unit not in UNITS:
-            raise InputError(path, f"unknown unit [{unit}] for column '{name}'; known units: "
-                             + ", ".join(UNITS), line=1, field=name)
-        q, f = UNITS[unit]
-        cols.append(Column(name, unit, q, f))
-    names = [c.name for c in cols]
-    if len(set(names)) != len(names):
-        raise InputError(path, f"duplicate column names in {names}", line=1)
-    return cols
+def _split(line: str, delimiter: str) -> list[str]:
+    return line.split() if delimiter == "whitespace" else line.split(delimiter)
 
 
-def _locate_bad_cell(path: Path, text: str, ncol: int) -> InputError:
-    """Slow path, run only after the fast parser failed: find the first malformed line."""
-    lines = text.splitlines()
-    for i, line in enumerate(lines[1:], start=2):
-        cells = line.split(",")
-        if len(cells) != ncol:
-            hint = " (truncated file?)" if i == len(lines) else ""
-            return InputError(path, f"{len(cells)} fields, expected {ncol}{hint}", line=i)
-        for j, c in enumerate(cells):
-            try:
-                v = float(c)
-            except ValueError:
-                return InputError(path, f"column {j + 1}: {c!r} is not a number", line=i)
-            if not np.isfinite(v):
-                return InputError(path, f"column {j + 1}: non-finite value {c!r}", line=i)
-    return InputError(path, "could not be parsed as numeric CSV")
+def _numeric_line(line: str, delimiter: str, decimal: str) -> bool:
+    try:
+        [float(c.replace(decimal, ".")) for c in _split(line, delimiter)]
+    except ValueError:
+        return False
+    return True
 
 
-def read_table(path: str | Path) -> tuple[list[Column], np.ndarray]:
-    """Read an instrument CSV; return its columns and an (n_rows, n_columns) array in SI units."""
+def _wrong_delimiter(path: Path, line: str, number: int, delimiter: str) -> InputError | None:
+    """A line without the declared delimiter but with another one: say which to declare."""
+    if delimiter == "whitespace" or delimiter in line:
+        return None
+    for other in (";", "\t", ",", "|"):
+        if other != delimiter and other in line:
+            shown = {"\t": "\\t"}.get(other, other)
+            return InputError(path, f"no '{delimiter}' delimiter in this line, but '{shown}' "
+                              f"separates its cells: declare delimiter = '{shown}' in the "
+                              "file's dialect ([files.<instrument>] of campaign.toml)",
+                              line=number)
+    return None
+
+
+def _decimals(cell: str) -> int:
+    c = cell.strip()
+    k = max(c.rfind("."), c.rfind(","))
+    return len(c) - k - 1 if k >= 0 else 0
+
+
+def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_lines: int = 0,
+                  header: bool = True) -> list[str]:
+    """Column labels from the header line (names without ``[unit]``), or "1".."n" without one."""
+    try:
+        text = path.read_bytes()[:1 << 16].decode("utf-8-sig", errors="replace")
+    except FileNotFoundError:
+        raise InputError(path, "file not found") from None
+    if not text.strip():
+        raise InputError(path, "file is empty")
+    lines = text.split("\n")
+    i = skip_lines
+    while i < len(lines) - 1 and (not lines[i].strip()
+                                  or (comment and lines[i].lstrip().startswith(comment))):
+        i += 1
+    line = lines[i].rstrip("\r") if i < len(lines) else ""
+    if header:
+        bad = _wrong_delimiter(path, line, i + 1, delimiter)
+        if bad:
+            raise bad
+    cells = _split(line, delimiter)
+    if not header:
+        return [str(j + 1) for j in range(len(cells))]
+    return [_label(c)[0] for c in cells]
+
+
+def _label(cell: str) -> tuple[str, str | None]:
+    """('name', 'unit') of a header cell 'name [unit]'; ('name', None) without brackets."""
+    cell = cell.strip().strip('"').strip()
+    m = _HEADER.match(cell)
+    return (m.group(1), m.group(2).strip()) if m else (cell, None)
+
+
+def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", comment: str = "",
+              skip_lines: int = 0, header: bool = True,
+              text_columns: tuple[int, ...] = ()) -> Text:
+    """Read a delimited table. ``text_columns`` (0-based) may hold non-numbers (datetimes)."""
     path = Path(path)
     try:
-        text = path.read_text()
+        text = path.read_bytes().decode("utf-8-sig")  # a lab PC's byte-order mark is accepted
     except FileNotFoundError:
         raise InputError(path, "file not found") from None
     except UnicodeDecodeError:
-        raise InputError(path, "not a text file") from None
+        raise InputError(path, "not a text file (or not UTF-8)") from None
     if not text.strip():
         raise InputError(path, "file is empty")
-    header, _, body = text.partition("\n")
-    cols = _parse_header(path, header)
-    if not body.strip():
-        raise InputError(path, "no data rows after the header", line=2)
+    ended = text.endswith("\n")
+    lines = text.split("\n", skip_lines + 64)
+    # preamble, comment and blank lines before the header (or the first row)
+    i = skip_lines
+    while i < len(lines) - 1 and (not lines[i].strip()
+                                  or (comment and lines[i].lstrip().startswith(comment))):
+        i += 1
+    if i >= len(lines) or not lines[i].strip():
+        raise InputError(path, "no header or data line", line=i + 1)
+    head = lines[i].rstrip("\r")
+    bad = _wrong_delimiter(path, head, i + 1, delimiter)
+    if bad and (header or not _numeric_line(head, delimiter, decimal)):
+        raise bad
+    if header:
+        labels, units = (list(x) for x in zip(*[_label(c) for c in _split(head, delimiter)]))
+        if len(set(labels)) != len(labels):
+            raise InputError(path, f"duplicate column names in {labels}", line=i + 1)
+        first = i + 1
+    else:
+        first = i
+    offset = sum(len(line) + 1 for line in lines[:first])
+    body = text[offset:].rstrip()  # trailing blank lines (and CR/LF) are not rows
+    if not body:
+        raise InputError(path, "no data rows after the header", line=first + 1)
+    ncol = len(labels) if header else len(_split(body.split("\n", 1)[0].rstrip("\r"), delimiter))
+    if not header:
+        labels, units = [str(j + 1) for j in range(ncol)], [None] * ncol
+    multi = len(comment) > 1
+    if multi:  # pandas takes one comment character; longer markers are filtered here
+        body = "\n".join(x for x in body.split("\n") if not x.lstrip().startswith(comment))
+    dtype = {j: (object if j in text_columns else np.float64) for j in range(ncol)}
     try:
-        df = pd.read_csv(io.StringIO(body), header=None, dtype=np.float64, engine="c",
-                         skip_blank_lines=False)
+        df = pd.read_csv(io.StringIO(body), header=None, dtype=dtype, engine="c",
+                         sep=r"\s+" if delimiter == "whitespace" else delimiter,
+                         decimal=decimal, comment=(comment or None) if not multi else None,
+                         skip_blank_lines=bool(comment), names=range(ncol))
     except (ValueError, pd.errors.ParserError):
-        raise _locate_bad_cell(path, text, len(cols)) from None
-    data = df.to_numpy()
-    if data.shape[1] != len(cols) or not np.all(np.isfinite(data)):
-        raise _locate_bad_cell(path, text, len(cols))
-    return cols, data * np.array([c.factor for c in cols])
+        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns) \
+            from None
+    num = [j for j in range(ncol) if j not in text_columns]
+    values = df[num].to_numpy(dtype=np.float64)
+    if not np.all(np.isfinite(values)):
+        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns)
+    if not ended and ncol - 1 in num:
+        # a file cut inside its last field still has all its fields: its last cell has fewer
+        # decimals than that column has anywhere else (loggers write a fixed precision)
+        rows = body.split("\n")
+        last = [_split(r.rstrip("\r"), delimiter)[-1] for r in rows
+                if not (comment and r.lstrip().startswith(comment))]
+        if len(last) > 1 and _decimals(last[-1]) < min(_decimals(c) for c in last[:-1]):
+            raise InputError(path, f"the last line ends in {last[-1].strip()!r}, with fewer "
+                             "decimals than every other value of its column, and has no line "
+                             "end: the file looks cut (truncated)", line=first + len(rows))
+    columns = [df[j].to_numpy() if j in text_columns else values[:, num.index(j)]
+               for j in range(ncol)]
+    return Text(labels, units, columns, first + 1)
 
 
-def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None) -> None:
+def _locate_bad_cell(path: Path, body: str, first: int, ncol: int, delimiter: str,
+                     decimal: str, text_columns: tuple[int, ...] = ()) -> InputError:
+    """Slow path, run only after the fast parser failed: find the first malformed line."""
+    lines = body.split("\n")
+    for k, line in enumerate(lines):
+        i = first + k + 1
+        cells = _split(line.rstrip("\r"), delimiter)
+        if len(cells) != ncol:
+            bad = _wrong_delimiter(path, line, i, delimiter)
+            if bad:
+                return bad
+            hint = " (truncated file?)" if k == len(lines) - 1 else ""
+            return InputError(path, f"{len(cells)} fields, expected {ncol}{hint}", line=i)
+        for j, c in enumerate(cells):
+            if j in text_columns:
+                continue
+            try:
+                v = float(c.replace(decimal, ".") if decimal != "." else c)
+            except ValueError:
+                hint = ""
+                if decimal == "." and "," in c:
+                    hint = " (a decimal comma? declare decimal = ',' in the file's dialect)"
+                return InputError(path, f"column {j + 1}: {c!r} is not a number{hint}", line=i)
+            if not np.isfinite(v):
+                return InputError(path, f"column {j + 1}: non-finite value {c!r}", line=i)
+    return InputError(path, "could not be parsed as a numeric table")
+
+
+def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
+               first_line: int = 2) -> None:
     """Time must increase strictly and, if a rate is given, step by 1/rate (within 1 %)."""
     if time.size < 2:
         raise InputError(path, "fewer than two samples")
@@ -110,14 +206,14 @@ def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None)
     bad = np.flatnonzero(dt <= 0)
     if bad.size:
         raise InputError(path, f"time is not increasing ({time[bad[0]]} s then "
-                         f"{time[bad[0] + 1]} s)", line=int(bad[0]) + 3)
+                         f"{time[bad[0] + 1]} s)", line=int(bad[0]) + first_line + 1)
     if sampling_rate is not None:
         expected = 1.0 / sampling_rate
         off = np.flatnonzero(np.abs(dt - expected) > 0.01 * expected)
         if off.size:
             raise InputError(path, f"sampling interval {dt[off[0]]:.6g} s does not match the "
                              f"declared sampling rate {sampling_rate:g} Hz",
-                             line=int(off[0]) + 3)
+                             line=int(off[0]) + first_line + 1)
 
 
 def write_table(path: str | Path, columns: list[tuple[str, str]], data: np.ndarray,

@@ -9,6 +9,30 @@ from typing import Any
 
 from flumekit.campaign import Table, read_toml
 from flumekit.errors import InputError
+from flumekit.schema import Key, Problem, raise_problems, validate
+
+#: a pipeline file; each file of an ``extends`` chain is checked on its own (so that a problem
+#: names its file), the required keys once merged
+PIPELINE = {
+    "extends": Key("text", "pipeline file this one extends (tables merge key by key)",
+                   required=False),
+    "pipeline": Key("table", "name and folders", table={
+        "name": Key("text", "pipeline name", required=False),
+        "raw": Key("text", "raw campaign folder, relative to this file", required=False),
+        "processed": Key("text", "processed data folder, relative to this file",
+                         required=False)}),
+    "synth": Key("table", "synthesise the virtual flume into 'raw' when it is absent",
+                 required=False, table={
+        "size": Key("text", "campaign size", required=False, default="default",
+                    choices=("small", "default", "paper")),
+        "seed": Key("integer", "random seed", required=False, default=0)}),
+    "stages": Key("table", "stage parameters, [stages.<stage>] (`flumekit params`)",
+                  required=False, table={}, items=Key("table", "one stage's parameters",
+                                                      items=Key("any"))),
+    "scenes": Key("table", "named target lists", required=False, table={},
+                  items=Key("names", "target names or patterns", kinds=("table",),
+                            items=Key("any"))),
+}
 
 
 @dataclass(frozen=True)
@@ -36,6 +60,9 @@ def _merge(base: dict, over: dict) -> dict:
 def _read(path: Path, depth: int = 0) -> dict:
     """A pipeline file, merged over the file it ``extends`` (tables merge key by key)."""
     data = read_toml(path)
+    schema = {**PIPELINE, "pipeline": Key("table", "", required="extends" not in data,
+                                           table=PIPELINE["pipeline"].table)}
+    raise_problems(path, validate(data, schema, path))
     parent = data.pop("extends", None)
     if parent is None:
         return data
@@ -48,6 +75,9 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     """Read a pipeline file; relative paths in it are relative to the file's folder."""
     path = Path(path)
     data = _read(path)
+    missing = [k for k in ("name", "raw", "processed") if k not in data.get("pipeline", {})]
+    raise_problems(path, [Problem(path, f"pipeline.{k}", "missing key (a string)")
+                          for k in missing])
     t = Table(data, path)
     p = t.sub("pipeline")
     base = path.parent

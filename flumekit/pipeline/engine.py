@@ -3,15 +3,21 @@
 A target is rebuilt when an output is missing, or when the content hash of an input, the rule's
 parameters or its code version differ from those of its last successful build. Only the rules
 the requested targets depend on are considered.
+
+A target whose rebuild fails loses its outputs, and so does everything built from them
+(:meth:`Graph.downstream`): no reader can pick up a result made from data that no longer
+exists. The engine keeps going past a failure only when asked (``keep_going``), and then builds
+everything that does not depend on a failed target.
 """
 
 from __future__ import annotations
 
 import fnmatch
+import os
 import sys
 import time
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from flumekit.errors import FlumekitError, InputError
@@ -20,36 +26,66 @@ from flumekit.pipeline.rules import Rule, execute
 from flumekit.pipeline.state import State
 
 
+def _key(p) -> str:
+    # no Path objects and no file-system call: the graph and the no-op make touch every path
+    s = os.fspath(p)
+    return s if s.startswith("/") else os.path.abspath(s)
+
+
 class Graph:
-    """Rules indexed by target and by output path, with their dependencies."""
+    """Rules indexed by target and by output path, with their dependencies (computed once)."""
 
     def __init__(self, rules: Iterable[Rule]):
         self.rules: dict[str, Rule] = {}
-        self.producer: dict[Path, str] = {}
+        self.producer: dict[str, str] = {}
         for r in rules:
             if r.target in self.rules:
                 raise ValueError(f"two rules build target '{r.target}'")
             self.rules[r.target] = r
             for p in r.outputs.values():
-                self.producer[Path(p).resolve()] = r.target
+                self.producer[_key(p)] = r.target
+        self._deps: dict[str, list[str]] = {}
+        self._users: dict[str, list[str]] = {t: [] for t in self.rules}
+        for t, r in self.rules.items():
+            deps = []
+            for p in r.inputs.values():
+                d = self.producer.get(_key(p))
+                if d is not None and d not in deps:
+                    deps.append(d)
+            self._deps[t] = deps
+            for d in deps:
+                self._users[d].append(t)
 
     def deps(self, target: str) -> list[str]:
-        r = self.rules[target]
-        out = []
-        for p in r.inputs.values():
-            t = self.producer.get(Path(p).resolve())
-            if t is not None:
+        return self._deps[target]
+
+    def produced(self, path) -> bool:
+        return _key(path) in self.producer
+
+    def downstream(self, target: str) -> list[str]:
+        """Every target built (directly or not) from ``target``'s outputs."""
+        out: list[str] = []
+        stack = list(self._users[target])
+        while stack:
+            t = stack.pop()
+            if t not in out:
                 out.append(t)
+                stack += self._users[t]
         return out
 
     def match(self, patterns: Iterable[str]) -> list[str]:
         found: list[str] = []
         for pat in patterns:
-            hits = [t for t in self.rules if fnmatch.fnmatchcase(t, pat)]
+            hits = (fnmatch.filter(self.rules, pat) if any(c in pat for c in "*?[")
+                    else [pat] if pat in self.rules else [])
             if not hits:
                 raise FlumekitError(f"no target matches '{pat}' (see `flumekit list`)")
             found += [t for t in hits if t not in found]
         return found
+
+    def match_any(self, pattern: str) -> bool:
+        """True if some target matches ``pattern``."""
+        return any(fnmatch.fnmatchcase(t, pattern) for t in self.rules)
 
     def closure(self, targets: Iterable[str]) -> list[str]:
         """The targets and everything they depend on, in dependency (topological) order."""
@@ -63,7 +99,7 @@ class Graph:
             if t in visiting:
                 raise FlumekitError(f"dependency cycle through '{t}'")
             visiting.add(t)
-            for d in self.deps(t):
+            for d in self._deps[t]:
                 visit(d)
             visiting.discard(t)
             seen.add(t)
@@ -77,30 +113,54 @@ class Graph:
 def signature(rule: Rule, state: State) -> dict:
     inputs = {}
     for name, p in sorted(rule.inputs.items()):
-        p = Path(p)
-        if not p.exists():
-            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
-        inputs[name] = state.hash(p)
+        try:
+            inputs[name] = state.identity(p)
+        except FileNotFoundError:
+            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing") from None
     return {"version": rule.version, "params": rule.params_hash(), "inputs": inputs}
+
+
+def provenance(rule: Rule, state: State, root: Path | None) -> dict:
+    """What a rule's datasets record about their making: every input with its path relative to
+    ``root`` (the pipeline file's folder) and its content hash; absolute paths -> relative."""
+    def rel(p) -> str:
+        return os.path.relpath(p, root) if root is not None else Path(p).name
+
+    paths = {os.path.abspath(p): rel(p) for p in [*rule.inputs.values(), *rule.outputs.values()]}
+    inputs = {name: {"file": rel(p), "sha256": state.identity(Path(p))}
+              for name, p in sorted(rule.inputs.items())}
+    # longest first, so that a path is never replaced by the relative form of its prefix
+    return {"inputs": inputs, "paths": dict(sorted(paths.items(), key=lambda kv: -len(kv[0])))}
 
 
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Reason to rebuild ``rule`` (None when it is up to date)."""
-    for name, p in rule.inputs.items():
-        if not Path(p).exists() and Path(p).resolve() not in graph.producer:
-            raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
+    exists = os.path.exists
+    missing = [n for n, p in rule.outputs.items() if not exists(p)]
+    if rule.source:
+        # a rule that creates raw data (the virtual flume) runs only where nothing exists yet:
+        # it is never forced and never re-run over files that are there
+        return f"output {missing[0]} missing" if missing else None
+
+    def check_inputs() -> None:
+        for name, p in rule.inputs.items():
+            if not exists(p) and not graph.produced(p):
+                raise InputError(p, f"input '{name}' of target '{rule.target}' is missing")
+
     if force:
+        check_inputs()
         return "forced"
-    missing = [n for n, p in rule.outputs.items() if not Path(p).exists()]
     if missing:
+        check_inputs()
         return f"output {missing[0]} missing"
     upstream = [d for d in graph.deps(rule.target) if d in rebuilt]
     if upstream:
         return f"input from {upstream[0]} is rebuilt"
     old = state.targets.get(rule.target)
     if old is None:
+        check_inputs()
         return "never built"
-    new = signature(rule, state)
+    new = signature(rule, state)  # an input missing here is an error naming it
     if old.get("version") != new["version"]:
         return f"rule version {old.get('version')} -> {new['version']}"
     if old.get("params") != new["params"]:
@@ -112,91 +172,203 @@ def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) 
 
 
 @dataclass
+class Failure:
+    target: str
+    run: str | None
+    file: str | None
+    problem: str
+
+
+@dataclass
 class Report:
     ran: list[tuple[str, str, float]]  # target, reason, seconds
-    skipped: list[str]
+    skipped: list[str]  # up to date
+    failed: list[Failure] = field(default_factory=list)
+    blocked: list[str] = field(default_factory=list)  # not built: an input's rebuild failed
+    removed: list[str] = field(default_factory=list)  # outputs invalidated by a failure
+    seconds: float = 0.0
 
 
-def plan(graph: Graph, targets: list[str], state: State,
-         force: bool = False) -> list[tuple[str, str]]:
+class Events:
+    """What a build tells its user; the command line gives a progress bar or plain lines."""
+
+    def __init__(self, log: Callable[[str], None] = lambda s: print(s, file=sys.stderr)):
+        self.log = log
+
+    def start(self, n_total: int) -> None:
+        pass
+
+    def started(self, i: int, n: int, target: str, reason: str) -> None:
+        self.log(f"[{i}/{n}] {target}: {reason}")
+
+    def finished(self, target: str, seconds: float) -> None:
+        self.log(f"    {target} done in {seconds:.2f} s")
+
+    def skipped(self, target: str) -> None:
+        pass
+
+    def failed(self, failure: Failure) -> None:
+        self.log(f"    {failure.target} FAILED: {failure.problem}")
+
+    def close(self) -> None:
+        pass
+
+
+def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
+         force_targets: Iterable[str] = ()) -> list[tuple[str, str]]:
     """What would run and why, for a dry run. Assumes every rebuilt input changes."""
     rebuilt: set[str] = set()
+    forced = set(force_targets)
     out = []
     for t in graph.closure(targets):
-        reason = why(graph.rules[t], state, force, rebuilt, graph)
+        reason = why(graph.rules[t], state, force or t in forced, rebuilt, graph)
         if reason:
             rebuilt.add(t)
             out.append((t, reason))
     return out
 
 
+def invalidate(graph: Graph, state: State, target: str) -> list[str]:
+    """Remove the outputs of ``target`` and of everything downstream of it, and forget their
+    build signatures; returns the targets whose outputs were removed. Rules that create raw
+    data are never touched."""
+    removed = []
+    for t in [target, *graph.downstream(target)]:
+        rule = graph.rules[t]
+        if rule.source:
+            continue
+        state.targets.pop(t, None)
+        gone = False
+        for p in rule.outputs.values():
+            if Path(p).exists():
+                Path(p).unlink()
+                gone = True
+        if gone:
+            removed.append(t)
+    return removed
+
+
 def make(graph: Graph, targets: list[str], state: State, executor: Executor, force: bool = False,
-         log: Callable[[str], None] = lambda s: print(s, file=sys.stderr)) -> Report:
+         log: Callable[[str], None] | None = None, *, force_targets: Iterable[str] = (),
+         keep_going: bool = False, events: Events | None = None,
+         root: Path | None = None) -> Report:
     """Build ``targets``; rules run on ``executor`` as soon as their inputs are up to date.
 
     A rule is judged just before it would run, with the real hashes of freshly built inputs, so
     an upstream rebuild that reproduces identical content rebuilds nothing downstream.
+    ``force`` rebuilds every target needed; ``force_targets`` only those named (what they feed
+    is rebuilt only if their outputs change). With ``keep_going`` a failure does not stop the
+    build: the report lists the failures and the targets they blocked; otherwise the first
+    failure is raised once the running rules have finished. An interrupt (Ctrl-C) is not a
+    failure: it propagates as soon as the state of finished rules is saved.
     """
+    events = events or Events(log or (lambda s: print(s, file=sys.stderr)))
+    forced = set(force_targets)
     order = graph.closure(targets)
     pending = {t: set(graph.deps(t)) for t in order}
     done: set[str] = set()
+    bad: set[str] = set()  # failed or blocked
     changed: set[str] = set()  # targets rebuilt in this make whose outputs changed
-    running: dict = {}
+    running: dict = {}  # future -> (target, reason)
+    busy: set[str] = set()  # targets running
     report = Report([], [])
     n_total = len(order)
-    failure: BaseException | None = None
+    first_error: BaseException | None = None
     t_start = time.perf_counter()
+    events.start(n_total)
 
-    def ready() -> list[str]:
-        return [t for t in order if t not in done and t not in running.values()
-                and pending[t] <= done]
+    def fail(t: str, e: BaseException) -> None:
+        nonlocal first_error
+        rule = graph.rules[t]
+        f = Failure(t, rule.run, str(getattr(e, "path", "") or "") or None, _problem(e))
+        report.failed.append(f)
+        events.failed(f)
+        report.removed += invalidate(graph, state, t)
+        state.save()
+        if first_error is None:
+            first_error = _wrap(rule, e)
+        bad.add(t)
+        done.add(t)
+        for u in graph.downstream(t):
+            if u in pending and u not in done:
+                bad.add(u)
+                done.add(u)
+                report.blocked.append(u)
 
-    while len(done) < n_total:
-        if failure is None:
-            for t in ready():
-                rule = graph.rules[t]
-                reason = why(rule, state, force, changed, graph)
-                if reason is None:
-                    done.add(t)
-                    report.skipped.append(t)
-                    continue
-                log(f"[{len(done) + len(running) + 1}/{n_total}] {t}: {reason}")
-                running[executor.submit(execute, rule)] = t
-        if not running:
-            if failure is not None or len(done) == n_total:
+    try:
+        while len(done) < n_total:
+            if first_error is None or keep_going:
+                for t in order:
+                    if t in done or t in busy or not pending[t] <= done:
+                        continue
+                    rule = graph.rules[t]
+                    try:
+                        reason = why(rule, state, force or t in forced, changed, graph)
+                    except FlumekitError as e:
+                        fail(t, e)
+                        continue
+                    if reason is None:
+                        done.add(t)
+                        report.skipped.append(t)
+                        events.skipped(t)
+                        continue
+                    events.started(len(done) + len(running) + 1, n_total, t, reason)
+                    try:
+                        prov = provenance(rule, state, root)
+                    except FlumekitError as e:
+                        fail(t, e)
+                        continue
+                    running[executor.submit(execute, rule, prov)] = (t, reason)
+                    busy.add(t)
+                    if first_error is not None and not keep_going:
+                        break
+            if not running:
                 break
-            continue
-        for fut in executor.wait_any(list(running)):
-            t = running.pop(fut)
-            rule = graph.rules[t]
-            try:
-                seconds = fut.result()
-            except BaseException as e:  # broad on purpose: reported with target and run
-                state.targets.pop(t, None)
-                if failure is None:
-                    failure = _wrap(rule, e)
+            for fut in executor.wait_any(list(running)):
+                t, reason = running.pop(fut)
+                busy.discard(t)
+                rule = graph.rules[t]
+                try:
+                    seconds, written = fut.result()
+                except (KeyboardInterrupt, SystemExit):
+                    raise
+                except BaseException as e:  # broad on purpose: reported with target and run
+                    fail(t, e)
+                    continue
+                old_out = state.targets.get(t, {}).get("outputs")
+                outputs = {os.path.abspath(p) for p in rule.outputs.values()}
+                for p, digest in written.items():
+                    if os.path.abspath(p) in outputs:
+                        state.written(Path(p), digest)
+                sig = signature(rule, state)
+                sig["outputs"] = {n: state.identity(Path(p)) for n, p in rule.outputs.items()}
+                # the time of a build lives here, never in the products
+                sig["built"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
+                sig["seconds"] = round(seconds, 3)
+                state.targets[t] = sig
+                state.save()
+                if sig["outputs"] != old_out or force:
+                    changed.add(t)
                 done.add(t)
-                continue
-            old_out = state.targets.get(t, {}).get("outputs")
-            sig = signature(rule, state)
-            sig["outputs"] = {n: state.hash(Path(p)) for n, p in rule.outputs.items()}
-            state.targets[t] = sig
+                report.ran.append((t, reason, seconds))
+                events.finished(t, seconds)
+    finally:
+        if state.dirty or report.ran or report.failed:  # a no-op make writes nothing
             state.save()
-            if sig["outputs"] != old_out or force:
-                changed.add(t)
-            done.add(t)
-            report.ran.append((t, "", seconds))
-            log(f"    {t} done in {seconds:.2f} s")
-    state.save()
-    if failure is not None:
-        raise failure
-    elapsed = time.perf_counter() - t_start
-    if report.ran:
-        log(f"built {len(report.ran)} target(s), {len(report.skipped)} up to date, "
-            f"{elapsed:.2f} s")
-    else:
-        log(f"nothing to do: all {len(report.skipped)} target(s) up to date ({elapsed:.2f} s)")
+        events.close()
+    report.seconds = time.perf_counter() - t_start
+    if first_error is not None and not keep_going:
+        raise first_error
     return report
+
+
+def _problem(e: BaseException) -> str:
+    if isinstance(e, InputError):  # the file is reported on its own
+        return e.problem + (f" (line {e.line})" if e.line else "") + (
+            f" (field '{e.field}')" if e.field else "")
+    if isinstance(e, FlumekitError):
+        return str(e)
+    return f"{type(e).__name__}: {e}"
 
 
 def _wrap(rule: Rule, e: BaseException) -> BaseException:

@@ -1,15 +1,27 @@
-"""Where rules run: in this process, in a local thread/process pool, or on a Dask cluster.
+"""Where rules run: in this process, in a local process/thread pool, or on a Dask cluster.
 
 Dask is the only scale-out engine (DESIGN.md §4): a scheduler address given with
 ``--scheduler`` or the standard ``DASK_SCHEDULER_ADDRESS`` sends rules to its workers.
+
+Pool workers die with their driver: they ignore Ctrl-C (the driver handles it and stops them),
+on SIGTERM remove the temporary files they were writing and exit, and on Linux ask the kernel
+for a SIGTERM when the driver dies, even by ``kill -9``.
 """
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import os
+import signal
+import sys
+import time
 from collections.abc import Callable
 from typing import Any
+
+from flumekit.errors import FlumekitError
+
+#: seconds a Dask scheduler may take to answer, and a cluster may stay without any worker,
+#: before the build stops with an error
+DASK_TIMEOUT = 30.0
 
 
 class Executor:
@@ -19,24 +31,27 @@ class Executor:
     def wait_any(self, futures: list) -> list:
         raise NotImplementedError
 
-    def close(self) -> None:
+    def close(self, abort: bool = False) -> None:
         pass
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, exc_type, *exc):
+        self.close(abort=exc_type is not None and issubclass(exc_type, (KeyboardInterrupt,
+                                                                       SystemExit)))
 
 
 class SerialExecutor(Executor):
     """Runs each rule at once in this process (the default, and the easiest to debug)."""
 
     def submit(self, fn, *args):
-        fut: cf.Future = cf.Future()
+        import concurrent.futures as cf  # here: a no-op make never needs it
+
+        fut = cf.Future()
         try:
             fut.set_result(fn(*args))
-        except BaseException as e:  # broad on purpose: delivered through the future
+        except Exception as e:  # delivered through the future; Ctrl-C is not caught
             fut.set_exception(e)
         return fut
 
@@ -44,41 +59,94 @@ class SerialExecutor(Executor):
         return futures
 
 
+def _terminate(signum, frame):
+    # not SystemExit: concurrent.futures would catch it inside a task, report it to a driver
+    # that may be dead, and wait for the next task forever. Remove what this worker was
+    # writing and leave at once.
+    from flumekit.io.atomic import remove_active
+
+    remove_active()
+    os._exit(128 + signum)
+
+
+def _worker_init() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, _terminate)
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        PR_SET_PDEATHSIG = 1
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGTERM)
+        except (OSError, AttributeError):
+            pass
+    # the driver may have died between the fork and the prctl above
+    if os.getppid() == 1:
+        raise SystemExit(1)
+
+
 class PoolExecutor(Executor):
     """A local pool of ``jobs`` processes (or threads)."""
 
     def __init__(self, jobs: int, kind: str = "processes"):
+        import concurrent.futures as cf
+
+        self.kind = kind
         if kind == "threads":
-            self.pool: cf.Executor = cf.ThreadPoolExecutor(jobs)
+            self.pool = cf.ThreadPoolExecutor(jobs)
         else:
             import multiprocessing as mp
 
             method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
-            self.pool = cf.ProcessPoolExecutor(jobs, mp_context=mp.get_context(method))
+            self.pool = cf.ProcessPoolExecutor(jobs, mp_context=mp.get_context(method),
+                                               initializer=_worker_init)
 
     def submit(self, fn, *args):
         return self.pool.submit(fn, *args)
 
     def wait_any(self, futures):
+        import concurrent.futures as cf
+
         done, _ = cf.wait(futures, return_when=cf.FIRST_COMPLETED)
         return list(done)
 
-    def close(self):
-        self.pool.shutdown(wait=True, cancel_futures=True)
+    def close(self, abort: bool = False):
+        if not abort or self.kind == "threads":
+            self.pool.shutdown(wait=True, cancel_futures=True)
+            return
+        import multiprocessing as mp
+
+        self.pool.shutdown(wait=False, cancel_futures=True)
+        workers = mp.active_children()
+        for p in workers:
+            p.terminate()  # SIGTERM: the worker removes its temporaries and exits
+        deadline = time.monotonic() + 10.0
+        for p in workers:
+            p.join(max(0.0, deadline - time.monotonic()))
+            if p.is_alive():
+                p.kill()
 
 
 class DaskExecutor(Executor):
-    """Rules as tasks on a dask.distributed cluster (``pip install flumekit[dask]``)."""
+    """Rules as tasks on a dask.distributed cluster (``pip install flumekit[dask]``).
 
-    def __init__(self, address: str):
+    A scheduler that does not answer within ``timeout`` seconds, and a cluster that has no
+    worker for ``timeout`` seconds while rules wait, are errors (not a silent hang).
+    """
+
+    def __init__(self, address: str, timeout: float = DASK_TIMEOUT):
         try:
             from distributed import Client
         except ImportError as e:
-            from flumekit.errors import FlumekitError
-
             raise FlumekitError("a Dask scheduler was given but dask.distributed is not "
                                 "installed: pip install 'flumekit[dask]'") from e
-        self.client = Client(address)
+        self.address, self.timeout = address, timeout
+        try:
+            self.client = Client(address, timeout=timeout)
+        except (OSError, TimeoutError) as e:
+            raise FlumekitError(f"cannot reach the Dask scheduler at {address} within "
+                                f"{timeout:g} s ({type(e).__name__}); check the address, or "
+                                "unset DASK_SCHEDULER_ADDRESS to build locally") from None
 
     def submit(self, fn, *args):
         return self.client.submit(fn, *args, pure=False)
@@ -86,17 +154,38 @@ class DaskExecutor(Executor):
     def wait_any(self, futures):
         from distributed import wait
 
-        done, _ = wait(futures, return_when="FIRST_COMPLETED")
-        return list(done)
+        alone_since: float | None = None
+        while True:
+            try:
+                done, _ = wait(futures, timeout=1.0, return_when="FIRST_COMPLETED")
+                return list(done)
+            except TimeoutError:
+                pass
+            try:
+                workers = self.client.scheduler_info(n_workers=-1)["workers"]
+            except TypeError:  # older distributed: no n_workers argument
+                workers = self.client.scheduler_info()["workers"]
+            except (OSError, TimeoutError) as e:
+                raise FlumekitError(f"lost the Dask scheduler at {self.address}: "
+                                    f"{type(e).__name__}: {e}") from None
+            if workers:
+                alone_since = None
+                continue
+            alone_since = alone_since or time.monotonic()
+            if time.monotonic() - alone_since > self.timeout:
+                raise FlumekitError(f"the Dask cluster at {self.address} has had no worker for "
+                                    f"{self.timeout:g} s; {len(futures)} rule(s) were waiting. "
+                                    "Start workers, or build locally (-j N)")
 
-    def close(self):
+    def close(self, abort: bool = False):
         self.client.close()
 
 
-def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes") -> Executor:
+def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes",
+                 timeout: float = DASK_TIMEOUT) -> Executor:
     address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
     if address:
-        return DaskExecutor(address)
+        return DaskExecutor(address, timeout)
     if jobs > 1:
         return PoolExecutor(jobs, kind)
     return SerialExecutor()

@@ -26,6 +26,9 @@ class Rule:
     params: dict[str, Any] = field(default_factory=dict)
     version: str = "1"  # bump when the action's results change
     run: str | None = None  # run identifier, for messages
+    # True for a rule that creates raw data (the virtual flume): it runs only where its outputs
+    # are all absent, is never forced, and its outputs are never removed by the engine
+    source: bool = False
 
     def params_hash(self) -> str:
         return digest(json.dumps(self.params, sort_keys=True, default=str).encode())
@@ -47,13 +50,24 @@ def file_digest(path: Path) -> str:
     return h.hexdigest()
 
 
-def execute(rule: Rule) -> float:
-    """Run a rule's action (in whatever process the executor chose); return its run time [s].
+def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str, str]]:
+    """Run a rule's action (in whatever process the executor chose); return its run time [s]
+    and the content digests of the datasets it wrote (path -> digest).
 
-    A failing action leaves none of its outputs behind.
+    ``provenance`` (inputs with relative paths and content hashes) goes into every dataset the
+    action writes (:func:`flumekit.conventions.provenance`).
+
+    A failing action leaves none of its outputs behind (a raw-data ``source`` rule removes
+    nothing: its action writes atomically and may not touch what was there).
     """
     import time
 
+    from flumekit import conventions
+
+    prov = {"target": rule.target, "version": rule.version, "params": rule.params,
+            "inputs": {}, "paths": {}, **(provenance or {})}
+    # the virtual flume's raw files and truth are the same whichever command writes them
+    token = conventions.set_provenance(None if rule.source else prov)
     t0 = time.perf_counter()
     try:
         rule.resolve()(dict(rule.inputs), dict(rule.outputs), dict(rule.params))
@@ -61,7 +75,11 @@ def execute(rule: Rule) -> float:
         if missing:
             raise RuntimeError(f"action did not write its outputs {missing}")
     except BaseException:
+        if rule.source:
+            raise
         for p in rule.outputs.values():
             Path(p).unlink(missing_ok=True)
         raise
-    return time.perf_counter() - t0
+    finally:
+        conventions.reset_provenance(token)
+    return time.perf_counter() - t0, prov.get("written", {})

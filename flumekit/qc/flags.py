@@ -43,9 +43,3 @@ def aggregate(*flags: np.ndarray) -> np.ndarray:
     worst = np.take_along_axis(stack, np.argmax(_RANK[stack], axis=0)[None], axis=0)[0]
     return worst
 
-
-def counts(flags: np.ndarray, axis=None) -> dict[str, np.ndarray]:
-    """Number of samples per flag meaning (``pass``, ``suspect``, ...), summed over ``axis``."""
-    f = np.asarray(flags)
-    return {name: np.sum(f == value, axis=axis)
-            for value, name in zip(FLAG_VALUES, FLAG_MEANINGS.split(), strict=True)}

@@ -202,27 +202,48 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
     return f.reshape(shape)
 
 
-def dropout_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
-    """Dropouts: samples far outside the record's own robust envelope (FAIL).
+def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
+                 hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
+    """Dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
 
-    A channel that drops to a rail or to zero (a lost connection, a probe out of the water)
-    leaves the range its signal occupies. A sample fails where |x - median(x)| exceeds
-    ``threshold`` robust standard deviations of x over the record (1.4826 MAD); a sinusoid
-    reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water lead-in
-    of up to about half the record.
+    * Level: samples far outside the record's robust envelope, |x - median(x)| above
+      ``threshold`` robust standard deviations of x over the record (1.4826 MAD; a sinusoid
+      reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water
+      lead-in of up to about half the record).
+    * Hold: a run of identical values (a logger writing 0 or repeating its last value) longer
+      than ``hold_seconds`` and than ``hold_factor`` times the channel's own longest runs of
+      identical values (but the longest 1 %). A noisy channel never repeats a value for long,
+      while a quantised one at rest or at a flap's reversal does, so the threshold follows the
+      record. The leading run (the instrument at rest before the waves arrive) is exempt.
     """
     x = np.asarray(x, dtype=float)
-    f = _empty_flags(x)
+    shape = x.shape
+    x2 = x.reshape(-1, shape[-1])
+    f = _empty_flags(x2)
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)
-        med = np.nanmedian(x, axis=-1, keepdims=True)
-        scale = MAD_TO_STD * np.nanmedian(np.abs(x - med), axis=-1, keepdims=True)
-    scale = np.maximum(scale, resolution(x)[..., None])
+        med = np.nanmedian(x2, axis=-1, keepdims=True)
+        scale = MAD_TO_STD * np.nanmedian(np.abs(x2 - med), axis=-1, keepdims=True)
+    scale = np.maximum(scale, resolution(x2)[..., None])
     with np.errstate(invalid="ignore"):
-        f[(np.abs(x - med) > threshold * scale) & (f != MISSING)] = FAIL
-    return f
+        f[(np.abs(x2 - med) > threshold * scale) & (f != MISSING)] = FAIL
+        same = np.diff(x2, axis=-1) == 0
+    n = x2.shape[-1]
+    if n > 2:
+        row, first, length = _runs(same)
+        inner = ~((first == 0) & (first + length < n - 1))
+        limit = np.full(x2.shape[0], np.inf)
+        for r in np.unique(row):  # one percentile per channel
+            # the longest 1 % (at least the longest one) are left out: in a noisy channel the
+            # few runs there are would otherwise include the dropout itself
+            lengths = np.sort(length[(row == r) & inner])[:-max(1, int(np.sum(row == r)) // 100)]
+            typical = float(lengths.max()) if lengths.size else 0.0
+            limit[r] = max(hold_seconds * sampling_rate, hold_factor * typical)
+        sel = inner & (length > limit[row])
+        f[_paint(x2.shape, row[sel], first[sel], length[sel] + 1) & (f != MISSING)] = FAIL
+    return f.reshape(shape)
 
 
 def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:

@@ -12,7 +12,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 import xarray as xr
-from scipy.ndimage import maximum_filter1d, median_filter
+from scipy.ndimage import maximum_filter1d
 
 from flumekit.qc import qartod
 from flumekit.qc.despike import goring_nikora
@@ -31,11 +31,6 @@ from flumekit.qc.flags import (
 
 #: profiles on each side of a boundary echo also left out of the despiking
 BOUNDARY_PROFILES = 1
-#: window of the running median removed before despiking [profiles]
-MEDIAN_PROFILES = 3
-
-TESTS = ("gap", "gross_range", "spike", "rate_of_change", "flat_line", "dropout",
-         "goring_nikora")
 
 
 @dataclass(frozen=True)
@@ -46,10 +41,11 @@ class Thresholds:
     spike_suspect: float = 6.0  # robust local std of x_n - (x_(n-1) + x_(n+1))/2 [-]
     spike_fail: float = 8.0  # [-]
     rate_of_change: float = 10.0  # robust local std of the first difference [-]
-    flat_line_suspect: float = 1.0  # [s]
-    flat_line_fail: float = 2.0  # [s]
+    flat_line_suspect: float = 3.0  # [s]
+    flat_line_fail: float = 5.0  # [s]
     flat_line_tolerance: float = 0.0  # [units of the channel]
     dropout: float = 6.0  # robust std of the record about its median [-]
+    hold: float = 0.2  # shortest run of identical values that can be a dropout [s]
     block: float = 10.0  # length of the blocks of the local robust scale [s]
     gap_tolerance: float = 0.5  # a time step longer than (1 + this) / rate is a gap [-]
     max_gap: float = 0.2  # longest run of failed samples interpolated [s]
@@ -87,15 +83,15 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
             boundary = qartod.dropout_test(np.asarray(amplitude, dtype=float), th.dropout) == FAIL
             # the sampling volume straddles the boundary for a few profiles before and after
             boundary = maximum_filter1d(boundary, 2 * BOUNDARY_PROFILES + 1, axis=-1)
-        # despike the fluctuation about a running median: the wave's orbital velocity is not
-        # turbulence, and its steep, periodic rises would leave GN's ellipses (common practice
-        # for wave-dominated records; a spike survives the median untouched)
-        fluid = fill_gaps(x, np.isfinite(x) & ~boundary)
-        resid = x - median_filter(fluid, size=(1,) * (x.ndim - 1) + (MEDIAN_PROFILES,),
-                                  mode="nearest")
-        spikes = goring_nikora(np.where(boundary, np.nan, resid),
+        spikes = goring_nikora(np.where(boundary, np.nan, x),
                                floor=0.0 if floor is None else floor,
                                max_iterations=th.despike_iterations)
+        # a spike moves the derivatives of its two neighbours too, which GN then flags with it:
+        # keep the samples whose departure from their neighbours' mean is the local largest
+        d = np.abs(x[..., 1:-1] - 0.5 * (x[..., :-2] + x[..., 2:]))
+        d = np.pad(d, [(0, 0)] * (x.ndim - 1) + [(2, 2)], constant_values=0.0)
+        peak = (d[..., 1:-1] >= d[..., :-2]) & (d[..., 1:-1] >= d[..., 2:])
+        spikes &= peak
         g = np.where(np.isfinite(x), GOOD, MISSING).astype(np.uint8)
         g[boundary & np.isfinite(x)] = NOT_EVALUATED
         g[spikes] = FAIL
@@ -103,10 +99,12 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         return out
     out["spike"] = qartod.spike_test(x, th.spike_suspect, th.spike_fail, block, floor)
     out["rate_of_change"] = qartod.rate_of_change_test(x, th.rate_of_change, block, floor)
+    # runs of repeated values are judged without the spikes, which would cut them in two
+    held = fill_gaps(x, out["spike"] != FAIL) if (out["spike"] == FAIL).any() else x
     if flat_line:
-        out["flat_line"] = qartod.flat_line_test(x, sampling_rate, th.flat_line_suspect,
+        out["flat_line"] = qartod.flat_line_test(held, sampling_rate, th.flat_line_suspect,
                                                  th.flat_line_fail, th.flat_line_tolerance)
-    out["dropout"] = qartod.dropout_test(x, th.dropout)
+    out["dropout"] = qartod.dropout_test(held, sampling_rate, th.dropout, th.hold)
     return out
 
 

@@ -39,6 +39,25 @@ DEFAULTS = {"amplitude": 1.0, "period": 3.8, "samples_per_period": 380, "lead": 
             "fem_order": 1,
             **{f"{part}_{name}": None for parts in MODEL_KNOBS.values()
                for part, names in parts.items() for name in names}}
+_KNOB_OWNER = {"screw": "BallScrew", "lubricant": "Lubricant", "pto": "PTOCoefficients",
+               "thermal": "LumpedThermal"}
+DOCS = {
+    "amplitude": "heave amplitude of the buoy's reference motion [m]",
+    "period": "period of the reference motion [s]",
+    "samples_per_period": "samples per period of the reference motion [-]",
+    "lead": "ball-screw lead [m]",
+    "cycle_duration": "thermal models: duration of one operating cycle [s]",
+    "total_duration": "thermal models: simulated duration [s]",
+    "lumped_time_step": "lumped thermal model time step [s]",
+    "fem_time_step": "finite-element thermal model time step [s]",
+    "radial_cell_size": "finite-element mesh: radial cell size [m]",
+    "axial_cell_size": "finite-element mesh: axial cell size [m]",
+    "fem_order": "finite-element order [-]",
+    **{f"{part}_{name}": f"model knob: field '{name}' of {_KNOB_OWNER[part]} ({step} step; "
+       "unit and source in that dataclass); none: its documented default"
+       for step, parts in MODEL_KNOBS.items() for part, names in parts.items()
+       for name in names},
+}
 STEPS = ("kinematics", "efficiency", "thermal_lumped", "thermal_fem")
 #: which step's dataset each figure of the paper is drawn from
 FIGURE_SOURCES = {9: "thermal_lumped", 10: "thermal_fem", 11: "efficiency", 12: "efficiency",

@@ -1,4 +1,4 @@
-"""Stage: probe calibration from the static submersions."""
+"""Stage: probe calibration from the static submersions (only for probes recorded in volts)."""
 
 from __future__ import annotations
 
@@ -9,11 +9,17 @@ VERSION = "2"
 #: ``min_r2``: a fit below it is an error naming the file and probe; ``warn_r2``: a warning
 #: recorded in the dataset (``flumekit_warnings``)
 DEFAULTS = {"order": 1, "min_r2": 0.99, "warn_r2": 0.999}
+DOCS = {"order": "order of the calibration polynomial, level [m] against voltage [V]",
+        "min_r2": "coefficient of determination below which a probe's fit is an error [-]",
+        "warn_r2": "coefficient of determination below which a warning is recorded [-]"}
 
 
 def rules(ctx: Context) -> list[Rule]:
     params = ctx.stage_params("calibration", DEFAULTS)
+    if ctx.campaign.probes.calibrated:  # probes recorded in length units need no calibration
+        return []
     params["probes"] = list(ctx.campaign.probes.names)
+    params["dialect"] = ctx.campaign.dialect("calibration")
     return [Rule("calibration", "flumekit.stages.calibration:build",
                  inputs={"calibration": ctx.campaign.calibration_file},
                  outputs={"dataset": ctx.out("calibration.nc")}, params=params, version=VERSION)]
@@ -28,7 +34,8 @@ def build(inputs, outputs, params) -> None:
     from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
 
-    raw = read_calibration(inputs["calibration"], tuple(params["probes"]))
+    raw = read_calibration(inputs["calibration"], tuple(params["probes"]),
+                           params.get("dialect"))
     with warnings.catch_warnings():
         # the R² is checked below against the stage's thresholds, naming the file
         warnings.simplefilter("ignore", calibration.CalibrationWarning)

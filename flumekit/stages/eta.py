@@ -1,4 +1,11 @@
-"""Stage: calibrated surface elevation at every probe of a run, from the QC'd probe voltages."""
+"""Stage: surface elevation at every probe of a run, relative to the still-water level.
+
+Reads the quality-controlled probe records (``qc/probes/<run>``). Probes recorded in volts are
+calibrated (the ``calibration`` target); probes recorded in length units skip the calibration.
+The still-water level is then removed by the declared rule (``still_water`` of the run, else of
+the campaign's ``[probes]``; default ``"none"`` for calibrated voltages, whose calibration
+levels already refer to still water, and ``"mean"`` for lengths) and recorded in the dataset.
+"""
 
 from __future__ import annotations
 
@@ -11,14 +18,20 @@ VERSION = "3"
 
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
+    calibrated = c.probes.calibrated
     out = []
     for run in c.runs:
+        rule = run.still_water if run.still_water is not None else c.probes.still_water
+        if rule is None:
+            rule = "mean" if calibrated else "none"
         params = {"probes": list(c.probes.names), "probe_x": run.probe_x,
                   "sampling_rate": c.probes.sampling_rate, "kind": run.kind,
+                  "time_offset": run.clock.get("probes", 0.0), "still_water": rule,
                   **run_params(run)}
-        out.append(Rule(f"eta/{run.id}", "flumekit.stages.eta:build",
-                        inputs={"probes": ctx.out("qc", "probes", f"{run.id}.nc"),
-                                "calibration": ctx.out("calibration.nc")},
+        inputs = {"probes": ctx.out("qc", "probes", f"{run.id}.nc")}
+        if not calibrated:
+            inputs["calibration"] = ctx.out("calibration.nc")
+        out.append(Rule(f"eta/{run.id}", "flumekit.stages.eta:build", inputs=inputs,
                         outputs={"dataset": ctx.out("eta", f"{run.id}.nc")},
                         params=params, version=VERSION, run=run.id))
     return out
@@ -31,21 +44,36 @@ def build(inputs, outputs, params) -> None:
     from flumekit.io.netcdf import read_dataset
     from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
+    from flumekit.waves.still_water import remove_still_water
 
     qc = read_dataset(inputs["probes"])
-    raw = qc["probe_voltage"].sel(probe=list(params["probes"]))
-    cal = read_dataset(inputs["calibration"])
-    bad = calibration.non_monotonic(raw, cal)
-    if bad:
-        raise InputError(qc.attrs.get("source_file", inputs["probes"]),
-                         "; ".join(f"probe {p}: calibration polynomial is not monotonic over "
-                                   f"the recorded voltages [{lo:.4g}, {hi:.4g}] V"
-                                   for p, lo, hi in bad))
-    eta = calibration.apply(raw, cal)
+    source_file = qc.attrs.get("source_file", inputs["probes"])
+    warnings = [qc.attrs.get(WARNINGS, "")]
+    if "probe_voltage" in qc:
+        raw = qc["probe_voltage"].sel(probe=list(params["probes"]))
+        cal = read_dataset(inputs["calibration"])
+        bad = calibration.non_monotonic(raw, cal)
+        if bad:
+            raise InputError(source_file,
+                             "; ".join(f"probe {p}: calibration polynomial is not monotonic "
+                                       f"over the recorded voltages [{lo:.4g}, {hi:.4g}] V"
+                                       for p, lo, hi in bad))
+        elevation = calibration.apply(raw, cal)
+        warnings.append(cal.attrs.get(WARNINGS, ""))
+        source = f"{inputs['probes']} and {inputs['calibration']}"
+    else:
+        elevation = qc["probe_elevation"].sel(probe=list(params["probes"]))
+        source = f"{inputs['probes']} (calibrated probes)"
+    try:
+        eta, level = remove_still_water(elevation, params["still_water"])
+    except ValueError as e:
+        raise InputError(source_file, str(e), field="still_water") from None
     x = np.array([params["probe_x"][p] for p in params["probes"]])
     ds = eta.to_dataset().assign_coords(x=("probe", x))
-    warnings = [w for w in (qc.attrs.get(WARNINGS, ""), cal.attrs.get(WARNINGS, "")) if w]
+    ds["still_water_level"] = level
+    ds.attrs.update(still_water_rule=level.attrs["rule"], time_offset=params["time_offset"])
+    warnings = [w for w in warnings if w]
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
-    write_run(ds, outputs, params, "Calibrated surface elevation per probe",
-              f"flumekit eta stage from {inputs['probes']} and {inputs['calibration']}")
+    write_run(ds, outputs, params, "Surface elevation per probe",
+              f"flumekit eta stage from {source}")

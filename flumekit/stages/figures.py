@@ -16,6 +16,12 @@ from flumekit.stages.context import Context
 VERSION = "4"
 DEFAULTS = {"run": "auto", "formats": ["png", "pdf"],
             "pressure_runs": [[3.5, 0.25], [2.5, 0.2]]}
+DOCS = {
+    "run": "run of the single-run figures; 'auto': the paper's T = 3.5 s, H = 0.25 m run, else "
+           "the first",
+    "formats": "figure file formats written for each figure (png, pdf, svg)",
+    "pressure_runs": "[period [s], height [m]] of the runs of figure 7",
+}
 
 
 def _figure_run(ctx: Context, wanted: str) -> str | None:
@@ -51,10 +57,12 @@ def rules(ctx: Context) -> list[Rule]:
 
     run = _figure_run(ctx, p["run"])
     if run is not None:
-        waves, flap = ctx.out("waves", f"{run}.nc"), ctx.out("flap", f"{run}.nc")
+        waves = ctx.out("waves", f"{run}.nc")
         fig("fig05a", "waves:figure_5a", {"waves": waves})
-        fig("fig05b", "flap:figure_5b", {"flap": flap})
         fig("fig06a", "waves:figure_6a", {"waves": waves})
+    if run is not None and "flap" in ctx.campaign.instruments:
+        flap = ctx.out("flap", f"{run}.nc")
+        fig("fig05b", "flap:figure_5b", {"flap": flap})
         fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
         fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves,
                                         "comparison": ctx.out("comparison", f"{run}.nc")})
@@ -69,6 +77,11 @@ def rules(ctx: Context) -> list[Rule]:
         every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs}
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
+    for r in ctx.campaign.runs:
+        qc = {"probes": ctx.out("qc", "probes", f"{r.id}.nc")}
+        if "flap" in ctx.campaign.instruments:
+            qc["flap"] = ctx.out("qc", "flap", f"{r.id}.nc")
+        fig(f"qc/{r.id}", "qc:figure_qc", qc)
     for r in ctx.campaign.runs:
         if r.kind == "waves":
             fig(f"separation/{r.id}", "waves:separation",
@@ -118,6 +131,8 @@ def draw(inputs, outputs, params) -> None:
             models = {str(s): [c.sel(source=s) for c in comps]
                       for s in comps[0]["source"].values if str(s) != "experiment"}
             fig = fn([c.sel(source="experiment") for c in comps], models=models)
+        elif draw == "qc:figure_qc":
+            fig = fn(data["probes"], data.get("flap"))
         elif draw == "flap:figure_7":
             fig = fn([data[k] for k in sorted(data)])
         else:

@@ -8,11 +8,21 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "3"
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
+DOCS = {
+    "cutoff": "cut-off of the zero-phase 4th-order Butterworth low-pass applied to theta before "
+              "differentiation [Hz]",
+    "tolerance": "quasi-steady window of the flap motion: relative crest tolerance [-] (0.02)",
+    "n_phase": "phase points per cycle of the phase averages [-]",
+    "max_flagged_fraction": "largest fraction of encoder samples outside the domain of Eq. (1) "
+                            "that is interpolated over instead of refused [-]",
+}
 
 
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     params = ctx.stage_params("flap", DEFAULTS)
+    if "flap" not in c.instruments:
+        return []
     out = []
     for run in c.runs:
         p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
@@ -30,19 +40,25 @@ def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
+    from flumekit.errors import InputError
     from flumekit.flap import analyse_run
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
-    ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
-                     raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,
-                     encoder=campaign.encoder, depth=campaign.flume.water_depth,
-                     period=params["period"],
-                     incident_height=float(waves["incident_height"]), cutoff=params["cutoff"],
-                     tolerance=params["tolerance"], n_phase=params["n_phase"],
-                     max_flagged_fraction=params["max_flagged_fraction"])
+    try:
+        ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
+                         raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,
+                         encoder=campaign.encoder, depth=campaign.flume.water_depth,
+                         period=params["period"],
+                         incident_height=float(waves["incident_height"]),
+                         cutoff=params["cutoff"], tolerance=params["tolerance"],
+                         n_phase=params["n_phase"],
+                         max_flagged_fraction=params["max_flagged_fraction"])
+    except ValueError as e:  # a stuck encoder, a record too short: name the file
+        raise InputError(raw.attrs.get("source_file", inputs["flap"]),
+                         f"encoder and pressure record: {e}") from None
     write_run(ds, outputs, params, "Flap dynamics, PTO and power",
               f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}")
 

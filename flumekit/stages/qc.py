@@ -18,10 +18,36 @@ VERSION = "1"
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "flat_line_suspect": 3.0, "flat_line_fail": 5.0, "flat_line_tolerance": 0.0,
-            "dropout": 6.0, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
+            "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None}
+            "velocity_range": None, "clock_tolerance": 0.05}
+DOCS = {
+    "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
+                     "x_n - (x_(n-1) + x_(n+1))/2 [-]",
+    "spike_fail": "spike test: fail beyond this many [-]",
+    "rate_of_change": "rate-of-change test: robust local standard deviations of the first "
+                      "difference [-]",
+    "flat_line_suspect": "flat-line test: suspect after this long without change [s]",
+    "flat_line_fail": "flat-line test: fail after this long [s]",
+    "flat_line_tolerance": "flat-line test: changes below this count as none [channel units]",
+    "dropout": "dropout test: robust standard deviations of the record about its median [-]",
+    "hold": "dropout test: a dropout holds its value at least this long [s]",
+    "block": "length of the blocks of the local robust scale [s]",
+    "gap_tolerance": "a time step longer than (1 + this) / rate is a gap [-]",
+    "max_gap": "longest run of failed samples interpolated [s]",
+    "period_tolerance": "declared period vs the probes' dominant period: relative difference "
+                        "beyond which the run is refused [-]",
+    "max_flat_fraction": "fraction of a record flat-lined beyond which the channel is dead or "
+                         "stuck (an error naming file and channel) [-]",
+    "despike_iterations": "Goring-Nikora despiking iterations at most (UVP) [-]",
+    "probe_range": "[min, max] gross range of the probe records [V or m]; none: not tested",
+    "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
+    "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
+    "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
+    "clock_tolerance": "probe-to-flap lag departing from the runs of the same condition by more "
+                       "than this is reported as a possible clock offset [s]",
+}
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 
 
@@ -31,26 +57,35 @@ def rules(ctx: Context) -> list[Rule]:
     out = []
     for run in c.runs:
         rp = {**params, **run_params(run)}
+        # the raw files as the campaign declares them ([files.<instrument>], clocks)
         out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
-                        inputs={"probes": run.path / "probes.csv", "run": run.path / "run.toml"},
+                        inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
                         params={**rp, "probes": list(c.probes.names),
-                                "sampling_rate": c.probes.sampling_rate},
+                                "probe_x": run.probe_x,
+                                "sampling_rate": c.probes.sampling_rate,
+                                "dialect": c.dialect("probes"), "units": c.probes.units,
+                                "time_offset": run.clock.get("probes", 0.0)},
                         version=VERSION, run=run.id))
-        out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
-                        inputs={"flap": run.path / "flap.csv"},
-                        outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
-                        params={**rp, "sampling_rate": c.encoder.sampling_rate},
-                        version=VERSION, run=run.id))
+        if "flap" in c.instruments:
+            out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
+                            inputs={"flap": run.file("flap")},
+                            outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
+                            params={**rp, "sampling_rate": c.encoder.sampling_rate,
+                                    "dialect": c.dialect("flap"),
+                                    "time_offset": run.clock.get("flap", 0.0)},
+                            version=VERSION, run=run.id))
         if c.uvp is not None and run.kind == "uvp":
             out.append(Rule(f"qc/uvp/{run.id}", "flumekit.stages.qc:uvp",
                             inputs={b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams},
                             outputs={"dataset": ctx.out("qc", "uvp", f"{run.id}.nc")},
                             params=rp, version=VERSION, run=run.id))
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
-              for r in c.runs for kind in ("probes", "flap")}
+              for r in c.runs for kind in ("probes", "flap")
+              if kind == "probes" or "flap" in c.instruments}
     out.append(Rule("qc_summary", "flumekit.stages.qc:summary", inputs=inputs,
-                    outputs={"dataset": ctx.out("qc_summary.nc")}, version=VERSION))
+                    outputs={"dataset": ctx.out("qc_summary.nc")},
+                    params={"clock_tolerance": params["clock_tolerance"]}, version=VERSION))
     return out
 
 
@@ -92,22 +127,29 @@ def probes(inputs, outputs, params) -> None:
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["probes"])
-    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"])
+    # dialect, units, clock: as the campaign declares them (default: the raw campaign's CSV)
+    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"],
+                      params.get("dialect"), units=params.get("units", "V"),
+                      time_offset=params.get("time_offset", 0.0))
+    # volts to calibrate, or elevations of calibrated probes [m]
+    name = "probe_voltage" if "probe_voltage" in raw else "probe_elevation"
     th = Thresholds.from_params(params)
-    ds = qc_dataset(raw, "probe_voltage", th, channel_dim="probe",
+    ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
-    flat = ds["probe_voltage_qc_test_count"].sel(qc_test="flat_line").values / raw.sizes["time"]
-    checks.check_alive(raw["probe_voltage"].transpose("probe", "time").values,
-                       raw["probe"].values, path, flat, params["max_flat_fraction"], " V")
-    v = ds["probe_voltage"].transpose("probe", "time").values
-    ok = ds["probe_voltage_qc"].transpose("probe", "time").values != FAIL
+    flat = ds[f"{name}_qc_test_count"].sel(qc_test="flat_line").values / raw.sizes["time"]
+    checks.check_alive(raw[name].transpose("probe", "time").values,
+                       raw["probe"].values, path, flat, params["max_flat_fraction"],
+                       " V" if name == "probe_voltage" else " m")
+    v = ds[name].transpose("probe", "time").values
+    ok = ds[f"{name}_qc"].transpose("probe", "time").values != FAIL
     period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
     checks.check_period(params["period"], period, params["period_tolerance"],
                         Path(inputs["run"]), path)
+    ds = ds.assign_coords(x=("probe", [float(params["probe_x"][p]) for p in params["probes"]]))
     ds["record_period"] = ((), period, {"units": "s", "long_name": "dominant period of the "
                                         "probe records (spectral peak)"})
-    warnings = [f"{path}: probe_voltage: masked and not interpolated: {g}"
-                for g in ds.attrs["probe_voltage_unfilled_gaps"].split("; ") if g]
+    warnings = [f"{path}: {name}: masked and not interpolated: {g}"
+                for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled wave probe voltages",
            f"flumekit qc stage from {path}", warnings)
@@ -123,7 +165,8 @@ def flap(inputs, outputs, params) -> None:
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["flap"])
-    raw = read_flap(path, params["sampling_rate"])
+    raw = read_flap(path, params["sampling_rate"], params.get("dialect"),
+                    time_offset=params.get("time_offset", 0.0))
     raw["encoder_counts"] = raw["encoder_counts"].astype(float)
     th = Thresholds.from_params(params)
     parts = []
@@ -186,26 +229,52 @@ def uvp(inputs, outputs, params) -> None:
 
 
 def summary(inputs, outputs, params) -> None:
-    """Per run: samples per QC flag of every probe and flap channel, and the warnings."""
+    """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
+    its departure from the runs of the same wave condition (a clock offset beyond
+    ``clock_tolerance`` is a warning naming the run), and every warning of the QC datasets.
+    A campaign without the flap instruments has the probe counts only."""
+    import numpy as np
     import xarray as xr
 
     from flumekit.io.netcdf import read_dataset, write_product
+    from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows = []
+    rows, lags, periods, groups, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
-        f = read_dataset(inputs[f"flap/{run}"])
-        row = {"probe_voltage_qc_count": p["probe_voltage_qc_count"].sum("probe"),
-               "encoder_counts_qc_count": f["encoder_counts_qc_count"],
-               "chamber_pressure_qc_count": f["chamber_pressure_qc_count"],
+        name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
+        row = {f"{name}_qc_count": p[f"{name}_qc_count"].sum("probe"),
                "record_period": p["record_period"]}
-        ds = xr.Dataset(row).expand_dims(run=[run])
-        rows.append(ds)
-    out = xr.concat(rows, dim="run")
-    warn = [w for run in runs for k in ("probes", "flap")
-            for w in read_dataset(inputs[f"{k}/{run}"]).attrs.get("flumekit_warnings",
-                                                                   "").splitlines() if w]
+        warn += [w for w in p.attrs.get(WARNINGS, "").splitlines() if w]
+        if f"flap/{run}" in inputs:
+            f = read_dataset(inputs[f"flap/{run}"])
+            near = p[name].isel(probe=int(np.argmin(np.abs(p["x"].values))))
+            period = float(p["wave_period"])
+            lags.append(probe_flap_lag(near.values, p["time"].values,
+                                       f["encoder_counts"].values, f["time"].values, period))
+            periods.append(period)
+            groups.append((period, float(p["wave_height"])))
+            row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
+                       chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
+            warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
+        rows.append(xr.Dataset(row).drop_vars(
+            ["run", "wave_period", "wave_height", "repeat", "uvp_elevation"],
+            errors="ignore").expand_dims(run=[run]))
+    out = xr.concat(rows, dim="run", coords="minimal", compat="override")
+    if lags:
+        dep = clock_departures(np.array(lags), np.array(periods), groups)
+        out["probe_flap_lag"] = ("run", np.array(lags), {
+            "units": "s", "long_name": "cross-correlation lag of the encoder behind the probe "
+            "nearest the flap"})
+        out["clock_departure"] = ("run", dep, {
+            "units": "s", "long_name": "lag minus the median lag of the runs of the same wave "
+            "condition (a clock offset where large; NaN with fewer than three such runs)"})
+        tol = float(params["clock_tolerance"])
+        warn += [f"run {r}: the flap lags the probes by {lag:+.3f} s, {d:+.3f} s off the other "
+                 f"runs of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and "
+                 f"the flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
+                 for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
     write_product(out, outputs["dataset"], "Quality-control counts of every run",
-                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs})
+                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})

@@ -14,6 +14,17 @@ from flumekit.stages.runs import run_params, write_run
 VERSION = "2"
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
+DOCS = {
+    "n_cycles": "waves averaged per phase, N of Eq. (2) [-] (the paper: 50)",
+    "n_phase": "phases per period [-]",
+    "cutoff": "low-pass cut-off of the beam velocities [Hz] (the paper: 2)",
+    "order": "order of the zero-phase Butterworth low-pass [-]",
+    "margin": "distance from the flap face within which channels are masked [m]",
+    "method": "velocity decomposition: 'least_squares' or 'paired' (Eqs. 9-10)",
+    "dx": "grid spacing of the (phase, z, x) field [m]",
+    "min_amplitude": "echo amplitude below which a sample is 'no echo' (above the free "
+                     "surface) [counts]; none: no amplitude test",
+}
 
 
 def rules(ctx: Context) -> list[Rule]:
@@ -28,7 +39,7 @@ def rules(ctx: Context) -> list[Rule]:
         inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
                       qc=ctx.out("qc", "uvp", f"{run.id}.nc"),
                       flap=ctx.out("flap", f"{run.id}.nc"))
-        p = {**params, **run_params(run)}
+        p = {**params, **run_params(run), "time_offset": run.clock.get("uvp", 0.0)}
         out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
                         outputs={"dataset": ctx.out("uvp", f"{run.id}.nc")}, params=p,
                         version=VERSION, run=run.id))
@@ -85,6 +96,9 @@ def build(inputs, outputs, params) -> None:
     qc = read_dataset(inputs["qc"])
     beams = {b.name: clean_beam(read_mfprof(inputs[b.name]), qc, b.name)
              for b in campaign.uvp.beams}
+    if params["time_offset"]:  # the run file's declared clock offset of the UVP [s]
+        beams = {k: v.assign_coords(time=v["time"] + params["time_offset"])
+                 for k, v in beams.items()}
     start, period = phase_reference(read_dataset(inputs["waves"]))
     theta = read_dataset(inputs["flap"])["theta"]
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,

@@ -28,6 +28,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.campaign import Campaign, load_campaign
 from flumekit.errors import InputError
+from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.synth.flume import RepeatScatter
@@ -91,6 +92,39 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
+#: marker of a campaign folder the virtual flume wrote: its size, seed and planned runs. Only a
+#: folder holding it is ever completed run by run (:func:`write_virtual_run`).
+MARKER = ".flumekit-virtual.json"
+
+
+@dataclass(frozen=True)
+class RunSpec:
+    id: str
+    kind: str
+    period: float
+    height: float
+    repeat: int
+    uvp_elevation: float | None
+    key: tuple[int, int]  # with the seed, the run's random stream: (condition index, repeat)
+
+
+def plan_runs(size: str) -> list[RunSpec]:
+    """The runs of a campaign size, each with its own random stream (so any subset of runs can
+    be synthesised, in any order, to the same bytes as the whole campaign)."""
+    spec = _size(size)
+    runs = [("waves", t, h, None) for t, h in spec.wave_runs]
+    runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
+    seen: dict[str, int] = {}
+    out = []
+    for kind, period, height, z in runs:
+        base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
+        repeat = seen.get(base, 0)
+        seen[base] = repeat + 1
+        out.append(RunSpec(f"{base}_r{repeat}", kind, period, height, repeat, z,
+                           (len(seen), repeat)))
+    return out
+
+
 def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
                    truth: Truth = Truth(), progress=None) -> Campaign:
     """Write a virtual-flume campaign to ``root`` and return it.
@@ -101,16 +135,127 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
     campaign at ``root``. ``progress(i, n, run_id)`` is called before each run.
     """
     root = Path(root)
-    _check_empty(root)
-    spec = _size(size)
+
+    def fill(tmp: Path) -> None:
+        campaign, a, b = _write_base(tmp, root.name, size, seed, truth)
+        runs = plan_runs(size)
+        from flumekit.synth.flap import flume_hydrodynamics
+
+        # the flap simulator's coefficients and radiation model: the same for every run (~1.5 s)
+        flap_hydro = flume_hydrodynamics(campaign)
+        for i, r in enumerate(runs):
+            if progress is not None:
+                progress(i, len(runs), r.id)
+            _write_run(tmp, campaign, r.id, r.kind, r.period, r.height, r.repeat,
+                       r.uvp_elevation, a, b, truth, np.random.default_rng([seed, *r.key]),
+                       _size(size).n_steady_waves, flap_hydro=flap_hydro)
+        if any(r.kind == "uvp" for r in runs):
+            _write_uvp_truth(tmp, campaign, truth, size, seed)
+
+    _into_new_folder(root, fill)
+    return load_campaign(root)
+
+
+def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Truth()) -> None:
+    """Write the campaign-wide files of a virtual campaign (``campaign.toml``, the probe
+    calibration, its truth and :data:`MARKER`) into ``root``, absent or empty; no run yet."""
+    root = Path(root)
+    _into_new_folder(root, lambda tmp: _write_base(tmp, root.name, size, seed, truth))
+
+
+def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> None:
+    """Add one planned run (and its truth) to a virtual campaign written by
+    :func:`write_virtual_base`: the same bytes as in the whole campaign of
+    :func:`write_campaign`. Refused where ``root`` is not such a campaign or the run's folder
+    exists (nothing there is touched)."""
+    import json
+
+    root = Path(root)
+    marker = root / MARKER
+    if not marker.is_file():
+        raise InputError(root, f"not a virtual-flume campaign ({MARKER} missing); runs are "
+                         "synthesised only into a campaign the virtual flume wrote")
+    info = json.loads(marker.read_text())
+    size, seed = info["size"], int(info["seed"])
+    spec = {r.id: r for r in plan_runs(size)}.get(run_id)
+    if spec is None:
+        raise InputError(marker, f"the '{size}' campaign has no run '{run_id}'")
+    if (root / "runs" / run_id).exists():
+        raise InputError(root / "runs" / run_id, "exists; the virtual flume never writes over it")
+    campaign = load_campaign(root)
     rng = np.random.default_rng(seed)
+    a, b = _probe_gains(campaign.probes.names, rng)
+    (root / "runs").mkdir(exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{run_id}.", suffix=".partial", dir=root / "runs"))
+    try:
+        os.chmod(tmp, 0o777 & ~umask())
+        _write_run(tmp, campaign, run_id, spec.kind, spec.period, spec.height, spec.repeat,
+                   spec.uvp_elevation, a, b, truth, np.random.default_rng([seed, *spec.key]),
+                   _size(size).n_steady_waves, flap_hydro=_hydro(campaign))
+        # truth first, the run folder last: a run appears only complete
+        (root / "truth").mkdir(exist_ok=True)
+        os.rename(tmp / "truth" / run_id, root / "truth" / run_id)
+        if spec.kind == "uvp" and not (root / "truth" / "uvp_field.nc").exists():
+            _write_uvp_truth(root, campaign, truth, size, seed)
+        os.rename(tmp / "runs" / run_id, root / "runs" / run_id)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)  # only the folder this call created
+
+
+_HYDRO: dict = {}
+
+
+def _hydro(campaign: Campaign):
+    """The flap simulator's hydrodynamics, computed once per process (~1.5 s)."""
+    from flumekit.synth.flap import flume_hydrodynamics
+
+    key = campaign.root
+    if key not in _HYDRO:
+        _HYDRO[key] = flume_hydrodynamics(campaign)
+    return _HYDRO[key]
+
+
+def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
+    """The campaign :func:`write_campaign` would write at ``root``, without writing anything
+    there: what a pipeline plans with before the virtual flume has run. The campaign and run
+    files are written to a temporary folder and read by :func:`load_campaign` itself, so the
+    plan is what the campaign reader makes of the files the virtual flume will write."""
+    import dataclasses
+
+    root = Path(root)
+    truth = Truth()
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "campaign.toml").write_text(_campaign_toml(root.name))
+        depth = load_campaign(tmp).flume.water_depth
+        for r in plan_runs(size):
+            (tmp / "runs" / r.id).mkdir(parents=True)
+            (tmp / "runs" / r.id / "run.toml").write_text(run_toml(
+                r.kind, r.period, r.height, r.repeat, r.uvp_elevation,
+                probe_positions(r.period, depth, truth)))
+        planned = load_campaign(tmp)
+
+        def moved(p: Path) -> Path:
+            return root / os.path.relpath(p, tmp)
+
+        runs = tuple(dataclasses.replace(r, path=moved(r.path),
+                                         files={k: moved(v) for k, v in r.files.items()})
+                     for r in planned.runs)
+    return dataclasses.replace(planned, root=root, runs=runs)
+
+
+def _campaign_toml(name: str) -> str:
+    template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
+    return template.replace('name = "default"', f'name = "{name}"', 1)
+
+
+def _into_new_folder(root: Path, fill) -> None:
+    _check_empty(root)
     root.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{root.name}.", suffix=".partial", dir=root.parent))
-    umask = os.umask(0)
-    os.umask(umask)
-    os.chmod(tmp, 0o777 & ~umask)  # mkdtemp makes 0700; the campaign folder follows the umask
+    os.chmod(tmp, 0o777 & ~umask())  # mkdtemp makes 0700; the campaign folder follows the umask
     try:
-        _write_all(tmp, root.name, spec, seed, size, truth, rng, progress)
+        fill(tmp)
         # os.rename onto an empty directory replaces it atomically; onto a non-empty one it
         # fails (ENOTEMPTY), so a folder filled meanwhile by someone else is never clobbered
         _check_empty(root)
@@ -118,7 +263,6 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)  # only the folder this call created
         raise
-    return load_campaign(root)
 
 
 def _check_empty(root: Path) -> None:
@@ -128,43 +272,30 @@ def _check_empty(root: Path) -> None:
                          "'raw' at the campaign folder, or choose a new folder")
 
 
-def _write_all(tmp: Path, name: str, spec: Size, seed: int, size: str, truth: Truth, rng,
-               progress) -> None:
+def _write_base(tmp: Path, name: str, size: str, seed: int, truth: Truth):
+    import json
+
     (tmp / "calibration").mkdir(parents=True)
     (tmp / "truth").mkdir()
-    template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
-    template = template.replace('name = "default"', f'name = "{name}"', 1)
-    (tmp / "campaign.toml").write_text(template)
+    (tmp / "campaign.toml").write_text(_campaign_toml(name))
     campaign = load_campaign(tmp)
     names = campaign.probes.names
+    rng = np.random.default_rng(seed)
     a, b = _probe_gains(names, rng)
     _write_calibration(tmp, names, a, b, campaign.probes.sampling_rate, truth, rng)
+    (tmp / MARKER).write_text(json.dumps({"size": size, "seed": seed,
+                                          "runs": [r.id for r in plan_runs(size)]}) + "\n")
+    return campaign, a, b
 
-    runs = [("waves", t, h, None) for t, h in spec.wave_runs]
-    runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
-    from flumekit.synth.flap import flume_hydrodynamics
 
-    # the flap simulator's coefficients and radiation model: the same for every run (~1.5 s)
-    flap_hydro = flume_hydrodynamics(campaign)
-    seen: dict[str, int] = {}
-    for i, (kind, period, height, z) in enumerate(runs):
-        base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
-        repeat = seen.get(base, 0)
-        seen[base] = repeat + 1
-        run_id = f"{base}_r{repeat}"
-        if progress is not None:
-            progress(i, len(runs), run_id)
-        _write_run(tmp, campaign, run_id, kind, period, height, repeat, z, a, b, truth,
-                   np.random.default_rng([seed, len(seen), repeat]), spec.n_steady_waves,
-                   flap_hydro=flap_hydro)
-    if spec.uvp_elevations:
-        from flumekit.synth.uvp import true_field
+def _write_uvp_truth(root: Path, campaign: Campaign, truth: Truth, size: str, seed: int) -> None:
+    from flumekit.synth.uvp import true_field
 
-        field = true_field(campaign, period=UVP_CONDITION[0], height=UVP_CONDITION[1],
-                           reflection=truth.reflection, reflection_phase=truth.reflection_phase,
-                           x_wavemaker=truth.x_wavemaker)
-        _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
-        write_dataset(field, tmp / "truth" / "uvp_field.nc")
+    field = true_field(campaign, period=UVP_CONDITION[0], height=UVP_CONDITION[1],
+                       reflection=truth.reflection, reflection_phase=truth.reflection_phase,
+                       x_wavemaker=truth.x_wavemaker)
+    _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
+    write_dataset(field, root / "truth" / "uvp_field.nc")
 
 
 def _finish(ds: xr.Dataset, title: str, size: str, seed: int) -> xr.Dataset:
@@ -186,6 +317,17 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
                   root / "truth" / "calibration.nc")
 
 
+def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
+             probe_x: dict[str, float]) -> str:
+    """The text of a virtual run's ``run.toml``."""
+    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
+             f"repeat = {repeat}"]
+    if z is not None:
+        lines.append(f"uvp_elevation = {z}")
+    lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in probe_x.items()]
+    return "\n".join(lines) + "\n"
+
+
 def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z, a, b,
                truth: Truth, rng, n_steady: int, flap_hydro=None) -> None:
     from flumekit.synth.flap import FlapTruth, flap_record
@@ -205,12 +347,7 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     # record: travel time from the wavemaker + ramp + steady waves, rounded to whole seconds
     travel = abs(truth.x_wavemaker) / float(group_velocity(period, depth))
     duration = float(np.ceil(travel + (35 + n_steady + 10) * period))
-    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
-             f"repeat = {repeat}"]
-    if z is not None:
-        lines.append(f"uvp_elevation = {z}")
-    lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in xp.items()]
-    (run_dir / "run.toml").write_text("\n".join(lines) + "\n")
+    (run_dir / "run.toml").write_text(run_toml(kind, period, height, repeat, z, xp))
 
     wave_kw = dict(period=generated_period, height=generated_height, depth=depth,
                    reflection=truth.reflection,

@@ -20,7 +20,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                 x=None, sampling_rate: float | None = None, method: str = "mansard_funke",
                 separation_probes=None, n_harmonics: int = 4,
                 bound_harmonics: bool = True, tolerance: float = 0.02, min_cycles: int = 10,
-                max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
+                noise_factor: float = 3.0, max_condition: float = MAX_CONDITION,
+                g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
     Parameters
@@ -55,6 +56,11 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         amplitude scale (Brito et al. 2020, §2.5: 2 %).
     min_cycles : int
         Fewest whole periods the common quasi-steady window must hold [-].
+    noise_factor : float
+        Fallback when ``tolerance`` leaves fewer than ``min_cycles`` common periods (a noisy
+        record): each probe's tolerance is raised to ``noise_factor`` times the robust relative
+        scatter of its crests (:func:`flumekit.signal.quasi_steady_window`); 0 turns the
+        fallback off [-]. The tolerance applied is returned as ``steady_tolerance``.
     max_condition : float
         Largest condition number of the separation accepted per bin [-].
     g : float
@@ -95,19 +101,38 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     eta = eta.transpose("probe", "time")
     sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
 
-    # quasi-steady window of every probe (Brito et al. 2020, §2.5); loop over a handful of probes
-    windows = [quasi_steady_window(v[p], t, tolerance=tolerance, min_period=0.75 * period)
-               for p in range(v.shape[0])]
-    start = max(w.start for w in windows)
-    end = min(w.end for w in windows)
-    t_meas = float(np.mean([w.period for w in windows]))
-    n_per = int(np.floor((end - start) / t_meas + 1e-9))
-    if n_per < max(min_cycles, 2):
+    # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
+    # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
+    criteria = [("tolerance", 0.0)] + ([("crest noise", noise_factor)] if noise_factor > 0
+                                       else [])
+    for criterion, factor in criteria:  # noqa: B007 (the criterion kept is recorded)
+        windows = []
+        try:
+            for p in range(v.shape[0]):  # a handful of probes
+                try:
+                    windows.append(quasi_steady_window(v[p], t, tolerance=tolerance,
+                                                       min_period=0.75 * period,
+                                                       noise_factor=factor))
+                except ValueError as e:  # name the probe (a dead probe, a short record)
+                    raise ValueError(f"probe {probes[p]}: {e}") from None
+        except ValueError:
+            if factor == criteria[-1][1]:
+                raise
+            continue
+        start = max(w.start for w in windows)
+        end = min(w.end for w in windows)
+        t_meas = float(np.mean([w.period for w in windows]))
+        n_per = int(np.floor((end - start) / t_meas + 1e-9))
+        if n_per >= max(min_cycles, 2):
+            break
+    else:
         raise ValueError(
             f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
             f"than {max(min_cycles, 2)} periods of {t_meas:.3g} s (windows: "
             + ", ".join(f"{p}: {w.start:.1f}-{w.end:.1f} s"
                         for p, w in zip(probes, windows, strict=True))
+            + (f"; crest tolerance up to {max(w.tolerance for w in windows):.1%}"
+               f" with noise_factor = {noise_factor:g}" if noise_factor > 0 else "")
             + ")")
     dt = (t[-1] - t[0]) / (t.size - 1)
     i0 = int(np.ceil((start - t[0]) / dt - 1e-9))
@@ -136,6 +161,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         {"eta": (("probe", "time"), v),
          "eta_incident": ("time", inc, fill), "eta_reflected": ("time", ref, fill),
          "amplitude_scale": ("probe", [w.amplitude_scale for w in windows]),
+         "steady_tolerance": ("probe", [w.tolerance for w in windows],
+                              {"criterion": criterion}),
          "measured_height": ("probe", [w.height for w in windows]),
          "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
          "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
@@ -153,6 +180,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
                "wave_period": float(period), "separation_probes": steady.attrs["probes"],
                "n_harmonics": n_harmonics, "bound_harmonics": int(bound_harmonics),
-               "tolerance": tolerance, "min_cycles": min_cycles, "band": steady.attrs["band"],
+               "tolerance": tolerance, "min_cycles": min_cycles,
+               "noise_factor": noise_factor, "steady_criterion": criterion,
+               "band": steady.attrs["band"],
                "max_condition": max_condition})
     return conventions.annotate(ds)

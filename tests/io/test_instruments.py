@@ -95,3 +95,59 @@ def test_calibration_needs_two_levels(tmp_path):
     p = write(tmp_path / "cal.csv", "level [m],WP1 [V],WP2 [V]\n0.0,1,2\n0.0,1,2\n")
     with pytest.raises(InputError, match="two distinct levels"):
         read_calibration(p, PROBES)
+
+
+def test_bom_crlf_and_trailing_blank_lines_are_accepted(tmp_path):
+    p = probes_csv(tmp_path)
+    text = p.read_text().replace("\n", "\r\n") + "\r\n\r\n"
+    p.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    ds = read_probes(p, PROBES, 25.0)
+    np.testing.assert_allclose(ds.probe_voltage.sel(probe="WP2"), 2 - np.arange(5) * 0.1)
+
+
+def test_file_cut_inside_its_last_field_is_refused(tmp_path):
+    p = probes_csv(tmp_path)  # every value written with three decimals
+    p.write_text(p.read_text().rstrip("\n")[:-1])  # "1.600" -> "1.60", no final line feed
+    with pytest.raises(InputError, match=r"line 6.*'1.60'.*truncated"):
+        read_probes(p, PROBES, 25.0)
+    p.write_text(p.read_text() + "0")  # whole again, still without a final line feed: fine
+    assert read_probes(p, PROBES, 25.0).probe_voltage.shape == (2, 5)
+
+
+def test_semicolon_file_names_the_delimiter(tmp_path):
+    p = probes_csv(tmp_path)
+    p.write_text(p.read_text().replace(",", ";"))
+    with pytest.raises(InputError, match=r"line 1.*delimiter = ';'") as e:
+        read_probes(p, PROBES, 25.0)
+    assert str(p) in str(e.value)
+    ds = read_probes(p, PROBES, 25.0, {"delimiter": ";"})
+    assert ds.probe_voltage.shape == (2, 5)
+
+
+def test_decimal_comma_without_declaration_is_explained(tmp_path):
+    p = write(tmp_path / "probes.csv", "time [s];WP1 [V];WP2 [V]\n0,00;1,5;2,5\n0,04;1,6;2,4\n")
+    with pytest.raises(InputError, match=r"line 2.*decimal = ','"):
+        read_probes(p, PROBES, 25.0, {"delimiter": ";"})
+    ds = read_probes(p, PROBES, 25.0, {"delimiter": ";", "decimal": ","})
+    np.testing.assert_allclose(ds.probe_voltage.sel(probe="WP1"), [1.5, 1.6])
+
+
+def test_tab_separated_without_header_time_from_rate_offset_recorded(tmp_path):
+    p = write(tmp_path / "probes.txt", "# logger v2\n1.0\t2.0\n1.1\t2.1\n1.2\t2.2\n")
+    ds = read_probes(p, PROBES, 25.0, {"delimiter": "\t", "header": False, "comment": "#",
+                                       "time": "rate", "units": "mV"}, time_offset=0.5)
+    np.testing.assert_allclose(ds.time, 0.5 + np.arange(3) / 25.0)
+    np.testing.assert_allclose(ds.probe_voltage.sel(probe="WP2"), [2e-3, 2.1e-3, 2.2e-3])
+    assert ds.attrs["time_offset"] == 0.5
+
+
+def test_probes_in_length_units_and_a_short_record_named(tmp_path):
+    p = write(tmp_path / "p.csv", "t,a,b\n0,10,20\n0.04,11,21\n")
+    ds = read_probes(p, PROBES, 25.0, {"columns": ["a", "b"], "time": "t",
+                                       "units": {"time": "s", "WP1": "cm", "WP2": "cm"}},
+                     units="m")
+    np.testing.assert_allclose(ds.probe_elevation.sel(probe="WP1"), [0.1, 0.11])
+    write(p, "t,a,b\n0,10,20\n")
+    with pytest.raises(InputError, match=r"p\.csv.*fewer than two samples"):
+        read_probes(p, PROBES, 25.0, {"columns": ["a", "b"], "time": "t",
+                                      "units": {"time": "s"}}, units="m")

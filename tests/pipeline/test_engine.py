@@ -166,3 +166,71 @@ def test_no_heavy_imports_when_planning():
             "'matplotlib') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
+
+
+def test_failed_rebuild_removes_outputs_downstream(toy):
+    build(toy)
+    assert (toy / "processed/total.txt").exists()
+    (toy / "raw/a.txt").write_text("-1")
+    with pytest.raises(FlumekitError, match="negative value"):
+        build(toy)
+    # total.txt was built from the old a.txt: it must not outlive the failed rebuild
+    assert not (toy / "processed/a.txt").exists()
+    assert not (toy / "processed/total.txt").exists()
+    assert (toy / "processed/b.txt").exists()
+
+
+def test_keep_going_reports_failures_and_blocked_targets(toy):
+    (toy / "raw/a.txt").write_text("-1")
+    report = build(toy, keep_going=True)
+    assert [f.target for f in report.failed] == ["double/a"]
+    assert "negative value" in report.failed[0].problem
+    assert report.blocked == ["total"]
+    assert ran(report) == ["double/b"]
+
+
+def test_force_one_target_does_not_force_its_inputs(toy):
+    build(toy)
+    # total is rebuilt; its inputs are not, and an identical output changes nothing else
+    assert ran(build(toy, force_targets=["total"])) == ["total"]
+    assert ran(build(toy, force_targets=["double/a"])) == ["double/a"]
+
+
+def test_interrupt_propagates_and_is_not_a_rule_failure(toy, monkeypatch):
+    import flumekit.pipeline.rules as rules
+
+    def interrupted(rule, provenance=None):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("flumekit.pipeline.engine.execute", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        build(toy)
+    assert rules.execute is not interrupted
+
+
+def test_dask_cluster_without_workers_is_an_error_within_the_timeout(toy):
+    import time
+
+    distributed = pytest.importorskip("distributed")
+    from flumekit.pipeline.executors import DaskExecutor
+
+    with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as cl:
+        with DaskExecutor(cl.scheduler_address, timeout=2.0) as ex:
+            t0 = time.monotonic()
+            with pytest.raises(FlumekitError, match="no worker for 2 s"):
+                build(toy, ex=ex)
+            assert time.monotonic() - t0 < 20
+
+
+def test_atomic_writes_honour_the_umask(tmp_path):
+    import stat
+
+    from flumekit.io.atomic import atomic_path
+
+    old = os.umask(0o022)
+    try:
+        with atomic_path(tmp_path / "x.txt") as tmp:
+            tmp.write_text("x")
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE((tmp_path / "x.txt").stat().st_mode) == 0o644

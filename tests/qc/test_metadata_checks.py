@@ -31,7 +31,8 @@ def _record(tmp_path: Path, period: float = 2.0, seconds: float = 60.0, dead: st
 
 def _probe_params(period: float) -> dict:
     return {**qc_stage.DEFAULTS, "run": "r", "period": period, "height": 0.1, "repeat": 0,
-            "uvp_elevation": None, "probes": PROBES, "sampling_rate": FS}
+            "uvp_elevation": None, "probes": PROBES, "sampling_rate": FS,
+            "probe_x": {p: -1.0 - i for i, p in enumerate(PROBES)}}
 
 
 def _run_probes(tmp_path, period_declared, **kw):

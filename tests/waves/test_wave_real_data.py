@@ -1,4 +1,4 @@
-"""Separation on a real flume record (WaveLabX, see /work/shared/data/README.md).
+"""Separation on a real flume record (WaveLabX, vendored in examples/wavelabx/ with its source).
 
 Source: GitHub sandslamsal/WaveLabX, wavedata.csv (MIT): three capacitance gauges at
 x = 0, 0.6, 0.9 m, 100 Hz, 200 s of regular waves (T ≈ 1.33 s) in h = 0.25 m. No published
@@ -15,8 +15,7 @@ import xarray as xr
 
 from flumekit.waves import separate
 
-DATA = Path("/work/shared/data/wavelabx/wavedata.csv")
-pytestmark = pytest.mark.skipif(not DATA.exists(), reason="shared real data not available")
+DATA = Path(__file__).resolve().parents[2] / "examples" / "wavelabx" / "wavedata.csv"
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,295 @@
+"""Benchmark: quality control against injected faults, and its cost against the analysis.
+
+A virtual campaign (``small``: two wave runs and two UVP runs; every size has the same runs,
+at the paper's rates and lengths, so each is a paper-scale run) is written twice: clean, and
+with faults injected into its raw files with a known truth of which samples are bad:
+
+* probes: 10 single-sample spikes per probe (±15-40 % of the record's range); in the wave runs a
+  1 s dropout to 0 V on WP1 and an 8 s flat line (the value held) on WP3, at random times (in
+  a UVP run they would move the waves' steady window so that the 50 cycles the UVP average
+  needs after its phase reference no longer fit the record: a limitation of the uvp stage);
+* flap: 10 spikes on the encoder and 10 on the pressure;
+* clocks: the flap record of one of the three T = 3.5 s, H = 0.25 m runs is stamped 0.3 s
+  late (a 0.3 s clock offset between the probes and the flap);
+* UVP: 200 spikes per beam (±0.1-0.3 m s-1) into fluid samples, in memory (the raw
+  ``.mfprof`` files are left clean).
+
+Reported: recall of each fault (flagged suspect or fail), false flags on the clean records and on
+the good samples of the faulty ones, the clock offset the QC summary finds, the analysis of the
+faulty campaign after QC against the virtual flume's truth with the tolerances of
+tests/test_virtual_flume_truth.py, and the run time of QC against the analysis per run.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+SHIFTED_RUN = "uvp_z0.500_r0"
+CLOCK_OFFSET = 0.3  # [s]
+
+
+def _spikes(rng, n, count, margin=5):
+    idx = rng.choice(np.arange(margin, n - margin, 4), size=count, replace=False)
+    return np.sort(idx)
+
+
+def inject(raw: Path, rng: np.random.Generator) -> dict:
+    """Write faults into the raw files of a campaign; return {(run, file, channel): bad mask}."""
+    from flumekit.io.tables import read_table, write_table
+
+    truth = {}
+    for run in sorted(p for p in (raw / "runs").iterdir() if p.is_dir()):
+        cols, data = read_table(run / "probes.csv")
+        n = data.shape[0]
+        for j, c in enumerate(cols[1:], start=1):
+            x = data[:, j]
+            lo, hi = np.percentile(x, [0.1, 99.9])
+            bad = np.zeros(n, dtype=bool)
+            idx = _spikes(rng, n, 10)
+            x[idx] += rng.choice([-1, 1], idx.size) * rng.uniform(0.15, 0.4, idx.size) * (hi - lo)
+            bad[idx] = True
+            fs = 1.0 / (data[1, 0] - data[0, 0])
+            # long faults only in the wave runs: in a UVP run they move the waves' steady
+            # window, and 50 steady cycles after its phase reference no longer fit the record
+            long_faults = run.name.startswith("T")
+            if c.name == "WP1" and long_faults:
+                i0 = int(rng.integers(int(0.1 * n), int(0.9 * n)))
+                x[i0:i0 + int(fs)] = 0.0
+                bad[i0:i0 + int(fs)] = True
+            if c.name == "WP3" and long_faults:
+                i0 = int(rng.integers(int(0.1 * n), int(0.8 * n)))
+                x[i0:i0 + int(8 * fs)] = x[i0]
+                bad[i0:i0 + int(8 * fs)] = True  # the held run as a whole
+            truth[(run.name, "probes", c.name)] = bad
+        write_table(run / "probes.csv", [(c.name, "s" if c.name == "time" else "V")
+                                         for c in cols], data)
+        cols, data = read_table(run / "flap.csv")
+        n = data.shape[0]
+        for j, name in ((1, "encoder_counts"), (2, "chamber_pressure")):
+            x = data[:, j]
+            lo, hi = np.percentile(x, [0.1, 99.9])
+            idx = _spikes(rng, n, 10)
+            step = rng.choice([-1, 1], idx.size) * rng.uniform(0.15, 0.4, idx.size) * (hi - lo)
+            x[idx] += np.round(step) if j == 1 else step
+            bad = np.zeros(n, dtype=bool)
+            bad[idx] = True
+            truth[(run.name, "flap", name)] = bad
+        if run.name == SHIFTED_RUN:
+            k = int(round(CLOCK_OFFSET / (data[1, 0] - data[0, 0])))
+            # the flap's clock runs 0.3 s behind: each sample is stamped 0.3 s late (the first
+            # 0.3 s repeat the flap at rest)
+            data[:, 1:] = np.concatenate([np.repeat(data[:1, 1:], k, axis=0), data[:-k, 1:]])
+            for key in ("encoder_counts", "chamber_pressure"):
+                truth[(run.name, "flap", key)] = np.r_[np.zeros(k, bool),
+                                                       truth[(run.name, "flap", key)][:-k]]
+        write_table(run / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "Pa")],
+                    data, fmt=["%.4f", "%d", "%.3f"])
+    return truth
+
+
+def _make(project: Path, targets: list[str]) -> float:
+    from flumekit.cli import main
+
+    t0 = time.perf_counter()
+    code = main(["make", "--pipeline", str(project / "pipelines" / "small.toml"), *targets])
+    if code != 0:
+        raise RuntimeError(f"make failed in {project}")
+    return time.perf_counter() - t0
+
+
+def _truth_errors(processed: Path, truth: Path, skip_flap: set[str]) -> list[str]:
+    """The checks of tests/test_virtual_flume_truth.py; returns the failures."""
+    import xarray as xr
+
+    from flumekit.flap.power import incident_power
+
+    fails = []
+    with xr.open_dataset(processed / "calibration.nc") as cal, \
+            xr.open_dataset(truth / "calibration.nc") as true:
+        if not np.allclose(cal.gain, true.gain, rtol=1e-3):
+            fails.append("calibration gain")
+    for run in sorted(p.name for p in truth.iterdir() if p.is_dir()):
+        with xr.open_dataset(processed / "waves" / f"{run}.nc") as w, \
+                xr.open_dataset(truth / run / "waves.nc") as t:
+            dk = abs(float(w.reflection_coefficient) - t.attrs["reflection_coefficient"])
+            dh = abs(float(w.incident_height) / t.attrs["wave_height"] - 1)
+            if dk >= 5e-3 or dh >= 5e-3:
+                fails.append(f"{run}: Kr off by {dk:.4f}, H_I by {dh:.2%}")
+        if run in skip_flap:
+            continue
+        with xr.open_dataset(processed / "flap" / f"{run}.nc") as f, \
+                xr.open_dataset(truth / run / "flap.nc") as t:
+            tt = f.time.values
+            win = (tt >= float(f.steady_start)) & (tt <= float(f.steady_end))
+            d = np.degrees(np.sqrt(np.mean((f.theta.values[win] - t.theta.values[win]) ** 2)))
+            w_i = incident_power(t.attrs["wave_height_target"], float(f.measured_period), 0.825,
+                                 1.31)
+            c_true = float(np.mean(t.power.values[win])) / float(w_i)
+            dc = abs(float(f.capture_factor) / c_true - 1)
+            if d >= 0.05 or dc >= 0.02:
+                fails.append(f"{run}: theta RMS {d:.3f} deg, C_f off by {dc:.2%}")
+    with xr.open_dataset(processed / "uvp_field.nc") as f, \
+            xr.open_dataset(truth / "uvp_field.nc") as t:
+        true = t.interp(z=f.z, x=f.x)
+        u0 = float(t.velocity_scale)
+        for name in ("u", "w"):
+            err = (f[name] - true[name]).values
+            ok = np.isfinite(err)
+            if ok.mean() <= 0.3 or np.sqrt(np.mean(err[ok] ** 2)) >= 0.02 * u0:
+                fails.append(f"uvp field {name}")
+    return fails
+
+
+def _recall(processed: Path, truth: dict) -> tuple[dict, float, int]:
+    """Recall per fault kind and the false-flag fraction of the good samples."""
+    import xarray as xr
+
+    hit = {}
+    good_flagged = good = 0
+    for (run, kind, channel), bad in truth.items():
+        with xr.open_dataset(processed / "qc" / kind / f"{run}.nc") as ds:
+            name = "probe_voltage" if kind == "probes" else channel
+            f = ds[f"{name}_qc"]
+            f = (f.sel(probe=channel) if kind == "probes" else f).values
+        flagged = f >= 3
+        label = f"{kind} " + {"WP1": "dropout", "WP3": "flat line"}.get(channel, "spikes")
+        spikes = np.zeros_like(bad)
+        if kind == "probes" and channel in ("WP1", "WP3"):
+            # the spikes of these probes are counted with the others
+            runs_ = np.flatnonzero(np.diff(np.r_[0, bad.astype(int), 0]))
+            long_ = np.zeros_like(bad)
+            for a, b in zip(runs_[::2], runs_[1::2], strict=True):
+                if b - a > 1:
+                    long_[a:b] = True
+            spikes = bad & ~long_
+            h = hit.setdefault(label, [0, 0])
+            h[0] += int(flagged[long_].sum())
+            h[1] += int(long_.sum())
+            bad_spikes = spikes
+        else:
+            bad_spikes = bad
+        h = hit.setdefault(f"{kind} spikes", [0, 0])
+        h[0] += int(flagged[bad_spikes].sum())
+        h[1] += int(bad_spikes.sum())
+        good_flagged += int(flagged[~bad].sum())
+        good += int((~bad).sum())
+    return {k: v[0] / v[1] for k, v in hit.items()}, good_flagged / good, good
+
+
+def _uvp_recall(raw: Path, rng) -> tuple[float, float]:
+    """Recall of spikes injected in memory into every beam of the UVP runs, and the false flags
+    of the clean beams."""
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.qc.record import Thresholds, check_series
+
+    th = Thresholds()
+    hits = total = false = n = 0
+    for f in sorted(raw.glob("runs/*/*.mfprof")):
+        b = read_mfprof(f)
+        v = b["beam_velocity"].transpose("channel", "time").values
+        a = b["amplitude"].transpose("channel", "time").values
+        t = b["time"].values
+        fs = (t.size - 1) / (t[-1] - t[0])
+        kw = dict(despike=True, floor=float(b.attrs["velocity_resolution"]), amplitude=a)
+        clean = check_series(v, t, fs, th, **kw)["goring_nikora"]
+        false += int((clean >= 3).sum())
+        n += clean.size
+        fluid = clean == 1
+        cand = np.flatnonzero(fluid.ravel())
+        idx = rng.choice(cand, 200, replace=False)
+        w = v.copy().ravel()
+        w[idx] += rng.choice([-1, 1], 200) * rng.uniform(0.1, 0.3, 200)
+        g = check_series(w.reshape(v.shape), t, fs, th, **kw)["goring_nikora"].ravel()
+        hits += int((g[idx] >= 3).sum())
+        total += idx.size
+    return hits / total, false / n
+
+
+def _timings(processed: Path, raw: Path) -> list[tuple[str, float, float]]:
+    """QC time against analysis time (eta, waves, flap, uvp) per run (best of three)."""
+    from flumekit.bench import best_time
+    from flumekit.campaign import load_campaign
+    from flumekit.pipeline.config import load_pipeline
+    from flumekit.pipeline.rules import execute
+    from flumekit.stages import build_rules
+    from flumekit.stages.context import Context
+
+    pipe = load_pipeline(processed.parents[1] / "pipelines" / "small.toml")
+    ctx = Context(campaign=load_campaign(raw), processed=processed, params=pipe.stages)
+    rules = {r.target: r for r in build_rules(ctx)}
+    out = []
+    for run in sorted(r.id for r in ctx.campaign.runs):
+        qc = [t for t in rules if t.startswith("qc/") and t.endswith("/" + run)]
+        ana = [t for t in (f"eta/{run}", f"waves/{run}", f"flap/{run}", f"uvp/{run}")
+               if t in rules]
+        t_qc = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in qc)
+        t_ana = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in ana)
+        out.append((run, t_qc, t_ana))
+    return out
+
+
+def run(quick: bool = False) -> str:
+    """Run the benchmark and return its report as text."""
+    from flumekit.synth.campaign import write_campaign
+
+    lines = []
+    with tempfile.TemporaryDirectory() as tmp:
+        results = {}
+        for label in ("clean", "faulty"):
+            project = Path(tmp) / label
+            shutil.copytree(ROOT / "pipelines", project / "pipelines")
+            write_campaign(project / "raw" / "small", size="small", seed=11)
+            truth = inject(project / "raw" / "small", np.random.default_rng(7)) \
+                if label == "faulty" else None
+            _make(project, ["calibration", "qc_summary", "waves_summary", "flap_summary",
+                            "uvp_field"])
+            results[label] = (project, truth)
+        clean_p = results["clean"][0] / "processed" / "small"
+        fault_p = results["faulty"][0] / "processed" / "small"
+        raw = results["clean"][0] / "raw" / "small"
+        # false flags on the clean campaign's probe and flap records
+        import xarray as xr
+
+        flagged = total = 0
+        for f in sorted((clean_p / "qc").glob("*/*.nc")):
+            if f.parent.name == "uvp":
+                continue
+            with xr.open_dataset(f) as ds:
+                for v in ds.data_vars:
+                    if v.endswith("_qc"):
+                        flagged += int((ds[v] >= 3).sum())
+                        total += int(ds[v].size)
+        recall, false_faulty, _ = _recall(fault_p, results["faulty"][1])
+        uvp_recall, uvp_false = _uvp_recall(raw, np.random.default_rng(3))
+        lines.append("fault                        recall")
+        for k, v in sorted(recall.items()):
+            lines.append(f"{k:28s} {v:7.2%}")
+        lines.append(f"{'uvp spikes (GN)':28s} {uvp_recall:7.2%}")
+        lines.append(f"false flags, clean probe+flap records: {flagged}/{total} = "
+                     f"{flagged / total:.4%}")
+        lines.append(f"false flags, good samples of faulty records: {false_faulty:.4%}")
+        lines.append(f"false flags (GN), clean UVP beams: {uvp_false:.4%}")
+        with xr.open_dataset(fault_p / "qc_summary.nc") as s:
+            dep = dict(zip(s.run.values.tolist(), s.clock_departure.values.tolist(),
+                           strict=True))
+            warned = s.attrs.get("flumekit_warnings", "")
+        lines.append(f"clock departure of {SHIFTED_RUN} (0.3 s injected): "
+                     f"{dep[SHIFTED_RUN]:+.4f} s; others: "
+                     + ", ".join(f"{k} {v:+.4f}" for k, v in dep.items() if k != SHIFTED_RUN))
+        lines.append(f"clock warning names the run: {SHIFTED_RUN in warned}")
+        fails = _truth_errors(fault_p, results["faulty"][0] / "raw" / "small" / "truth",
+                              skip_flap={SHIFTED_RUN})
+        lines.append("analysis after QC within the clean-data truth tolerances: "
+                     + ("yes" if not fails else "NO: " + "; ".join(fails)))
+        if not quick:
+            lines.append("")
+            lines.append("run                 QC [s]   analysis [s]   QC/analysis")
+            for run_id, t_qc, t_ana in _timings(clean_p, raw):
+                lines.append(f"{run_id:18s} {t_qc:7.3f} {t_ana:12.3f} {t_qc / t_ana:12.1%}")
+    return "\n".join(lines)

@@ -1,0 +1,65 @@
+"""One build at a time per processed folder.
+
+``make`` holds an exclusive lock on ``<processed>/.flumekit.lock`` (``flock``: released by the
+kernel when the holder dies, even by ``kill -9``, so a crash never leaves a stale lock). A
+second ``make`` says who holds the lock and waits for it.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import json
+import os
+import sys
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from flumekit.errors import FlumekitError
+
+
+@contextmanager
+def build_lock(folder: Path, wait: float | None = None,
+               say=lambda s: print(s, file=sys.stderr)) -> Iterator[None]:
+    """Hold the build lock of ``folder``; wait at most ``wait`` seconds (None: as long as it
+    takes), after saying who holds it."""
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / ".flumekit.lock"
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = _holder(fd)
+            say(f"waiting for the build lock of {folder}: held by {holder}")
+            deadline = None if wait is None else time.monotonic() + wait
+            while True:
+                try:
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    break
+                except BlockingIOError:
+                    if deadline is not None and time.monotonic() > deadline:
+                        raise FlumekitError(f"{path}: another build holds the lock ({holder}); "
+                                            f"gave up after {wait:g} s") from None
+                    time.sleep(0.2)
+        me = {"pid": os.getpid(), "host": os.uname().nodename, "command": " ".join(sys.argv),
+              "since": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())}
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, json.dumps(me).encode(), 0)
+        try:
+            yield
+        finally:
+            os.ftruncate(fd, 0)
+            fcntl.flock(fd, fcntl.LOCK_UN)
+    finally:
+        os.close(fd)
+
+
+def _holder(fd: int) -> str:
+    try:
+        info = json.loads(os.pread(fd, 4096, 0).decode() or "{}")
+        return (f"pid {info['pid']} on {info['host']} since {info['since']} "
+                f"({info['command']})")
+    except (ValueError, KeyError, OSError):
+        return "another process"

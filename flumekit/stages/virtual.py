@@ -1,0 +1,56 @@
+"""Rules that synthesise a virtual-flume campaign lazily: only what a requested target reads.
+
+``synth/campaign`` writes the campaign-wide files (``campaign.toml``, the probe calibration) and
+``synth/<run>`` one run; each is declared to produce exactly the raw files the stage rules read,
+so `make ballscrew` synthesises nothing and `make fig10` the base and one run. These are
+``source`` rules: they run only where all their files are absent, are never forced, and the
+engine never removes what they wrote (raw data is sacred).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from flumekit.pipeline.rules import Rule
+
+#: the marker of a campaign the virtual flume wrote (the same as flumekit.synth.campaign.MARKER,
+#: repeated so that planning does not import the synthesis and numpy)
+MARKER = ".flumekit-virtual.json"
+
+
+def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
+          run_ids: list[str]) -> list[Rule]:
+    runs_dir = (root / "runs").resolve()
+    base: dict[str, Path] = {}
+    per_run: dict[str, dict[str, Path]] = {r: {} for r in run_ids}
+    for rule in stage_rules:
+        for p in rule.inputs.values():
+            p = Path(p)
+            if not p.resolve().is_relative_to(root.resolve()):
+                continue
+            if p.resolve().is_relative_to(runs_dir):
+                run = p.resolve().relative_to(runs_dir).parts[0]
+                per_run.setdefault(run, {})[p.name] = p
+            else:
+                base[str(p.resolve().relative_to(root.resolve()))] = p
+    base.setdefault("campaign.toml", root / "campaign.toml")
+    out = [Rule("synth/campaign", "flumekit.stages.virtual:base", inputs={}, outputs=base,
+                params={"root": str(root), "size": size, "seed": seed}, source=True)]
+    for run, files in per_run.items():
+        files.setdefault("run.toml", root / "runs" / run / "run.toml")
+        out.append(Rule(f"synth/{run}", "flumekit.stages.virtual:run",
+                        inputs={"campaign": root / "campaign.toml"}, outputs=files,
+                        params={"root": str(root), "run": run}, run=run, source=True))
+    return out
+
+
+def base(inputs, outputs, params) -> None:
+    from flumekit.synth.campaign import write_virtual_base
+
+    write_virtual_base(params["root"], params["size"], int(params["seed"]))
+
+
+def run(inputs, outputs, params) -> None:
+    from flumekit.synth.campaign import write_virtual_run
+
+    write_virtual_run(params["root"], params["run"])
