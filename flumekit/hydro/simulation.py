@@ -437,7 +437,8 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
         if extra_torque is None:
             del arrays["torque_extra"], arrays["work_extra"]
         sel = slice((-first) % output_every, None, output_every)
-        arrays = {k: v[sel] for k, v in arrays.items()}
+        # copies: a strided view would keep the whole chunk alive (memory of every step)
+        arrays = {k: v[sel].copy() for k, v in arrays.items()}
         if eta is not None:
             arrays["eta_incident"] = np.asarray(eta(t[sel]), dtype=float)
         for k, v in arrays.items():
