@@ -52,12 +52,12 @@ def paper_noop(project: Path) -> tuple[float, float, int]:
     from flumekit.pipeline.state import State
     from flumekit.stages import build_rules
     from flumekit.stages.context import Context
-    from flumekit.synth.campaign import _campaign_toml, run_toml, virtual_campaign
+    from flumekit.synth.campaign import campaign_toml, run_toml, virtual_campaign
 
     pipe = load_pipeline(project / "pipelines" / "paper.toml")
     virtual = virtual_campaign(pipe.raw, "paper", 2020)
     (pipe.raw / "calibration").mkdir(parents=True)
-    (pipe.raw / "campaign.toml").write_text(_campaign_toml("paper"))
+    (pipe.raw / "campaign.toml").write_text(campaign_toml("paper"))
     for r in virtual.runs:
         r.path.mkdir(parents=True)
         (r.path / "run.toml").write_text(run_toml(r.kind, r.period, r.height, r.repeat,

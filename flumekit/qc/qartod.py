@@ -75,6 +75,17 @@ def _empty_flags(x: np.ndarray) -> np.ndarray:
     return f
 
 
+def _local_test_start(x, min_samples: int, floor):
+    """Flags, values and noise floor of a local test; flags all NOT_EVALUATED (2) when the
+    record is shorter than the test's stencil."""
+    x = np.asarray(x, dtype=float)
+    f = _empty_flags(x)
+    if x.shape[-1] < min_samples:
+        f[f == GOOD] = NOT_EVALUATED
+        return x, f, None
+    return x, f, resolution(x) if floor is None else floor
+
+
 def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
                      suspect_span: tuple[float, float] | None = None) -> np.ndarray:
     """QARTOD gross range: FAIL outside ``fail_span`` (sensor limits), SUSPECT outside
@@ -106,12 +117,9 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
     mean of their neighbours and the test runs again (``passes``), which finds spikes hidden next
     to larger ones. End samples are not evaluated (2).
     """
-    x = np.asarray(x, dtype=float)
-    f = _empty_flags(x)
-    if x.shape[-1] < 3:
-        f[f == GOOD] = NOT_EVALUATED
+    x, f, floor = _local_test_start(x, 3, floor)
+    if floor is None:
         return f
-    floor = resolution(x) if floor is None else floor
     work = x.copy()
     for _ in range(passes):
         d = work[..., 1:-1] - 0.5 * (work[..., :-2] + work[..., 2:])
@@ -139,12 +147,9 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
     """QARTOD rate of change: SUSPECT where |x_n - x_(n-1)| exceeds ``threshold`` robust local
     standard deviations of the first difference (QARTOD's "N standard deviations" rule).
     The first sample is not evaluated (2)."""
-    x = np.asarray(x, dtype=float)
-    f = _empty_flags(x)
-    if x.shape[-1] < 2:
-        f[f == GOOD] = NOT_EVALUATED
+    x, f, floor = _local_test_start(x, 2, floor)
+    if floor is None:
         return f
-    floor = resolution(x) if floor is None else floor
     dx = np.diff(x, axis=-1)
     r = np.abs(dx) / np.maximum(local_scale(dx, block, floor), np.finfo(float).tiny)
     rest = f[..., 1:]

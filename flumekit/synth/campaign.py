@@ -226,7 +226,7 @@ def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
     truth = Truth()
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
-        (tmp / "campaign.toml").write_text(_campaign_toml(root.name))
+        (tmp / "campaign.toml").write_text(campaign_toml(root.name))
         depth = load_campaign(tmp).flume.water_depth
         for r in plan_runs(size):
             (tmp / "runs" / r.id).mkdir(parents=True)
@@ -244,7 +244,7 @@ def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
     return dataclasses.replace(planned, root=root, runs=runs)
 
 
-def _campaign_toml(name: str) -> str:
+def campaign_toml(name: str) -> str:
     template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
     return template.replace('name = "default"', f'name = "{name}"', 1)
 
@@ -277,7 +277,7 @@ def _write_base(tmp: Path, name: str, size: str, seed: int, truth: Truth):
 
     (tmp / "calibration").mkdir(parents=True)
     (tmp / "truth").mkdir()
-    (tmp / "campaign.toml").write_text(_campaign_toml(name))
+    (tmp / "campaign.toml").write_text(campaign_toml(name))
     campaign = load_campaign(tmp)
     names = campaign.probes.names
     rng = np.random.default_rng(seed)

@@ -7,6 +7,22 @@ import numpy as np
 G = 9.81  # gravitational acceleration used throughout the flume paper [m s-2]
 
 
+# The (period, depth, g) parameters of the celerity functions, documented once
+_PERIOD_DEPTH_G = """Parameters
+    ----------
+    period : array_like
+        Wave period [s], > 0.
+    depth : array_like
+        Water depth [m], broadcastable with ``period``, > 0.
+    g : float
+        Gravitational acceleration [m s-2]."""
+
+
+def _shared_parameters(func):
+    func.__doc__ = func.__doc__.replace("{period_depth_g}", _PERIOD_DEPTH_G)
+    return func
+
+
 def _sech2(y: np.ndarray) -> np.ndarray:
     e = np.exp(-2.0 * np.abs(y))
     return 4.0 * e / (1.0 + e) ** 2
@@ -66,17 +82,11 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
     return y / depth
 
 
+@_shared_parameters
 def wavelength(period, depth, g: float = G) -> np.ndarray:
     """Wavelength L = 2π/k [m] of a wave of ``period`` [s] in ``depth`` [m].
 
-    Parameters
-    ----------
-    period : array_like
-        Wave period [s], > 0.
-    depth : array_like
-        Water depth [m], broadcastable with ``period``, > 0.
-    g : float
-        Gravitational acceleration [m s-2].
+    {period_depth_g}
 
     Returns
     -------
@@ -94,17 +104,11 @@ def _two_kh_over_sinh(y: np.ndarray) -> np.ndarray:
     return 2.0 * y * np.exp(-y) / -np.expm1(-2.0 * y)
 
 
+@_shared_parameters
 def phase_velocity(period, depth, g: float = G) -> np.ndarray:
     """Phase velocity c = ω/k [m s-1] of a wave of ``period`` [s] in ``depth`` [m].
 
-    Parameters
-    ----------
-    period : array_like
-        Wave period [s], > 0.
-    depth : array_like
-        Water depth [m], broadcastable with ``period``, > 0.
-    g : float
-        Gravitational acceleration [m s-2].
+    {period_depth_g}
 
     Returns
     -------
@@ -115,17 +119,11 @@ def phase_velocity(period, depth, g: float = G) -> np.ndarray:
     return omega / wavenumber(omega, depth, g)
 
 
+@_shared_parameters
 def group_velocity(period, depth, g: float = G) -> np.ndarray:
     """Group velocity c_g = (ω / 2k) (1 + 2kh / sinh 2kh) [m s-1].
 
-    Parameters
-    ----------
-    period : array_like
-        Wave period [s], > 0.
-    depth : array_like
-        Water depth [m], broadcastable with ``period``, > 0.
-    g : float
-        Gravitational acceleration [m s-2].
+    {period_depth_g}
 
     Returns
     -------
