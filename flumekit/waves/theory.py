@@ -106,17 +106,16 @@ def _two_kh_over_sinh(y: np.ndarray) -> np.ndarray:
 
 @_shared_parameters
 def phase_velocity(period, depth, g: float = G) -> np.ndarray:
-    """Phase velocity c = ω/k [m s-1] of a wave of ``period`` [s] in ``depth`` [m].
+    """Phase velocity c = ω/k = L/T [m s-1] of a wave of ``period`` [s] in ``depth`` [m].
 
     {period_depth_g}
 
     Returns
     -------
     numpy.ndarray
-        Phase velocity [m s-1].
+        Phase velocity [m s-1], the wavelength over the period.
     """
-    omega = 2 * np.pi / np.asarray(period, dtype=float)
-    return omega / wavenumber(omega, depth, g)
+    return wavelength(period, depth, g) / np.asarray(period, dtype=float)
 
 
 @_shared_parameters
