@@ -8,7 +8,8 @@ parameters declares them in ``DEFAULTS`` and documents each in ``DOCS`` (with it
 A stage declares rules only for the instruments the campaign has (``Campaign.instruments``):
 probes alone give calibration (probes in volts only), elevation, waves and their figures; the
 flap instruments (flap, PTO, encoder and pressure) add flap, models and comparison; the UVP adds
-the velocity field.
+the velocity field. A stage that needs an instrument beyond the probes says so in ``NEEDS``,
+and :func:`build_rules` asks for its rules only when the campaign has it.
 """
 
 from __future__ import annotations
@@ -27,7 +28,9 @@ def build_rules(ctx: Context) -> list[Rule]:
 
     out: list[Rule] = []
     for name in STAGES:
-        out += importlib.import_module(f"flumekit.stages.{name}").rules(ctx)
+        mod = importlib.import_module(f"flumekit.stages.{name}")
+        if getattr(mod, "NEEDS", "probes") in ctx.campaign.instruments:
+            out += mod.rules(ctx)
     return out
 
 

@@ -7,6 +7,7 @@ from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "3"
+NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
 DOCS = {
     "cutoff": "cut-off of the zero-phase 4th-order Butterworth low-pass applied to theta before "
@@ -21,8 +22,6 @@ DOCS = {
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     params = ctx.stage_params("flap", DEFAULTS)
-    if "flap" not in c.instruments:
-        return []
     out = []
     for run in c.runs:
         p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}

@@ -17,6 +17,7 @@ from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "5"
+NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
             "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
             "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
@@ -43,8 +44,6 @@ DOCS = {
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
     p = ctx.stage_params("models", DEFAULTS)
-    if "flap" not in c.instruments:
-        return []
     if p["coefficients"] not in ("renzi_dias", "bem"):
         from flumekit.errors import FlumekitError
 

@@ -12,6 +12,7 @@ from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
 VERSION = "2"
+NEEDS = "uvp"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
 DOCS = {
@@ -29,8 +30,6 @@ DOCS = {
 
 def rules(ctx: Context) -> list[Rule]:
     c = ctx.campaign
-    if c.uvp is None:
-        return []
     params = ctx.stage_params("uvp", DEFAULTS)
     runs = [r for r in c.runs if r.kind == "uvp"]
     out = []
