@@ -219,7 +219,9 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
       than ``hold_seconds`` and than ``hold_factor`` times the channel's own longest runs of
       identical values (but the longest 1 %). A noisy channel never repeats a value for long,
       while a quantised one at rest or at a flap's reversal does, so the threshold follows the
-      record. The leading run (the instrument at rest before the waves arrive) is exempt.
+      record. The lead-in (the instrument at rest before the waves arrive, until it first
+      leaves its initial level by more than two quanta) is exempt, and so is a run that a
+      quantised signal enters and leaves by one quantum (slow motion, not a hold).
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape
@@ -238,7 +240,25 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     n = x2.shape[-1]
     if n > 2:
         row, first, length = _runs(same)
-        inner = ~((first == 0) & (first + length < n - 1))
+        # the lead-in (the instrument at rest before the waves arrive, flickering between two
+        # quantisation levels) lasts until the channel first leaves its initial level by more
+        # than two quanta; its runs are exempt unless the channel never leaves it (dead)
+        with np.errstate(invalid="ignore"):
+            moved = np.abs(x2 - x2[:, :1]) > 2 * resolution(x2)[:, None]
+        lead = np.where(moved.any(axis=-1), np.argmax(moved, axis=-1), 0)
+        inner = ~((first < lead[row]) | ((first == 0) & (first + length < n - 1)))
+        # a quantised signal that moves slowly (small motion, as while the waves ramp up, or
+        # a turning point) dwells on each level and steps one quantum in and out; a logger that
+        # holds a value while the signal moves on leaves the run with a jump
+        res = resolution(x2)[row]
+        before, after = first - 1, first + length + 1
+        ok = (before >= 0) & (after < n)
+        v = x2[row, first]
+        dp = v - x2[row, np.clip(before, 0, n - 1)]
+        dn = v - x2[row, np.clip(after, 0, n - 1)]
+        with np.errstate(invalid="ignore"):
+            slow = ok & (np.abs(dp) <= res) & (np.abs(dn) <= res)
+        inner &= ~slow
         limit = np.full(x2.shape[0], np.inf)
         for r in np.unique(row):  # one percentile per channel
             # the longest 1 % (at least the longest one) are left out: in a noisy channel the
