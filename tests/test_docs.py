@@ -111,5 +111,6 @@ def test_docs_build_without_warnings(tmp_path):
     # the parameter reference holds the code's defaults
     from flumekit.stages.flap import DEFAULTS
 
-    text = (html / "pipeline.html").read_text(encoding="utf-8")
+    text = (html / "parameters.html").read_text(encoding="utf-8")
     assert "[stages.flap]" in text and all(k in text for k in DEFAULTS)
+    assert 'href="parameters.html"' in (html / "pipeline.html").read_text(encoding="utf-8")
