@@ -1,6 +1,7 @@
 """Stages: thin rules that read datasets, call domain functions, attach metadata and write.
 
-Each stage module has ``rules(ctx) -> list[Rule]`` (cheap: no heavy imports) and action
+Each stage module has ``rules(ctx, params) -> list[Rule]`` (cheap: no heavy imports; ``params``
+are its ``[stages.<name>]`` parameters over its ``DEFAULTS``, from :func:`build_rules`) and action
 functions ``action(inputs, outputs, params)`` that do the work when a rule runs. A stage with
 parameters declares them in ``DEFAULTS`` and documents each in ``DOCS`` (with its unit):
 :func:`parameters` collects them for ``flumekit params`` and docs/parameters.md.
@@ -29,8 +30,10 @@ def build_rules(ctx: Context) -> list[Rule]:
     out: list[Rule] = []
     for name in STAGES:
         mod = importlib.import_module(f"flumekit.stages.{name}")
+        # every stage's [stages.<name>] parameters over its DEFAULTS, checked here once
+        params = ctx.stage_params(name, getattr(mod, "DEFAULTS", {}))
         if getattr(mod, "NEEDS", "probes") in ctx.campaign.instruments:
-            out += mod.rules(ctx)
+            out += mod.rules(ctx, params)
     return out
 
 

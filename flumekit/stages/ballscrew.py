@@ -65,8 +65,7 @@ FIGURE_SOURCES = {9: "thermal_lumped", 10: "thermal_fem", 11: "efficiency", 12: 
                   17: "thermal_fem", 18: "thermal_fem"}
 
 
-def rules(ctx: Context) -> list[Rule]:
-    p = ctx.stage_params("ballscrew", DEFAULTS)
+def rules(ctx: Context, p: dict) -> list[Rule]:
     keys = {"kinematics": ("amplitude", "period", "samples_per_period", "lead"),
             "efficiency": (),
             "thermal_lumped": ("cycle_duration", "total_duration", "lumped_time_step"),

@@ -14,8 +14,7 @@ DOCS = {"order": "order of the calibration polynomial, level [m] against voltage
         "warn_r2": "coefficient of determination below which a warning is recorded [-]"}
 
 
-def rules(ctx: Context) -> list[Rule]:
-    params = ctx.stage_params("calibration", DEFAULTS)
+def rules(ctx: Context, params: dict) -> list[Rule]:
     if ctx.campaign.probes.calibrated:  # probes recorded in length units need no calibration
         return []
     params["probes"] = list(ctx.campaign.probes.names)

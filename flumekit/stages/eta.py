@@ -16,7 +16,7 @@ from flumekit.stages.runs import run_params, write_run
 VERSION = "3"
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     calibrated = c.probes.calibrated
     out = []

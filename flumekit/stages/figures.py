@@ -36,11 +36,10 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
     return (paper or waves)[0].id
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.figures.style import FORMATS
     from flumekit.stages.ballscrew import FIGURE_SOURCES
 
-    p = ctx.stage_params("figures", DEFAULTS)
     formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
     bad = [f for f in formats if f not in FORMATS]
     if bad or not formats:

@@ -19,9 +19,8 @@ DOCS = {
 }
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
-    params = ctx.stage_params("flap", DEFAULTS)
     out = []
     for run in c.runs:
         p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}

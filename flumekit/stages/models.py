@@ -41,9 +41,8 @@ DOCS = {
 }
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, p: dict) -> list[Rule]:
     c = ctx.campaign
-    p = ctx.stage_params("models", DEFAULTS)
     if p["coefficients"] not in ("renzi_dias", "bem"):
         from flumekit.errors import FlumekitError
 

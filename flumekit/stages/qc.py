@@ -51,9 +51,8 @@ DOCS = {
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
-    params = ctx.stage_params("qc", DEFAULTS)
     out = []
     for run in c.runs:
         rp = {**params, **run_params(run)}

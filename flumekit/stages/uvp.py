@@ -28,9 +28,8 @@ DOCS = {
 }
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
-    params = ctx.stage_params("uvp", DEFAULTS)
     runs = [r for r in c.runs if r.kind == "uvp"]
     out = []
     for run in runs:

@@ -29,9 +29,8 @@ DOCS = {
 }
 
 
-def rules(ctx: Context) -> list[Rule]:
+def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
-    params = ctx.stage_params("waves", DEFAULTS)
     out = []
     for run in c.runs:
         p = {**params, "depth": c.flume.water_depth,

@@ -63,7 +63,8 @@ def test_a_knob_changes_the_efficiency_and_its_rule(tmp_path):
 
     ctx = Context(campaign=None, processed=tmp_path,
                   params={"ballscrew": {"lubricant_friction_boundary": 0.2}})
-    rules = {r.target: r for r in stage.rules(ctx)}
+    params = ctx.stage_params("ballscrew", stage.DEFAULTS)
+    rules = {r.target: r for r in stage.rules(ctx, params)}
     assert rules["ballscrew/efficiency"].params == {"lubricant_friction_boundary": 0.2}
     assert "lubricant_friction_boundary" not in rules["ballscrew/kinematics"].params
     stage.kinematics({}, {"dataset": tmp_path / "k.nc"}, rules["ballscrew/kinematics"].params)

@@ -222,12 +222,13 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
     from flumekit.stages import figures as stage
     from flumekit.stages.context import Context
 
-    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, params={}))
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path), dict(stage.DEFAULTS))
     assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
     assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
                for r in rules)
     ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
-    assert all(list(r.outputs) == ["svg"] for r in stage.rules(ctx))
+    svg = stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
+    assert all(list(r.outputs) == ["svg"] for r in svg)
     ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
     with pytest.raises(FlumekitError, match="formats"):
-        stage.rules(ctx)
+        stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
