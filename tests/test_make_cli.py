@@ -299,11 +299,18 @@ def test_ctrl_c_exits_130_and_leaves_no_temporary_file(project, jobs):
     log = open(project / "make.log", "w+")
     driver = subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
                                "pipelines/small.toml", "-j", jobs, "waves/*", "flap/*"],
-                              cwd=project, stdout=log, stderr=log, start_new_session=True)
+                              cwd=project, stdout=log, stderr=log, start_new_session=True,
+                              # as from a terminal: a test runner started in the background
+                              # of a non-interactive shell inherits SIGINT ignored, and a
+                              # process that ignores SIGINT rightly never sees Ctrl-C
+                              preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    # interrupt as soon as the first quality-control file is written: on an idle machine the
+    # whole build takes about 5 s, so waiting for a later stage races with its end
     deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and not (project / "processed/small/eta").exists():
-        time.sleep(0.2)
-    time.sleep(1.0)
+    while time.monotonic() < deadline and not (project / "processed/small/qc").exists():
+        time.sleep(0.05)
+    time.sleep(0.3)
+    assert driver.poll() is None, "the build finished before the interrupt"
     os.killpg(driver.pid, signal.SIGINT)  # what a terminal's Ctrl-C sends: the whole group
     driver.wait(timeout=120)
     log.seek(0)
