@@ -8,8 +8,8 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "4"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
-            "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10, "noise_factor": 3.0, "height_tolerance": 0.25,
-            "height_warning": 0.1}
+            "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
+            "noise_factor": 3.0, "height_tolerance": 0.25, "height_warning": 0.1}
 DOCS = {
     "method": "separation method: 'mansard_funke' (3 probes), 'goda_suzuki' (2) or "
               "'zelt_skjelbreia' (2 or more)",

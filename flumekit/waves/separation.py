@@ -488,8 +488,8 @@ def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
 
     A least-squares harmonic fit per probe (leakage-free for any record length), separated by
     the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh``, ``kh_r`` the
-    incident and reflected wavenumbers of each harmonic kept [rad m-1]. Returns the dataset variables (see :func:`separate`) and the
-    ``harmonic`` coordinate.
+    incident and reflected wavenumbers of each harmonic kept [rad m-1]. Returns the dataset
+    variables (see :func:`separate`) and the ``harmonic`` coordinate.
     """
     nh = kh.size
     coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
