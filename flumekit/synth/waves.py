@@ -1,10 +1,13 @@
 """The virtual flume's wave generator: incident and reflected wave fields with a known truth.
 
 Coordinates follow the campaign: x = 0 at the flap hinge, positive towards the beach; the
-wavemaker sits at ``x_wavemaker`` < 0 and the incident wave travels towards +x. The reflected
-wave is the incident wave mirrored at ``x_reflector`` (the flap), scaled by the reflection
-coefficient and shifted by the reflection phase. The truth (amplitudes, Kr, wavenumber, ...) is
-returned in the dataset's ``attrs``.
+wavemaker sits at ``x_wavemaker`` < 0 and the incident wave travels towards +x. Regular waves
+are steady nonlinear waves of the stream-function theory (:mod:`flumekit.waves.stream_function`,
+valid in the whole range of the flume, Ursell numbers up to 65) unless second-order Stokes or
+linear theory is asked for. The reflected wave travels back from ``x_reflector`` (the flap) with
+the reflection coefficient and phase of its first harmonic; the beach's (:class:`Beach`)
+returns from further down the flume. The truth (amplitudes, Kr, wavenumbers, ...) is returned
+in the dataset's ``attrs``.
 """
 
 from __future__ import annotations
@@ -99,6 +102,8 @@ class Beach:
                 raise ValueError(f"beach {name} must lie in [0, 1], got {v}")
         if not (np.isfinite(self.x) and np.isfinite(self.phase)):
             raise ValueError("beach x and phase must be finite")
+
+
 #: harmonics of a stream-function wave kept in the virtual flume: those above this fraction of
 #: the first harmonic's amplitude (the rest, < 0.015 mm in the flume's range, lie far below the
 #: probes' 0.5 mm noise; about 10 of the 20 computed at T = 3.5 s, H = 0.25 m)
@@ -199,27 +204,22 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
     return out
 
 
-def harmonic_sum(amplitudes, envelope, cos_theta, sin_theta=None):
-    """Σ_n a_n eⁿ cos nθ (and Σ_n a_n eⁿ sin nθ) [m] from cos θ and sin θ.
+def harmonic_sum(amplitudes, envelope, cos_theta) -> np.ndarray:
+    """Σ_n a_n eⁿ cos nθ [m] from cos θ.
 
     The envelope scales harmonic n by eⁿ, as the bound harmonics of a slowly modulated Stokes
-    wave; cos nθ, sin nθ come from the Chebyshev recurrences (no transcendental function per
-    harmonic). ``amplitudes`` may hold depth-dependent factors as a last axis of length N.
+    wave; cos nθ comes from the Chebyshev recurrence (no transcendental function per
+    harmonic).
     """
     a = np.asarray(amplitudes, dtype=float)
     c_prev, c_cur = np.ones_like(cos_theta), cos_theta
-    s_prev, s_cur = np.zeros_like(cos_theta), sin_theta
     e_n = envelope
-    out_c = a[..., 0] * e_n * c_cur
-    out_s = None if sin_theta is None else a[..., 0] * e_n * s_cur
-    for n in range(1, a.shape[-1]):  # a few tens of harmonics
+    out = a[0] * e_n * c_cur
+    for n in range(1, a.size):  # the harmonics kept (about ten)
         c_prev, c_cur = c_cur, 2 * cos_theta * c_cur - c_prev
         e_n = e_n * envelope
-        out_c = out_c + a[..., n] * e_n * c_cur
-        if sin_theta is not None:
-            s_prev, s_cur = s_cur, 2 * cos_theta * s_cur - s_prev
-            out_s = out_s + a[..., n] * e_n * s_cur
-    return out_c if sin_theta is None else (out_c, out_s)
+        out = out + a[n] * e_n * c_cur
+    return out
 
 
 def regular_wave_field(time, x, *, period: float, height: float, depth: float,
