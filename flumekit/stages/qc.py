@@ -47,7 +47,8 @@ DOCS = {
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
-    "clock_tolerance": "probe-to-flap lag departing from the runs of the same condition by more "
+    "clock_tolerance": "probe-to-flap lag departing from the lag expected for the run's wave "
+                       "condition (its other runs, else the neighbouring conditions) by more "
                        "than this is reported as a possible clock offset [s]",
 }
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
@@ -277,8 +278,9 @@ def uvp(inputs, outputs, params) -> None:
 
 def summary(inputs, outputs, params) -> None:
     """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
-    its departure from the runs of the same wave condition (a clock offset beyond
-    ``clock_tolerance`` is a warning naming the run), and every warning of the QC datasets.
+    its departure from the lag expected for its wave condition (:mod:`flumekit.qc.clock`; a
+    clock offset beyond ``clock_tolerance`` is a warning naming the run, the reference of each
+    run is the attribute ``clock_reference``), and every warning of the QC datasets.
     A campaign without the flap instruments has the probe counts only."""
     import numpy as np
     import xarray as xr
@@ -287,7 +289,7 @@ def summary(inputs, outputs, params) -> None:
     from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows, lags, periods, groups, warn = [], [], [], [], []
+    rows, lags, periods, heights, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
@@ -301,7 +303,7 @@ def summary(inputs, outputs, params) -> None:
             lags.append(probe_flap_lag(near.values, p["time"].values,
                                        f["encoder_counts"].values, f["time"].values, period))
             periods.append(period)
-            groups.append((period, float(p["wave_height"])))
+            heights.append(float(p["wave_height"]))
             row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
                        chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
@@ -310,18 +312,29 @@ def summary(inputs, outputs, params) -> None:
             errors="ignore").expand_dims(run=[run]))
     out = xr.concat(rows, dim="run", coords="minimal", compat="override")
     if lags:
-        dep = clock_departures(np.array(lags), np.array(periods), groups)
+        dep, basis = clock_departures(np.array(lags), np.array(periods), np.array(heights))
         out["probe_flap_lag"] = ("run", np.array(lags), {
-            "units": "s", "long_name": "cross-correlation lag of the encoder behind the probe "
-            "nearest the flap"})
+            "units": "s", "long_name": "cross-correlation offset to add to the flap's time "
+            "stamps to align the encoder with the probe nearest the flap (the physical lag, "
+            "modulo a period, and any clock offset)"})
         out["clock_departure"] = ("run", dep, {
-            "units": "s", "long_name": "lag minus the median lag of the runs of the same wave "
-            "condition (a clock offset where large; NaN with fewer than three such runs)"})
+            "units": "s", "long_name": "that offset minus the one expected for the run's wave "
+            "condition (the median of three runs or more of the condition, else a fit over "
+            "the neighbouring conditions): the flap's clock offset where large; NaN without a "
+            "reference",
+            "comment": "reported, never applied: declare it as [clock] flap in run.toml"})
         tol = float(params["clock_tolerance"])
-        warn += [f"run {r}: the flap lags the probes by {lag:+.3f} s, {d:+.3f} s off the other "
-                 f"runs of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and "
-                 f"the flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
-                 for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
+        warn += [f"run {r}: the flap aligns with the probes at {lag:+.3f} s, {d:+.3f} s off "
+                 f"what T = {t:g} s, H = {h:g} m should give ({b}): a clock offset between "
+                 "the probes and the flap? If so declare it in the run's run.toml "
+                 f"([clock] flap = {d:.3f})"
+                 for r, lag, d, t, h, b in zip(runs, lags, dep, periods, heights, basis,
+                                               strict=True) if abs(d) > tol]
+        reference = "\n".join(f"{r}: {b}" for r, b in zip(runs, basis, strict=True))
+    else:
+        reference = ""
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
+    if reference:
+        out.attrs["clock_reference"] = reference
     write_product(out, outputs["dataset"], "Quality-control counts of every run",
                   f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})
