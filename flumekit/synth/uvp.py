@@ -73,23 +73,20 @@ def _depth_functions(k: float, n: int, depth: float, zb):
 
 
 def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
-    """η, u, w of one wave along its direction of travel: Σ_n eⁿ (a_n cos nθ,
-    V_n C_n(z_b) cos nθ, V_n S_n(z_b) sin nθ), cos nθ and sin nθ by the Chebyshev recurrences
-    from cos θ and sin θ (no transcendental function per harmonic)."""
+    """η, u, w of one wave along its direction of travel: Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ,
+    V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so that harmonic n carries eⁿ; the powers
+    by repeated multiplication in place (no transcendental function per harmonic)."""
     ch, sh = _depth_functions(k, amps.size, depth, zb)
-    eta = u = w = 0.0
-    c_prev, c_cur = 1.0, cos_t
-    s_prev, s_cur = 0.0, sin_t
-    e_n = env
-    for n in range(amps.size):  # the harmonics kept (about ten)
-        if n:
-            c_prev, c_cur = c_cur, 2 * cos_t * c_cur - c_prev
-            s_prev, s_cur = s_cur, 2 * cos_t * s_cur - s_prev
-            e_n = e_n * env
-        ec, es = e_n * c_cur, e_n * s_cur
-        eta = eta + amps[n] * ec
-        u = u + vel[n] * ch[..., n] * ec
-        w = w + vel[n] * sh[..., n] * es
+    p1 = np.asarray(env * cos_t + 1j * (env * sin_t))
+    pn = p1.copy()
+    eta = amps[0] * pn.real
+    u = (vel[0] * ch[..., 0]) * pn.real
+    w = (vel[0] * sh[..., 0]) * pn.imag
+    for n in range(1, amps.size):  # the harmonics kept (about ten)
+        pn *= p1
+        eta += amps[n] * pn.real
+        u += (vel[n] * ch[..., n]) * pn.real
+        w += (vel[n] * sh[..., n]) * pn.imag
     return eta, u, w
 
 
