@@ -83,9 +83,10 @@ def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
       consecutive samples, written with fewer digits than the one before (integers, or a cut
       in the integer part: ``1234`` to ``123``).
 
-    A cut that removes only digits which the column's own cells often lack (the last digit or
-    two of a ``%g`` number, whose trailing zeros are dropped) changes the value by less than
-    its last kept digit and cannot be told from a complete line.
+    A cut that leaves a cell like at least that fraction of the column's own (the last two or
+    three digits of a ``%g`` number, whose trailing zeros are dropped) changes the value by
+    less than its last kept digit and cannot be told from a complete line; nor can an integer
+    cut near zero that stays within twice the largest step.
     """
     rows = pd.Series(body.split("\n")).str.rstrip("\r")
     rows = rows[rows.str.strip() != ""]
