@@ -41,6 +41,7 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
 
 X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the wavemaker)
@@ -61,15 +62,8 @@ def _theory(theory: str | None, second_order: bool) -> str:
 
 
 def _depth_functions(k: float, n: int, depth: float, zb):
-    """cosh(jk z_b)/cosh(jkh), sinh(jk z_b)/cosh(jkh) for j = 1..n [-], shape (..., n).
-
-    Overflow-free (exponential form); ``zb`` [m] above the bed.
-    """
-    zb = np.asarray(zb, dtype=float)[..., None]
-    jk = k * np.arange(1, n + 1)
-    ep, em = np.exp(jk * (zb - depth)), np.exp(-jk * (zb + depth))
-    den = 1.0 + np.exp(-2.0 * jk * depth)
-    return (ep + em) / den, (ep - em) / den
+    """C_n(z_b), S_n(z_b) of the module notes for n = 1..n, shape (..., n); z_b above the bed."""
+    return depth_ratios(k * np.arange(1, n + 1), np.asarray(zb, dtype=float)[..., None], depth)
 
 
 def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
