@@ -15,7 +15,7 @@ with C_n = cosh(nk z_b)/cosh(nkh), S_n = sinh(nk z_b)/cosh(nkh) (Fenton 1988, Eq
 fixed frame; second-order Stokes velocities of Dean & Dalrymple 1991, §11.3, with
 ``theory="stokes2"``). Harmonic n carries the envelope to the power n, as in the elevation; the
 mean (return) current c_E < 0 of a closed flume, its square. Harmonics below
-:data:`HARMONIC_CUTOFF` of the first are left out.
+:data:`flumekit.synth.waves.HARMONIC_CUTOFF` of the first are left out.
 
 The instrument: each beam's channels (see :mod:`flumekit.uvp.geometry`) sample the velocity
 projected on the beam (positive away from the transducer, the label the reader uses by default),
