@@ -115,10 +115,10 @@ def test_main_condition_reproduces_the_papers_numbers(built):
     the numbers Brito et al. (2020) state that the virtual flume reproduces, within the
     precision the paper gives them (flumekit.bench.flume.STATED; the full table, with the
     numbers it does not reach, is `flumekit bench flume`)."""
-    from flumekit.bench.flume import MAIN_RUN, STATED, _runs, measure
+    from flumekit.bench.flume import MAIN_RUN, STATED, built_runs, measure
 
     processed, _ = built
-    values, _ = measure({MAIN_RUN: _runs(processed)[MAIN_RUN]})
+    values, _ = measure({MAIN_RUN: built_runs(processed)[MAIN_RUN]})
     for key in ("theta_max", "cf", "kr", "r2_main"):
         lo, hi = STATED[key][2]
         assert lo <= values[key] <= hi, (key, values[key])

@@ -26,6 +26,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
+#: row groups: the main condition and Fig. 7b's run, the UVP repeats, Table 1's trends
+ROWS = ("main", "repeats", "trend")
 
 
 def targets(rows: tuple[str, ...]) -> list[str]:
@@ -56,7 +58,7 @@ def _build(project: Path, rows: tuple[str, ...], jobs: int = 2) -> Path:
     return project / "processed" / "default"
 
 
-def _runs(processed: Path) -> dict:
+def built_runs(processed: Path) -> dict:
     """Every built run: its flap summary, waves summary and (where built) comparison."""
     from flumekit.io.netcdf import read_dataset
 
@@ -169,13 +171,17 @@ def trends(runs: dict) -> dict[str, str]:
             ts = [t for t in periods if (t, h) in grid]
             r = [ratio(t, h) for t in ts]
             out[f"linear/measured {label}, H={h:g} m, T={ts[0]:g}..{ts[-1]:g}"] = (
-                " ".join(f"{x:.2f}" for x in r) + f"  (Spearman rho {_spearman(ts, r):+.2f})")
+                " ".join(f"{x:.2f}" for x in r) + _grows(_spearman(ts, r)))
         if len(heights) >= 2 and all((t, h) in grid for t in periods for h in heights):
             r_h = [np.mean([ratio(t, h) for t in periods]) for h in heights]
             out[f"linear/measured {label}, mean over T, H={heights[0]:g}..{heights[-1]:g}"] = (
-                " ".join(f"{x:.2f}" for x in r_h) + f"  (Spearman rho "
-                f"{_spearman(heights, r_h):+.2f})")
+                " ".join(f"{x:.2f}" for x in r_h) + _grows(_spearman(heights, r_h)))
     return out
+
+
+def _grows(rho: float) -> str:
+    """Spearman's ρ and whether the ratio grows (ρ > 0, the paper's Figs. 8-9)."""
+    return f"  (Spearman rho {rho:+.2f}: {'ok' if rho > 0 else 'OUT'})"
 
 
 def _spearman(x, y) -> float:
@@ -213,28 +219,27 @@ def _format(rows, header) -> str:
     return "\n".join(out)
 
 
-def report(rows: tuple[str, ...] = ("main", "repeats", "trend"), jobs: int = 2) -> str:
+def report(rows: tuple[str, ...] = ROWS, jobs: int = 2) -> str:
     """Build ``rows``' runs of the default campaign in a temporary project; the table."""
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
         processed = _build(Path(tmp), rows, jobs)
         elapsed = time.perf_counter() - t0
-        table_rows = table(_runs(processed))
+        table_rows = table(built_runs(processed))
     return (f"Virtual flume vs Brito et al. (2020), default campaign, rows {', '.join(rows)}: "
             f"synthesis + build {elapsed:.0f} s\n"
             + _format(table_rows, ("quantity", "paper", "virtual flume", "within precision")))
 
 
 def run(quick: bool = False) -> str:
-    return report(("main",) if quick else ("main", "repeats", "trend"))
+    return report(("main",) if quick else ROWS)
 
 
 def main(argv: list[str] | None = None) -> int:
     import argparse
 
     a = argparse.ArgumentParser(prog="python -m flumekit.bench.flume", description=__doc__)
-    a.add_argument("--rows", nargs="+", choices=("main", "repeats", "trend"),
-                   default=["main", "repeats", "trend"])
+    a.add_argument("--rows", nargs="+", choices=ROWS, default=list(ROWS))
     a.add_argument("-j", "--jobs", type=int, default=2)
     args = a.parse_args(argv)
     print(report(tuple(args.rows), args.jobs))

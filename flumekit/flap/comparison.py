@@ -16,9 +16,13 @@ The linear model's PTO damping ν_pto (``linear_pto_damping``, :data:`LINEAR_PTO
 
 Brito et al. (2020, App. A) say only that ν_PTO was "calculated following [14]" (Renzi & Dias
 2012). Tested on the virtual flume's T = 3.5 s, H = 0.25 m run (issue 16), the optimal damping
-(≈ 150 N m s: the flap is near resonance) gives C_f ≈ 0.57, the channel's bound b/(2w), and a
-linear θ 4.5 times the measured one, far from the paper's 0.33 and 37 %; the energy-equivalent
-damping is the one consistent with the paper's linear-model numbers, hence the default.
+(≈ 150 N m s: the flap is near resonance, so ν_opt ≈ ν) gives C_f ≈ 0.57, the channel's bound
+b/(2w), and a linear θ 4.5 times the measured one (78 % below), far from the paper's 0.33 and
+37 %; the energy-equivalent damping (≈ 450 N m s: C_f 0.43, 54 % below) is closer, hence the
+default. With these coefficients the paper's pair (0.33, 37 %) needs ν_pto ≈ 700 N m s, more
+than the energy-equivalent damping of a motion of the measured size: the paper's linear
+model did not take its ν_PTO from the measured power either (with one ν for both, 0.33/0.12
+would equal (1/0.63)² for a harmonic motion).
 
 The simulator uses the fitted hydraulic model (K_p, I_p) and the campaign's LuGre
 friction, driven by the separated incident wave at x = 0, and is summarised as the measured run
