@@ -193,7 +193,7 @@ def uvp(inputs, outputs, params) -> None:
     from flumekit.qc.record import Thresholds, check_series
 
     th = Thresholds.from_params(params)
-    flags, counts, names = [], [], sorted(inputs)
+    flags, counts, names, starts = [], [], sorted(inputs), {}
     for name in names:
         b = read_mfprof(inputs[name])
         t = b["time"].values
@@ -205,6 +205,7 @@ def uvp(inputs, outputs, params) -> None:
                                       if "amplitude" in b else None))
         f = aggregate(*per.values())
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
+        starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
         counts.append([np.sum(f == val) for val in FLAG_VALUES])
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
@@ -213,7 +214,8 @@ def uvp(inputs, outputs, params) -> None:
         ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), fl.values,
                                           flag_attrs(f"beam_velocity of beam {name}"))
         ds = ds.assign_coords({tdim: (tdim, fl["time"].values,
-                                      {"units": "s", "long_name": f"time of beam {name}"})})
+                                      {"units": "s", "long_name": f"time of beam {name}",
+                                       **starts[name]})})
     ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), np.array(counts),
                                     {"units": "1", "long_name": "UVP samples per QC flag"})
     ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
