@@ -5,9 +5,22 @@ The experiment (:func:`flumekit.flap.analysis.analyse_run`), the linear model (B
 along a ``source`` dimension, from one hydrodynamic coefficient container
 (:func:`flumekit.flap.renzi_dias.model.channel_container`, or :func:`bem_container`).
 
-The linear model's PTO damping is set from the measured PTO by energy equivalence over the
-steady window, ν_pto = W̄_out / mean(θ̇²), so that it absorbs the same mean power at the measured
-motion; the simulator uses the fitted hydraulic model (K_p, I_p) and the campaign's LuGre
+The linear model's PTO damping ν_pto (``linear_pto_damping``, :data:`LINEAR_PTO_DAMPING`):
+
+* ``"energy_equivalent"`` (default): from the measured PTO by energy equivalence over the steady
+  window, ν_pto = W̄_out / mean(θ̇²), so that it absorbs the same mean power at the measured
+  motion;
+* ``"optimal"``: the damping that maximises the linear model's mean power at the run's period,
+  ν_opt = √((C − ω²(I + μ))²/ω² + ν²) (Renzi & Dias 2012, Eq. 2.40;
+  :func:`flumekit.hydro.response.optimal_pto_damping`).
+
+Brito et al. (2020, App. A) say only that ν_PTO was "calculated following [14]" (Renzi & Dias
+2012). Tested on the virtual flume's T = 3.5 s, H = 0.25 m run (issue 16), the optimal damping
+(≈ 150 N m s: the flap is near resonance) gives C_f ≈ 0.57, the channel's bound b/(2w), and a
+linear θ 4.5 times the measured one, far from the paper's 0.33 and 37 %; the energy-equivalent
+damping is the one consistent with the paper's linear-model numbers, hence the default.
+
+The simulator uses the fitted hydraulic model (K_p, I_p) and the campaign's LuGre
 friction, driven by the separated incident wave at x = 0, and is summarised as the measured run
 is (:func:`flumekit.flap.summary.summary`).
 """
@@ -25,6 +38,13 @@ from flumekit.signal import uniform_step
 #: scalars and phase averages compared along ``source``
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
 PHASED = ("theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean")
+#: ways of setting the linear model's PTO damping (module notes), the default first
+LINEAR_PTO_DAMPING = ("energy_equivalent", "optimal")
+_DAMPING_COMMENT = {
+    "energy_equivalent": "linear-model PTO damping from the measured PTO by energy equivalence: "
+                         "mean power / mean(theta_dot^2)",
+    "optimal": "linear-model PTO damping maximising its mean power at the run's period, "
+               "Renzi & Dias (2012) Eq. (2.40)"}
 
 
 def bem_container(depth: float, flap_width: float, hinge_height: float, thickness: float,
@@ -94,8 +114,9 @@ def coefficients_at(hydro: xr.Dataset, period: float) -> xr.Dataset:
 
 
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
-                 stiffness: float) -> tuple[dict, xr.Dataset]:
-    """Eq. (A1) response at the run's period with the energy-equivalent PTO damping.
+                 stiffness: float, pto_damping: str = "energy_equivalent"
+                 ) -> tuple[dict, xr.Dataset]:
+    """Eq. (A1) response at the run's period.
 
     Parameters
     ----------
@@ -104,16 +125,22 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
     hydro : Coefficient container as written (real and imaginary parts).
     inertia : Flap moment of inertia about the hinge [kg m2].
     stiffness : Hydrostatic stiffness C [N m rad-1].
+    pto_damping : How ν_pto is set, one of :data:`LINEAR_PTO_DAMPING` (module notes).
 
     Returns
     -------
-    The :data:`SCALARS` and :data:`PHASED` values, and a dataset with ``pto_damping``.
+    The :data:`SCALARS` and :data:`PHASED` values, and a dataset with ``pto_damping`` (its
+    ``method`` attribute says how it was set).
     """
-    from flumekit.hydro.response import response
+    from flumekit.hydro.response import optimal_pto_damping, response
 
+    if pto_damping not in LINEAR_PTO_DAMPING:
+        raise ValueError(f"linear_pto_damping must be one of {LINEAR_PTO_DAMPING}, "
+                         f"got {pto_damping!r}")
     period = float(waves["measured_period"])
     rd = coefficients_at(hydro, period)
-    nu = energy_equivalent_damping(flap)
+    nu = (energy_equivalent_damping(flap) if pto_damping == "energy_equivalent"
+          else float(optimal_pto_damping(rd, inertia, stiffness).values[0]))
     r = response(rd, float(waves["incident_height"]) / 2, inertia, stiffness, nu).isel(period=0)
     # phase averages with t/T = 0 at the up-crossing of θ, as for the experiment
     phase = flap["phase"].values
@@ -123,7 +150,8 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
     out["theta_phase_mean"] = amp * np.sin(2 * np.pi * phase)
     out["theta_dot_phase_mean"] = amp * omega * np.cos(2 * np.pi * phase)
     out["power_phase_mean"] = nu * out["theta_dot_phase_mean"] ** 2
-    return out, xr.Dataset({"pto_damping": nu})
+    return out, xr.Dataset({"pto_damping": ((), nu, {"method": pto_damping,
+                                                      "comment": _DAMPING_COMMENT[pto_damping]})})
 
 
 def periodic_extension(eta: xr.DataArray, period: float, before: int,
@@ -218,17 +246,21 @@ def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
 
 def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
-                friction: bool = True, spin_up_periods: int = 20) -> xr.Dataset:
+                friction: bool = True, spin_up_periods: int = 20,
+                linear_pto_damping: str = "energy_equivalent") -> xr.Dataset:
     """The experiment, the linear model and (optionally) the simulator along ``source``.
 
-    Arguments as in :func:`linear_model` and :func:`simulated` (``simulator=False`` leaves the
-    simulator out). Returns the :data:`SCALARS` over ``source``, the :data:`PHASED` over
-    (``source``, ``phase``), ``pto_damping`` of the linear model and, with the simulator,
+    Arguments as in :func:`linear_model` (``linear_pto_damping`` is its ``pto_damping``) and
+    :func:`simulated` (``simulator=False`` leaves the simulator out). Returns the
+    :data:`SCALARS` over ``source``, the :data:`PHASED` over (``source``, ``phase``),
+    ``pto_damping`` of the linear model (its ``method`` attribute, and the dataset's
+    ``linear_pto_damping`` attribute, say how it was set) and, with the simulator,
     ``theta_relative_rms_difference``.
     """
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
     sources["analytical"], extra = linear_model(flap, waves, hydro, flap_params.inertia,
-                                                flap_params.buoyancy_stiffness)
+                                                flap_params.buoyancy_stiffness,
+                                                linear_pto_damping)
     if simulator:
         sources["simulator"], theta_error = simulated(
             flap, waves, hydro, flap_params=flap_params, pto=pto, depth=depth, dt=dt,
@@ -243,6 +275,5 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
                                   "measured_period": float(waves["measured_period"]),
                                   "incident_power": float(flap["incident_power"])})
     ds = ds.merge(extra)
-    ds["pto_damping"].attrs["comment"] = ("linear-model PTO damping from the measured PTO by "
-                                          "energy equivalence: mean power / mean(theta_dot^2)")
+    ds.attrs["linear_pto_damping"] = linear_pto_damping
     return ds

@@ -5,6 +5,21 @@ from __future__ import annotations
 import numpy as np
 
 
+def runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Runs of True along the last axis of a 2-D mask: (row, first index, length), in order.
+
+    O(n) in the mask and vectorised: the edges of the runs in the flattened mask padded with a
+    False column on each side."""
+    m, n = mask.shape
+    padded = np.zeros((m, n + 2), dtype=bool)
+    padded[:, 1:-1] = mask
+    edges = np.flatnonzero(padded[:, 1:].ravel() != padded[:, :-1].ravel())
+    # edges index the (m, n + 1) differences; a run never spans two rows (False pads)
+    starts, ends = edges[::2], edges[1::2]
+    row = starts // (n + 1)
+    return row, starts - row * (n + 1), ends - starts
+
+
 def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None) -> np.ndarray:
     """Replace invalid samples by linear interpolation between the valid ones around them.
 
@@ -13,42 +28,44 @@ def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None)
     most that many consecutive invalid samples are filled; longer ones (and held ends longer than
     that) become NaN. Without it every gap is filled and a channel with no valid sample
     becomes 0.
+
+    The work is per run of invalid samples (found in O(n)), so a record with a few flagged
+    samples costs little more than a copy.
     """
     values = np.asarray(values, dtype=float)
     valid = np.asarray(valid, dtype=bool) & np.isfinite(values)
-    n = values.shape[-1]
-    idx = np.arange(n)
-    prev = np.maximum.accumulate(np.where(valid, idx, -1), axis=-1)
-    nxt = np.minimum.accumulate(np.where(valid, idx, n)[..., ::-1], axis=-1)[..., ::-1]
-    has_prev, has_next = prev >= 0, nxt < n
-    p = np.where(has_prev, prev, np.where(has_next, nxt, 0))
-    q = np.where(has_next, nxt, p)
-    vp = np.take_along_axis(values, p, axis=-1)
-    vq = np.take_along_axis(values, q, axis=-1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        f = np.where(q > p, (idx - p) / (q - p), 0.0)
-    filled = vp + f * (vq - vp)
+    shape = values.shape
+    n = shape[-1]
+    out = values.reshape(-1, n).copy() if values.ndim else values.copy()
+    if values.ndim == 0 or valid.all():
+        return out.reshape(shape)
+    row, first, length = runs(~valid.reshape(-1, n))
+    last = first + length - 1
+    has_prev, has_next = first > 0, last < n - 1
+    vp = out[row, np.maximum(first - 1, 0)]
+    vq = out[row, np.minimum(last + 1, n - 1)]
+    # every invalid sample: its run, and its offset in the run
+    k = np.repeat(np.arange(row.size), length)
+    pos = np.arange(k.size) - np.repeat(np.cumsum(length) - length, length)
+    both = has_prev & has_next
+    with np.errstate(invalid="ignore"):
+        frac = (pos + 1) / (length + 1)[k]
+        filled = np.where(both[k], vp[k] + frac * (vq[k] - vp[k]),
+                          np.where(has_prev[k], vp[k], vq[k]))
+    lonely = ~has_prev & ~has_next  # a channel without a valid sample
     if max_gap is None:
-        filled = np.where(has_prev | has_next, filled, 0.0)
+        filled = np.where(lonely[k], 0.0, filled)
     else:
-        # length of the gap each invalid sample belongs to (ends: distance to the record edge)
-        length = np.where(has_prev & has_next, nxt - prev - 1,
-                          np.where(has_prev, n - 1 - prev, np.where(has_next, nxt, n)))
-        filled = np.where((has_prev | has_next) & (length <= max_gap), filled, np.nan)
-    return np.where(valid, values, filled)
+        filled = np.where(lonely[k] | (length[k] > max_gap), np.nan, filled)
+    out[row[k], first[k] + pos] = filled
+    return out.reshape(shape)
 
 
 def gap_spans(invalid: np.ndarray, time: np.ndarray) -> list[tuple[int, float, float]]:
     """Runs of invalid samples along the last axis of a 1-D or 2-D mask:
     (row, first time, last time) [s], in order."""
     m = np.atleast_2d(np.asarray(invalid, dtype=bool))
-    n = m.shape[-1]
-    padded = np.zeros((m.shape[0], n + 2), dtype=bool)
-    padded[:, 1:-1] = m
-    edges = np.flatnonzero(np.diff(padded.ravel().astype(np.int8)))
-    starts, ends = edges[::2], edges[1::2]
-    row = starts // (n + 2)
-    first = starts - row * (n + 2)
-    last = ends - row * (n + 2) - 1
+    row, first, length = runs(m)
+    last = first + length - 1
     return [(int(r), float(time[a]), float(time[b])) for r, a, b in zip(row, first, last,
                                                                        strict=True)]

@@ -20,9 +20,10 @@ MISSING = 9
 FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.uint8)
 FLAG_MEANINGS = "pass not_evaluated suspect fail missing_data"
 
-#: order of severity used to aggregate flags (missing counts as worst)
+#: order of severity used to aggregate flags (missing counts as worst) and its inverse
 _RANK = np.zeros(256, dtype=np.uint8)
 _RANK[[GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING]] = [1, 0, 2, 3, 4]
+_FLAG_OF_RANK = np.array([NOT_EVALUATED, GOOD, SUSPECT, FAIL, MISSING], dtype=np.uint8)
 
 
 def flag_attrs(variable: str, long_name: str | None = None) -> dict:
@@ -39,7 +40,7 @@ def aggregate(*flags: np.ndarray) -> np.ndarray:
 
     ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1.
     """
-    stack = np.stack([np.asarray(f, dtype=np.uint8) for f in flags])
-    worst = np.take_along_axis(stack, np.argmax(_RANK[stack], axis=0)[None], axis=0)[0]
-    return worst
-
+    worst = _RANK[np.asarray(flags[0], dtype=np.uint8)]
+    for f in flags[1:]:
+        np.maximum(worst, _RANK[np.asarray(f, dtype=np.uint8)], out=worst)
+    return _FLAG_OF_RANK[worst]

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT
 
 #: ratio of the standard deviation to the median absolute deviation of a normal distribution
@@ -34,6 +35,12 @@ MAD_TO_STD = 1.4826
 
 def resolution(x: np.ndarray) -> np.ndarray:
     """Smallest non-zero step between consecutive samples per channel (quantisation) [x]."""
+    x = np.asarray(x)
+    if x.dtype.kind in "iu":  # integers: no NaN, and a smaller type to scan
+        d = np.abs(np.diff(x.astype(np.int32), axis=-1))
+        d[d == 0] = np.iinfo(np.int32).max
+        r = d.min(axis=-1) if d.shape[-1] else np.zeros(d.shape[:-1], np.int32)
+        return np.where(r == np.iinfo(np.int32).max, 0.0, r.astype(float))
     d = np.abs(np.diff(np.asarray(x, dtype=float), axis=-1))
     d = np.where(np.isfinite(d) & (d > 0), d, np.inf)
     r = d.min(axis=-1)
@@ -159,17 +166,6 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
     return f
 
 
-def _runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Runs of True along the last axis of a 2-D mask: (row, first index, length)."""
-    m, n = mask.shape
-    padded = np.zeros((m, n + 2), dtype=bool)
-    padded[:, 1:-1] = mask
-    edges = np.flatnonzero(np.diff(padded.ravel().astype(np.int8)))
-    starts, ends = edges[::2], edges[1::2]
-    row = starts // (n + 2)
-    return row, starts - row * (n + 2), ends - starts
-
-
 def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
     """Boolean (m, n) array, True over the given runs (vectorised with a cumulative sum)."""
     m, n = shape
@@ -197,13 +193,76 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
         return f.reshape(shape)
     with np.errstate(invalid="ignore"):
         same = np.abs(np.diff(x2, axis=-1)) <= tolerance
-    row, first, length = _runs(same)  # runs of equal steps; a run of k steps spans k+1 samples
+    row, first, length = runs(same)  # runs of equal steps; a run of k steps spans k+1 samples
     dur = length / sampling_rate
     leading = exempt_leading & (first == 0) & (first + length < n - 1)
     for level, seconds in ((SUSPECT, suspect_seconds), (FAIL, fail_seconds)):
         sel = (dur >= seconds) & ~leading
         paint = _paint(x2.shape, row[sel], first[sel], length[sel] + 1)
         f[paint & (f != MISSING)] = level
+    return f.reshape(shape)
+
+
+def robust_median(x: np.ndarray) -> np.ndarray:
+    """Median along the last axis ignoring NaN, vectorised over the other axes (numpy's
+    ``nanmedian`` loops over rows in Python for long rows); NaN where a row has no value.
+    Integer records (echo amplitudes, counts) of a modest range take an exact O(n) path: the
+    per-row histogram of the values."""
+    x = np.asarray(x)
+    if x.dtype.kind in "iu" and x.size:
+        x2 = x.reshape(-1, x.shape[-1])
+        lo = int(x2.min())
+        span = int(x2.max()) - lo + 1
+        if span * x2.shape[0] <= 4 * x2.size:
+            return _histogram_median(x2, lo, span).reshape(x.shape[:-1])
+    x = np.asarray(x, dtype=float)
+    nan = np.isnan(x)
+    if not nan.any():
+        return np.median(x, axis=-1)
+    s = np.sort(x, axis=-1)  # NaN sort last
+    k = x.shape[-1] - nan.sum(axis=-1)
+    lo = np.take_along_axis(s, np.maximum((k - 1) // 2, 0)[..., None], axis=-1)[..., 0]
+    hi = np.take_along_axis(s, np.minimum(k // 2, x.shape[-1] - 1)[..., None], axis=-1)[..., 0]
+    return np.where(k > 0, 0.5 * (lo + hi), np.nan)
+
+
+def _histogram_median(x: np.ndarray, lo: int, span: int) -> np.ndarray:
+    """Exact median of each row of the integer (m, n) array ``x`` (values in [lo, lo + span))
+    from its histogram: the mean of the values of ranks (n - 1) // 2 and n // 2."""
+    m, n = x.shape
+    idx = (x - lo).astype(np.int64)
+    idx += (np.arange(m, dtype=np.int64) * span)[:, None]
+    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * span).reshape(m, span), axis=-1)
+    lower = np.argmax(cum > (n - 1) // 2, axis=-1)
+    upper = np.argmax(cum > n // 2, axis=-1)
+    return lo + 0.5 * (lower + upper)
+
+
+def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
+    """FAIL where |x - median(x)| exceeds ``threshold`` robust standard deviations of x over
+    the record (1.4826 MAD, at least the channel's resolution), per channel along the last
+    axis: the level form of :func:`dropout_test`."""
+    x = np.asarray(x)
+    shape = x.shape
+    x2 = x.reshape(-1, shape[-1])
+    med = robust_median(x2)[:, None]
+    if x2.dtype.kind in "iu":
+        # twice the deviation is an integer (the median is one or a half): exact and O(n)
+        dev2 = 2 * x2.astype(np.int32)
+        dev2 -= np.rint(2 * med).astype(np.int32)
+        np.abs(dev2, out=dev2)
+        scale = np.maximum(MAD_TO_STD * 0.5 * robust_median(dev2), resolution(x2))[:, None]
+        # an integer exceeds a bound where it exceeds the bound's floor
+        bound = np.minimum(np.floor(2 * threshold * scale), np.iinfo(np.int32).max)
+        f = np.full(x2.shape, GOOD, dtype=np.uint8)
+        f[dev2 > bound.astype(np.int32)] = FAIL
+        return f.reshape(shape)
+    x2 = x2.astype(float)
+    f = _empty_flags(x2)
+    dev = np.abs(x2 - med)
+    scale = np.maximum(MAD_TO_STD * robust_median(dev), resolution(x2))[:, None]
+    with np.errstate(invalid="ignore"):
+        f[(dev > threshold * scale) & (f != MISSING)] = FAIL
     return f.reshape(shape)
 
 
@@ -226,20 +285,12 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     x = np.asarray(x, dtype=float)
     shape = x.shape
     x2 = x.reshape(-1, shape[-1])
-    f = _empty_flags(x2)
-    import warnings
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        med = np.nanmedian(x2, axis=-1, keepdims=True)
-        scale = MAD_TO_STD * np.nanmedian(np.abs(x2 - med), axis=-1, keepdims=True)
-    scale = np.maximum(scale, resolution(x2)[..., None])
+    f = level_test(x2, threshold)
     with np.errstate(invalid="ignore"):
-        f[(np.abs(x2 - med) > threshold * scale) & (f != MISSING)] = FAIL
         same = np.diff(x2, axis=-1) == 0
     n = x2.shape[-1]
     if n > 2:
-        row, first, length = _runs(same)
+        row, first, length = runs(same)
         # the lead-in (the instrument at rest before the waves arrive, flickering between two
         # quantisation levels) lasts until the channel first leaves its initial level by more
         # than two quanta; its runs are exempt unless the channel never leaves it (dead)
@@ -259,13 +310,21 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
         with np.errstate(invalid="ignore"):
             slow = ok & (np.abs(dp) <= res) & (np.abs(dn) <= res)
         inner &= ~slow
-        limit = np.full(x2.shape[0], np.inf)
-        for r in np.unique(row):  # one percentile per channel
-            # the longest 1 % (at least the longest one) are left out: in a noisy channel the
-            # few runs there are would otherwise include the dropout itself
-            lengths = np.sort(length[(row == r) & inner])[:-max(1, int(np.sum(row == r)) // 100)]
-            typical = float(lengths.max()) if lengths.size else 0.0
-            limit[r] = max(hold_seconds * sampling_rate, hold_factor * typical)
+        # each channel's typical longest run: the longest 1 % of its runs (at least the
+        # longest one) are left out, since in a noisy channel the few runs there are would
+        # otherwise include the dropout itself. All channels at once: the inner runs sorted by
+        # (channel, length), and per channel the run ranked (count - left out) from the top
+        m = x2.shape[0]
+        total = np.bincount(row, minlength=m)
+        drop = np.maximum(1, total // 100)
+        count = np.bincount(row[inner], minlength=m)
+        order = np.lexsort((length[inner], row[inner]))
+        ranked = length[inner][order]
+        pick = np.cumsum(count) - count + count - drop - 1  # row start + (count - drop - 1)
+        typical = np.where(count > drop, ranked[np.clip(pick, 0, max(ranked.size - 1, 0))]
+                           if ranked.size else 0, 0).astype(float)
+        limit = np.where(total > 0, np.maximum(hold_seconds * sampling_rate,
+                                               hold_factor * typical), np.inf)
         sel = inner & (length > limit[row])
         f[_paint(x2.shape, row[sel], first[sel], length[sel] + 1) & (f != MISSING)] = FAIL
     return f.reshape(shape)

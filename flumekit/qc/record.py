@@ -68,32 +68,36 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     flat-line and dropout tests (velocity records: quantised, turbulent, partly without echo).
     ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
     ``amplitude`` (echo amplitude of a velocity record, same shape): samples whose echo is far
-    above the channel's usual one (:func:`~flumekit.qc.qartod.dropout_test` on the amplitude)
+    above the channel's usual one (:func:`~flumekit.qc.qartod.level_test` on the amplitude)
     see a solid boundary, such as the flap crossing the channel, not the fluid; they are not
     evaluated (2) and do not enter the despiking statistics.
     """
-    x = np.asarray(x, dtype=float)
+    x = np.ascontiguousarray(x, dtype=float)  # time contiguous: every test runs along it
     block = max(3, int(round(th.block * sampling_rate)))
+    finite = np.isfinite(x)
     gap = np.broadcast_to(qartod.gap_test(time, sampling_rate, th.gap_tolerance), x.shape)
-    out = {"gap": np.where(np.isfinite(x), gap, MISSING).astype(np.uint8),
+    out = {"gap": np.where(finite, gap, MISSING).astype(np.uint8),
            "gross_range": qartod.gross_range_test(x, gross_range)}
     if despike:
-        boundary = np.zeros(x.shape, dtype=bool)
+        boundary = None
         if amplitude is not None:
-            boundary = qartod.dropout_test(np.asarray(amplitude, dtype=float), th.dropout) == FAIL
-            # the sampling volume straddles the boundary for a few profiles before and after
-            boundary = maximum_filter1d(boundary, 2 * BOUNDARY_PROFILES + 1, axis=-1)
-        spikes = goring_nikora(np.where(boundary, np.nan, x),
+            # the level form of the dropout test: runs of repeated echo values say nothing
+            # about a boundary
+            boundary = qartod.level_test(np.ascontiguousarray(amplitude), th.dropout) == FAIL
+            if boundary.any():
+                # the sampling volume straddles the boundary for a few profiles either side
+                boundary = maximum_filter1d(boundary, 2 * BOUNDARY_PROFILES + 1, axis=-1)
+            else:
+                boundary = None
+        spikes = goring_nikora(x if boundary is None else np.where(boundary, np.nan, x),
                                floor=0.0 if floor is None else floor,
                                max_iterations=th.despike_iterations)
         # a spike moves the derivatives of its two neighbours too, which GN then flags with it:
         # keep the samples whose departure from their neighbours' mean is the local largest
-        d = np.abs(x[..., 1:-1] - 0.5 * (x[..., :-2] + x[..., 2:]))
-        d = np.pad(d, [(0, 0)] * (x.ndim - 1) + [(2, 2)], constant_values=0.0)
-        peak = (d[..., 1:-1] >= d[..., :-2]) & (d[..., 1:-1] >= d[..., 2:])
-        spikes &= peak
-        g = np.where(np.isfinite(x), GOOD, MISSING).astype(np.uint8)
-        g[boundary & np.isfinite(x)] = NOT_EVALUATED
+        spikes &= _local_peak(x, spikes)
+        g = np.where(finite, GOOD, MISSING).astype(np.uint8)
+        if boundary is not None:
+            g[boundary & finite] = NOT_EVALUATED
         g[spikes] = FAIL
         out["goring_nikora"] = g
         return out
@@ -106,6 +110,26 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
                                                  th.flat_line_fail, th.flat_line_tolerance)
     out["dropout"] = qartod.dropout_test(held, sampling_rate, th.dropout, th.hold)
     return out
+
+
+def _local_peak(x: np.ndarray, where: np.ndarray) -> np.ndarray:
+    """True at the samples of ``where`` whose departure from their neighbours' mean,
+    |x_n - (x_(n-1) + x_(n+1))/2| (0 at the first and last samples), is at least that of
+    both neighbours; evaluated at those samples only."""
+    x2 = x.reshape(-1, x.shape[-1])
+    n = x2.shape[-1]
+    r, j = np.nonzero(where.reshape(x2.shape))
+
+    def dep(k):
+        inner = (k >= 1) & (k <= n - 2)
+        kk = np.clip(k, 1, max(n - 2, 1))
+        v = np.abs(x2[r, kk] - 0.5 * (x2[r, kk - 1] + x2[r, np.minimum(kk + 1, n - 1)]))
+        return np.where(inner, v, 0.0)
+
+    d = dep(j)
+    out = np.zeros(x2.shape, dtype=bool)
+    out[r, j] = (d >= dep(j - 1)) & (d >= dep(j + 1))
+    return out.reshape(x.shape)
 
 
 def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float

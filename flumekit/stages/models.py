@@ -16,12 +16,13 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "5"
+VERSION = "6"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
             "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
             "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
-            "spin_up_periods": 20, "irf_duration": 30.0}
+            "spin_up_periods": 20, "irf_duration": 30.0,
+            "linear_pto_damping": "energy_equivalent"}
 DOCS = {
     "coefficients": "hydrodynamic coefficients: 'renzi_dias' (thin plate in the channel) or "
                     "'bem' (Capytaine, thick flap, open water)",
@@ -38,16 +39,24 @@ DOCS = {
     "spin_up_periods": "periods of the incident wave the simulator runs before the compared "
                        "window [-]",
     "irf_duration": "length of the radiation impulse response K(t) of the simulator [s]",
+    "linear_pto_damping": "PTO damping of the linear model (Eq. A1): 'energy_equivalent' "
+                          "(measured mean power / mean(theta_dot^2)) or 'optimal' (maximum "
+                          "power at the run's period, Renzi & Dias 2012 Eq. 2.40)",
 }
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    from flumekit.errors import FlumekitError
+    from flumekit.flap.comparison import LINEAR_PTO_DAMPING
+
     c = ctx.campaign
     if p["coefficients"] not in ("renzi_dias", "bem"):
-        from flumekit.errors import FlumekitError
-
         raise FlumekitError(f"pipeline: [stages.models] coefficients must be 'renzi_dias' or "
                             f"'bem', got {p['coefficients']!r}")
+    if p["linear_pto_damping"] not in LINEAR_PTO_DAMPING:
+        raise FlumekitError(f"pipeline: [stages.models] linear_pto_damping must be one of "
+                            f"{', '.join(map(repr, LINEAR_PTO_DAMPING))}, got "
+                            f"{p['linear_pto_damping']!r}")
     geometry = {"depth": c.flume.water_depth, "flap_width": c.flap.width,
                 "hinge_height": c.flap.hinge_height, "channel_width": c.flume.width,
                 "stiffness": c.flap.buoyancy_stiffness, "inertia": c.flap.inertia}
@@ -63,7 +72,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
                   "friction": p["friction"], "spin_up_periods": p["spin_up_periods"],
-                  **run_params(run)}
+                  "linear_pto_damping": p["linear_pto_damping"], **run_params(run)}
         out.append(Rule(f"comparison/{run.id}", "flumekit.stages.models:compare",
                         inputs={"flap": ctx.out("flap", f"{run.id}.nc"),
                                 "waves": ctx.out("waves", f"{run.id}.nc"),
@@ -111,7 +120,8 @@ def compare(inputs, outputs, params) -> None:
                      read_dataset(inputs["hydro"]), flap_params=campaign.flap, pto=campaign.pto,
                      depth=campaign.flume.water_depth, dt=params["dt"],
                      simulator=params["simulator"], friction=params["friction"],
-                     spin_up_periods=params["spin_up_periods"])
+                     spin_up_periods=params["spin_up_periods"],
+                     linear_pto_damping=params["linear_pto_damping"])
     write_run(ds, outputs, params, "Experiment, linear model and simulator",
               f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}")
 

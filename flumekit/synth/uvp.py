@@ -1,18 +1,21 @@
 """The virtual flume's UVP: along-beam velocities of a known wave field, and the true field.
 
 Kinematics (potential flow) of the incident and reflected regular waves of
-:func:`flumekit.synth.waves.regular_wave_field`, with the same phase convention, ramp-up and
-second-order Stokes bound harmonic, so that the UVP records and the wave-probe/flap records of a
-virtual run describe one flow. With θ_I = ωt - k(x - x_wm), θ_R = ωt - k(2x_r - x - x_wm) + φ
-and z_b = z + hinge_height the elevation above the bed:
+:func:`flumekit.synth.waves.regular_wave_field`, with the same wave theory (by default the
+stream function, :mod:`flumekit.waves.stream_function`), phase convention and ramp-up, so that
+the UVP records and the wave-probe/flap records of a virtual run describe one flow. With
+θ_I = ωt - k(x - x_wm), θ_R = ωt - k(x_r - x_wm) - k_R(x_r - x) + φ and z_b = z + hinge_height
+the elevation above the bed, and the coefficients V_n, c_E of
+:func:`flumekit.synth.waves.wave_harmonics`:
 
-    u = a ω C1 cos θ_I + (3/4) a² ω k C2 cos 2θ_I  -  [same with Kr a, θ_R]
-    w = -(a ω S1 sin θ_I + (3/4) a² ω k S2 sin 2θ_I)  -  [same with Kr a, θ_R]
+    u = c_E e_I² + Σ V_n e_Iⁿ C_n(z_b) cos nθ_I  -  [c_E,R e_R² + same with V_R,n, θ_R]
+    w = -Σ V_n e_Iⁿ S_n(z_b) sin nθ_I  -  [same with V_R,n, θ_R]
 
-with C1 = cosh(k z_b)/sinh(kh), S1 = sinh(k z_b)/sinh(kh), C2 = cosh(2k z_b)/sinh⁴(kh),
-S2 = sinh(2k z_b)/sinh⁴(kh) (second-order Stokes velocities, Dean & Dalrymple 1991, §11.3;
-the linear part alone when ``second_order=False``). The envelopes multiply first-order terms
-once and second-order terms squared, as in the elevation.
+with C_n = cosh(nk z_b)/cosh(nkh), S_n = sinh(nk z_b)/cosh(nkh) (Fenton 1988, Eq. 2 in the
+fixed frame; second-order Stokes velocities of Dean & Dalrymple 1991, §11.3, with
+``theory="stokes2"``). Harmonic n carries the envelope to the power n, as in the elevation; the
+mean (return) current c_E < 0 of a closed flume, its square. Harmonics below
+:data:`HARMONIC_CUTOFF` of the first are left out.
 
 The instrument: each beam's channels (see :mod:`flumekit.uvp.geometry`) sample the velocity
 projected on the beam (positive away from the transducer, the label the reader uses by default),
@@ -22,7 +25,7 @@ and in front of the flap: beyond the free surface the echo is noise with a low a
 or behind the flap the channel sees the flap's rigid-body velocity with a high amplitude.
 
 Reference phase of the truth: phase p = t/T is measured from a zero up-crossing t_up of the
-steady incident elevation at the flap, η_I(x = 0, t) (first and, if enabled, second order),
+steady incident elevation at the flap, η_I(x = 0, t) (every harmonic),
 i.e. t = t_up + p T (:func:`incident_upcrossing`). The pipeline phase-averages the measured
 velocities from the up-crossings of the (separated) incident wave at x = 0; the two agree.
 """
@@ -38,43 +41,62 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.uvp.geometry import beam_geometry, inside_flap
-from flumekit.waves.theory import G, group_velocity, stokes2_coefficient, wavenumber
+from flumekit.waves.theory import G, group_velocity
 
 X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the wavemaker)
 
 
-def _wave(period: float, height: float, depth: float, second_order: bool, g: float = G):
-    from flumekit.synth.waves import first_harmonic_amplitude
+def _harmonics(period: float, height: float, depth: float, theory: str, reflection: float,
+               g: float = G) -> dict:
+    from flumekit.synth.waves import wave_harmonics
 
     if not (period > 0 and height > 0 and depth > 0):
         raise ValueError("period, height and depth must be positive")
-    omega = 2 * np.pi / period
-    k = float(wavenumber(omega, depth, g))
-    a1 = first_harmonic_amplitude(height, k, depth, second_order)
-    a2 = float(stokes2_coefficient(k, depth)) * k * a1**2 if second_order else 0.0
-    return omega, k, a1, a2
+    return wave_harmonics(period, height, depth, reflection, theory, g)
 
 
-def _depth_functions(k: float, depth: float, zb):
-    """C1, S1, C2, S2 of the module notes, overflow-free (exponential form)."""
-    zb = np.asarray(zb, dtype=float)
-    kh = k * depth
-    den = -np.expm1(-2 * kh)  # (1 - e^{-2kh}); sinh(kh) = e^{kh} den / 2
-    e1p, e1m = np.exp(k * zb - kh), np.exp(-k * zb - kh)
-    c1 = (e1p + e1m) / den
-    s1 = (e1p - e1m) / den
-    # cosh(2k zb)/sinh^4(kh) = 8 (e^{2k zb - 4kh} + e^{-2k zb - 4kh}) / den^4
-    e2p, e2m = np.exp(2 * k * zb - 4 * kh), np.exp(-2 * k * zb - 4 * kh)
-    c2 = 8 * (e2p + e2m) / den**4
-    s2 = 8 * (e2p - e2m) / den**4
-    return c1, s1, c2, s2
+def _theory(theory: str | None, second_order: bool) -> str:
+    return theory if theory is not None else ("stream" if second_order else "linear")
+
+
+def _depth_functions(k: float, n: int, depth: float, zb):
+    """cosh(jk z_b)/cosh(jkh), sinh(jk z_b)/cosh(jkh) for j = 1..n [-], shape (..., n).
+
+    Overflow-free (exponential form); ``zb`` [m] above the bed.
+    """
+    zb = np.asarray(zb, dtype=float)[..., None]
+    jk = k * np.arange(1, n + 1)
+    ep, em = np.exp(jk * (zb - depth)), np.exp(-jk * (zb + depth))
+    den = 1.0 + np.exp(-2.0 * jk * depth)
+    return (ep + em) / den, (ep - em) / den
+
+
+def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
+    """η, u, w of one wave along its direction of travel: Σ_n eⁿ (a_n cos nθ,
+    V_n C_n(z_b) cos nθ, V_n S_n(z_b) sin nθ), cos nθ and sin nθ by the Chebyshev recurrences
+    from cos θ and sin θ (no transcendental function per harmonic)."""
+    ch, sh = _depth_functions(k, amps.size, depth, zb)
+    eta = u = w = 0.0
+    c_prev, c_cur = 1.0, cos_t
+    s_prev, s_cur = 0.0, sin_t
+    e_n = env
+    for n in range(amps.size):  # the harmonics kept (about ten)
+        if n:
+            c_prev, c_cur = c_cur, 2 * cos_t * c_cur - c_prev
+            s_prev, s_cur = s_cur, 2 * cos_t * s_cur - s_prev
+            e_n = e_n * env
+        ec, es = e_n * c_cur, e_n * s_cur
+        eta = eta + amps[n] * ec
+        u = u + vel[n] * ch[..., n] * ec
+        w = w + vel[n] * sh[..., n] * es
+    return eta, u, w
 
 
 def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
                     hinge_height: float = 0.10, reflection: float = 0.2,
                     reflection_phase: float = 0.0, x_reflector: float = 0.0,
                     x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = 10.0,
-                    second_order: bool = True, g: float = G
+                    second_order: bool = True, theory: str | None = None, g: float = G
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Velocity and free surface of incident + reflected regular waves (module notes).
 
@@ -91,7 +113,8 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
     x_reflector, x_wavemaker : Reflector (flap) and wavemaker positions [m].
     ramp_waves : Ramp length in periods as in :func:`flumekit.synth.waves.regular_wave_field`;
         ``None`` for the steady state (no ramp, no travel).
-    second_order : Include the second-order Stokes bound harmonic.
+    second_order, theory : The wave theory as in
+        :func:`flumekit.synth.waves.regular_wave_field` (default the stream function).
 
     Returns
     -------
@@ -102,7 +125,9 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
 
     if not 0 <= reflection <= 1:
         raise ValueError(f"reflection coefficient must lie in [0, 1], got {reflection}")
-    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
+    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g)
+    omega = 2 * np.pi / period
+    k, k_r = h["k_incident"], h["k_reflected"]
     x = np.asarray(x, dtype=float)
     t = np.asarray(time, dtype=float)
     d_inc = x - x_wavemaker
@@ -114,60 +139,65 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
         ramp_time = ramp_waves * period / 2.0
         e_i = ramp_envelope(t - d_inc / cg, ramp_time)
         e_r = ramp_envelope(t - d_ref / cg, ramp_time)
-    # cos/sin of θ = ωt - kd by the angle-addition rule: trigonometric functions of t and of x
-    # only, then products (the 2-D arrays need no transcendental function)
+    # cos/sin of θ = ωt - (phase of x) by the angle-addition rule: trigonometric functions of t
+    # and of x only, then products (the 2-D arrays need no transcendental function)
     cwt, swt = np.cos(omega * t), np.sin(omega * t)
-    ci, si = np.cos(k * d_inc), np.sin(k * d_inc)
-    cr, sr = np.cos(k * d_ref - reflection_phase), np.sin(k * d_ref - reflection_phase)
+    p_i = k * d_inc
+    p_r = k * (x_reflector - x_wavemaker) + k_r * (x_reflector - x) - reflection_phase
+    ci, si, cr, sr = np.cos(p_i), np.sin(p_i), np.cos(p_r), np.sin(p_r)
     cos_i, sin_i = cwt * ci + swt * si, swt * ci - cwt * si
     cos_r, sin_r = cwt * cr + swt * sr, swt * cr - cwt * sr
-    c1, s1, c2, s2 = _depth_functions(k, depth, np.asarray(z, dtype=float) + hinge_height)
-    b1 = reflection * a1
-    ai, ar = a1 * e_i, b1 * e_r  # first-order amplitudes with their envelopes
-    u = omega * c1 * (ai * cos_i - ar * cos_r)
-    w = -omega * s1 * (ai * sin_i + ar * sin_r)
-    eta = ai * cos_i + ar * cos_r
-    if second_order:
-        # cos 2θ = 2cos²θ - 1, sin 2θ = 2 sinθ cosθ; second-order terms carry envelope²
-        c2i, s2i = 2 * cos_i**2 - 1, 2 * sin_i * cos_i
-        c2r, s2r = 2 * cos_r**2 - 1, 2 * sin_r * cos_r
-        qi, qr = 0.75 * omega * k * ai**2, 0.75 * omega * k * ar**2
-        u = u + c2 * (qi * c2i - qr * c2r)
-        w = w - s2 * (qi * s2i + qr * s2r)
-        eta = eta + a2 * (np.square(e_i) * c2i + reflection**2 * np.square(e_r) * c2r)
-    return u, w, eta
+    zb = np.asarray(z, dtype=float) + hinge_height
+    eta_i, u_i, w_i = _wave_sums(h["incident"], h["incident_velocity"], k, depth, zb, e_i,
+                                 cos_i, sin_i)
+    eta_r, u_r, w_r = _wave_sums(h["reflected"], h["reflected_velocity"], k_r, depth, zb,
+                                 e_r, cos_r, sin_r)
+    # θ_I = ωt - k d is minus the phase kx - ωt of the wave's own theory, so w flips sign; the
+    # reflected wave travels towards -x, so its u flips sign; the mean (return) currents grow
+    # with the wave energy, e²
+    u = (u_i + h["incident_current"] * np.square(e_i)
+         - u_r - h["reflected_current"] * np.square(e_r))
+    w = -w_i - w_r
+    return u, w, eta_i + eta_r
 
 
 def incident_upcrossing(*, period: float, height: float, depth: float,
                         x_wavemaker: float = X_WAVEMAKER, second_order: bool = True,
+                        theory: str | None = None, harmonics: bool = True,
                         g: float = G) -> float:
     """Time in [0, T) of a zero up-crossing of the steady incident elevation at x = 0 [s].
 
-    Solves a1 cos θ + a2 cos 2θ = 0 with a rising slope for θ = ωt + k x_wm (the up-crossing
-    nearest θ = -π/2, the linear one), by Newton steps.
+    Solves Σ a_n cos nθ = 0 with a rising slope for θ = ωt + k x_wm (the up-crossing nearest
+    θ = -π/2, the linear one), by Newton steps; ``harmonics=False`` keeps the first harmonic
+    only (its wavenumber is still the theory's).
     """
-    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
+    h = _harmonics(period, height, depth, _theory(theory, second_order), 0.0, g)
+    omega, k, a = 2 * np.pi / period, h["k_incident"], h["incident"]
+    a = a if harmonics else a[:1]
+    n = np.arange(1, a.size + 1)
     th = -np.pi / 2
     for _ in range(50):  # Newton on a smooth scalar function: a handful of iterations
-        f = a1 * np.cos(th) + a2 * np.cos(2 * th)
-        df = -a1 * np.sin(th) - 2 * a2 * np.sin(2 * th)
-        step = f / df
+        f = a @ np.cos(n * th)
+        step = f / -(n * a @ np.sin(n * th))
         th -= step
         if abs(step) < 1e-14:
             break
-    if not (-a1 * np.sin(th) - 2 * a2 * np.sin(2 * th)) > 0:
+    if not -(n * a @ np.sin(n * th)) > 0:
         raise ValueError("no rising zero crossing near the linear one (wave too steep)")
     return float(((th - k * x_wavemaker) / omega) % period)
 
 
 def maximum_speed(*, period: float, height: float, depth: float, reflection: float,
-                  second_order: bool = True, g: float = G) -> float:
+                  second_order: bool = True, theory: str | None = None, g: float = G) -> float:
     """Upper bound of the flow speed up to the highest crest [m s-1] (for the velocity range)."""
-    omega, k, a1, a2 = _wave(period, height, depth, second_order, g)
-    zb = depth + (1 + reflection) * (a1 + a2)
-    c1, _, c2, _ = _depth_functions(k, depth, zb)
-    return float((1 + reflection) * (a1 * omega * c1)
-                 + (1 + reflection**2) * (0.75 * a1**2 * omega * k * c2 if second_order else 0))
+    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g)
+    zb = depth + np.sum(np.abs(h["incident"])) + np.sum(np.abs(h["reflected"]))
+    total = abs(h["incident_current"]) + abs(h["reflected_current"])
+    for side, k in (("incident", h["k_incident"]), ("reflected", h["k_reflected"])):
+        vel = h[f"{side}_velocity"]
+        ch, _ = _depth_functions(k, vel.size, depth, zb)
+        total += float(np.sum(np.abs(vel) * ch))
+    return float(total)
 
 
 def campaign_parameters(uvp: UVP) -> dict[str, object]:
@@ -233,7 +263,8 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
               depth: float, hinge_height: float = 0.10, reflection: float = 0.2,
               reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
               ramp_waves: float | None = 10.0, second_order: bool = True,
-              noise: float = 0.005, turbulence: tuple[float, float, float] | None = None,
+              theory: str | None = None, noise: float = 0.005,
+              turbulence: tuple[float, float, float] | None = None,
               theta=None, flap_thickness: float = 0.17, maximum_depth: float | None = None,
               rng: np.random.Generator | int | None = None) -> dict[str, xr.Dataset]:
     """Virtual UVP records of one run, one dataset per beam (as :func:`read_mfprof` returns).
@@ -244,7 +275,7 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     uvp : Campaign UVP settings (channels, beams).
     uvp_elevation : Elevation of the run's UVP mounting above the hinge [m].
     period, height, depth, hinge_height, reflection, reflection_phase, x_wavemaker,
-    ramp_waves, second_order : The wave field, see :func:`wave_kinematics`.
+    ramp_waves, second_order, theory : The wave field, see :func:`wave_kinematics`.
     noise : Standard deviation of the white Doppler noise along the beam [m s-1].
     turbulence : Optional (σ_u [m s-1], σ_w [m s-1], correlation ρ_uw [-]) of Gaussian velocity
         fluctuations band-limited to 0.05-1.5 Hz, independent between channels and beams (a
@@ -276,11 +307,13 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     theta_dot = np.gradient(theta, time)
     wave = dict(period=period, height=height, depth=depth, hinge_height=hinge_height,
                 reflection=reflection, reflection_phase=reflection_phase,
-                x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order)
+                x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order,
+                theory=theory)
     params = instrument_parameters(
         uvp, maximum_depth=maximum_depth,
         max_speed=maximum_speed(period=period, height=height, depth=depth,
-                                reflection=reflection, second_order=second_order))
+                                reflection=reflection, second_order=second_order,
+                                theory=theory))
     dv = velocity_range(params["SoundSpeed"], params["Frequency"],
                         params["MaximumDepth"] * 1e-3) / params["RawDataRange"]
     lo, n_counts = params["RawDataMin"], params["RawDataRange"]
@@ -331,24 +364,26 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
 
 def true_field(campaign: Campaign, *, period: float, height: float, reflection: float = 0.2,
                reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
-               second_order: bool = True, x=None, z=None, n_phase: int = 100,
+               second_order: bool = True, theory: str | None = None, x=None, z=None,
+               n_phase: int = 100,
                theta=None, elevations=None, reference: str = "incident") -> xr.Dataset:
     """The true phase-averaged velocity field on the (phase, z, x) grid of the processed field.
 
     Parameters
     ----------
     campaign : Campaign (water depth, hinge height, flap thickness, UVP beams).
-    period, height, reflection, reflection_phase, x_wavemaker, second_order : The wave field.
+    period, height, reflection, reflection_phase, x_wavemaker, second_order, theory : The wave
+        field (:func:`wave_kinematics`).
     x, z : Grid [m]; default :func:`flumekit.uvp.field.default_grid` of the campaign's beams
         and ``elevations`` (default 0.20, 0.22, ..., 0.72 m, Brito et al. 2020, §2.3).
     n_phase : Number of phases t/T = 0, 1/n_phase, ...
     theta : Optional phase-averaged flap angle over the phase grid [rad]: points inside the
         flap at a phase are masked.
     reference : Phase 0 at the zero up-crossing of the steady incident elevation at x = 0,
-        ``"incident"`` (first + second order, as a zero-crossing analysis of the separated
+        ``"incident"`` (every harmonic, as a zero-crossing analysis of the separated
         incident wave sees it) or ``"first_harmonic"`` (of its first harmonic only). With
-        H = 0.25 m, T = 3.5 s the bound harmonic is 0.43 of the first and the two references
-        differ by 0.054 T: the pipeline and the truth must use the same one.
+        H = 0.25 m, T = 3.5 s the second harmonic is 0.39 of the first and the two references
+        differ by about 0.05 T: the pipeline and the truth must use the same one.
 
     Returns
     -------
@@ -373,14 +408,14 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
     if reference not in ("incident", "first_harmonic"):
         raise ValueError(f"reference must be 'incident' or 'first_harmonic', got {reference!r}")
     t_up = incident_upcrossing(period=period, height=height, depth=depth,
-                               x_wavemaker=x_wavemaker,
-                               second_order=second_order and reference == "incident")
+                               x_wavemaker=x_wavemaker, second_order=second_order,
+                               theory=theory, harmonics=reference == "incident")
     t = (t_up + phase * period)[:, None, None]
     u, w, eta = wave_kinematics(x[None, None, :], z[None, :, None], t, period=period,
                                 height=height, depth=depth, hinge_height=hinge,
                                 reflection=reflection, reflection_phase=reflection_phase,
                                 x_wavemaker=x_wavemaker, ramp_waves=None,
-                                second_order=second_order)
+                                second_order=second_order, theory=theory)
     eta = np.broadcast_to(eta, (n_phase, 1, x.size))[:, 0, :]
     hidden = z[None, :, None] > (eta[:, None, :] + depth - hinge)
     if theta is not None:
@@ -404,6 +439,7 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
                 "phase_reference": t_up, "wave_period": period, "wave_height": height},
         attrs={"water_depth": depth, "reflection_coefficient": reflection,
                "reflection_phase": reflection_phase, "second_order": int(second_order),
+               "wave_theory": _theory(theory, second_order),
                "phase_reference_definition": "t/T = 0 at a zero up-crossing of the steady "
                + ("incident elevation" if reference == "incident" else
                   "first harmonic of the incident elevation") + " at x = 0"})

@@ -9,10 +9,13 @@ returned in the dataset's ``attrs``.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.waves.stream_function import StreamFunctionWave, stream_function_wave
 from flumekit.waves.theory import G, group_velocity, stokes2_coefficient, wavenumber
 
 
@@ -59,11 +62,131 @@ def first_harmonic_amplitude(height: float, k: float, depth: float, second_order
     return (np.sqrt(8 * bk * height) - 1.0) / (4 * bk)
 
 
+THEORIES = ("stream", "stokes2", "linear")
+#: harmonics of a stream-function wave kept in the virtual flume: those above this fraction of
+#: the first harmonic's amplitude (the rest, < 0.015 mm in the flume's range, lie far below the
+#: probes' 0.5 mm noise; about 10 of the 20 computed at T = 3.5 s, H = 0.25 m)
+HARMONIC_CUTOFF = 1e-4
+
+
+@functools.lru_cache(maxsize=64)
+def nonlinear_wave(period: float, height: float, depth: float, g: float = G
+                   ) -> StreamFunctionWave:
+    """The flume's steady nonlinear wave: :func:`flumekit.waves.stream_function_wave` with
+    Stokes' second definition of celerity (zero mean mass transport: a closed flume) and its
+    default 20 modes, cached (a run's records and its UVP evaluate the same wave)."""
+    return stream_function_wave(period, height, depth, current="stokes", g=g)
+
+
+def wave_harmonics(period: float, height: float, depth: float, reflection: float = 0.0,
+                   theory: str = "stream", g: float = G) -> dict[str, object]:
+    """Harmonic amplitudes and wavenumbers of the incident and reflected regular waves.
+
+    Parameters
+    ----------
+    period : Wave period T [s].
+    height : Crest-to-trough height H of the incident wave [m].
+    depth : Still water depth h [m].
+    reflection : Reflection coefficient Kr of the first harmonic [-].
+    theory : ``"stream"`` (stream function, :mod:`flumekit.waves.stream_function`),
+        ``"stokes2"`` (second-order Stokes) or ``"linear"``.
+    g : Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    dict with ``k_incident``, ``k_reflected`` [rad m-1] (harmonic n travels with n k),
+    ``incident`` and ``reflected`` (amplitudes of harmonics 1, 2, ... [m]; η = Σ a_n cos nθ),
+    ``incident_velocity`` and ``reflected_velocity`` (V_n [m s-1]) and ``incident_current``,
+    ``reflected_current`` (c_E [m s-1]) of the velocity in the direction of travel
+    u = c_E + Σ V_n cosh(nk z_b)/cosh(nkh) cos nθ, w = Σ V_n sinh(nk z_b)/cosh(nkh) sin nθ
+    (z_b above the bed, θ = kx - ωt along the direction of travel), and the incident
+    ``wave`` (:class:`~flumekit.waves.stream_function.StreamFunctionWave`, or None).
+
+    Notes
+    -----
+    ``"stream"``: the incident wave is the steady wave of height H, its harmonics from the
+    first down to :data:`HARMONIC_CUTOFF` of the first's amplitude; the reflected wave is the
+    steady wave of height Kr H, its harmonics scaled by the one factor that makes its first
+    harmonic exactly Kr a1 (Kr is defined, and measured by the separation, on the first
+    harmonic). This treats the reflected wave as a free steady wave of its own travelling
+    away from the reflector, which it is once it has left the flap; the nonlinear interaction
+    of the incident and reflected waves (at order Kr (k a)², a few % of the second harmonic for
+    Kr = 0.2) is omitted. Its wavenumber is its own (nearly the linear one at its small
+    height), the incident's is smaller than the linear one by up to 5 % in the flume's range
+    (amplitude dispersion).
+    Its velocities are scaled by the same factor and its mean current by its square.
+    ``"stokes2"``: a1 from :func:`first_harmonic_amplitude`, a2 = B k a1², the reflected wave
+    Kr a1 and Kr² a2; both with the linear wavenumber; V1 = a1 ω / tanh kh,
+    V2 = (3/4) a1² ω k cosh 2kh / sinh⁴ kh (Dean & Dalrymple 1991, §11.3), no mean current.
+    """
+    if theory not in THEORIES:
+        raise ValueError(f"theory must be one of {THEORIES}, got {theory!r}")
+    omega = 2 * np.pi / period
+    if theory == "stream":
+        inc = nonlinear_wave(period, height, depth, g)
+        a_inc = inc.elevation_coefficients
+        n_kept = int(np.flatnonzero(np.abs(a_inc) > HARMONIC_CUTOFF * a_inc[0])[-1]) + 1
+        a_inc = a_inc[:n_kept]
+        v_inc = (inc.stream_coefficients * inc.wavenumber
+                 * np.arange(1, inc.n_modes + 1))[:n_kept]
+        out = {"k_incident": inc.wavenumber, "incident": a_inc, "incident_velocity": v_inc,
+               "incident_current": inc.eulerian_current, "wave": inc,
+               "k_reflected": inc.wavenumber, "reflected": 0 * a_inc[:1],
+               "reflected_velocity": 0 * v_inc[:1], "reflected_current": 0.0}
+        if reflection > 0:
+            ref = nonlinear_wave(period, reflection * height, depth, g)
+            scale = reflection * a_inc[0] / ref.elevation_coefficients[0]
+            a_ref = scale * ref.elevation_coefficients
+            n_kept = int(np.flatnonzero(np.abs(a_ref) > HARMONIC_CUTOFF * a_inc[0])[-1]) + 1
+            n = np.arange(1, n_kept + 1)
+            out.update(k_reflected=ref.wavenumber, reflected=a_ref[:n_kept],
+                       reflected_velocity=scale * ref.stream_coefficients[:n_kept]
+                       * ref.wavenumber * n,
+                       reflected_current=scale**2 * ref.eulerian_current)
+        return out
+    k = float(wavenumber(omega, depth, g))
+    a1 = first_harmonic_amplitude(height, k, depth, theory == "stokes2")
+    q = np.exp(-2.0 * k * depth)
+    vel = [a1 * omega * (1 + q) / (1 - q)]  # a ω / tanh kh
+    amps = [a1]
+    if theory == "stokes2":
+        amps.append(float(stokes2_coefficient(k, depth)) * k * a1**2)
+        vel.append(0.75 * a1**2 * omega * k * 8 * q * (1 + q * q) / (1 - q) ** 4)
+    amps, vel = np.array(amps), np.array(vel)
+    kr_n = reflection ** np.arange(1, amps.size + 1)
+    return {"k_incident": k, "k_reflected": k, "incident": amps, "reflected": amps * kr_n,
+            "incident_velocity": vel, "reflected_velocity": vel * kr_n,
+            "incident_current": 0.0, "reflected_current": 0.0, "wave": None}
+
+
+def harmonic_sum(amplitudes, envelope, cos_theta, sin_theta=None):
+    """Σ_n a_n eⁿ cos nθ (and Σ_n a_n eⁿ sin nθ) [m] from cos θ and sin θ.
+
+    The envelope scales harmonic n by eⁿ, as the bound harmonics of a slowly modulated Stokes
+    wave; cos nθ, sin nθ come from the Chebyshev recurrences (no transcendental function per
+    harmonic). ``amplitudes`` may hold depth-dependent factors as a last axis of length N.
+    """
+    a = np.asarray(amplitudes, dtype=float)
+    c_prev, c_cur = np.ones_like(cos_theta), cos_theta
+    s_prev, s_cur = np.zeros_like(cos_theta), sin_theta
+    e_n = envelope
+    out_c = a[..., 0] * e_n * c_cur
+    out_s = None if sin_theta is None else a[..., 0] * e_n * s_cur
+    for n in range(1, a.shape[-1]):  # a few tens of harmonics
+        c_prev, c_cur = c_cur, 2 * cos_theta * c_cur - c_prev
+        e_n = e_n * envelope
+        out_c = out_c + a[..., n] * e_n * c_cur
+        if sin_theta is not None:
+            s_prev, s_cur = s_cur, 2 * cos_theta * s_cur - s_prev
+            out_s = out_s + a[..., n] * e_n * s_cur
+    return out_c if sin_theta is None else (out_c, out_s)
+
+
 def regular_wave_field(time, x, *, period: float, height: float, depth: float,
                        reflection: float = 0.2, reflection_phase: float = 0.0,
                        x_reflector: float = 0.0, ramp_waves: float = 10.0,
                        second_order: bool = True, x_wavemaker: float = -32.7,
-                       g: float = G) -> xr.Dataset:
+                       theory: str | None = None, g: float = G) -> xr.Dataset:
     """Regular incident and reflected waves with a ramp-up, at probe positions ``x``.
 
     Parameters
@@ -82,42 +205,48 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
         periods. The default (10) with the travel time from the wavemaker makes records
         quasi-steady (Brito et al. 2020, §2.5 criterion) after about 35 waves at the flap for
         T = 3.5 s, as in the paper.
-    second_order : Add the second-order Stokes bound harmonic of the incident wave and of the
-        reflected wave.
+    second_order : Include the bound harmonics (``theory`` "stream" when True, "linear" when
+        False, unless ``theory`` is given).
     x_wavemaker : Position of the wavemaker [m] (the envelope starts there at t = 0).
+    theory : ``"stream"`` (stream-function theory, valid in every depth up to near breaking),
+        ``"stokes2"`` (second-order Stokes, valid for Ursell numbers ≲ 26) or ``"linear"``;
+        see :func:`wave_harmonics`.
     g : Gravitational acceleration [m s-2].
 
     Returns
     -------
     Dataset over ("x", "time") with ``eta_incident``, ``eta_reflected`` and ``eta`` (their sum)
     [m]. ``attrs`` hold the truth: ``incident_amplitude`` (first harmonic a1),
-    ``bound_amplitude`` (a2 = B k a1², 0 if linear), ``reflection_coefficient``,
-    ``reflection_phase``, ``wave_height`` (H), ``wave_period``, ``wave_number``, ``wavelength``,
-    ``group_velocity``, ``ursell_number`` and the geometry.
+    ``bound_amplitude`` (second harmonic a2, 0 if linear), ``harmonic_amplitudes`` (a_n of the
+    incident wave), ``reflection_coefficient`` (of the first harmonic), ``reflection_phase``,
+    ``wave_height`` (H), ``wave_period``, ``wave_number`` (of the incident wave's first
+    harmonic: the nonlinear one for "stream"), ``reflected_wave_number``,
+    ``linear_wave_number``, ``wavelength``,
+    ``group_velocity``, ``ursell_number``, ``wave_theory`` and the geometry.
 
     Notes
     -----
     Incident, with θ_I = ωt - k(x - x_wm) and envelope e_I = e(t - (x - x_wm)/c_g):
-    η_I = a1 e_I cos θ_I + B k a1² e_I² cos 2θ_I (Stokes 2nd order, Dean & Dalrymple 1991).
-    Reflected, the mirror image x → 2 x_r - x: θ_R = ωt - k(2x_r - x - x_wm) + φ,
-    η_R = Kr a1 e_R cos θ_R + B k (Kr a1)² e_R² cos 2θ_R, i.e. its own bound harmonic
-    (amplitude Kr² a2, phase 2φ). The envelope is advected with the group velocity without
-    dispersion; the second-order set-down and the incident-reflected interaction term (at 2ω
-    with wavenumber 0, of order Kr k a1²) are omitted, as are re-reflections at the wavemaker
+    η_I = Σ_n a_n e_I^n cos nθ_I. Reflected, the mirror image x → 2 x_r - x with its own
+    wavenumber k_R: θ_R = ωt - k_I (x_r - x_wm) - k_R (x_r - x) + φ,
+    η_R = Σ_n b_n e_R^n cos nθ_R, b_1 = Kr a1 (:func:`wave_harmonics`). With "stokes2",
+    a2 = B k a1² and b2 = Kr² a2 (Dean & Dalrymple 1991). The envelope is advected with the
+    linear group velocity without dispersion; the set-down under the groups and the
+    incident-reflected interaction terms are omitted, as are re-reflections at the wavemaker
     (active absorption). Second-order Stokes theory is valid for Ursell numbers
-    H L² / h³ ≲ 26; the longer waves of the campaign exceed that.
+    H L² / h³ ≲ 26; the flume's longer waves reach 65, which the stream function covers.
     """
     _check_positive(period=period, height=height, depth=depth, ramp_waves=ramp_waves)
     if not 0 <= reflection <= 1:
         raise ValueError(f"reflection coefficient must lie in [0, 1], got {reflection}")
     if not x_wavemaker < x_reflector:
         raise ValueError("the wavemaker must lie upstream (x smaller) of the reflector")
+    theory = theory if theory is not None else ("stream" if second_order else "linear")
     time, x = _check_grid(time, x, x_wavemaker, x_reflector)
     omega = 2 * np.pi / period
-    k = float(wavenumber(omega, depth, g))
+    harm = wave_harmonics(period, height, depth, reflection, theory, g)
+    k, k_r = harm["k_incident"], harm["k_reflected"]
     cg = float(group_velocity(period, depth, g))
-    a1 = first_harmonic_amplitude(height, k, depth, second_order)
-    a2 = float(stokes2_coefficient(k, depth)) * k * a1**2 if second_order else 0.0
 
     t = time[None, :]
     d_inc = (x - x_wavemaker)[:, None]  # travelled distance of the incident wave
@@ -126,22 +255,27 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     e_i = ramp_envelope(t - d_inc / cg, ramp_time)
     e_r = ramp_envelope(t - d_ref / cg, ramp_time)
     th_i = omega * t - k * d_inc
-    th_r = omega * t - k * d_ref + reflection_phase
-    eta_i = a1 * e_i * np.cos(th_i) + a2 * e_i**2 * np.cos(2 * th_i)
-    eta_r = (reflection * a1 * e_r * np.cos(th_r)
-             + reflection**2 * a2 * e_r**2 * np.cos(2 * th_r))
+    th_r = (omega * t - k * (x_reflector - x_wavemaker) - k_r * (x_reflector - x)[:, None]
+            + reflection_phase)
+    eta_i = harmonic_sum(harm["incident"], e_i, np.cos(th_i))
+    eta_r = harmonic_sum(harm["reflected"], e_r, np.cos(th_r))
     L = 2 * np.pi / k
+    amps = harm["incident"]
     ds = xr.Dataset(
         {"eta_incident": (("x", "time"), eta_i), "eta_reflected": (("x", "time"), eta_r),
          "eta": (("x", "time"), eta_i + eta_r)},
         coords={"x": x, "time": time},
         attrs={"wave_period": period, "wave_height": height, "depth": depth,
-               "incident_amplitude": a1, "bound_amplitude": a2,
+               "incident_amplitude": float(amps[0]),
+               "bound_amplitude": float(amps[1]) if amps.size > 1 else 0.0,
+               "harmonic_amplitudes": np.asarray(amps, dtype=float),
                "reflection_coefficient": reflection, "reflection_phase": reflection_phase,
-               "wave_number": k, "wavelength": L, "group_velocity": cg,
+               "wave_number": k, "reflected_wave_number": k_r,
+               "linear_wave_number": float(wavenumber(omega, depth, g)),
+               "wavelength": L, "group_velocity": cg,
                "ursell_number": height * L**2 / depth**3, "x_reflector": x_reflector,
                "x_wavemaker": x_wavemaker, "ramp_waves": ramp_waves,
-               "second_order": int(second_order),
+               "second_order": int(theory != "linear"), "wave_theory": theory,
                "phase_reference": "incident phase zero at the wavemaker: "
                                   "theta = w t - k (x - x_wavemaker)"})
     return conventions.annotate(ds)

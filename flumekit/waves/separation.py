@@ -161,6 +161,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
              x=None, sampling_rate: float | None = None,
              regular: bool | None = None, period: float | None = None,
              bound_harmonics: bool | None = None,
+             wavenumbers: tuple[float, float] | None = None,
              window: str | None = None, max_condition: float = MAX_CONDITION,
              warn_fraction: float = 0.01, g: float = G) -> xr.Dataset:
     """Separate incident and reflected waves from simultaneous probe records.
@@ -208,6 +209,13 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         Fit harmonics n ≥ 2 as bound (phase-locked) waves with wavenumber n·k1
         instead of free waves (implies ``regular``). Default: True for a record detected as
         regular, False otherwise.
+    wavenumbers : tuple of float, optional
+        First-harmonic wavenumbers (k_I, k_R) [rad m-1] of the incident and the reflected wave
+        of a ``regular`` record, when they differ from the linear k(f1): a steep wave travels
+        faster than linear theory says (amplitude dispersion), by up to 5 % in the flume of
+        Brito et al. 2020, and its reflection, lower, nearly at the linear speed. Bound
+        harmonics then travel with n k_I and n k_R. Default: both from linear dispersion
+        (see :func:`flumekit.waves.analyse_run` for the nonlinear ones).
     window : str, optional
         Taper (any ``scipy.signal.get_window`` name, e.g. "hann") for the spectra
         and the irregular-wave statistics (Kr, Hm0, masked energy); the elevation time series
@@ -310,19 +318,23 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         if period is None:  # the peak bin, refined: up to half a bin off otherwise
             f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
-        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g)
+        k1 = (None, None) if wavenumbers is None else wavenumbers
+        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
+        _, _, kh_r, k_r = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
     else:
-        k = wavenumber(2 * np.pi * f, depth, g)
+        if wavenumbers is not None:
+            raise ValueError("wavenumbers applies to a regular record (regular=True)")
+        k = k_r = wavenumber(2 * np.pi * f, depth, g)
 
     phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
-    columns = np.stack([phase, np.conj(phase)], axis=-1)  # (F, P, 2)
+    columns = np.stack([phase, np.exp(1j * k_r[:, None] * x[None, :])], axis=-1)  # (F, P, 2)
     sol, cond, masked = lstsq_normal(columns, np.stack(rhs, axis=-1), max_condition)
     a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
     # energy bookkeeping on the (tapered) spectrum used for statistics
     e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,
                                                  f, k, x, max_condition, warn_fraction)
     m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
-    eta_i, eta_r = _elevations_at(a_inc[:, 0], a_ref[:, 0], k, x_ref, sel, n)
+    eta_i, eta_r = _elevations_at(a_inc[:, 0], a_ref[:, 0], k, k_r, x_ref, sel, n)
 
     df = freq[1]
     data = {
@@ -337,7 +349,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     if regular:
         nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
         nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
-        stats, coords["harmonic"] = _regular_statistics(v, t, x, f1, kh[:nh], x_ref,
+        stats, coords["harmonic"] = _regular_statistics(v, t, x, f1, kh[:nh], kh_r[:nh], x_ref,
                                                         max_condition)
         data.update(stats)
     else:
@@ -355,7 +367,10 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         "regular": int(regular), "regular_detection": detection,
         "bound_harmonics": int(bound_harmonics),
         "max_condition": max_condition, "depth": float(depth),
-        **({"fundamental_frequency": f1} if regular else {}),
+        **({"fundamental_frequency": f1,
+            "fundamental_wavenumbers": [float(kh[0]), float(kh_r[0])],
+            "wavenumber_source": "linear dispersion" if wavenumbers is None else "given"}
+           if regular else {}),
         "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
     return conventions.annotate(ds)
 
@@ -397,20 +412,22 @@ def _band_bins(t: np.ndarray, band: tuple[float, float] | None
 
 
 def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harmonics: bool,
-                          g: float):
+                          g: float, k1: float | None = None):
     """Wavenumbers of the bins of a regular wave (see ``regular`` in :func:`separate`).
 
     Returns the fundamental frequency f1 = 1/``period`` [Hz], the harmonic number of each bin
     (0 below f1/2), the wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per
-    bin [rad m-1].
+    bin [rad m-1]. ``k1`` replaces the linear wavenumber of the first harmonic (and so of the
+    bound ones).
     """
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     f1 = 1.0 / float(period)
     harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
-    k1 = float(wavenumber(2 * np.pi * f1, depth, g))
+    k1 = float(wavenumber(2 * np.pi * f1, depth, g)) if k1 is None else float(k1)
     hmax = max(int(harmonic.max()), 1)
     kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
+    kh[0] = k1
     if bound_harmonics:
         kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
     k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
@@ -451,33 +468,34 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
     return e_inc, e_ref, masked_fraction
 
 
-def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, x_ref: float,
-                   sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, k_r: np.ndarray,
+                   x_ref: float, sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
     """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes.
 
-    The untapered amplitudes, by inverse FFT of an ``n``-sample record.
+    The untapered amplitudes, by inverse FFT of an ``n``-sample record; ``k``, ``k_r`` the
+    incident and reflected wavenumbers per bin.
     """
-    shift_i = np.exp(-1j * k * x_ref)
     spec_i = np.zeros(n // 2 + 1, complex)
     spec_r = np.zeros(n // 2 + 1, complex)
-    spec_i[sel] = a_inc * shift_i * (n / 2.0)
-    spec_r[sel] = a_ref * np.conj(shift_i) * (n / 2.0)
+    spec_i[sel] = a_inc * np.exp(-1j * k * x_ref) * (n / 2.0)
+    spec_r[sel] = a_ref * np.exp(1j * k_r * x_ref) * (n / 2.0)
     return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
 
 
 def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
-                        kh: np.ndarray, x_ref: float, max_condition: float):
+                        kh: np.ndarray, kh_r: np.ndarray, x_ref: float, max_condition: float):
     """Statistics of a regular wave from its harmonics at their exact frequencies.
 
     A least-squares harmonic fit per probe (leakage-free for any record length), separated by
-    the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh`` the wavenumber of each
-    harmonic kept [rad m-1]. Returns the dataset variables (see :func:`separate`) and the
-    ``harmonic`` coordinate.
+    the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh``, ``kh_r`` the
+    incident and reflected wavenumbers of each harmonic kept [rad m-1]. Returns the dataset
+    variables (see :func:`separate`) and the ``harmonic`` coordinate.
     """
     nh = kh.size
     coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
     ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
-    sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, np.conj(ph_h)], axis=-1),
+    ph_r = np.exp(1j * kh_r[:, None] * x[None, :])
+    sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, ph_r], axis=-1),
                                            coef.T[:, :, None], max_condition)
     if masked_h[0]:
         raise ValueError(
@@ -486,7 +504,7 @@ def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
             "incident and reflected waves cannot be separated; change the spacing")
     n_h = np.arange(1, nh + 1)
     z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
-                  sol_h[:, 1, 0] * np.exp(1j * kh * x_ref)])  # (2, nh) at x_ref
+                  sol_h[:, 1, 0] * np.exp(1j * kh_r * x_ref)])  # (2, nh) at x_ref
     amp_i, amp_r = np.abs(z)
     psi = 2 * np.pi * np.arange(512) / 512
     wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)

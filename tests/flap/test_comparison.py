@@ -96,3 +96,50 @@ def test_bem_container(tmp_path):
     assert h.sizes["angular_frequency"] == 6 and np.all(h.radiation_damping > 0)
     at = cmp.coefficients_at(h, 3.0)
     assert at.added_inertia.item() > 0
+
+
+@pytest.mark.parametrize("period", [2.5, 3.5])
+def test_optimal_pto_damping_maximises_the_linear_power(hydro, period):
+    """RD12 Eq. (2.40): P(ν_pto) = ½ ν_pto ω² |X A|² / [R² + ω²(ν + ν_pto)²] is largest at
+    ν_pto² = R²/ω² + ν² (dP/dν_pto = 0). Checked against the Eq. (A1) power on a 0.1 % grid of
+    ν_pto: the grid's best is the closed form's neighbour, within one step (0.1 %)."""
+    from flumekit.hydro.response import optimal_pto_damping, response
+
+    at = cmp.coefficients_at(hydro, period)
+    nu_opt = float(optimal_pto_damping(at, 14.74, 605.0).values[0])
+    grid = nu_opt * np.exp(np.linspace(-0.5, 0.5, 1001))  # steps of 0.1 %
+    power = np.array([float(response(at, 0.125, 14.74, 605.0, nu).mean_power.values[0])
+                      for nu in grid])
+    assert grid[np.argmax(power)] == pytest.approx(nu_opt, rel=1.1e-3)
+    assert power[np.argmax(power)] == pytest.approx(
+        float(response(at, 0.125, 14.74, 605.0, nu_opt).mean_power.values[0]), rel=1e-6)
+
+
+def _run_datasets(period=3.5, height=0.25, nu=400.0):
+    t = np.arange(0, 200, 0.01)
+    theta_dot = 0.3 * np.cos(2 * np.pi * t / period)
+    flap = xr.Dataset({"theta_dot": ("time", theta_dot),
+                       "mean_power": nu * np.mean(theta_dot[(t >= 50) & (t <= 150)] ** 2),
+                       "steady_start": 50.0, "steady_end": 150.0},
+                      coords={"time": t, "phase": np.arange(100) / 100})
+    waves = xr.Dataset({"measured_period": period, "incident_height": height})
+    return flap, waves
+
+
+@pytest.mark.parametrize("method", ["energy_equivalent", "optimal"])
+def test_linear_model_pto_damping_method(hydro, method):
+    """The linear model uses the chosen ν_pto, records how, and its power is ν_pto ω² Θ² / 2."""
+    from flumekit.hydro.response import optimal_pto_damping
+
+    flap, waves = _run_datasets()
+    out, extra = cmp.linear_model(flap, waves, hydro, 14.74, 605.0, pto_damping=method)
+    nu = float(extra["pto_damping"])
+    expected = (400.0 if method == "energy_equivalent" else
+                float(optimal_pto_damping(cmp.coefficients_at(hydro, 3.5), 14.74, 605.0)[0]))
+    assert nu == pytest.approx(expected, rel=1e-9)
+    assert extra["pto_damping"].attrs["method"] == method
+    omega = 2 * np.pi / 3.5
+    assert out["mean_power"] == pytest.approx(0.5 * nu * omega**2 * out["theta_amplitude"]**2,
+                                              rel=1e-9)
+    with pytest.raises(ValueError, match="linear_pto_damping"):
+        cmp.linear_model(flap, waves, hydro, 14.74, 605.0, pto_damping="Lorentz")

@@ -12,6 +12,7 @@ from flumekit.synth.waves import (
     regular_wave_field,
 )
 from flumekit.waves import group_velocity, stokes2_coefficient, wavenumber
+from flumekit.waves.stream_function import stream_function_wave
 
 H = 0.825
 FS = 25.0
@@ -23,19 +24,55 @@ def _harmonic(eta, t, f, n=1):
 
 
 @pytest.mark.parametrize("period, height", [(2.0, 0.15), (3.5, 0.05), (3.5, 0.25), (4.0, 0.3)])
-def test_steady_incident_crest_to_trough_height_is_the_target(period, height):
-    # includes trough-splitting second-order waves (T = 3.5 s, H = 0.25 m: 4 B k a1 > 1)
+@pytest.mark.parametrize("theory", ["stokes2", "stream"])
+def test_steady_incident_crest_to_trough_height_is_the_target(period, height, theory):
+    # Stokes 2 includes trough-splitting waves (T = 3.5 s, H = 0.25 m: 4 B k a1 > 1)
     t = 300 * period + np.arange(int(10 * period * 200)) / 200.0  # fine sampling for extrema
-    ds = regular_wave_field(t, [-5.0], period=period, height=height, depth=H)
+    ds = regular_wave_field(t, [-5.0], period=period, height=height, depth=H, theory=theory)
     c = cycles(ds.eta_incident.values[0], t)
     np.testing.assert_allclose(c.height, height, rtol=2e-4)  # 200 Hz sampling of the extrema
     a1 = ds.attrs["incident_amplitude"]
-    k = wavenumber(2 * np.pi / period, H)
-    assert ds.attrs["bound_amplitude"] == pytest.approx(stokes2_coefficient(k, H) * k * a1**2)
-    z = _harmonic(ds.eta_incident.values[0], t, 1 / period)
-    assert abs(z) == pytest.approx(a1, rel=1e-9)
-    z2 = _harmonic(ds.eta_incident.values[0], t, 1 / period, 2)
-    assert abs(z2) == pytest.approx(ds.attrs["bound_amplitude"], rel=1e-9)
+    if theory == "stokes2":
+        k = wavenumber(2 * np.pi / period, H)
+        assert ds.attrs["bound_amplitude"] == pytest.approx(
+            stokes2_coefficient(k, H) * k * a1**2)
+        assert ds.attrs["wave_number"] == k
+    else:  # the stream-function wave's harmonics down to 1e-4 of the first, its wavenumber
+        w = stream_function_wave(period, height, H, current="stokes")
+        e = w.elevation_coefficients
+        kept = ds.attrs["harmonic_amplitudes"]
+        np.testing.assert_array_equal(kept, e[:kept.size])
+        assert np.all(np.abs(e[kept.size:]) <= 1e-4 * e[0]) and abs(e[kept.size - 1]) > 1e-4 * e[0]
+        assert ds.attrs["wave_number"] == w.wavenumber
+    amps = ds.attrs["harmonic_amplitudes"]
+    assert amps[0] == a1 and amps[1] == ds.attrs["bound_amplitude"]
+    for n in range(1, min(amps.size, 6) + 1):  # every harmonic of the record is the truth's
+        zn = _harmonic(ds.eta_incident.values[0], t, 1 / period, n)
+        assert abs(zn) == pytest.approx(amps[n - 1], rel=1e-8, abs=1e-12)
+
+
+def test_stream_function_wave_travels_with_its_nonlinear_wavenumber():
+    # harmonic n of the incident wave travels with n k, k the nonlinear wavenumber (3 % below
+    # the linear one at T = 3.5 s, H = 0.25 m); the reflected wave with its own
+    T = 3.5
+    t = 300 * T + np.arange(int(10 * T * FS)) / FS
+    ds = regular_wave_field(t, np.array([-4.0, -3.0]), period=T, height=0.25, depth=H,
+                            reflection=0.3)
+    k, k_r = ds.attrs["wave_number"], ds.attrs["reflected_wave_number"]
+    assert k / ds.attrs["linear_wave_number"] == pytest.approx(0.968, abs=0.002)
+    assert k < k_r < ds.attrs["linear_wave_number"]
+    for n in (1, 2, 3):
+        zi = _harmonic(ds.eta_incident.values, t, 1 / T, n)
+        zr = _harmonic(ds.eta_reflected.values, t, 1 / T, n)
+        assert np.angle(zi[1] / zi[0]) == pytest.approx(np.angle(np.exp(-1j * n * k)), abs=1e-9)
+        assert np.angle(zr[1] / zr[0]) == pytest.approx(np.angle(np.exp(1j * n * k_r)), abs=1e-9)
+    # Kr is the first-harmonic ratio exactly; the reflected harmonics are those of the
+    # stream-function wave of height Kr H, scaled to that first harmonic
+    z1 = _harmonic(ds.eta_reflected.values[0], t, 1 / T)
+    assert abs(z1) == pytest.approx(0.3 * ds.attrs["incident_amplitude"], rel=1e-9)
+    e = stream_function_wave(T, 0.3 * 0.25, H).elevation_coefficients
+    z2 = _harmonic(ds.eta_reflected.values[0], t, 1 / T, 2)
+    assert abs(z2) == pytest.approx(abs(z1) * e[1] / e[0], rel=1e-8)
 
 
 def test_first_harmonic_amplitude_branches():
@@ -71,7 +108,8 @@ def test_incident_travels_towards_plus_x_with_the_phase_speed_and_reflected_back
 def test_reflected_bound_harmonic_is_kr_squared():
     T, kr = 3.0, 0.4
     t = 300 * T + np.arange(int(10 * T * FS)) / FS
-    ds = regular_wave_field(t, [-2.0], period=T, height=0.15, depth=H, reflection=kr)
+    ds = regular_wave_field(t, [-2.0], period=T, height=0.15, depth=H, reflection=kr,
+                            theory="stokes2")
     z2 = _harmonic(ds.eta_reflected.values[0], t, 1 / T, 2)
     assert abs(z2) == pytest.approx(kr**2 * ds.attrs["bound_amplitude"], rel=1e-9)
 
