@@ -97,6 +97,7 @@ VARIABLES: dict[str, Variable] = {
     # --- waves ---
     "eta_incident": _V("m", "incident water surface elevation"),
     "eta_reflected": _V("m", "reflected water surface elevation"),
+    "eta_beach": _V("m", "water surface elevation of the wave returning from the beach"),
     "spectrum_incident": _V("m2 s", "variance density of the incident wave"),
     "spectrum_reflected": _V("m2 s", "variance density of the reflected wave"),
     "reflection_coefficient": _V("1", "reflection coefficient Kr"),

@@ -211,10 +211,7 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     x = np.asarray(x)
     if x.dtype.kind in "iu" and x.size:
         x2 = x.reshape(-1, x.shape[-1])
-        lo = int(x2.min())
-        span = int(x2.max()) - lo + 1
-        if span * x2.shape[0] <= 4 * x2.size:
-            return _histogram_median(x2, lo, span).reshape(x.shape[:-1])
+        return _histogram_median(x2).reshape(x.shape[:-1])
     x = np.asarray(x, dtype=float)
     nan = np.isnan(x)
     if not nan.any():
@@ -226,16 +223,29 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     return np.where(k > 0, 0.5 * (lo + hi), np.nan)
 
 
-def _histogram_median(x: np.ndarray, lo: int, span: int) -> np.ndarray:
-    """Exact median of each row of the integer (m, n) array ``x`` (values in [lo, lo + span))
-    from its histogram: the mean of the values of ranks (n - 1) // 2 and n // 2."""
+#: bins of the histogram median; values beyond the last fall in it (a median there is recomputed)
+_BINS = 1024
+
+
+def _histogram_median(x: np.ndarray) -> np.ndarray:
+    """Exact median of each row of the integer (m, n) array ``x`` from its histogram: the mean
+    of the values of ranks (n - 1) // 2 and n // 2. The histogram spans ``_BINS`` values from
+    the row's minimum, the rest counted in the last bin, which is exact unless a median falls
+    there (a row with half its values that far up: sorted instead)."""
     m, n = x.shape
-    idx = (x - lo).astype(np.int64)
-    idx += (np.arange(m, dtype=np.int64) * span)[:, None]
-    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * span).reshape(m, span), axis=-1)
+    lo = x.min(axis=-1).astype(np.int64)
+    idx = x.astype(np.int64)
+    idx -= lo[:, None]
+    np.minimum(idx, _BINS - 1, out=idx)
+    idx += (np.arange(m, dtype=np.int64) * _BINS)[:, None]
+    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * _BINS).reshape(m, _BINS), axis=-1)
     lower = np.argmax(cum > (n - 1) // 2, axis=-1)
     upper = np.argmax(cum > n // 2, axis=-1)
-    return lo + 0.5 * (lower + upper)
+    med = lo + 0.5 * (lower + upper)
+    far = upper >= _BINS - 1
+    if far.any():
+        med[far] = np.median(x[far], axis=-1)
+    return med
 
 
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:

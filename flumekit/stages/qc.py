@@ -4,16 +4,18 @@ Per run and instrument one rule reads the raw record, checks it against its meta
 stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` (and the
 Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.nc``: the QC'd
 values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
-counts. The eta, flap and uvp stages read these instead of the raw files.
+counts. The eta, flap and uvp stages read these instead of the raw files. The UVP is checked
+after the waves stage, over the quasi-steady part of the run that its average may read.
 """
 
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
+from flumekit.stages import uvp as uvp_stage
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "1"
+VERSION = "2"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -45,7 +47,8 @@ DOCS = {
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
-    "clock_tolerance": "probe-to-flap lag departing from the runs of the same condition by more "
+    "clock_tolerance": "probe-to-flap lag departing from the lag expected for the run's wave "
+                       "condition (its other runs, else the neighbouring conditions) by more "
                        "than this is reported as a possible clock offset [s]",
 }
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
@@ -75,10 +78,17 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                                     "time_offset": run.clock.get("flap", 0.0)},
                             version=VERSION, run=run.id))
         if c.uvp is not None and run.kind == "uvp":
+            # the UVP is checked over the quasi-steady part of the waves (the waves stage's)
+            # and the filter's pad, the only samples the UVP average may read
             out.append(Rule(f"qc/uvp/{run.id}", "flumekit.stages.qc:uvp",
-                            inputs={b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams},
+                            inputs={**{b.name: run.path / f"{b.name}.mfprof"
+                                       for b in c.uvp.beams},
+                                    "waves": ctx.out("waves", f"{run.id}.nc")},
                             outputs={"dataset": ctx.out("qc", "uvp", f"{run.id}.nc")},
-                            params=rp, version=VERSION, run=run.id))
+                            params={**rp, "uvp_cutoff": ctx.stage_params(
+                                        "uvp", uvp_stage.DEFAULTS)["cutoff"],
+                                    "time_offset": run.clock.get("uvp", 0.0)},
+                            version=VERSION, run=run.id))
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
               for r in c.runs for kind in ("probes", "flap")
               if kind == "probes" or "flap" in c.instruments}
@@ -184,26 +194,60 @@ def flap(inputs, outputs, params) -> None:
 
 
 def uvp(inputs, outputs, params) -> None:
-    """Goring-Nikora despiking of every beam; the flags (not the velocities) are written."""
+    """Goring-Nikora despiking of every beam over the quasi-steady part of the waves; the flags
+    (not the velocities) are written.
+
+    The UVP average reads N waves of the quasi-steady part of the run and the filter's pad
+    either side (:mod:`flumekit.uvp.window`), so only those samples are checked: there the
+    flow is stationary, as the despiking's universal threshold assumes (the ramp-up and the
+    decay are not), and nothing else is read. Samples outside are not evaluated (flag 2).
+    """
     import numpy as np
     import xarray as xr
 
     from flumekit.io.mfprof import read_mfprof
-    from flumekit.qc.flags import FAIL, FLAG_MEANINGS, FLAG_VALUES, aggregate, flag_attrs
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.qc.flags import (
+        FAIL,
+        FLAG_MEANINGS,
+        FLAG_VALUES,
+        MISSING,
+        NOT_EVALUATED,
+        aggregate,
+        flag_attrs,
+    )
     from flumekit.qc.record import Thresholds, check_series
+    from flumekit.stages.uvp import uvp_span
+    from flumekit.uvp.phase import default_pad
 
     th = Thresholds.from_params(params)
-    flags, counts, names, starts = [], [], sorted(inputs), {}
+    waves = read_dataset(inputs["waves"])
+    try:
+        span = uvp_span(waves)
+    except ValueError as e:
+        from flumekit.errors import InputError
+
+        raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
+    # one period more on each side: the average starts on an up-crossing near the span's edge
+    margin = default_pad(params["uvp_cutoff"]) + float(waves["measured_period"])
+    lo, hi = span[0] - margin, span[1] + margin
+    flags, counts, names, starts = [], [], sorted(k for k in inputs if k != "waves"), {}
     for name in names:
         b = read_mfprof(inputs[name])
         t = b["time"].values
         v = b["beam_velocity"].transpose("channel", "time").values
         fs = (t.size - 1) / (t[-1] - t[0])
-        per = check_series(v, t, fs, th, gross_range=_span(params["velocity_range"]),
-                           despike=True, floor=float(b.attrs.get("velocity_resolution", 0.0)),
-                           amplitude=(b["amplitude"].transpose("channel", "time").values
-                                      if "amplitude" in b else None))
-        f = aggregate(*per.values())
+        tc = t + float(params.get("time_offset", 0.0))  # on the probes' clock
+        i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
+        f = np.where(np.isfinite(v), NOT_EVALUATED, MISSING).astype(np.uint8)
+        if i1 - i0 >= 5:
+            amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
+                if "amplitude" in b else None
+            per = check_series(v[:, i0:i1], t[i0:i1], fs, th,
+                               gross_range=_span(params["velocity_range"]), despike=True,
+                               floor=float(b.attrs.get("velocity_resolution", 0.0)),
+                               amplitude=amp)
+            f[:, i0:i1] = aggregate(*per.values())
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
         counts.append([np.sum(f == val) for val in FLAG_VALUES])
@@ -221,18 +265,24 @@ def uvp(inputs, outputs, params) -> None:
     ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
                           flag_meaning=("flag_meaning", FLAG_MEANINGS.split(),
                                         {"long_name": "QARTOD flag meaning"}))
+    c = np.array(counts)
+    evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
     ds["beam_velocity_failed_fraction"] = (
-        ("beam",), np.array(counts)[:, list(FLAG_VALUES).index(FAIL)]
-        / np.array([fl.size for fl in flags]),
-        {"units": "1", "long_name": "fraction of UVP samples that failed quality control"})
+        ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
+        {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
+         "control"})
+    ds["evaluated_span"] = (("bound",), np.array([lo, hi]), {
+        "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
+        "the waves and the filter's pad (probes' clock)"})
     _write(ds, outputs, params, "Quality-control flags of the UVP beam velocities",
            "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names))
 
 
 def summary(inputs, outputs, params) -> None:
     """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
-    its departure from the runs of the same wave condition (a clock offset beyond
-    ``clock_tolerance`` is a warning naming the run), and every warning of the QC datasets.
+    its departure from the lag expected for its wave condition (:mod:`flumekit.qc.clock`; a
+    clock offset beyond ``clock_tolerance`` is a warning naming the run, the reference of each
+    run is the attribute ``clock_reference``), and every warning of the QC datasets.
     A campaign without the flap instruments has the probe counts only."""
     import numpy as np
     import xarray as xr
@@ -241,7 +291,7 @@ def summary(inputs, outputs, params) -> None:
     from flumekit.qc.clock import clock_departures, probe_flap_lag
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows, lags, periods, groups, warn = [], [], [], [], []
+    rows, lags, periods, heights, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
@@ -255,7 +305,7 @@ def summary(inputs, outputs, params) -> None:
             lags.append(probe_flap_lag(near.values, p["time"].values,
                                        f["encoder_counts"].values, f["time"].values, period))
             periods.append(period)
-            groups.append((period, float(p["wave_height"])))
+            heights.append(float(p["wave_height"]))
             row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
                        chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
@@ -264,18 +314,29 @@ def summary(inputs, outputs, params) -> None:
             errors="ignore").expand_dims(run=[run]))
     out = xr.concat(rows, dim="run", coords="minimal", compat="override")
     if lags:
-        dep = clock_departures(np.array(lags), np.array(periods), groups)
+        dep, basis = clock_departures(np.array(lags), np.array(periods), np.array(heights))
         out["probe_flap_lag"] = ("run", np.array(lags), {
-            "units": "s", "long_name": "cross-correlation lag of the encoder behind the probe "
-            "nearest the flap"})
+            "units": "s", "long_name": "cross-correlation offset to add to the flap's time "
+            "stamps to align the encoder with the probe nearest the flap (the physical lag, "
+            "modulo a period, and any clock offset)"})
         out["clock_departure"] = ("run", dep, {
-            "units": "s", "long_name": "lag minus the median lag of the runs of the same wave "
-            "condition (a clock offset where large; NaN with fewer than three such runs)"})
+            "units": "s", "long_name": "that offset minus the one expected for the run's wave "
+            "condition (the median of three runs or more of the condition, else a fit over "
+            "the neighbouring conditions): the flap's clock offset where large; NaN without a "
+            "reference",
+            "comment": "reported, never applied: declare it as [clock] flap in run.toml"})
         tol = float(params["clock_tolerance"])
-        warn += [f"run {r}: the flap lags the probes by {lag:+.3f} s, {d:+.3f} s off the other "
-                 f"runs of T = {g[0]:g} s, H = {g[1]:g} m: a clock offset between the probes and "
-                 f"the flap? If so declare it in the run's run.toml ([clock] flap = {-d:.3f})"
-                 for r, lag, d, g in zip(runs, lags, dep, groups, strict=True) if abs(d) > tol]
+        warn += [f"run {r}: the flap aligns with the probes at {lag:+.3f} s, {d:+.3f} s off "
+                 f"what T = {t:g} s, H = {h:g} m should give ({b}): a clock offset between "
+                 "the probes and the flap? If so declare it in the run's run.toml "
+                 f"([clock] flap = {d:.3f})"
+                 for r, lag, d, t, h, b in zip(runs, lags, dep, periods, heights, basis,
+                                               strict=True) if abs(d) > tol]
+        reference = "\n".join(f"{r}: {b}" for r, b in zip(runs, basis, strict=True))
+    else:
+        reference = ""
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
+    if reference:
+        out.attrs["clock_reference"] = reference
     write_product(out, outputs["dataset"], "Quality-control counts of every run",
                   f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})

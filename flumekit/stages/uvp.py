@@ -1,8 +1,10 @@
 """Stage: UVP beam records -> per-run phase averages -> the campaign's (phase, z, x) field.
 
-The phase reference of every run is the first zero up-crossing of the separated incident wave
-at the flap (x = 0) in the quasi-steady window (Brito et al. 2020, §2.5-2.6); the instruments are
-taken to share one clock (the virtual flume's do; a real campaign must synchronise them).
+The phase reference of every run is a zero up-crossing of the separated incident wave at the
+flap (x = 0) (Brito et al. 2020, §2.5-2.6); the N waves averaged are the earliest whole number of
+periods from it that lie in the quasi-steady part of the wave field with the UVP beams and the
+flap angle clean (:mod:`flumekit.uvp.window`): a probe fault does not move them. The instruments
+are taken to share one clock (the virtual flume's do; a real campaign declares offsets).
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
-VERSION = "2"
+VERSION = "3"
 NEEDS = "uvp"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
@@ -51,8 +53,9 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
-def phase_reference(waves) -> tuple[float, float]:
-    """(start, period): first up-crossing of the incident wave at the flap in the steady window."""
+def phase_reference(waves):
+    """(up-crossings, period): the zero up-crossings of the incident wave at the flap in the
+    waves' analysis window (where the separation is defined) [s], and the measured period."""
     import numpy as np
 
     from flumekit.signal import zero_upcrossings
@@ -65,7 +68,7 @@ def phase_reference(waves) -> tuple[float, float]:
     ups = zero_upcrossings(eta, t[inside])
     if ups.size == 0:
         raise ValueError("no zero up-crossing of the incident wave in the quasi-steady window")
-    return float(ups[0]), float(waves["measured_period"])
+    return ups, float(waves["measured_period"])
 
 
 def clean_beam(beam, qc, name: str):
@@ -82,6 +85,52 @@ def clean_beam(beam, qc, name: str):
         data=cleaned.T if beam["beam_velocity"].dims[0] == "time" else cleaned))
 
 
+#: a profile most of whose channels failed quality control is a dropout of the instrument
+DROPOUT_FRACTION = 0.5
+
+
+def uvp_span(waves) -> tuple[float, float]:
+    """The quasi-steady part of a run's wave field, probe faults bridged
+    (:func:`flumekit.uvp.window.steady_span` on the waves stage's dataset) [s]."""
+    from flumekit.uvp.window import steady_span
+
+    return steady_span(waves["eta"].transpose("probe", "time").values, waves["time"].values,
+                       waves["amplitude_scale"].values, waves["steady_tolerance"].values,
+                       0.75 * float(waves.attrs["wave_period"]))
+
+
+def flagged_profiles(qc, name: str, offset: float = 0.0):
+    """The profiles of beam ``name`` at which most channels failed QC (or were missing)."""
+    from flumekit.qc.flags import FAIL, MISSING
+    from flumekit.uvp.window import Flagged
+
+    f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
+    bad = ((f == FAIL) | (f == MISSING)).mean(axis=0) > DROPOUT_FRACTION
+    return Flagged(qc[f"time_{name}"].values + offset, bad)
+
+
+def averaging_window(waves, qc, theta, beams, params, pad: float) -> tuple[float, float]:
+    """(start, period) of the run's phase average (:func:`flumekit.uvp.window.averaging_start`):
+    N periods in the quasi-steady part of the waves with the UVP beams and the flap angle clean.
+    An error names the run, the instrument and its flagged span when there is none."""
+    import numpy as np
+
+    from flumekit.errors import InputError
+    from flumekit.uvp.window import Flagged, averaging_start
+
+    ups, period = phase_reference(waves)
+    offset = float(params["time_offset"])
+    records = {f"UVP beam {b}": flagged_profiles(qc, b, offset) for b in beams}
+    records["flap angle"] = Flagged(theta["time"].values, ~np.isfinite(theta.values))
+    try:
+        span = uvp_span(waves)
+        start = averaging_start(ups, period, params["n_cycles"], pad, span, records,
+                                float(qc.attrs["max_gap"]), run=params["run"])
+    except ValueError as e:
+        raise InputError(", ".join(str(p) for p in beams.values()), str(e)) from None
+    return start, period
+
+
 def build(inputs, outputs, params) -> None:
     from pathlib import Path
 
@@ -89,6 +138,7 @@ def build(inputs, outputs, params) -> None:
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
     from flumekit.uvp import phase_average_beams
+    from flumekit.uvp.phase import default_pad
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     qc = read_dataset(inputs["qc"])
@@ -97,8 +147,10 @@ def build(inputs, outputs, params) -> None:
     if params["time_offset"]:  # the run file's declared clock offset of the UVP [s]
         beams = {k: v.assign_coords(time=v["time"] + params["time_offset"])
                  for k, v in beams.items()}
-    start, period = phase_reference(read_dataset(inputs["waves"]))
     theta = read_dataset(inputs["flap"])["theta"]
+    start, period = averaging_window(read_dataset(inputs["waves"]), qc, theta,
+                                     {b.name: inputs[b.name] for b in campaign.uvp.beams},
+                                     params, default_pad(params["cutoff"]))
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
                              start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
                              cutoff=params["cutoff"], order=params["order"], theta=theta,

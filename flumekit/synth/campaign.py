@@ -32,6 +32,7 @@ from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.synth.flume import RepeatScatter
+from flumekit.synth.waves import Beach
 from flumekit.waves.theory import group_velocity, wavelength
 
 PERIODS = (2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0)  # Table 1 [s]
@@ -75,6 +76,10 @@ class Truth:
     x_wp3: float = -2.0  # WP3 position [m]; WP1, WP2 follow Table 1 spacings
     x_wp4: float = -0.6  # [m]
     scatter: RepeatScatter = RepeatScatter()  # run-to-run variability (synth/flume.py)
+    # the beach's reflection (8 % without the flap, Brito et al. 2020, §2.3), reaching the
+    # probes through the flap twice: K_t = 0.9 from the energy the flap lets pass, K_t² ≈
+    # 1 - Kr² - C_f b/B = 1 - 0.04 - 0.12 · 1.31/1.5 less its viscous losses; None: no beach
+    beach: Beach | None = Beach(transmission=0.9)
 
 
 def probe_positions(period: float, depth: float, truth: Truth) -> dict[str, float]:
@@ -293,7 +298,7 @@ def _write_uvp_truth(root: Path, campaign: Campaign, truth: Truth, size: str, se
 
     field = true_field(campaign, period=UVP_CONDITION[0], height=UVP_CONDITION[1],
                        reflection=truth.reflection, reflection_phase=truth.reflection_phase,
-                       x_wavemaker=truth.x_wavemaker)
+                       x_wavemaker=truth.x_wavemaker, beach=truth.beach)
     _finish(field, "Virtual flume truth: phase-averaged velocity field", size, seed)
     write_dataset(field, root / "truth" / "uvp_field.nc")
 
@@ -352,11 +357,12 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     wave_kw = dict(period=generated_period, height=generated_height, depth=depth,
                    reflection=truth.reflection,
                    reflection_phase=truth.reflection_phase, x_reflector=0.0,
-                   ramp_waves=truth.ramp_waves, second_order=True, x_wavemaker=truth.x_wavemaker)
+                   ramp_waves=truth.ramp_waves, second_order=True, x_wavemaker=truth.x_wavemaker,
+                   beach=truth.beach)
     names = campaign.probes.names
     t25 = np.arange(int(duration * campaign.probes.sampling_rate)) / campaign.probes.sampling_rate
     field = regular_wave_field(t25, np.array([xp[p] for p in names] + [0.0]), **wave_kw)
-    eta = (field["eta_incident"] + field["eta_reflected"]).values  # (x, time)
+    eta = field["eta"].values  # (x, time): incident, reflected and from the beach
     noisy = eta[:-1] + truth.probe_noise * rng.standard_normal(eta[:-1].shape)
     volts = a[:, None] + b[:, None] * noisy
     write_table(run_dir / "probes.csv", [("time", "s")] + [(p, "V") for p in names],
@@ -369,12 +375,13 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     # that goes on (flumekit.synth.flap.flap_record, eta_lead_out)
     t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
     at_flap = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **wave_kw)
-    at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected")}
+    at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected", "eta_beach")}
     flap = flap_record(t100, at_flap["eta_incident"][:n100], period=generated_period,
                        campaign=campaign, rng=rng, height=generated_height, hydro=flap_hydro,
                        truth=flap_truth,
                        eta_lead_out=at_flap["eta_incident"][n100:],
-                       eta_front=at_flap["eta_incident"] + at_flap["eta_reflected"])
+                       eta_front=(at_flap["eta_incident"] + at_flap["eta_reflected"]
+                                  + at_flap["eta_beach"]))
     write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
                 np.column_stack([t100, flap["encoder_counts"].values,
                                  flap["chamber_pressure"].values / 1e5]),
@@ -383,13 +390,15 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     truth_dir = root / "truth" / run_id
     waves_truth = xr.Dataset(
         {"eta_incident": (("probe", "time"), field["eta_incident"].values[:-1]),
-         "eta_reflected": (("probe", "time"), field["eta_reflected"].values[:-1])},
+         "eta_reflected": (("probe", "time"), field["eta_reflected"].values[:-1]),
+         "eta_beach": (("probe", "time"), field["eta_beach"].values[:-1])},
         coords={"probe": list(names), "time": t25, "x": ("probe", [xp[p] for p in names])},
         attrs={k: v for k, v in field.attrs.items() if np.isscalar(v)})
     write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
                   truth_dir / "waves.nc")
     flap_truth = flap.assign(eta_incident=("time", at_flap["eta_incident"][:n100]),
-                             eta_reflected=("time", at_flap["eta_reflected"][:n100]))
+                             eta_reflected=("time", at_flap["eta_reflected"][:n100]),
+                             eta_beach=("time", at_flap["eta_beach"][:n100]))
     write_dataset(_finish(flap_truth, f"Virtual flume truth: flap of run {run_id}", "", 0),
                   truth_dir / "flap.nc")
 
@@ -403,6 +412,7 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
                           hinge_height=campaign.flap.hinge_height, reflection=truth.reflection,
                           reflection_phase=truth.reflection_phase,
                           x_wavemaker=truth.x_wavemaker, ramp_waves=truth.ramp_waves,
+                          beach=truth.beach,
                           theta=np.interp(tu, t100, flap["theta"].values),
                           flap_thickness=campaign.flap.thickness, rng=rng)
         write_uvp_run(run_dir, beams)

@@ -47,12 +47,13 @@ X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the w
 
 
 def _harmonics(period: float, height: float, depth: float, theory: str, reflection: float,
-               g: float = G) -> dict:
+               g: float = G, beach=None) -> dict:
     from flumekit.synth.waves import wave_harmonics
 
     if not (period > 0 and height > 0 and depth > 0):
         raise ValueError("period, height and depth must be positive")
-    return wave_harmonics(period, height, depth, reflection, theory, g)
+    r_beach = 0.0 if beach is None else beach.reflection * beach.transmission**2
+    return wave_harmonics(period, height, depth, reflection, theory, g, beach=r_beach)
 
 
 def _theory(theory: str | None, second_order: bool) -> str:
@@ -96,8 +97,8 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
                     hinge_height: float = 0.10, reflection: float = 0.2,
                     reflection_phase: float = 0.0, x_reflector: float = 0.0,
                     x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = 10.0,
-                    second_order: bool = True, theory: str | None = None, g: float = G
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+                    second_order: bool = True, theory: str | None = None, beach=None,
+                    g: float = G) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Velocity and free surface of incident + reflected regular waves (module notes).
 
     Parameters
@@ -115,6 +116,8 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
         ``None`` for the steady state (no ramp, no travel).
     second_order, theory : The wave theory as in
         :func:`flumekit.synth.waves.regular_wave_field` (default the stream function).
+    beach : The wave returning from the beach (:class:`flumekit.synth.waves.Beach`), as in
+        :func:`flumekit.synth.waves.regular_wave_field`; None: none.
 
     Returns
     -------
@@ -125,20 +128,23 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
 
     if not 0 <= reflection <= 1:
         raise ValueError(f"reflection coefficient must lie in [0, 1], got {reflection}")
-    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g)
+    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g, beach)
     omega = 2 * np.pi / period
-    k, k_r = h["k_incident"], h["k_reflected"]
+    k, k_r, k_b = h["k_incident"], h["k_reflected"], h["k_beach"]
     x = np.asarray(x, dtype=float)
     t = np.asarray(time, dtype=float)
     d_inc = x - x_wavemaker
     d_ref = 2 * x_reflector - x - x_wavemaker
+    x_b = x_reflector if beach is None else beach.x
+    d_beach = 2 * x_b - x - x_wavemaker
     if ramp_waves is None:
-        e_i = e_r = 1.0
+        e_i = e_r = e_b = 1.0
     else:
         cg = float(group_velocity(period, depth, g))
         ramp_time = ramp_waves * period / 2.0
         e_i = ramp_envelope(t - d_inc / cg, ramp_time)
         e_r = ramp_envelope(t - d_ref / cg, ramp_time)
+        e_b = ramp_envelope(t - d_beach / cg, ramp_time)
     # cos/sin of θ = ωt - (phase of x) by the angle-addition rule: trigonometric functions of t
     # and of x only, then products (the 2-D arrays need no transcendental function)
     cwt, swt = np.cos(omega * t), np.sin(omega * t)
@@ -158,7 +164,16 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
     u = (u_i + h["incident_current"] * np.square(e_i)
          - u_r - h["reflected_current"] * np.square(e_r))
     w = -w_i - w_r
-    return u, w, eta_i + eta_r
+    eta = eta_i + eta_r
+    if np.any(h["beach"]):  # the beach's wave, towards -x like the reflected one
+        p_b = k * (x_b - x_wavemaker) + k_b * (x_b - x) - beach.phase
+        cb, sb = np.cos(p_b), np.sin(p_b)
+        eta_b, u_b, w_b = _wave_sums(h["beach"], h["beach_velocity"], k_b, depth, zb, e_b,
+                                     cwt * cb + swt * sb, swt * cb - cwt * sb)
+        u = u - u_b - h["beach_current"] * np.square(e_b)
+        w = w - w_b
+        eta = eta + eta_b
+    return u, w, eta
 
 
 def incident_upcrossing(*, period: float, height: float, depth: float,
@@ -188,12 +203,15 @@ def incident_upcrossing(*, period: float, height: float, depth: float,
 
 
 def maximum_speed(*, period: float, height: float, depth: float, reflection: float,
-                  second_order: bool = True, theory: str | None = None, g: float = G) -> float:
+                  second_order: bool = True, theory: str | None = None, beach=None,
+                  g: float = G) -> float:
     """Upper bound of the flow speed up to the highest crest [m s-1] (for the velocity range)."""
-    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g)
-    zb = depth + np.sum(np.abs(h["incident"])) + np.sum(np.abs(h["reflected"]))
-    total = abs(h["incident_current"]) + abs(h["reflected_current"])
-    for side, k in (("incident", h["k_incident"]), ("reflected", h["k_reflected"])):
+    h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g, beach)
+    sides = ("incident", "reflected", "beach")
+    zb = depth + sum(np.sum(np.abs(h[side])) for side in sides)
+    total = sum(abs(h[f"{side}_current"]) for side in sides)
+    for side in sides:
+        k = h[f"k_{side}"]
         vel = h[f"{side}_velocity"]
         ch, _ = _depth_functions(k, vel.size, depth, zb)
         total += float(np.sum(np.abs(vel) * ch))
@@ -263,7 +281,7 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
               depth: float, hinge_height: float = 0.10, reflection: float = 0.2,
               reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
               ramp_waves: float | None = 10.0, second_order: bool = True,
-              theory: str | None = None, noise: float = 0.005,
+              theory: str | None = None, beach=None, noise: float = 0.005,
               turbulence: tuple[float, float, float] | None = None,
               theta=None, flap_thickness: float = 0.17, maximum_depth: float | None = None,
               rng: np.random.Generator | int | None = None) -> dict[str, xr.Dataset]:
@@ -275,7 +293,7 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     uvp : Campaign UVP settings (channels, beams).
     uvp_elevation : Elevation of the run's UVP mounting above the hinge [m].
     period, height, depth, hinge_height, reflection, reflection_phase, x_wavemaker,
-    ramp_waves, second_order, theory : The wave field, see :func:`wave_kinematics`.
+    ramp_waves, second_order, theory, beach : The wave field, see :func:`wave_kinematics`.
     noise : Standard deviation of the white Doppler noise along the beam [m s-1].
     turbulence : Optional (σ_u [m s-1], σ_w [m s-1], correlation ρ_uw [-]) of Gaussian velocity
         fluctuations band-limited to 0.05-1.5 Hz, independent between channels and beams (a
@@ -308,12 +326,12 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     wave = dict(period=period, height=height, depth=depth, hinge_height=hinge_height,
                 reflection=reflection, reflection_phase=reflection_phase,
                 x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order,
-                theory=theory)
+                theory=theory, beach=beach)
     params = instrument_parameters(
         uvp, maximum_depth=maximum_depth,
         max_speed=maximum_speed(period=period, height=height, depth=depth,
                                 reflection=reflection, second_order=second_order,
-                                theory=theory))
+                                theory=theory, beach=beach))
     dv = velocity_range(params["SoundSpeed"], params["Frequency"],
                         params["MaximumDepth"] * 1e-3) / params["RawDataRange"]
     lo, n_counts = params["RawDataMin"], params["RawDataRange"]
@@ -364,16 +382,16 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
 
 def true_field(campaign: Campaign, *, period: float, height: float, reflection: float = 0.2,
                reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
-               second_order: bool = True, theory: str | None = None, x=None, z=None,
-               n_phase: int = 100,
+               second_order: bool = True, theory: str | None = None, beach=None,
+               x=None, z=None, n_phase: int = 100,
                theta=None, elevations=None, reference: str = "incident") -> xr.Dataset:
     """The true phase-averaged velocity field on the (phase, z, x) grid of the processed field.
 
     Parameters
     ----------
     campaign : Campaign (water depth, hinge height, flap thickness, UVP beams).
-    period, height, reflection, reflection_phase, x_wavemaker, second_order, theory : The wave
-        field (:func:`wave_kinematics`).
+    period, height, reflection, reflection_phase, x_wavemaker, second_order, theory, beach :
+        The wave field (:func:`wave_kinematics`).
     x, z : Grid [m]; default :func:`flumekit.uvp.field.default_grid` of the campaign's beams
         and ``elevations`` (default 0.20, 0.22, ..., 0.72 m, Brito et al. 2020, §2.3).
     n_phase : Number of phases t/T = 0, 1/n_phase, ...
@@ -415,7 +433,7 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
                                 height=height, depth=depth, hinge_height=hinge,
                                 reflection=reflection, reflection_phase=reflection_phase,
                                 x_wavemaker=x_wavemaker, ramp_waves=None,
-                                second_order=second_order, theory=theory)
+                                second_order=second_order, theory=theory, beach=beach)
     eta = np.broadcast_to(eta, (n_phase, 1, x.size))[:, 0, :]
     hidden = z[None, :, None] > (eta[:, None, :] + depth - hinge)
     if theta is not None:
@@ -438,6 +456,8 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
         coords={"phase": phase, "z": z, "x": x, "velocity_scale": u0,
                 "phase_reference": t_up, "wave_period": period, "wave_height": height},
         attrs={"water_depth": depth, "reflection_coefficient": reflection,
+               "beach_reflection_coefficient": 0.0 if beach is None else beach.reflection,
+               "beach_transmission": 1.0 if beach is None else beach.transmission,
                "reflection_phase": reflection_phase, "second_order": int(second_order),
                "wave_theory": _theory(theory, second_order),
                "phase_reference_definition": "t/T = 0 at a zero up-crossing of the steady "

@@ -1,14 +1,18 @@
 """The virtual flume's wave generator: incident and reflected wave fields with a known truth.
 
 Coordinates follow the campaign: x = 0 at the flap hinge, positive towards the beach; the
-wavemaker sits at ``x_wavemaker`` < 0 and the incident wave travels towards +x. The reflected
-wave is the incident wave mirrored at ``x_reflector`` (the flap), scaled by the reflection
-coefficient and shifted by the reflection phase. The truth (amplitudes, Kr, wavenumber, ...) is
-returned in the dataset's ``attrs``.
+wavemaker sits at ``x_wavemaker`` < 0 and the incident wave travels towards +x. Regular waves
+are steady nonlinear waves of the stream-function theory (:mod:`flumekit.waves.stream_function`,
+valid in the whole range of the flume, Ursell numbers up to 65) unless second-order Stokes or
+linear theory is asked for. The reflected wave travels back from ``x_reflector`` (the flap) with
+the reflection coefficient and phase of its first harmonic; the beach's (:class:`Beach`)
+returns from further down the flume. The truth (amplitudes, Kr, wavenumbers, ...) is returned
+in the dataset's ``attrs``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 
 import numpy as np
@@ -63,6 +67,43 @@ def first_harmonic_amplitude(height: float, k: float, depth: float, second_order
 
 
 THEORIES = ("stream", "stokes2", "linear")
+
+
+@dataclasses.dataclass(frozen=True)
+class Beach:
+    """The flume's passive beach as a reflector of the first harmonic.
+
+    Brito et al. (2020), §2.1 and §2.3: a porous mesh beach of slope 0.3 at the end of the
+    60 m flume, with a mean reflection coefficient of about 8 % measured without the flap.
+
+    Attributes
+    ----------
+    reflection : Reflection coefficient K_b of the beach for the first harmonic [-]
+        (0.08, Brito et al. 2020, §2.3).
+    x : Effective reflection line [m] (x = 0 at the flap hinge). The flume ends 60 - 32.7 =
+        27.3 m beyond the hinge; a 0.3 slope rising from the bed to the flume's top (1.8 m) at
+        the end wall crosses the still water level 0.975/0.3 = 3.25 m before it, at 24.05 m
+        (the beach's toe and crest are not stated: an assumption that sets only the phase).
+    phase : Phase added at the reflection line [rad].
+    transmission : Amplitude transmission coefficient K_t of whatever stands between the
+        probes and the beach (the flap), each way [-]; the beach's wave reaches the probes
+        with K_b K_t² a1. 1 for a flume without the flap.
+    """
+
+    reflection: float = 0.08
+    x: float = 24.05
+    phase: float = 0.0
+    transmission: float = 1.0
+
+    def __post_init__(self) -> None:
+        for name in ("reflection", "transmission"):
+            v = getattr(self, name)
+            if not 0 <= v <= 1:
+                raise ValueError(f"beach {name} must lie in [0, 1], got {v}")
+        if not (np.isfinite(self.x) and np.isfinite(self.phase)):
+            raise ValueError("beach x and phase must be finite")
+
+
 #: harmonics of a stream-function wave kept in the virtual flume: those above this fraction of
 #: the first harmonic's amplitude (the rest, < 0.015 mm in the flume's range, lie far below the
 #: probes' 0.5 mm noise; about 10 of the 20 computed at T = 3.5 s, H = 0.25 m)
@@ -79,7 +120,8 @@ def nonlinear_wave(period: float, height: float, depth: float, g: float = G
 
 
 def wave_harmonics(period: float, height: float, depth: float, reflection: float = 0.0,
-                   theory: str = "stream", g: float = G) -> dict[str, object]:
+                   theory: str = "stream", g: float = G, beach: float = 0.0
+                   ) -> dict[str, object]:
     """Harmonic amplitudes and wavenumbers of the incident and reflected regular waves.
 
     Parameters
@@ -91,13 +133,14 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
     theory : ``"stream"`` (stream function, :mod:`flumekit.waves.stream_function`),
         ``"stokes2"`` (second-order Stokes) or ``"linear"``.
     g : Gravitational acceleration [m s-2].
+    beach : First-harmonic amplitude of the wave returning from the beach, over a1 [-].
 
     Returns
     -------
-    dict with ``k_incident``, ``k_reflected`` [rad m-1] (harmonic n travels with n k),
-    ``incident`` and ``reflected`` (amplitudes of harmonics 1, 2, ... [m]; η = Σ a_n cos nθ),
-    ``incident_velocity`` and ``reflected_velocity`` (V_n [m s-1]) and ``incident_current``,
-    ``reflected_current`` (c_E [m s-1]) of the velocity in the direction of travel
+    dict with ``k_incident``, ``k_reflected``, ``k_beach`` [rad m-1] (harmonic n travels with
+    n k), ``incident``, ``reflected`` and ``beach`` (amplitudes of harmonics 1, 2, ... [m];
+    η = Σ a_n cos nθ), ``<wave>_velocity`` (V_n [m s-1]) and ``<wave>_current`` (c_E [m s-1])
+    of the velocity in the direction of travel
     u = c_E + Σ V_n cosh(nk z_b)/cosh(nkh) cos nθ, w = Σ V_n sinh(nk z_b)/cosh(nkh) sin nθ
     (z_b above the bed, θ = kx - ωt along the direction of travel), and the incident
     ``wave`` (:class:`~flumekit.waves.stream_function.StreamFunctionWave`, or None).
@@ -105,18 +148,18 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
     Notes
     -----
     ``"stream"``: the incident wave is the steady wave of height H, its harmonics from the
-    first down to :data:`HARMONIC_CUTOFF` of the first's amplitude; the reflected wave is the
-    steady wave of height Kr H, its harmonics scaled by the one factor that makes its first
-    harmonic exactly Kr a1 (Kr is defined, and measured by the separation, on the first
-    harmonic). This treats the reflected wave as a free steady wave of its own travelling
-    away from the reflector, which it is once it has left the flap; the nonlinear interaction
-    of the incident and reflected waves (at order Kr (k a)², a few % of the second harmonic for
-    Kr = 0.2) is omitted. Its wavenumber is its own (nearly the linear one at its small
-    height), the incident's is smaller than the linear one by up to 5 % in the flume's range
-    (amplitude dispersion).
-    Its velocities are scaled by the same factor and its mean current by its square.
-    ``"stokes2"``: a1 from :func:`first_harmonic_amplitude`, a2 = B k a1², the reflected wave
-    Kr a1 and Kr² a2; both with the linear wavenumber; V1 = a1 ω / tanh kh,
+    first down to :data:`HARMONIC_CUTOFF` of the first's amplitude; a returning wave (reflected
+    by the flap, or by the beach) of first-harmonic ratio r is the steady wave of height r H,
+    its harmonics scaled by the one factor that makes its first harmonic exactly r a1 (Kr is
+    defined, and measured by the separation, on the first harmonic), its velocities by the
+    same factor and its mean current by its square. This treats it as a free steady wave of
+    its own travelling away from its reflector, which it is once it has left it; the
+    nonlinear interaction of the incident and returning waves (at order r (k a)², a few % of
+    the second harmonic for r = 0.2) is omitted. Its wavenumber is its own (nearly the linear
+    one at its small height), the incident's is smaller than the linear one by up to 5 % in the
+    flume's range (amplitude dispersion).
+    ``"stokes2"``: a1 from :func:`first_harmonic_amplitude`, a2 = B k a1², a returning wave
+    r a1 and r² a2; all with the linear wavenumber; V1 = a1 ω / tanh kh,
     V2 = (3/4) a1² ω k cosh 2kh / sinh⁴ kh (Dean & Dalrymple 1991, §11.3), no mean current.
     """
     if theory not in THEORIES:
@@ -124,69 +167,67 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
     omega = 2 * np.pi / period
     if theory == "stream":
         inc = nonlinear_wave(period, height, depth, g)
-        a_inc = inc.elevation_coefficients
-        n_kept = int(np.flatnonzero(np.abs(a_inc) > HARMONIC_CUTOFF * a_inc[0])[-1]) + 1
-        a_inc = a_inc[:n_kept]
-        v_inc = (inc.stream_coefficients * inc.wavenumber
-                 * np.arange(1, inc.n_modes + 1))[:n_kept]
-        out = {"k_incident": inc.wavenumber, "incident": a_inc, "incident_velocity": v_inc,
-               "incident_current": inc.eulerian_current, "wave": inc,
-               "k_reflected": inc.wavenumber, "reflected": 0 * a_inc[:1],
-               "reflected_velocity": 0 * v_inc[:1], "reflected_current": 0.0}
-        if reflection > 0:
-            ref = nonlinear_wave(period, reflection * height, depth, g)
-            scale = reflection * a_inc[0] / ref.elevation_coefficients[0]
-            a_ref = scale * ref.elevation_coefficients
-            n_kept = int(np.flatnonzero(np.abs(a_ref) > HARMONIC_CUTOFF * a_inc[0])[-1]) + 1
-            n = np.arange(1, n_kept + 1)
-            out.update(k_reflected=ref.wavenumber, reflected=a_ref[:n_kept],
-                       reflected_velocity=scale * ref.stream_coefficients[:n_kept]
-                       * ref.wavenumber * n,
-                       reflected_current=scale**2 * ref.eulerian_current)
-        return out
-    k = float(wavenumber(omega, depth, g))
-    a1 = first_harmonic_amplitude(height, k, depth, theory == "stokes2")
-    q = np.exp(-2.0 * k * depth)
-    vel = [a1 * omega * (1 + q) / (1 - q)]  # a ω / tanh kh
-    amps = [a1]
-    if theory == "stokes2":
-        amps.append(float(stokes2_coefficient(k, depth)) * k * a1**2)
-        vel.append(0.75 * a1**2 * omega * k * 8 * q * (1 + q * q) / (1 - q) ** 4)
-    amps, vel = np.array(amps), np.array(vel)
-    kr_n = reflection ** np.arange(1, amps.size + 1)
-    return {"k_incident": k, "k_reflected": k, "incident": amps, "reflected": amps * kr_n,
-            "incident_velocity": vel, "reflected_velocity": vel * kr_n,
-            "incident_current": 0.0, "reflected_current": 0.0, "wave": None}
+        a1 = inc.elevation_coefficients[0]
+
+        def kept(w: StreamFunctionWave, scale: float):
+            a = scale * w.elevation_coefficients
+            n = int(np.flatnonzero(np.abs(a) > HARMONIC_CUTOFF * a1)[-1]) + 1
+            vel = scale * w.stream_coefficients[:n] * w.wavenumber * np.arange(1, n + 1)
+            return w.wavenumber, a[:n], vel, scale**2 * w.eulerian_current
+
+        def returning(ratio: float):
+            if not ratio > 0:
+                return inc.wavenumber, np.zeros(1), np.zeros(1), 0.0
+            w = nonlinear_wave(period, ratio * height, depth, g)
+            return kept(w, ratio * a1 / w.elevation_coefficients[0])
+
+        waves = {"incident": kept(inc, 1.0), "reflected": returning(reflection),
+                 "beach": returning(beach)}
+    else:
+        k = float(wavenumber(omega, depth, g))
+        a1 = first_harmonic_amplitude(height, k, depth, theory == "stokes2")
+        q = np.exp(-2.0 * k * depth)
+        vel = [a1 * omega * (1 + q) / (1 - q)]  # a ω / tanh kh
+        amps = [a1]
+        if theory == "stokes2":
+            amps.append(float(stokes2_coefficient(k, depth)) * k * a1**2)
+            vel.append(0.75 * a1**2 * omega * k * 8 * q * (1 + q * q) / (1 - q) ** 4)
+        amps, vel = np.array(amps), np.array(vel)
+        waves = {name: (k, amps * r ** np.arange(1, amps.size + 1),
+                        vel * r ** np.arange(1, amps.size + 1), 0.0)
+                 for name, r in (("incident", 1.0), ("reflected", reflection),
+                                 ("beach", beach))}
+        inc = None
+    out = {"wave": inc}
+    for name, (k, a, v, c) in waves.items():
+        out.update({f"k_{name}": k, name: a, f"{name}_velocity": v, f"{name}_current": c})
+    return out
 
 
-def harmonic_sum(amplitudes, envelope, cos_theta, sin_theta=None):
-    """Σ_n a_n eⁿ cos nθ (and Σ_n a_n eⁿ sin nθ) [m] from cos θ and sin θ.
+def harmonic_sum(amplitudes, envelope, cos_theta) -> np.ndarray:
+    """Σ_n a_n eⁿ cos nθ [m] from cos θ.
 
     The envelope scales harmonic n by eⁿ, as the bound harmonics of a slowly modulated Stokes
-    wave; cos nθ, sin nθ come from the Chebyshev recurrences (no transcendental function per
-    harmonic). ``amplitudes`` may hold depth-dependent factors as a last axis of length N.
+    wave; cos nθ comes from the Chebyshev recurrence (no transcendental function per
+    harmonic).
     """
     a = np.asarray(amplitudes, dtype=float)
     c_prev, c_cur = np.ones_like(cos_theta), cos_theta
-    s_prev, s_cur = np.zeros_like(cos_theta), sin_theta
     e_n = envelope
-    out_c = a[..., 0] * e_n * c_cur
-    out_s = None if sin_theta is None else a[..., 0] * e_n * s_cur
-    for n in range(1, a.shape[-1]):  # a few tens of harmonics
+    out = a[0] * e_n * c_cur
+    for n in range(1, a.size):  # the harmonics kept (about ten)
         c_prev, c_cur = c_cur, 2 * cos_theta * c_cur - c_prev
         e_n = e_n * envelope
-        out_c = out_c + a[..., n] * e_n * c_cur
-        if sin_theta is not None:
-            s_prev, s_cur = s_cur, 2 * cos_theta * s_cur - s_prev
-            out_s = out_s + a[..., n] * e_n * s_cur
-    return out_c if sin_theta is None else (out_c, out_s)
+        out = out + a[n] * e_n * c_cur
+    return out
 
 
 def regular_wave_field(time, x, *, period: float, height: float, depth: float,
                        reflection: float = 0.2, reflection_phase: float = 0.0,
                        x_reflector: float = 0.0, ramp_waves: float = 10.0,
                        second_order: bool = True, x_wavemaker: float = -32.7,
-                       theory: str | None = None, g: float = G) -> xr.Dataset:
+                       theory: str | None = None, beach: Beach | None = None,
+                       g: float = G) -> xr.Dataset:
     """Regular incident and reflected waves with a ramp-up, at probe positions ``x``.
 
     Parameters
@@ -211,14 +252,20 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     theory : ``"stream"`` (stream-function theory, valid in every depth up to near breaking),
         ``"stokes2"`` (second-order Stokes, valid for Ursell numbers ≲ 26) or ``"linear"``;
         see :func:`wave_harmonics`.
+    beach : The wave returning from the flume's beach (:class:`Beach`); None: no beach
+        reflection (a perfect absorber).
     g : Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Dataset over ("x", "time") with ``eta_incident``, ``eta_reflected`` and ``eta`` (their sum)
-    [m]. ``attrs`` hold the truth: ``incident_amplitude`` (first harmonic a1),
-    ``bound_amplitude`` (second harmonic a2, 0 if linear), ``harmonic_amplitudes`` (a_n of the
-    incident wave), ``reflection_coefficient`` (of the first harmonic), ``reflection_phase``,
+    Dataset over ("x", "time") with ``eta_incident``, ``eta_reflected`` (from the reflector),
+    ``eta_beach`` (from the beach, 0 without one) and ``eta`` (their sum) [m]. ``attrs`` hold
+    the truth: ``incident_amplitude`` (first harmonic a1), ``bound_amplitude`` (second
+    harmonic a2, 0 if linear), ``harmonic_amplitudes`` (a_n of the incident wave),
+    ``reflection_coefficient``: the first-harmonic amplitude of everything travelling towards
+    the wavemaker (reflector and beach) over a1 at ``x_reflector``, which is what a separation
+    measures; ``flap_reflection_coefficient`` (``reflection``), ``reflection_phase``,
+    ``beach_reflection_coefficient``, ``beach_transmission``, ``x_beach``, ``beach_phase``,
     ``wave_height`` (H), ``wave_period``, ``wave_number`` (of the incident wave's first
     harmonic: the nonlinear one for "stream"), ``reflected_wave_number``,
     ``linear_wave_number``, ``wavelength``,
@@ -229,7 +276,12 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     Incident, with θ_I = ωt - k(x - x_wm) and envelope e_I = e(t - (x - x_wm)/c_g):
     η_I = Σ_n a_n e_I^n cos nθ_I. Reflected, the mirror image x → 2 x_r - x with its own
     wavenumber k_R: θ_R = ωt - k_I (x_r - x_wm) - k_R (x_r - x) + φ,
-    η_R = Σ_n b_n e_R^n cos nθ_R, b_1 = Kr a1 (:func:`wave_harmonics`). With "stokes2",
+    η_R = Σ_n b_n e_R^n cos nθ_R, b_1 = Kr a1 (:func:`wave_harmonics`). From the beach (at
+    x_b, reflection coefficient K_b, phase ψ), after passing the reflector twice (amplitude
+    transmission K_t each way): θ_B = ωt - k_I (x_b - x_wm) - k_B (x_b - x) + ψ,
+    η_B = Σ_n c_n e_B^n cos nθ_B, c_1 = K_b K_t² a1, e_B = e(t - (2 x_b - x - x_wm)/c_g); the
+    leg behind the reflector is taken with the incident wavenumber, and the reflections of the
+    beach's wave at the reflector (order K_r K_b) are omitted. With "stokes2",
     a2 = B k a1² and b2 = Kr² a2 (Dean & Dalrymple 1991). The envelope is advected with the
     linear group velocity without dispersion; the set-down under the groups and the
     incident-reflected interaction terms are omitted, as are re-reflections at the wavemaker
@@ -243,9 +295,14 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
         raise ValueError("the wavemaker must lie upstream (x smaller) of the reflector")
     theory = theory if theory is not None else ("stream" if second_order else "linear")
     time, x = _check_grid(time, x, x_wavemaker, x_reflector)
+    beach = Beach(reflection=0.0) if beach is None else beach
+    if not beach.x > x_reflector:
+        raise ValueError(f"the beach (x = {beach.x} m) must lie beyond the reflector "
+                         f"(x = {x_reflector} m)")
     omega = 2 * np.pi / period
-    harm = wave_harmonics(period, height, depth, reflection, theory, g)
-    k, k_r = harm["k_incident"], harm["k_reflected"]
+    r_beach = beach.reflection * beach.transmission**2
+    harm = wave_harmonics(period, height, depth, reflection, theory, g, beach=r_beach)
+    k, k_r, k_b = harm["k_incident"], harm["k_reflected"], harm["k_beach"]
     cg = float(group_velocity(period, depth, g))
 
     t = time[None, :]
@@ -259,17 +316,31 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
             + reflection_phase)
     eta_i = harmonic_sum(harm["incident"], e_i, np.cos(th_i))
     eta_r = harmonic_sum(harm["reflected"], e_r, np.cos(th_r))
+    eta_b = np.zeros_like(eta_i)
+    if r_beach > 0:
+        e_b = ramp_envelope(t - (2 * beach.x - x - x_wavemaker)[:, None] / cg, ramp_time)
+        th_b = (omega * t - k * (beach.x - x_wavemaker) - k_b * (beach.x - x)[:, None]
+                + beach.phase)
+        eta_b = harmonic_sum(harm["beach"], e_b, np.cos(th_b))
+    # the returning first harmonics at the reflector, relative to the incident one there
+    total = (reflection * np.exp(1j * reflection_phase)
+             + r_beach * np.exp(1j * (beach.phase - (k + k_b) * (beach.x - x_reflector))))
     L = 2 * np.pi / k
     amps = harm["incident"]
     ds = xr.Dataset(
         {"eta_incident": (("x", "time"), eta_i), "eta_reflected": (("x", "time"), eta_r),
-         "eta": (("x", "time"), eta_i + eta_r)},
+         "eta_beach": (("x", "time"), eta_b), "eta": (("x", "time"), eta_i + eta_r + eta_b)},
         coords={"x": x, "time": time},
         attrs={"wave_period": period, "wave_height": height, "depth": depth,
                "incident_amplitude": float(amps[0]),
                "bound_amplitude": float(amps[1]) if amps.size > 1 else 0.0,
                "harmonic_amplitudes": np.asarray(amps, dtype=float),
-               "reflection_coefficient": reflection, "reflection_phase": reflection_phase,
+               "reflection_coefficient": float(abs(total)),
+               "total_reflection_phase": float(np.angle(total)),
+               "flap_reflection_coefficient": reflection, "reflection_phase": reflection_phase,
+               "beach_reflection_coefficient": beach.reflection,
+               "beach_transmission": beach.transmission, "x_beach": beach.x,
+               "beach_phase": beach.phase, "beach_wave_number": k_b,
                "wave_number": k, "reflected_wave_number": k_r,
                "linear_wave_number": float(wavenumber(omega, depth, g)),
                "wavelength": L, "group_velocity": cg,

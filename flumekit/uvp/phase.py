@@ -60,6 +60,15 @@ def uniform(time: np.ndarray, values: np.ndarray, axis: int = 0
     return grid, np.moveaxis(out, 0, axis)
 
 
+def default_pad(cutoff: float | None) -> float:
+    """Return the seconds filtered on each side of the averaging window [s].
+
+    max(3 s, 6 / cutoff) holds the edge transient of the zero-phase Butterworth low-pass;
+    0 without a filter.
+    """
+    return max(3.0, 6.0 / cutoff) if cutoff else 0.0
+
+
 def _dilate(keep: np.ndarray, seconds: float, period: float) -> np.ndarray:
     """Shrink the kept phases by ``seconds`` on each side (periodic in phase)."""
     n_phase = keep.shape[-1]
@@ -145,7 +154,7 @@ def phase_average_beams(beams: Mapping[str, xr.Dataset], uvp: UVP, uvp_elevation
     if missing:
         raise ValueError(f"beam record(s) missing: {missing} (have {sorted(beams)})")
     if pad is None:
-        pad = max(3.0, 6.0 / cutoff) if cutoff else 0.0
+        pad = default_pad(cutoff)
     if mask_seconds is None:
         mask_seconds = 0.5 / cutoff if cutoff else 0.0
     t_end = start + n_cycles * period

@@ -5,6 +5,8 @@ This is the pure function behind the pipeline's per-run waves stage.
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import xarray as xr
 
@@ -12,21 +14,9 @@ from flumekit import conventions
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
-from flumekit.waves.separation import as_probe_time, separate
-from flumekit.waves.stream_function import stream_function_wave
-from flumekit.waves.theory import G, energy_flux, wavenumber
-
-
-def nonlinear_wavenumber(period: float, height: float, depth: float, g: float = G) -> float:
-    """Wavenumber [rad m-1] of the steady regular wave of a period [s], height [m] and depth [m].
-
-    The stream-function wave with zero mean mass transport (a closed flume); the linear one
-    for a height below 1e-4 of the depth (where they agree to 1e-8). A height beyond what a
-    steady wave can reach (a breaking or badly separated record) raises ValueError.
-    """
-    if not height > 1e-4 * depth:
-        return float(wavenumber(2 * np.pi / period, depth, g))
-    return stream_function_wave(period, height, depth, current="stokes", g=g).wavenumber
+from flumekit.waves.separation import SeparationWarning, as_probe_time, separate
+from flumekit.waves.stream_function import nonlinear_wavenumber
+from flumekit.waves.theory import G, energy_flux
 
 
 def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
@@ -173,8 +163,13 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     steady = separate(sep.isel(time=slice(i0, i0 + n)), depth, **kw)
     if amplitude_dispersion and bound_harmonics:
         for _ in range(2):  # the heights move k by < 1e-3 after the first pass
-            ks = [nonlinear_wavenumber(t_meas, float(steady[h]), depth, g)
-                  for h in ("incident_height", "reflected_height")]
+            try:
+                ks = [nonlinear_wavenumber(t_meas, float(steady[h]), depth, g)
+                      for h in ("incident_height", "reflected_height")]
+            except ValueError as e:  # beyond the highest steady wave: keep the linear k
+                warnings.warn(f"separation with the linear wavenumber: {e}", SeparationWarning,
+                              stacklevel=2)
+                break
             steady = separate(sep.isel(time=slice(i0, i0 + n)), depth, wavenumbers=ks, **kw)
     # separated series on the full time axis, defined (not NaN) over the steady window only
     inc = np.full(t.size, np.nan)

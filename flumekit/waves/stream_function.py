@@ -171,6 +171,18 @@ class StreamFunctionWave:
         return u, w
 
 
+def nonlinear_wavenumber(period: float, height: float, depth: float, g: float = G) -> float:
+    """Wavenumber [rad m-1] of the steady regular wave of a period [s], height [m] and depth [m].
+
+    The stream-function wave with zero mean mass transport (a closed flume); the linear one
+    for a height below 1e-4 of the depth (where they agree to 1e-8). A height beyond what a
+    steady wave can reach (a breaking or badly separated record) raises ValueError.
+    """
+    if not height > 1e-4 * depth:
+        return float(wavenumber(2 * np.pi / period, depth, g))
+    return stream_function_wave(period, height, depth, current="stokes", g=g).wavenumber
+
+
 def _cosh_sinh_over_cosh(jk: np.ndarray, zb, depth: float):
     """cosh(jk zb)/cosh(jk h), sinh(jk zb)/cosh(jk h) without overflow."""
     ep = np.exp(jk * (zb - depth))

@@ -181,8 +181,16 @@ time = "t"
                 xr.open_dataset(processed / stage / f"{RUN}.nc") as b:
             for v in a.data_vars:
                 if a[v].dtype.kind == "f" and v != "time":
-                    np.testing.assert_allclose(b[v].values, a[v].values, rtol=1e-12,
-                                               atol=1e-12 * float(np.nanmax(np.abs(a[v]))))
+                    atol = 1e-12 * float(np.nanmax(np.abs(a[v])))
+                    if v == "harmonic_reflection_coefficient":
+                        # a ratio A_R,n / A_I,n: the amplitudes' rounding (held to 1e-12 of
+                        # their scale above) divided by A_I,n, which for the nonlinear waves'
+                        # 4th harmonic is 4 % of the first
+                        amp = a["incident_harmonic_amplitude"].values
+                        atol = 1e-12 * amp.max() / amp
+                    close = np.isclose(b[v].values, a[v].values, rtol=1e-12, atol=atol,
+                                       equal_nan=True)
+                    assert close.all(), (stage, v, b[v].values, a[v].values)
 
 
 def test_calibrated_metres_skip_the_calibration(original):

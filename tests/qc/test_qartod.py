@@ -129,12 +129,14 @@ def test_gross_range_and_gap_tests():
     np.testing.assert_array_equal(qartod.gap_test(t, 25.0), [1, 1, 1, 4, 1])
 
 
-def test_clock_departures_need_three_runs_and_wrap_by_the_period():
+def test_clock_departures_same_condition_median_and_wrap_by_the_period():
     lags = np.array([1.35, 1.35, 1.65, 0.4, 0.41])
     periods = np.array([3.5, 3.5, 3.5, 2.0, 2.0])
-    groups = [(3.5, 0.25)] * 3 + [(2.0, 0.15)] * 2
-    d = clock_departures(lags, periods, groups)
+    heights = np.array([0.25, 0.25, 0.25, 0.15, 0.15])
+    d, basis = clock_departures(lags, periods, heights)
     np.testing.assert_allclose(d[:3], [0.0, 0.0, 0.3])
-    assert np.isnan(d[3:]).all()
-    d = clock_departures(np.array([-1.7, 1.7, 1.7]), np.full(3, 3.5), [0, 0, 0])
+    assert "median of the 3 runs" in basis[0]
+    # two runs of T = 2 s and one other period only: no reference (no extrapolation in T)
+    assert np.isnan(d[3:]).all() and basis[3].startswith("no reference")
+    d, _ = clock_departures(np.array([-1.7, 1.7, 1.7]), np.full(3, 3.5), np.full(3, 0.25))
     np.testing.assert_allclose(d, [0.1, 0.0, 0.0], atol=1e-12)

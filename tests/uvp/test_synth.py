@@ -13,19 +13,20 @@ from flumekit.synth.uvp import (
     wave_kinematics,
     write_beam,
 )
-from flumekit.synth.waves import regular_wave_field
+from flumekit.synth.waves import Beach, regular_wave_field
 
 T, H, DEPTH = 3.5, 0.25, 0.825
 WAVE = dict(period=T, height=H, depth=DEPTH, reflection=0.2, reflection_phase=0.6)
 
 
-@pytest.mark.parametrize("second_order", [False, True])
-def test_kinematics_is_potential_flow(second_order):
+@pytest.mark.parametrize("theory", ["linear", "stokes2", "stream", "stream+beach"])
+def test_kinematics_is_potential_flow(theory):
     """Continuity and irrotationality by central differences (error O(k³ d²) ~ 1e-9)."""
     rng = np.random.default_rng(1)
     x, z, t = rng.uniform(-0.4, -0.1, 50), rng.uniform(0.0, 0.6, 50), rng.uniform(100, 200, 50)
     d = 1e-4
-    kw = dict(WAVE, second_order=second_order, ramp_waves=None)
+    beach = Beach(transmission=0.9) if theory.endswith("beach") else None
+    kw = dict(WAVE, theory=theory.split("+")[0], beach=beach, ramp_waves=None)
     ux1, wx1, _ = wave_kinematics(x + d, z, t, **kw)
     ux0, wx0, _ = wave_kinematics(x - d, z, t, **kw)
     uz1, wz1, _ = wave_kinematics(x, z + d, t, **kw)
@@ -48,12 +49,13 @@ def test_linear_kinematic_surface_condition():
     np.testing.assert_allclose(w, deta, atol=1e-8)
 
 
-def test_same_surface_and_phase_as_the_wave_synth():
+@pytest.mark.parametrize("beach", [None, Beach(transmission=0.9, phase=0.4)])
+def test_same_surface_and_phase_as_the_wave_synth(beach):
     """η and the incident up-crossing agree with flumekit.synth.waves (one flow per run)."""
     t = np.arange(0, 400, 0.04)
     x = np.array([-0.3, 0.0])
-    ref = regular_wave_field(t, x, **WAVE)
-    _, _, eta = wave_kinematics(x[:, None], 0.0, t[None, :], **WAVE)
+    ref = regular_wave_field(t, x, beach=beach, **WAVE)
+    _, _, eta = wave_kinematics(x[:, None], 0.0, t[None, :], beach=beach, **WAVE)
     np.testing.assert_allclose(eta, ref["eta"].values, atol=1e-12)
     t_up = incident_upcrossing(period=T, height=H, depth=DEPTH)
     tt = t_up + 100 * T + np.array([-1e-4, 0.0, 1e-4])

@@ -5,7 +5,11 @@ import numpy as np
 import pytest
 
 from flumekit.waves import stokes2_coefficient, wavenumber
-from flumekit.waves.stream_function import highest_wave, stream_function_wave
+from flumekit.waves.stream_function import (
+    highest_wave,
+    nonlinear_wavenumber,
+    stream_function_wave,
+)
 
 H = 0.825  # the flume's depth [m]
 
@@ -158,3 +162,11 @@ def test_bad_input_is_refused():
         stream_function_wave(-1.0, 0.1, H)
     with pytest.raises(ValueError, match="n_modes"):
         stream_function_wave(2.0, 0.1, H, n_modes=1)
+
+
+def test_nonlinear_wavenumber():
+    k0 = float(wavenumber(2 * np.pi / 3.5, H))
+    assert nonlinear_wavenumber(3.5, 1e-5, H) == k0  # below 1e-4 h: the linear one
+    assert nonlinear_wavenumber(3.5, 0.25, H) == stream_function_wave(3.5, 0.25, H).wavenumber
+    with pytest.raises(ValueError, match="highest wave"):
+        nonlinear_wavenumber(3.5, 0.7, H)

@@ -6,7 +6,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.synth.waves import regular_wave_field
-from flumekit.waves import analyse_run, energy_flux, probe_spacing
+from flumekit.waves import analyse_run, energy_flux, probe_spacing, wavenumber
 
 H = 0.825
 FS = 25.0
@@ -72,3 +72,22 @@ def test_processed_dataset_round_trips_through_netcdf(tmp_path):
     assert float(back.reflection_coefficient) == float(ds.reflection_coefficient)
     np.testing.assert_array_equal(back.eta_incident.values, ds.eta_incident.values)  # NaN fill
     assert back.harmonic_reflection_coefficient.attrs["units"] == "1"
+
+
+def test_amplitude_dispersion_falls_back_to_linear_with_a_warning(monkeypatch):
+    # a separated height no steady wave reaches (a breaking or badly recorded run): the
+    # analysis keeps the linear wavenumbers and says so
+    import flumekit.waves.analysis as analysis
+    from flumekit.waves import SeparationWarning
+
+    def too_high(*args, **kwargs):
+        raise ValueError("wave height 0.7 m is above the highest wave")
+
+    da, _ = run(3.5, 0.25)
+    nl = analyse_run(da, H, 3.5, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+    monkeypatch.setattr(analysis, "nonlinear_wavenumber", too_high)
+    with pytest.warns(SeparationWarning, match="linear wavenumber"):
+        ds = analyse_run(da, H, 3.5, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+    k0 = float(wavenumber(2 * np.pi / float(ds.measured_period), H))
+    assert ds.attrs["fundamental_wavenumbers"] == pytest.approx([k0, k0], rel=1e-12)
+    assert nl.attrs["fundamental_wavenumbers"][0] < 0.98 * k0
