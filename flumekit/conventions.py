@@ -236,6 +236,8 @@ VARIABLES: dict[str, Variable] = {
     "torque_bearing": _V("N m", "friction torque of the hinge bearings"),
     "torque_valve": _V("N m", "torque of the PTO check valve's pressure"),
     "chamber_pressure_valve": _V("Pa", "pressure drop of the PTO check valve in the chamber"),
+    "torque_compliance": _V("N m", "torque of the PTO chamber's compliance pressure"),
+    "chamber_pressure_compliance": _V("Pa", "pressure lag of the PTO chamber's compliance"),
     # Renzi-Dias linear model and frequency-domain response (models/renzi_dias.py, response.py)
     "period": _V("s", "wave period"),
     "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit "

@@ -4,10 +4,9 @@ A virtual campaign (``small``: two wave runs and two UVP runs; every size has th
 at the paper's rates and lengths, so each is a paper-scale run) is written twice: clean, and
 with faults injected into its raw files with a known truth of which samples are bad:
 
-* probes: 10 single-sample spikes per probe (±15-40 % of the record's range); in the wave runs a
-  1 s dropout to 0 V on WP1 and an 8 s flat line (the value held) on WP3, at random times (in
-  a UVP run they would move the waves' steady window so that the 50 cycles the UVP average
-  needs after its phase reference no longer fit the record: a limitation of the uvp stage);
+* probes: 10 single-sample spikes per probe (±15-40 % of the record's range), a 1 s dropout to
+  0 V on WP1 and an 8 s flat line (the value held) on WP3, at random times, in every run (the
+  UVP runs' average keeps its window: flumekit.uvp.window);
 * flap: 10 spikes on the encoder and 10 on the pressure;
 * clocks: the flap record of one of the three T = 3.5 s, H = 0.25 m runs is stamped 0.3 s
   late (a 0.3 s clock offset between the probes and the flap);
@@ -17,7 +16,15 @@ with faults injected into its raw files with a known truth of which samples are 
 Reported: recall of each fault (flagged suspect or fail), false flags on the clean records and on
 the good samples of the faulty ones, the clock offset the QC summary finds, the analysis of the
 faulty campaign after QC against the virtual flume's truth with the tolerances of
-tests/test_virtual_flume_truth.py, and the run time of QC against the analysis per run.
+tests/test_virtual_flume_truth.py, and the run time of QC against the analysis, per run and
+instrument (best of three, each rule executed on its own):
+
+* probes and flap: the qc/probes and qc/flap rules against the stages that consume them
+  (eta, waves, flap, comparison);
+* UVP: the qc/uvp rule against the uvp rule.
+
+The QC rules read the raw files, which the analysis would otherwise read itself; the time of
+that read is shown and the ratio given both with it and without it.
 """
 
 from __future__ import annotations
@@ -41,13 +48,15 @@ def _spikes(rng, n, count, margin=5):
 
 def inject(raw: Path, rng: np.random.Generator) -> dict:
     """Write faults into the raw files of a campaign; return {(run, file, channel): bad mask}."""
-    from flumekit.io.tables import read_table, write_table
+    from flumekit.io.tables import read_text, write_table
 
     truth = {}
     for run in sorted(p for p in (raw / "runs").iterdir() if p.is_dir()):
-        cols, data = read_table(run / "probes.csv")
+        tx = read_text(run / "probes.csv")
+        cols = list(zip(tx.labels, tx.units, strict=True))
+        data = np.column_stack(tx.columns)
         n = data.shape[0]
-        for j, c in enumerate(cols[1:], start=1):
+        for j, (c, _) in enumerate(cols[1:], start=1):
             x = data[:, j]
             lo, hi = np.percentile(x, [0.1, 99.9])
             bad = np.zeros(n, dtype=bool)
@@ -55,21 +64,19 @@ def inject(raw: Path, rng: np.random.Generator) -> dict:
             x[idx] += rng.choice([-1, 1], idx.size) * rng.uniform(0.15, 0.4, idx.size) * (hi - lo)
             bad[idx] = True
             fs = 1.0 / (data[1, 0] - data[0, 0])
-            # long faults only in the wave runs: in a UVP run they move the waves' steady
-            # window, and 50 steady cycles after its phase reference no longer fit the record
-            long_faults = run.name.startswith("T")
-            if c.name == "WP1" and long_faults:
+            if c == "WP1":
                 i0 = int(rng.integers(int(0.1 * n), int(0.9 * n)))
                 x[i0:i0 + int(fs)] = 0.0
                 bad[i0:i0 + int(fs)] = True
-            if c.name == "WP3" and long_faults:
+            if c == "WP3":
                 i0 = int(rng.integers(int(0.1 * n), int(0.8 * n)))
                 x[i0:i0 + int(8 * fs)] = x[i0]
                 bad[i0:i0 + int(8 * fs)] = True  # the held run as a whole
-            truth[(run.name, "probes", c.name)] = bad
-        write_table(run / "probes.csv", [(c.name, "s" if c.name == "time" else "V")
-                                         for c in cols], data)
-        cols, data = read_table(run / "flap.csv")
+            truth[(run.name, "probes", c)] = bad
+        write_table(run / "probes.csv", cols, data)
+        tx = read_text(run / "flap.csv")
+        flap_cols = list(zip(tx.labels, tx.units, strict=True))  # as written (pressure in bar)
+        data = np.column_stack(tx.columns)
         n = data.shape[0]
         for j, name in ((1, "encoder_counts"), (2, "chamber_pressure")):
             x = data[:, j]
@@ -88,8 +95,7 @@ def inject(raw: Path, rng: np.random.Generator) -> dict:
             for key in ("encoder_counts", "chamber_pressure"):
                 truth[(run.name, "flap", key)] = np.r_[np.zeros(k, bool),
                                                        truth[(run.name, "flap", key)][:-k]]
-        write_table(run / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "Pa")],
-                    data, fmt=["%.4f", "%d", "%.3f"])
+        write_table(run / "flap.csv", flap_cols, data, fmt=["%.4f", "%d", "%.6f"])
     return truth
 
 
@@ -110,21 +116,21 @@ def _truth_errors(processed: Path, truth: Path, skip_flap: set[str]) -> list[str
     from flumekit.flap.power import incident_power
 
     fails = []
-    with xr.open_dataset(processed / "calibration.nc") as cal, \
-            xr.open_dataset(truth / "calibration.nc") as true:
+    with xr.open_dataset(processed / "calibration.nc", decode_times=False) as cal, \
+            xr.open_dataset(truth / "calibration.nc", decode_times=False) as true:
         if not np.allclose(cal.gain, true.gain, rtol=1e-3):
             fails.append("calibration gain")
     for run in sorted(p.name for p in truth.iterdir() if p.is_dir()):
-        with xr.open_dataset(processed / "waves" / f"{run}.nc") as w, \
-                xr.open_dataset(truth / run / "waves.nc") as t:
+        with xr.open_dataset(processed / "waves" / f"{run}.nc", decode_times=False) as w, \
+                xr.open_dataset(truth / run / "waves.nc", decode_times=False) as t:
             dk = abs(float(w.reflection_coefficient) - t.attrs["reflection_coefficient"])
             dh = abs(float(w.incident_height) / t.attrs["wave_height"] - 1)
             if dk >= 5e-3 or dh >= 5e-3:
                 fails.append(f"{run}: Kr off by {dk:.4f}, H_I by {dh:.2%}")
         if run in skip_flap:
             continue
-        with xr.open_dataset(processed / "flap" / f"{run}.nc") as f, \
-                xr.open_dataset(truth / run / "flap.nc") as t:
+        with xr.open_dataset(processed / "flap" / f"{run}.nc", decode_times=False) as f, \
+                xr.open_dataset(truth / run / "flap.nc", decode_times=False) as t:
             tt = f.time.values
             win = (tt >= float(f.steady_start)) & (tt <= float(f.steady_end))
             d = np.degrees(np.sqrt(np.mean((f.theta.values[win] - t.theta.values[win]) ** 2)))
@@ -134,8 +140,8 @@ def _truth_errors(processed: Path, truth: Path, skip_flap: set[str]) -> list[str
             dc = abs(float(f.capture_factor) / c_true - 1)
             if d >= 0.05 or dc >= 0.02:
                 fails.append(f"{run}: theta RMS {d:.3f} deg, C_f off by {dc:.2%}")
-    with xr.open_dataset(processed / "uvp_field.nc") as f, \
-            xr.open_dataset(truth / "uvp_field.nc") as t:
+    with xr.open_dataset(processed / "uvp_field.nc", decode_times=False) as f, \
+            xr.open_dataset(truth / "uvp_field.nc", decode_times=False) as t:
         true = t.interp(z=f.z, x=f.x)
         u0 = float(t.velocity_scale)
         for name in ("u", "w"):
@@ -153,7 +159,7 @@ def _recall(processed: Path, truth: dict) -> tuple[dict, float, int]:
     hit = {}
     good_flagged = good = 0
     for (run, kind, channel), bad in truth.items():
-        with xr.open_dataset(processed / "qc" / kind / f"{run}.nc") as ds:
+        with xr.open_dataset(processed / "qc" / kind / f"{run}.nc", decode_times=False) as ds:
             name = "probe_voltage" if kind == "probes" else channel
             f = ds[f"{name}_qc"]
             f = (f.sel(probe=channel) if kind == "probes" else f).values
@@ -182,22 +188,26 @@ def _recall(processed: Path, truth: dict) -> tuple[dict, float, int]:
     return {k: v[0] / v[1] for k, v in hit.items()}, good_flagged / good, good
 
 
-def _uvp_recall(raw: Path, rng) -> tuple[float, float]:
+def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
     """Recall of spikes injected in memory into every beam of the UVP runs, and the false flags
-    of the clean beams."""
+    of the clean beams, over the span the qc stage checks (the quasi-steady part of the run)."""
     from flumekit.io.mfprof import read_mfprof
+    from flumekit.io.netcdf import read_dataset
     from flumekit.qc.record import Thresholds, check_series
 
     th = Thresholds()
     hits = total = false = n = 0
     for f in sorted(raw.glob("runs/*/*.mfprof")):
+        lo, hi = read_dataset(processed / "qc" / "uvp" / f"{f.parent.name}.nc")[
+            "evaluated_span"].values
         b = read_mfprof(f)
-        v = b["beam_velocity"].transpose("channel", "time").values
-        a = b["amplitude"].transpose("channel", "time").values
         t = b["time"].values
+        i0, i1 = int(np.searchsorted(t, lo)), int(np.searchsorted(t, hi, side="right"))
+        v = b["beam_velocity"].transpose("channel", "time").values[:, i0:i1]
+        a = b["amplitude"].transpose("channel", "time").values[:, i0:i1]
         fs = (t.size - 1) / (t[-1] - t[0])
         kw = dict(despike=True, floor=float(b.attrs["velocity_resolution"]), amplitude=a)
-        clean = check_series(v, t, fs, th, **kw)["goring_nikora"]
+        clean = check_series(v, t[i0:i1], fs, th, **kw)["goring_nikora"]
         false += int((clean >= 3).sum())
         n += clean.size
         fluid = clean == 1
@@ -205,32 +215,102 @@ def _uvp_recall(raw: Path, rng) -> tuple[float, float]:
         idx = rng.choice(cand, 200, replace=False)
         w = v.copy().ravel()
         w[idx] += rng.choice([-1, 1], 200) * rng.uniform(0.1, 0.3, 200)
-        g = check_series(w.reshape(v.shape), t, fs, th, **kw)["goring_nikora"].ravel()
+        g = check_series(w.reshape(v.shape), t[i0:i1], fs, th, **kw)["goring_nikora"].ravel()
         hits += int((g[idx] >= 3).sum())
         total += idx.size
     return hits / total, false / n
 
 
-def _timings(processed: Path, raw: Path) -> list[tuple[str, float, float]]:
-    """QC time against analysis time (eta, waves, flap, uvp) per run (best of three)."""
+#: the stages that consume each instrument's QC product, per run
+CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
+
+
+def _compute_probes_flap(p: dict, f: dict, run) -> float:
+    """Best time of the QC computations alone (tests, flags, masking, filling) of a run's probe
+    and flap records, read beforehand [s]."""
+    from flumekit.bench import best_time
+    from flumekit.io.instruments import read_flap, read_probes
+    from flumekit.qc.record import Thresholds, qc_dataset
+
+    th = Thresholds.from_params(p)
+    probes = read_probes(run.file("probes"), tuple(p["probes"]), p["sampling_rate"],
+                         p.get("dialect"), units=p.get("units", "V"))
+    name = "probe_voltage" if "probe_voltage" in probes else "probe_elevation"
+    flap = read_flap(run.file("flap"), f["sampling_rate"], f.get("dialect"))
+    flap["encoder_counts"] = flap["encoder_counts"].astype(float)
+    return best_time(lambda: (qc_dataset(probes, name, th, channel_dim="probe"),
+                              [qc_dataset(flap, k, th) for k in ("encoder_counts",
+                                                                  "chamber_pressure")]))[0]
+
+
+def _compute_uvp(beams: list[Path], span) -> float:
+    """Best time of the UVP QC computations alone over the span the qc stage checks [s]."""
+    from flumekit.bench import best_time
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.qc.flags import aggregate
+    from flumekit.qc.record import Thresholds, check_series
+
+    th = Thresholds()
+    blocks = []
+    for path in beams:
+        b = read_mfprof(path)
+        t = b["time"].values
+        i0, i1 = int(np.searchsorted(t, span[0])), int(np.searchsorted(t, span[1], "right"))
+        blocks.append((b["beam_velocity"].transpose("channel", "time").values[:, i0:i1],
+                       t[i0:i1], (t.size - 1) / (t[-1] - t[0]),
+                       b["amplitude"].transpose("channel", "time").values[:, i0:i1],
+                       float(b.attrs["velocity_resolution"])))
+    return best_time(lambda: [aggregate(*check_series(v, t, fs, th, despike=True, floor=r,
+                                                      amplitude=a).values())
+                              for v, t, fs, a, r in blocks])[0]
+
+
+#: the stages that consume each instrument's QC product, per run
+CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
+
+
+def _timings(processed: Path, raw: Path) -> list[tuple]:
+    """Per run and instrument: QC rule time, of which reading the raw files, the QC
+    computations alone, and the time of the rules that consume the QC product (best of three
+    each) [s]."""
     from flumekit.bench import best_time
     from flumekit.campaign import load_campaign
+    from flumekit.io.instruments import read_flap, read_probes
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.io.netcdf import read_dataset
     from flumekit.pipeline.config import load_pipeline
     from flumekit.pipeline.rules import execute
     from flumekit.stages import build_rules
     from flumekit.stages.context import Context
 
     pipe = load_pipeline(processed.parents[1] / "pipelines" / "small.toml")
-    ctx = Context(campaign=load_campaign(raw), processed=processed, params=pipe.stages)
+    campaign = load_campaign(raw)
+    ctx = Context(campaign=campaign, processed=processed, params=pipe.stages)
     rules = {r.target: r for r in build_rules(ctx)}
+
+    def run_rules(targets):
+        return sum(best_time(lambda r=rules[t]: execute(r))[0] for t in targets if t in rules)
+
     out = []
-    for run in sorted(r.id for r in ctx.campaign.runs):
-        qc = [t for t in rules if t.startswith("qc/") and t.endswith("/" + run)]
-        ana = [t for t in (f"eta/{run}", f"waves/{run}", f"flap/{run}", f"uvp/{run}")
-               if t in rules]
-        t_qc = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in qc)
-        t_ana = sum(best_time(lambda r=rules[t]: execute(r))[0] for t in ana)
-        out.append((run, t_qc, t_ana))
+    for run in campaign.runs:
+        p = rules[f"qc/probes/{run.id}"].params
+        f = rules[f"qc/flap/{run.id}"].params
+        t_read = best_time(lambda p=p, f=f, run=run: (
+            read_probes(run.file("probes"), tuple(p["probes"]), p["sampling_rate"],
+                        p.get("dialect"), units=p.get("units", "V")),
+            read_flap(run.file("flap"), f["sampling_rate"], f.get("dialect"))))[0]
+        t_qc = run_rules([f"qc/probes/{run.id}", f"qc/flap/{run.id}"])
+        t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["probes+flap"]])
+        out.append((run.id, "probes+flap", t_qc, t_read, _compute_probes_flap(p, f, run),
+                    t_ana))
+        if f"qc/uvp/{run.id}" in rules:
+            beams = [run.path / f"{b.name}.mfprof" for b in campaign.uvp.beams]
+            t_read = best_time(lambda beams=beams: [read_mfprof(b) for b in beams])[0]
+            t_qc = run_rules([f"qc/uvp/{run.id}"])
+            t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["uvp"]])
+            span = read_dataset(processed / "qc" / "uvp" / f"{run.id}.nc")[
+                "evaluated_span"].values
+            out.append((run.id, "uvp", t_qc, t_read, _compute_uvp(beams, span), t_ana))
     return out
 
 
@@ -248,7 +328,8 @@ def run(quick: bool = False) -> str:
             truth = inject(project / "raw" / "small", np.random.default_rng(7)) \
                 if label == "faulty" else None
             _make(project, ["calibration", "qc_summary", "waves_summary", "flap_summary",
-                            "uvp_field"])
+                            "uvp_field", *(f"comparison/{r.name}" for r in sorted(
+                                (project / "raw" / "small" / "runs").iterdir()))])
             results[label] = (project, truth)
         clean_p = results["clean"][0] / "processed" / "small"
         fault_p = results["faulty"][0] / "processed" / "small"
@@ -260,13 +341,13 @@ def run(quick: bool = False) -> str:
         for f in sorted((clean_p / "qc").glob("*/*.nc")):
             if f.parent.name == "uvp":
                 continue
-            with xr.open_dataset(f) as ds:
+            with xr.open_dataset(f, decode_times=False) as ds:
                 for v in ds.data_vars:
                     if v.endswith("_qc"):
                         flagged += int((ds[v] >= 3).sum())
                         total += int(ds[v].size)
         recall, false_faulty, _ = _recall(fault_p, results["faulty"][1])
-        uvp_recall, uvp_false = _uvp_recall(raw, np.random.default_rng(3))
+        uvp_recall, uvp_false = _uvp_recall(raw, clean_p, np.random.default_rng(3))
         lines.append("fault                        recall")
         for k, v in sorted(recall.items()):
             lines.append(f"{k:28s} {v:7.2%}")
@@ -275,7 +356,7 @@ def run(quick: bool = False) -> str:
                      f"{flagged / total:.4%}")
         lines.append(f"false flags, good samples of faulty records: {false_faulty:.4%}")
         lines.append(f"false flags (GN), clean UVP beams: {uvp_false:.4%}")
-        with xr.open_dataset(fault_p / "qc_summary.nc") as s:
+        with xr.open_dataset(fault_p / "qc_summary.nc", decode_times=False) as s:
             dep = dict(zip(s.run.values.tolist(), s.clock_departure.values.tolist(),
                            strict=True))
             warned = s.attrs.get("flumekit_warnings", "")
@@ -289,7 +370,14 @@ def run(quick: bool = False) -> str:
                      + ("yes" if not fails else "NO: " + "; ".join(fails)))
         if not quick:
             lines.append("")
-            lines.append("run                 QC [s]   analysis [s]   QC/analysis")
-            for run_id, t_qc, t_ana in _timings(clean_p, raw):
-                lines.append(f"{run_id:18s} {t_qc:7.3f} {t_ana:12.3f} {t_qc / t_ana:12.1%}")
+            lines.append("QC rules against the rules consuming their product (best of 3) [s]; "
+                         "probes+flap: eta, waves, flap, comparison; uvp: uvp")
+            lines.append("QC: the QC rules; read: their reading of the raw files; compute: "
+                         "the QC computations alone (tests, flags, masking, filling)")
+            lines.append("run                instrument     QC   read compute analysis   "
+                         "QC/ana (QC-read)/ana compute/ana")
+            for run_id, kind, t_qc, t_read, t_cmp, t_ana in _timings(clean_p, raw):
+                lines.append(f"{run_id:18s} {kind:11s} {t_qc:6.3f} {t_read:6.3f} "
+                             f"{t_cmp:6.3f} {t_ana:8.3f} {t_qc / t_ana:8.1%} "
+                             f"{(t_qc - t_read) / t_ana:13.1%} {t_cmp / t_ana:11.1%}")
     return "\n".join(lines)

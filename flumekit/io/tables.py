@@ -60,10 +60,69 @@ def _wrong_delimiter(path: Path, line: str, number: int, delimiter: str) -> Inpu
     return None
 
 
-def _decimals(cell: str) -> int:
-    c = cell.strip()
-    k = max(c.rfind("."), c.rfind(","))
-    return len(c) - k - 1 if k >= 0 else 0
+#: a complete last line is refused with at most this probability by the digit-count test
+#: (its rank among the column's cells)
+CUT_SIGNIFICANCE = 1e-3
+
+
+def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
+                   column: np.ndarray) -> str | None:
+    """Why the last cell of a file without a final line end looks cut, or None.
+
+    A file cut inside its last field still parses: the cut only removes characters from the
+    end of the last number. Whatever the writer's format, that leaves a cell unlike the others
+    of its column in one of these ways, tested in turn on the cells as written:
+
+    * an exponent shorter than every other cell's, or none where every other cell has one
+      (scientific notation: ``1.234560e-05`` cut to ``1.2345``);
+    * fewer decimals than every other cell (fixed decimals: ``1.6000`` to ``1.60``);
+    * fewer significant digits than all but a fraction ``CUT_SIGNIFICANCE`` of the column's
+      cells (variable decimals, ``%g`` or shortest round-trip: a complete last line is refused
+      with at most that probability);
+    * a value farther from the one before than twice the column's largest step between
+      consecutive samples, written with fewer digits than the one before (integers, or a cut
+      in the integer part: ``1234`` to ``123``).
+
+    A cut that leaves a cell like at least that fraction of the column's own (the last two or
+    three digits of a ``%g`` number, whose trailing zeros are dropped) changes the value by
+    less than its last kept digit and cannot be told from a complete line; nor can an integer
+    cut near zero that stays within twice the largest step.
+    """
+    rows = pd.Series(body.split("\n")).str.rstrip("\r")
+    rows = rows[rows.str.strip() != ""]
+    if comment:
+        rows = rows[~rows.str.lstrip().str.startswith(comment)]
+    cells = (rows.str.split().str[-1] if delimiter == "whitespace"
+             else rows.str.rsplit(delimiter, n=1).str[-1]).str.strip()
+    if cells.size < 2:
+        return None
+    sep = re.escape(decimal)
+    parts = cells.str.extract(rf"^[+-]?(?P<i>\d*)(?:{sep}(?P<f>\d*))?(?:[eE][+-]?(?P<e>\d*))?$")
+    frac = parts["f"].fillna("")
+    has_exp = parts["e"].notna().to_numpy()
+    exp = parts["e"].fillna("").str.len().to_numpy()
+    dec = frac.str.len().to_numpy()
+    digits = np.maximum((parts["i"].fillna("") + frac).str.lstrip("0").str.len().to_numpy(), 1)
+    last, cell = cells.size - 1, cells.iloc[-1]
+    if has_exp[:last].all() and (not has_exp[last] or exp[last] < exp[:last].min()):
+        return (f"the last line ends in {cell!r}, " + ("without the exponent" if not
+                has_exp[last] else "with a shorter exponent than") + " every other value of "
+                "its column")
+    if dec[last] < dec[:last].min():
+        return (f"the last line ends in {cell!r}, with fewer decimals than every other value "
+                "of its column")
+    rank = float(np.mean(digits[:last] <= digits[last]))
+    if rank < CUT_SIGNIFICANCE:
+        return (f"the last line ends in {cell!r}, with fewer significant digits "
+                f"({digits[last]}) than all but {rank:.2%} of its column")
+    x = np.asarray(column, dtype=float)
+    if x.size >= 3:
+        step = float(np.max(np.abs(np.diff(x[:-1]))))
+        if abs(x[-1] - x[-2]) > 2 * step and digits[last] < digits[last - 1]:
+            return (f"the last line ends in {cell!r}, {abs(x[-1] - x[-2]):.6g} from the value "
+                    f"before it, more than twice the largest step of its column ({step:.6g}), "
+                    "and with fewer digits")
+    return None
 
 
 def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_lines: int = 0,
@@ -155,15 +214,11 @@ def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", com
     if not np.all(np.isfinite(values)):
         raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns)
     if not ended and ncol - 1 in num:
-        # a file cut inside its last field still has all its fields: its last cell has fewer
-        # decimals than that column has anywhere else (loggers write a fixed precision)
         rows = body.split("\n")
-        last = [_split(r.rstrip("\r"), delimiter)[-1] for r in rows
-                if not (comment and r.lstrip().startswith(comment))]
-        if len(last) > 1 and _decimals(last[-1]) < min(_decimals(c) for c in last[:-1]):
-            raise InputError(path, f"the last line ends in {last[-1].strip()!r}, with fewer "
-                             "decimals than every other value of its column, and has no line "
-                             "end: the file looks cut (truncated)", line=first + len(rows))
+        problem = _cut_last_cell(body, delimiter, decimal, comment, values[:, -1])
+        if problem:
+            raise InputError(path, problem + ", and the line has no line end: the file looks "
+                             "cut (truncated)", line=first + len(rows))
     columns = [df[j].to_numpy() if j in text_columns else values[:, num.index(j)]
                for j in range(ncol)]
     return Text(labels, units, columns, first + 1)

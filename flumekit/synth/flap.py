@@ -4,13 +4,14 @@ Three flap models (``FlapTruth.model``):
 
 ``"flume"`` (default): the simulator below plus the losses that the pipeline's models lack
 (:mod:`flumekit.synth.flume`: KC-dependent vortex drag, wetted length, overtopping, bearing
-friction, a check valve in the PTO line), calibrated to what Brito et al. (2020) state of
-their flume (:mod:`flumekit.bench.flume`). The comparison stage's simulator and linear model
-then differ from the "experiment" as the paper's do. Every extra term is recorded in the
-truth, the valve's pressure in ``chamber_pressure_valve``; since Eq. (13) cannot represent
-the valve, the truth's attributes also hold the best Eq. (13) fit to the true pressure over
-the true quasi-steady window (``eq13_pressure_loss_coefficient``, ``eq13_fluid_inertia``,
-``eq13_r2``), the target of the flap stage's fit.
+friction, a check valve in the PTO line and the chamber's compliance), calibrated to what
+Brito et al. (2020) state of their flume (:mod:`flumekit.bench.flume`). The comparison
+stage's simulator and linear model then differ from the "experiment" as the paper's do.
+Every extra term is recorded in the truth, the valve's and the compliance's pressures in
+``chamber_pressure_valve`` and ``chamber_pressure_compliance``; since Eq. (13) cannot
+represent them, the truth's attributes also hold the best Eq. (13) fit to the true pressure
+over the true quasi-steady window (``eq13_pressure_loss_coefficient``,
+``eq13_fluid_inertia``, ``eq13_r2``), the target of the flap stage's fit.
 
 ``"simulator"``: the time-domain simulator :func:`flumekit.flap.simulator.
 simulate_run` (Cummins equation, Brito et al. 2020 Eqs. 11-13 and Appendix B) driven from rest
@@ -323,7 +324,9 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
         extra = ExtraTorque(np.interp(t[0] + 0.5 * h * np.arange(n_half), t, front),
                             omega=omega, amplitude=float(np.sqrt(2) * np.std(eta[eta.size // 2:])),
                             excitation=excitation, campaign=campaign, losses=truth.losses,
-                            compression_sign=-1 if m0 > 0 else 1, rho=truth.rho)
+                            compression_sign=-1 if m0 > 0 else 1,
+                            pressure_loss_coefficient=truth.pressure_loss_coefficient,
+                            time_step=h, rho=truth.rho)
     sim = simulate_run(hydro.hydro, xr.DataArray(eta, dims="time", coords={"time": t}),
                        campaign, pto="hydraulic",
                        pressure_loss_coefficient=truth.pressure_loss_coefficient,
@@ -344,7 +347,8 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
         series.update(extra.record(step=m))
         # the valve's pressure adds to Eq. (13)'s in the chamber (its torque m A ΔP_v acted
         # on the flap through the simulator's extra torque)
-        p_true = p_true + series["chamber_pressure_valve"]
+        p_true = (p_true + series["chamber_pressure_valve"]
+                  + series["chamber_pressure_compliance"])
 
     h = hydro.hydro
     w_grid = h["angular_frequency"].values

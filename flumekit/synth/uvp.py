@@ -15,7 +15,7 @@ with C_n = cosh(nk z_b)/cosh(nkh), S_n = sinh(nk z_b)/cosh(nkh) (Fenton 1988, Eq
 fixed frame; second-order Stokes velocities of Dean & Dalrymple 1991, §11.3, with
 ``theory="stokes2"``). Harmonic n carries the envelope to the power n, as in the elevation; the
 mean (return) current c_E < 0 of a closed flume, its square. Harmonics below
-:data:`HARMONIC_CUTOFF` of the first are left out.
+:data:`flumekit.synth.waves.HARMONIC_CUTOFF` of the first are left out.
 
 The instrument: each beam's channels (see :mod:`flumekit.uvp.geometry`) sample the velocity
 projected on the beam (positive away from the transducer, the label the reader uses by default),
@@ -41,6 +41,7 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
 
 X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the wavemaker)
@@ -61,35 +62,25 @@ def _theory(theory: str | None, second_order: bool) -> str:
 
 
 def _depth_functions(k: float, n: int, depth: float, zb):
-    """cosh(jk z_b)/cosh(jkh), sinh(jk z_b)/cosh(jkh) for j = 1..n [-], shape (..., n).
-
-    Overflow-free (exponential form); ``zb`` [m] above the bed.
-    """
-    zb = np.asarray(zb, dtype=float)[..., None]
-    jk = k * np.arange(1, n + 1)
-    ep, em = np.exp(jk * (zb - depth)), np.exp(-jk * (zb + depth))
-    den = 1.0 + np.exp(-2.0 * jk * depth)
-    return (ep + em) / den, (ep - em) / den
+    """C_n(z_b), S_n(z_b) of the module notes for n = 1..n, shape (..., n); z_b above the bed."""
+    return depth_ratios(k * np.arange(1, n + 1), np.asarray(zb, dtype=float)[..., None], depth)
 
 
 def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
-    """η, u, w of one wave along its direction of travel: Σ_n eⁿ (a_n cos nθ,
-    V_n C_n(z_b) cos nθ, V_n S_n(z_b) sin nθ), cos nθ and sin nθ by the Chebyshev recurrences
-    from cos θ and sin θ (no transcendental function per harmonic)."""
+    """η, u, w of one wave along its direction of travel: Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ,
+    V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so that harmonic n carries eⁿ; the powers
+    by repeated multiplication in place (no transcendental function per harmonic)."""
     ch, sh = _depth_functions(k, amps.size, depth, zb)
-    eta = u = w = 0.0
-    c_prev, c_cur = 1.0, cos_t
-    s_prev, s_cur = 0.0, sin_t
-    e_n = env
-    for n in range(amps.size):  # the harmonics kept (about ten)
-        if n:
-            c_prev, c_cur = c_cur, 2 * cos_t * c_cur - c_prev
-            s_prev, s_cur = s_cur, 2 * cos_t * s_cur - s_prev
-            e_n = e_n * env
-        ec, es = e_n * c_cur, e_n * s_cur
-        eta = eta + amps[n] * ec
-        u = u + vel[n] * ch[..., n] * ec
-        w = w + vel[n] * sh[..., n] * es
+    p1 = np.asarray(env * cos_t + 1j * (env * sin_t))
+    pn = p1.copy()
+    eta = amps[0] * pn.real
+    u = (vel[0] * ch[..., 0]) * pn.real
+    w = (vel[0] * sh[..., 0]) * pn.imag
+    for n in range(1, amps.size):  # the harmonics kept (about ten)
+        pn *= p1
+        eta += amps[n] * pn.real
+        u += (vel[n] * ch[..., n]) * pn.real
+        w += (vel[n] * sh[..., n]) * pn.imag
     return eta, u, w
 
 

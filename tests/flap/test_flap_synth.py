@@ -259,10 +259,14 @@ def test_lead_out_continues_the_wave(campaign, hydrodynamics, model):
 def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     # the flume (simulator + extra losses): T_h defined by Eq. (11) equals the sum of the
     # recorded torques acting on the flap other than the PTO's, every loss term is recorded
-    # and active, and the chamber pressure is Eq. (13) plus the check valve's
+    # and active (overtopping, off by default, switched on here), and the chamber pressure is
+    # Eq. (13) plus the check valve's and the compliance's
+    import dataclasses
+
     t = np.arange(0, 60, 0.01)
     eta = 0.14 * np.clip(t / 10, 0, 1) * np.cos(2 * np.pi * t / 3.5)
     truth = FlapTruth(model="flume")
+    truth = dataclasses.replace(truth, losses=dataclasses.replace(truth.losses, overtopping=0.5))
     ds = flap_record(t, eta, period=3.5, campaign=campaign, rng=np.random.default_rng(0),
                      truth=truth, hydro=hydrodynamics, eta_front=1.2 * eta)
     terms = ("torque_excitation", "torque_radiation", "torque_vortex_drag",
@@ -271,7 +275,7 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     th = ds.torque_hydrodynamic.values
     assert np.max(np.abs(th - acting)) < 1e-6 * np.max(np.abs(th))
     late = t > 40
-    for n in terms[2:] + ("chamber_pressure_valve",):
+    for n in terms[2:] + ("chamber_pressure_valve", "chamber_pressure_compliance"):
         assert np.max(np.abs(ds[n].values[late])) > 0, n
     # losses resist the motion; the waterline term pushes towards the beach
     w = ds.theta_dot.values
@@ -280,13 +284,26 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     assert np.all(ds.torque_wetted_length.values >= 0)
     pto = campaign.pto
     s_c = -1 if np.median(ds.lever_arm) > 0 else 1
-    p13 = chamber_pressure_model(w, ds.theta_ddot.values, truth.pressure_loss_coefficient,
+    k_p = truth.pressure_loss_coefficient
+    p13 = chamber_pressure_model(w, ds.theta_ddot.values, k_p,
                                  truth.fluid_inertia, atmospheric_pressure=pto.atmospheric_pressure,
                                  vapour_pressure=pto.vapour_pressure, compression_sign=s_c)
-    p = p13 + ds.chamber_pressure_valve.values
+    p = p13 + ds.chamber_pressure_valve.values + ds.chamber_pressure_compliance.values
     ok = ds.cavitating.values == 0
     assert np.max(np.abs(p - ds.chamber_pressure_true.values)[ok]) < 1e-9 * np.max(np.abs(p))
     assert np.all(ds.chamber_pressure_valve.values[s_c * w <= 0] == 0)
+    # the compliance: K_p θ̇² of the compression stroke through a first-order lag of τ_c,
+    # exact update per 0.01 s step: p_l[n] - p_q[n] = (p_l[n-1] - p_q[n]) exp(-dt/τ_c), and
+    # p_l = 0 where the suction cavitates the chamber (K_p θ̇² ≥ P_atm - P_v)
+    p_q = np.where(s_c * w > 0, k_p * w**2, 0.0)
+    p_l = p_q + ds.chamber_pressure_compliance.values
+    decay = np.exp(-0.01 / truth.losses.compliance_time)
+    empty = (s_c * w < 0) & (k_p * w**2 >= pto.atmospheric_pressure - pto.vapour_pressure)
+    assert empty.sum() > 100 and np.all(p_l[empty] == 0)
+    np.testing.assert_allclose((p_l[1:] - p_q[1:])[~empty[1:]],
+                               ((p_l[:-1] - p_q[1:]) * decay)[~empty[1:]],
+                               atol=1e-9 * np.max(p_l))
+    assert np.all(p_l >= 0)
 
 
 def test_flume_moves_less_than_the_simulator(campaign, hydrodynamics):
