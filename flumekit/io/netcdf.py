@@ -43,25 +43,51 @@ def _encoding(ds: xr.Dataset) -> dict[str, dict]:
     return enc
 
 
-#: global attribute a reader sets when the raw file gives the record's start (ISO 8601, UTC)
-RECORD_START = "record_start"
+#: the origin of the time units when the record's start is not known (a stand-in, said so)
 _UNKNOWN_START = "1970-01-01T00:00:00Z"
+_COMMENTS = {"unknown": "the record's start time is not known: the origin of the units stands "
+                        "for the start of the record",
+             "local": "the record's start is on the recording computer's clock, time zone "
+                      "unknown"}
 
 
 def _cf_time(ds: xr.Dataset) -> xr.Dataset:
     """``time`` in seconds since the record's start, as CF 4.4 wants a time coordinate: the
-    start from the raw file when known (global attribute ``record_start``), else a nominal
-    origin said to stand for the start of the record. :func:`read_dataset` does not decode
-    it, so code and analysts keep plain seconds."""
-    if "time" not in ds.variables or ds["time"].dtype.kind not in "fiu":
+    start the raw file or the run gave (its ``record_start`` attribute), else a nominal origin
+    said to stand for the start of the record (``record_start = "unknown"``). Another time axis
+    in seconds that knows its record's start (a UVP beam's own) is encoded so too.
+    :func:`read_dataset` does not decode them, so code and analysts keep plain seconds."""
+    names = [n for n in ds.coords if ds[n].dtype.kind in "fiu" and (
+        n == "time" or (ds[n].attrs.get("units") == "s"
+                        and ds[n].attrs.get(conventions.RECORD_START)))]
+    if not names:
         return ds
     ds = ds.copy()
-    start = ds.attrs.get(RECORD_START)
-    attrs = dict(ds["time"].attrs, units=f"seconds since {start or _UNKNOWN_START}")
-    if not start:
-        attrs["comment"] = ("the record's start time is not known: the origin of the units "
-                            "stands for the start of the record")
-    ds["time"].attrs = attrs
+    for name in names:
+        start = conventions.record_start(ds, name)
+        attrs = dict(ds[name].attrs, units=f"seconds since {start or _UNKNOWN_START}")
+        attrs[conventions.RECORD_START] = start or conventions.UNKNOWN_START
+        if attrs.get("comment") in _COMMENTS.values():  # read back from a product: said anew
+            del attrs["comment"]
+        if not start or not start.endswith("Z"):
+            attrs["comment"] = _COMMENTS["local" if start else "unknown"]
+        ds[name].attrs = attrs
+    return ds
+
+
+def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
+    """Unsigned bytes whose values fit (QARTOD flags 1-9) as signed bytes, ``flag_values``
+    too: CF 1.8 knows no unsigned types (compliance-checker: "the datatype is uint8")."""
+    names = [n for n, v in ds.data_vars.items()
+             if v.dtype == np.uint8 and (v.size == 0 or int(v.max()) <= np.iinfo(np.int8).max)]
+    if not names:
+        return ds
+    ds = ds.copy()
+    for name in names:
+        attrs = dict(ds[name].attrs)
+        if "flag_values" in attrs:
+            attrs["flag_values"] = np.asarray(attrs["flag_values"]).astype(np.int8)
+        ds[name] = (ds[name].dims, ds[name].values.astype(np.int8), attrs)
     return ds
 
 
@@ -77,7 +103,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     if missing:
         raise ValueError(f"{path}: dataset lacks global attributes {missing}")
     ds.attrs = conventions.provenance(ds.attrs)
-    ds = _cf_time(ds)
+    ds = _cf_time(_signed_bytes(ds))
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
     conventions.record_written(path, conventions.content_digest(ds))
