@@ -10,98 +10,11 @@ from __future__ import annotations
 import difflib
 import math
 import os
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
-from flumekit.errors import InputError
-from flumekit.schema import Key, Problem, raise_problems, suggest, validate
-
-
-def read_toml(path: Path) -> dict[str, Any]:
-    try:
-        with open(path, "rb") as f:
-            return tomllib.load(f)
-    except FileNotFoundError:
-        raise InputError(path, "file not found") from None
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(path, f"not valid TOML ({e})") from None
-
-
-class Table:
-    """A TOML table that knows its file and section, so that errors can name both."""
-
-    def __init__(self, data: dict, path: Path, section: str = ""):
-        self.data, self.path, self.section = data, path, section
-
-    def _name(self, key: str) -> str:
-        return f"{self.section}.{key}" if self.section else key
-
-    def sub(self, key: str) -> Table:
-        value = self.data.get(key)
-        if not isinstance(value, dict):
-            raise InputError(self.path, "missing section" if value is None else "not a section",
-                             field=self._name(key))
-        return Table(value, self.path, self._name(key))
-
-    def has(self, key: str) -> bool:
-        return key in self.data
-
-    def number(self, key: str, *, positive: bool = False, nonnegative: bool = False,
-               default: float | None = None) -> float:
-        if key not in self.data:
-            if default is not None:
-                return float(default)
-            raise InputError(self.path, "missing field", field=self._name(key))
-        v = self.data[key]
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise InputError(self.path, f"expected a finite number, got {v!r}",
-                             field=self._name(key))
-        if positive and v <= 0:
-            raise InputError(self.path, f"must be > 0, got {v}", field=self._name(key))
-        if nonnegative and v < 0:
-            raise InputError(self.path, f"must be >= 0, got {v}", field=self._name(key))
-        return float(v)
-
-    def integer(self, key: str, default: int | None = None) -> int:
-        v = self.data.get(key, default)
-        if v is None:
-            raise InputError(self.path, "missing field", field=self._name(key))
-        if isinstance(v, bool) or not isinstance(v, int):
-            raise InputError(self.path, f"expected an integer, got {v!r}", field=self._name(key))
-        return v
-
-    def text(self, key: str, default: str | None = None) -> str:
-        v = self.data.get(key, default)
-        if v is None:
-            raise InputError(self.path, "missing field", field=self._name(key))
-        if not isinstance(v, str):
-            raise InputError(self.path, f"expected a string, got {v!r}", field=self._name(key))
-        return v
-
-    def point(self, key: str) -> tuple[float, float]:
-        v = self.data.get(key)
-        if (not isinstance(v, list) or len(v) != 2
-                or not all(isinstance(a, (int, float)) and math.isfinite(a) for a in v)):
-            raise InputError(self.path, f"expected [x, z] in metres, got {v!r}",
-                             field=self._name(key))
-        return float(v[0]), float(v[1])
-
-    def names(self, key: str) -> tuple[str, ...]:
-        v = self.data.get(key)
-        if not isinstance(v, list) or not v or not all(isinstance(a, str) for a in v):
-            raise InputError(self.path, f"expected a non-empty list of names, got {v!r}",
-                             field=self._name(key))
-        if len(set(v)) != len(v):
-            raise InputError(self.path, "names are not unique", field=self._name(key))
-        return tuple(v)
-
+from flumekit.schema import Key, Problem, raise_problems, read_toml, suggest, validate
 
 # --------------------------------------------------------------------------------------------
 # Schemas: what each file may hold (flumekit.schema validates them, every problem at once)
@@ -280,7 +193,9 @@ RUN: dict[str, Key] = {
         "height": _num("target wave height", "m", positive=True, required=False),
         "repeat": Key("integer", "repeat number of the condition", required=False, default=0),
         "uvp_elevation": _num("UVP runs: elevation of the horizontal transducer", "m",
-                              required=False)}),
+                              required=False),
+        "start": Key("datetime", "when the records started, where their files do not say "
+                     "(a file that gives its start must agree within 1 s)", required=False)}),
     "probes": Key("table", "x of every probe named in campaign.toml", "m", table={},
                   items=_num("probe position", "m")),
     "still_water": Key("table", "this run's still-water rule, overriding [probes] still_water "
@@ -421,6 +336,7 @@ class Run:
     files: dict[str, Path] = field(default_factory=dict)  # instrument -> file
     clock: dict[str, float] = field(default_factory=dict)  # instrument -> time offset [s]
     still_water: Any = None  # the run's still-water rule (None: the campaign's)
+    start: str | None = None  # declared start of the records, ISO 8601 (Z: UTC), see _iso
 
     def file(self, instrument: str) -> Path:
         return self.files[instrument]
@@ -507,7 +423,21 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
                repeat=int(r.get("repeat", 0)), probe_x={n: float(px[n]) for n in names},
                uvp_elevation=float(r["uvp_elevation"]) if kind == "uvp" else None,
                files=files, clock={k: float(clock.get(k, 0.0)) for k in ("probes", "flap", "uvp")},
-               still_water=sw)
+               still_water=sw, start=_iso(r["start"]) if "start" in r else None)
+
+
+def _iso(t) -> str:
+    """ISO 8601 of a TOML date-time: in UTC with ``Z`` when it has an offset, else as written
+    (the laboratory's clock); the fraction of a second without trailing zeros."""
+    import datetime
+
+    if t.tzinfo is not None:
+        t = t.astimezone(datetime.timezone.utc).replace(tzinfo=None)
+        zone = "Z"
+    else:
+        zone = ""
+    frac = f".{t.microsecond:06d}".rstrip("0") if t.microsecond else ""
+    return t.strftime("%Y-%m-%dT%H:%M:%S") + frac + zone
 
 
 def _check_channels(path: Path, files: dict, channels: dict[str, list[str]],

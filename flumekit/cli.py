@@ -42,16 +42,17 @@ def _pipeline(args):
     return load_pipeline(path, processed=getattr(args, "processed", None))
 
 
-def _graph(pipe):
-    """The pipeline's rules. A campaign the virtual flume is to write (``[synth]`` in the
-    pipeline, and its raw folder absent, empty or partly synthesised) is planned from the
-    virtual flume's design, with rules that synthesise only the raw files a requested target
-    reads; planning itself writes nothing."""
+def _graph_key(pipe) -> tuple[str | None, tuple | None]:
+    """The key of the pipeline's graph (:func:`flumekit.pipeline.cache.graph_key`: every file
+    its rules are made of, the pipeline, the code), and how the virtual flume is to synthesise
+    the campaign (None: the campaign is there). A campaign the virtual flume is to write
+    (``[synth]`` in the pipeline, and its raw folder absent, empty or partly synthesised) is
+    planned from the virtual flume's design."""
     import json
+    import os
 
-    from flumekit.pipeline.engine import Graph
-    from flumekit.stages import build_rules, check_stage_params, virtual
-    from flumekit.stages.context import Context
+    from flumekit.pipeline.cache import graph_key
+    from flumekit.stages import virtual
 
     raw = pipe.raw
     marker = raw / virtual.MARKER
@@ -71,50 +72,46 @@ def _graph(pipe):
             raise FlumekitError(f"{raw / 'campaign.toml'}: campaign file not found{why}. "
                                 f"Check 'raw' in {pipe.path}")
         lazy = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
+    # every file the rules are made of (load_campaign reads runs/*/run.toml); strings, not
+    # Paths, for the 141 runs of the paper campaign
+    runs = os.path.join(raw, "runs")
+    try:
+        names = sorted(os.listdir(runs))
+    except (FileNotFoundError, NotADirectoryError):
+        names = []
+    files = [raw / "campaign.toml", marker, *(os.path.join(runs, r, "run.toml") for r in names)]
+    try:
+        key = graph_key(files, [str(raw), str(pipe.processed), pipe.stages, pipe.synth, lazy])
+    except OSError:  # a run.toml that is a folder, an unreadable file: load_campaign says so
+        key = None
+    return key, lazy
+
+
+def _graph(pipe, key_lazy: tuple | None = None):
+    """The pipeline's graph, from its cache while nothing it is made of changed; with rules
+    that synthesise only the raw files a requested target reads when the virtual flume is to
+    write the campaign. Planning writes nothing but the cache."""
+    from flumekit.pipeline.cache import cached_graph
+
+    key, lazy = key_lazy or _graph_key(pipe)
+    return cached_graph(pipe.processed / ".flumekit-graph.pickle", key,
+                        lambda: _build_rules(pipe, lazy))
+
+
+def _build_rules(pipe, lazy):
+    from flumekit.campaign import load_campaign
+    from flumekit.stages import build_rules, check_stage_params, virtual
+    from flumekit.stages.context import Context
+
     check_stage_params(pipe.stages, pipe.path)
     if lazy is None:
-        ctx = Context(campaign=_campaign(raw, pipe.processed), processed=pipe.processed,
-                      params=pipe.stages)
-        return Graph(build_rules(ctx))
+        return build_rules(Context(campaign=load_campaign(pipe.raw), processed=pipe.processed,
+                                   params=pipe.stages))
     from flumekit.synth.campaign import virtual_campaign
 
-    campaign = virtual_campaign(raw, *lazy)
+    campaign = virtual_campaign(pipe.raw, *lazy)
     rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages))
-    return Graph(rules + virtual.rules(rules, raw, *lazy, [r.id for r in campaign.runs]))
-
-
-def _campaign(raw: Path, processed: Path):
-    """``load_campaign(raw)``, from a cache in the processed folder while no TOML file of the
-    campaign changed (size and modification time): parsing 141 run files is most of a no-op
-    make on the paper campaign."""
-    import os
-    import pickle
-
-    import flumekit.campaign as code
-    from flumekit.campaign import load_campaign
-
-    runs = raw / "runs"
-    files = [Path(code.__file__), raw / "campaign.toml",
-             *(sorted(runs.glob("*/run.toml")) if runs.is_dir() else [])]
-    key = []
-    for f in files:
-        st = os.stat(f)
-        key.append((str(f), st.st_size, st.st_mtime_ns))
-    cache = processed / ".flumekit-campaign.pickle"
-    try:
-        with open(cache, "rb") as fh:
-            old_key, campaign = pickle.load(fh)
-        if old_key == key:
-            return campaign
-    except (OSError, pickle.UnpicklingError, EOFError, ValueError, AttributeError, TypeError):
-        pass  # no cache, or one from another flumekit version: read the TOML files
-    campaign = load_campaign(raw)
-    if processed.is_dir():
-        from flumekit.io.atomic import atomic_path
-
-        with atomic_path(cache) as tmp:
-            tmp.write_bytes(pickle.dumps((key, campaign)))
-    return campaign
+    return rules + virtual.rules(rules, pipe.raw, *lazy, [r.id for r in campaign.runs])
 
 
 def _targets(pipe, graph, names: list[str]) -> list[str]:
@@ -203,40 +200,67 @@ def _forced(args, pipe, graph) -> tuple[bool, list[str]]:
 
 
 def cmd_make(args) -> int:
+    import time
+
     from flumekit.io.atomic import remove_orphans
-    from flumekit.pipeline.engine import make, plan
-    from flumekit.pipeline.executors import executor_for
+    from flumekit.pipeline import cache
     from flumekit.pipeline.lock import build_lock
-    from flumekit.pipeline.state import State
 
     pipe = _pipeline(args)
     if args.dry_run:
-        graph = _graph(pipe)
-        targets = _targets(pipe, graph, args.targets)
-        forceall, forced = _forced(args, pipe, graph)
-        steps = plan(graph, targets, State(pipe.state_file), force=forceall,
-                     force_targets=forced)
-        for t, reason in steps:
-            print(f"would build {t}: {reason}")
-        if not steps:
-            print(f"nothing to do: {len(graph.closure(targets))} target(s) up to date")
-        return 0
+        return _dry_run(args, pipe)
     with build_lock(pipe.processed, say=lambda s: _say(args, 0, s)):
+        t0 = time.perf_counter()
         orphans = remove_orphans(pipe.processed)
         if orphans:
             _say(args, 2, f"removed {len(orphans)} temporary file(s) of an interrupted build")
-        graph = _graph(pipe)
+        key, lazy = _graph_key(pipe)
+        # what was asked: a make asked the same, with nothing changed since, has nothing to do
+        stamp = pipe.processed / ".flumekit-up-to-date.json"
+        request = (None if key is None or args.force or args.forceall
+                   else cache.request_key(key, args.targets, pipe.scenes))
+        done = cache.up_to_date(stamp, request, pipe.state_file)
+        if done is not None:
+            from flumekit.pipeline.engine import Report
+
+            report = Report([], done, seconds=time.perf_counter() - t0)
+            _summary(args, pipe, None, report)
+            return 0
+        cache.forget_up_to_date(stamp)
+        from flumekit.pipeline.engine import make
+        from flumekit.pipeline.executors import executor_for
+        from flumekit.pipeline.state import State
+
+        graph = _graph(pipe, (key, lazy))
         targets = _targets(pipe, graph, args.targets)
         forceall, forced = _forced(args, pipe, graph)
         state = State(pipe.state_file)
-        with executor_for(args.jobs, args.scheduler, args.executor, args.dask_timeout) as ex:
+        with executor_for(args.jobs, args.scheduler, args.executor, args.dask_timeout,
+                          exit_on_interrupt=True) as ex:
             report = make(graph, targets, state, ex, force=forceall, force_targets=forced,
                           interrupted=_interrupts(),
                           root=pipe.path.parent.resolve(),
                           keep_going=args.keep_going, events=_events(args))
+        if not report.failed and not report.blocked:
+            cache.record_up_to_date(stamp, request, pipe.state_file, graph, targets)
     _results(graph, report)
     _summary(args, pipe, graph, report)
     return 1 if report.failed else 0
+
+
+def _dry_run(args, pipe) -> int:
+    from flumekit.pipeline.engine import plan
+    from flumekit.pipeline.state import State
+
+    graph = _graph(pipe)
+    targets = _targets(pipe, graph, args.targets)
+    forceall, forced = _forced(args, pipe, graph)
+    steps = plan(graph, targets, State(pipe.state_file), force=forceall, force_targets=forced)
+    for t, reason in steps:
+        print(f"would build {t}: {reason}")
+    if not steps:
+        print(f"nothing to do: {len(graph.closure(targets))} target(s) up to date")
+    return 0
 
 
 def _summary(args, pipe, graph, report) -> None:
@@ -607,8 +631,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"flumekit: error: {e}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
-        print("flumekit: interrupted (finished targets are kept; `flumekit make` goes on from "
-              "there)", file=sys.stderr)
+        from flumekit.pipeline.executors import INTERRUPTED
+
+        print(INTERRUPTED, file=sys.stderr)
         return 130
 
 

@@ -16,6 +16,20 @@ from dataclasses import dataclass
 import xarray as xr
 
 CONVENTIONS = "CF-1.8"
+#: attribute of a ``time`` coordinate: the instant of time 0, ISO 8601 (ending in ``Z`` when in
+#: UTC; without a zone, the recording computer's clock), from the raw file or the run's
+#: ``start`` in run.toml; written as the origin of the time units (``seconds since ...``)
+RECORD_START = "record_start"
+#: its value in a file when neither the raw file nor the run says when the record started
+UNKNOWN_START = "unknown"
+
+
+def record_start(ds: xr.Dataset | xr.DataArray) -> str | None:
+    """The start of the record ``ds``'s time axis counts from (None when not known)."""
+    if "time" not in ds.coords:
+        return None
+    v = ds["time"].attrs.get(RECORD_START)
+    return None if v in (None, "", UNKNOWN_START) else str(v)
 
 
 @dataclass(frozen=True)

@@ -9,14 +9,30 @@ expected. The same schemas document the files (``raw/README.md`` and ``flumekit 
 
 from __future__ import annotations
 
-import difflib
 import math
+import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
 from flumekit.errors import InputError
+
+
+def read_toml(path: Path) -> dict[str, Any]:
+    """A TOML file's contents; a missing or invalid file is an error naming it."""
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f)
+    except FileNotFoundError:
+        raise InputError(path, "file not found") from None
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(path, f"not valid TOML ({e})") from None
 
 #: value kinds and what a user is told when a value is not of that kind
 KINDS = {
@@ -27,6 +43,7 @@ KINDS = {
     "names": "a non-empty list of unique names",
     "point": "[x, z] in metres",
     "numbers": "a list of numbers",
+    "datetime": "a date and time (2024-03-05T10:12:00Z, or without Z on the lab's clock)",
     "any": "a value",
 }
 
@@ -81,6 +98,10 @@ def _is_kind(v: Any, kind: str) -> bool:
         return isinstance(v, list) and len(v) == 2 and all(_is_kind(a, "number") for a in v)
     if kind == "numbers":
         return isinstance(v, list) and all(_is_kind(a, "number") for a in v)
+    if kind == "datetime":  # a TOML date-time (offset or local); a date alone is not enough
+        import datetime
+
+        return isinstance(v, datetime.datetime)
     if kind == "table":
         return isinstance(v, dict)
     return True
@@ -113,6 +134,8 @@ def _check_value(key: Key, v: Any, name: str, path: Path) -> list[Problem]:
 
 def suggest(word: str, known: list[str]) -> str:
     """'; did you mean X?' for the closest known name (difflib), or ''."""
+    import difflib  # only on a problem: planning a sound campaign need not import it
+
     close = difflib.get_close_matches(word, known, n=1, cutoff=0.6)
     return f"; did you mean '{close[0]}'?" if close else ""
 
@@ -127,7 +150,11 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Key], path: Path, sec
 
     # a missing key that an unknown key's closest name points at is that typo, reported once
     unknown = [k for k in data if k not in schema] if items is None else []
-    typos = {c for k in unknown for c in difflib.get_close_matches(k, list(schema), 1, 0.6)}
+    typos: set[str] = set()
+    if unknown:
+        import difflib
+
+        typos = {c for k in unknown for c in difflib.get_close_matches(k, list(schema), 1, 0.6)}
     for k, key in schema.items():
         if k not in data:
             if key.required and k not in typos:

@@ -108,3 +108,17 @@ def test_experiment_simulator_and_linear_model_differ(built):
             assert float(amp.sel(source="simulator")) > 1.2 * exp, run
             assert float(amp.sel(source="analytical")) > 1.2 * exp, run
             assert float(c.theta_relative_rms_difference) > 0.1, run
+
+
+def test_main_condition_reproduces_the_papers_numbers(built):
+    """Issue 16 calibration, on this build's T = 3.5 s, H = 0.25 m run (its own repeat draw):
+    the numbers Brito et al. (2020) state that the virtual flume reproduces, within the
+    precision the paper gives them (flumekit.bench.flume.STATED; the full table, with the
+    numbers it does not reach, is `flumekit bench flume`)."""
+    from flumekit.bench.flume import MAIN_RUN, STATED, _runs, measure
+
+    processed, _ = built
+    values, _ = measure({MAIN_RUN: _runs(processed)[MAIN_RUN]})
+    for key in ("theta_max", "cf", "kr", "r2_main"):
+        lo, hi = STATED[key][2]
+        assert lo <= values[key] <= hi, (key, values[key])

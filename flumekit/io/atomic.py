@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -40,6 +39,8 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     ``open`` would give it (0666 minus the umask), not ``mkstemp``'s private 0600, which would
     otherwise survive the rename and hide shared outputs from colleagues.
     """
+    import tempfile  # here: a no-op make writes nothing and need not import it
+
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,

@@ -9,6 +9,7 @@ instruments: :mod:`flumekit.io.instruments` says which channels each instrument 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
@@ -78,6 +79,13 @@ class Record:
     labels: tuple[str, ...]  # where each channel came from in the file (for messages)
     unused: tuple[str, ...]  # columns of the file no channel uses
     first_line: int = 1  # file line of the first sample (text files)
+    # the instant of time 0 as ISO 8601 (ending in Z when the file gives the time zone, in UTC;
+    # without a zone it is the recording computer's clock), None when the file does not say
+    start: str | None = None
+
+
+#: file or group attributes that give the start of a record (HDF5, netCDF; ISO 8601)
+START_ATTRIBUTES = ("record_start", "time_coverage_start", "start_time")
 
 
 def read_channels(path: str | Path, dialect: Dialect, channels: list[Channel],
@@ -129,19 +137,54 @@ def _si(path: Path, ch: Channel, label: str, declared: str | None, found: str | 
     return unit, f
 
 
+def iso_instant(t, utc: bool) -> str:
+    """ISO 8601 of an instant (numpy datetime64), to the nanosecond it holds (trailing zeros of
+    the fraction dropped), with ``Z`` when it is in UTC."""
+    s = np.datetime_as_string(np.datetime64(t, "ns"), unit="ns")
+    return s.rstrip("0").rstrip(".") + ("Z" if utc else "")
+
+
+def _instant(path: Path, text: str, what: str) -> tuple[np.datetime64, bool]:
+    """(instant as datetime64[ns] in UTC or local, whether in UTC) of an ISO 8601 text."""
+    import pandas as pd
+
+    try:
+        t = pd.Timestamp(str(text).strip())
+    except (ValueError, TypeError):
+        raise InputError(path, f"{what}: {text!r} is not a date and time (ISO 8601)") from None
+    if t.tz is not None:
+        return np.datetime64(t.tz_convert("UTC").tz_localize(None).to_datetime64(), "ns"), True
+    return np.datetime64(t.to_datetime64(), "ns"), False
+
+
+#: CF-style time units: "<unit> since <instant>" (CF 4.4)
+_SINCE = re.compile(r"^\s*(\S+)\s+since\s+(.+?)\s*$")
+
+
 def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
-             first_line: int | None = None, header_line: int | None = None) -> np.ndarray:
-    """Time in seconds from numbers in ``unit`` or from datetimes (relative to the first)."""
+             first_line: int | None = None, header_line: int | None = None,
+             utc: bool = True) -> tuple[np.ndarray, str | None]:
+    """Time in seconds, and the record's start (the instant of time 0, ISO 8601) when the
+    column gives it: datetimes count from the first (which is the start; ``utc`` says whether
+    datetime64 values are UTC), numbers in ``unit`` or in CF units ``<unit> since <instant>``
+    (then the start is that instant)."""
     import pandas as pd
 
     if values.dtype.kind == "M":
-        t = values.astype("datetime64[ns]").astype(np.int64)
+        t = values.astype("datetime64[ns]")
+        ns = t.astype(np.int64)
         # divided, not multiplied by 1e-9: k * 40 ms then reads as the double nearest k * 0.04,
         # the same number a text column of seconds gives
-        return (t - t[0]) / 1e9
+        return (ns - ns[0]) / 1e9, iso_instant(t[0], utc)
     if values.dtype.kind in "fiu":
+        m = _SINCE.match(unit) if isinstance(unit, str) else None
+        if m:
+            origin, _ = _instant(path, m.group(2), f"time '{label}' units")
+            _, f = _si(path, Channel("time", "time"), label, None, m.group(1), line=header_line)
+            # a date without a zone in CF units is UTC (CF 4.4)
+            return np.asarray(values, dtype=np.float64) * f, iso_instant(origin, True)
         u, f = _si(path, Channel("time", "time"), label, None, unit, line=header_line)
-        return np.asarray(values, dtype=np.float64) * f
+        return np.asarray(values, dtype=np.float64) * f, None
     s = pd.Series(values).astype(str).str.strip()
     num = pd.to_numeric(s.str.replace(",", ".", regex=False), errors="coerce")
     if num.notna().all():
@@ -153,7 +196,9 @@ def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
         line = None if first_line is None else first_line + bad
         raise InputError(path, f"time column '{label}': {s.iloc[bad]!r} is neither a number nor"
                          " a date and time", line=line) from None
-    return _seconds(path, dt.to_numpy(dtype="datetime64[ns]"), label, unit)
+    # stamps with a UTC offset are read in UTC; without one, in the logger's own clock
+    return _seconds(path, dt.to_numpy(dtype="datetime64[ns]"), label, unit,
+                    utc=getattr(dt.dt, "tz", None) is not None)
 
 
 def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
@@ -195,13 +240,14 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
                    if d.header else None)
         units.append(u)
         values.append(t.columns[j] * f)
-    time = None
+    time = start = None
     if jt is not None:
-        time = _seconds(path, t.columns[jt], labels[jt], d.unit("time") or t.units[jt],
-                        t.first_line, t.first_line - 1 if d.header else None)
+        time, start = _seconds(path, t.columns[jt], labels[jt], d.unit("time") or t.units[jt],
+                               t.first_line, t.first_line - 1 if d.header else None)
     used = set(cols) | ({jt} if jt is not None else set())
     return Record(time, np.array(values), tuple(units), tuple(labels[j] for j in cols),
-                  tuple(lab for j, lab in enumerate(labels) if j not in used), t.first_line)
+                  tuple(lab for j, lab in enumerate(labels) if j not in used), t.first_line,
+                  start)
 
 
 def _finite(path: Path, values: np.ndarray, labels: list[str]) -> None:
@@ -238,7 +284,16 @@ def _read_tdms(path: Path, d: Dialect, channels: list[Channel]) -> Record:
         ch = f[g][name]
         return f"{g}/{name}", ch[:], ch.properties.get("unit_string")
 
-    return _binary(path, d, channels, get)
+    def first_sample(labels):
+        # a waveform channel's start (LabVIEW writes it in UTC), the first that has one
+        for label in labels:
+            g, _, name = label.rpartition("/")
+            t0 = f[g][name].properties.get("wf_start_time")
+            if t0 is not None:
+                return np.datetime64(t0, "ns")
+        return None
+
+    return _binary(path, d, channels, get, first_sample)
 
 
 def _read_hdf5(path: Path, d: Dialect, channels: list[Channel]) -> Record:
@@ -257,7 +312,11 @@ def _read_hdf5(path: Path, d: Dialect, channels: list[Channel]) -> Record:
             u = f[key].attrs.get("units")
             return key, f[key][()], u.decode() if isinstance(u, bytes) else u
 
-        return _binary(path, d, channels, get)
+        def first_sample(labels):
+            attrs = f[d.group].attrs if d.group and d.group in f else f.attrs
+            return _start_attribute(path, dict(attrs))
+
+        return _binary(path, d, channels, get, first_sample)
 
 
 def _read_netcdf(path: Path, d: Dialect, channels: list[Channel]) -> Record:
@@ -275,10 +334,24 @@ def _read_netcdf(path: Path, d: Dialect, channels: list[Channel]) -> Record:
             v = ds[name]
             return name, v.values, v.attrs.get("units")
 
-        return _binary(path, d, channels, get)
+        return _binary(path, d, channels, get, lambda labels: _start_attribute(path, ds.attrs))
 
 
-def _binary(path: Path, d: Dialect, channels: list[Channel], get) -> Record:
+def _start_attribute(path: Path, attrs: dict) -> np.datetime64 | None:
+    """The start a file or group attribute gives (:data:`START_ATTRIBUTES`), in UTC (a time
+    without a zone is taken as UTC, as CF and ACDD say)."""
+    for name in START_ATTRIBUTES:
+        v = attrs.get(name)
+        if v is not None:
+            v = v.decode() if isinstance(v, bytes) else v
+            return _instant(path, v, f"attribute '{name}'")[0]
+    return None
+
+
+def _binary(path: Path, d: Dialect, channels: list[Channel], get, first_sample=None) -> Record:
+    """Channels through ``get(spec) -> (label, data, unit)``; ``first_sample(labels)`` gives the
+    instant of the first sample that the file records beside the channels (datetime64, in
+    UTC: TDMS ``wf_start_time``, an HDF5 or netCDF start attribute) or None."""
     values, units, labels = [], [], []
     for i, c in enumerate(channels):
         label, data, found = get(d.column(c.name, i))
@@ -291,11 +364,20 @@ def _binary(path: Path, d: Dialect, channels: list[Channel], get) -> Record:
         raise InputError(path, f"channels {labels} have different lengths {sorted(n)}")
     values = np.array(values)
     _finite(path, values, labels)
-    time = None
+    time = start = None
     if d.time != "rate":
         label, data, found = get(d.time)
-        time = _seconds(path, np.asarray(data), label, d.unit("time") or found)
+        time, start = _seconds(path, np.asarray(data), label, d.unit("time") or found)
+        labels_read = [*labels, label]
         if time.size != values.shape[1]:
             raise InputError(path, f"time '{label}' has {time.size} samples, the channels "
                              f"{values.shape[1]}")
-    return Record(time, values, tuple(units), tuple(labels), ())
+    else:
+        labels_read = labels
+    if start is None and first_sample is not None:
+        t0 = first_sample(labels_read)
+        if t0 is not None:
+            # the start is the instant of time 0; the first sample is at time[0]
+            shift = 0 if time is None else int(round(float(time[0]) * 1e9))
+            start = iso_instant(np.datetime64(t0, "ns") - np.timedelta64(shift, "ns"), True)
+    return Record(time, values, tuple(units), tuple(labels), (), start=start)

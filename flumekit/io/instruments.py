@@ -58,6 +58,17 @@ def _time(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> 
     return time + time_offset
 
 
+def _dataset(data_vars: dict, coords: dict, path: Path, rec: Record, sampling_rate: float,
+             time_offset: float) -> xr.Dataset:
+    """The instrument's dataset, CF-annotated; the record's start, where the file gives it, on
+    the time coordinate (``record_start``: the instant of time 0 before the clock offset)."""
+    ds = conventions.annotate(xr.Dataset(data_vars, coords=coords,
+                                         attrs=_attrs(path, rec, sampling_rate, time_offset)))
+    if rec.start is not None:
+        ds["time"].attrs[conventions.RECORD_START] = rec.start
+    return ds
+
+
 def _attrs(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> dict:
     return {"source_file": str(path), "sampling_rate": sampling_rate,
             "time_offset": time_offset,
@@ -109,10 +120,8 @@ def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
     rec = _read(path, d, _probe_channels(probes, units), "probe")
     time = _time(path, rec, sampling_rate, time_offset)
     name = "probe_voltage" if quantity == "voltage" else "probe_elevation"
-    ds = xr.Dataset({name: (("probe", "time"), rec.values)},
-                    coords={"probe": list(probes), "time": time},
-                    attrs=_attrs(path, rec, sampling_rate, time_offset))
-    return conventions.annotate(ds)
+    return _dataset({name: (("probe", "time"), rec.values)},
+                    {"probe": list(probes), "time": time}, path, rec, sampling_rate, time_offset)
 
 
 def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | None = None, *,
@@ -125,7 +134,6 @@ def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | 
     counts = rec.values[0]
     if np.any(counts != np.round(counts)):
         raise InputError(path, "encoder counts must be integers", field="encoder")
-    ds = xr.Dataset({"encoder_counts": ("time", counts.astype(np.int64)),
+    return _dataset({"encoder_counts": ("time", counts.astype(np.int64)),
                      "chamber_pressure": ("time", rec.values[1])},
-                    coords={"time": time}, attrs=_attrs(path, rec, sampling_rate, time_offset))
-    return conventions.annotate(ds)
+                    {"time": time}, path, rec, sampling_rate, time_offset)

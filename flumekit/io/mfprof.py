@@ -30,6 +30,7 @@ from xarray.backends import BackendEntrypoint
 from flumekit import conventions
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
+from flumekit.io.dialects import iso_instant
 
 HEADER_SIZE = 104
 RECORD_HEADER_SIZE = 16
@@ -199,6 +200,10 @@ def _record_dtype(n_channels: int, doppler: bool, amplitude: bool) -> np.dtype:
     return np.dtype(fields)
 
 
+def _filetime_to_datetime64(ticks: int) -> np.datetime64:
+    return np.datetime64((ticks - FILETIME_UNIX_EPOCH) * 100, "ns")
+
+
 def _filetime_to_iso(ticks: int) -> str:
     unix = ticks - FILETIME_UNIX_EPOCH
     seconds, rest = divmod(unix, 10_000_000)
@@ -301,7 +306,10 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
         data_vars["amplitude"] = (("time", "channel"), rec["amplitude"])
     ds = xr.Dataset(
         data_vars,
-        coords={"time": ("time", rec["time"] / 1e7),
+        coords={"time": ("time", rec["time"] / 1e7,
+                         # the header's start, on the UVP Monitor PC's clock (zone unknown)
+                         {conventions.RECORD_START: iso_instant(_filetime_to_datetime64(
+                             int(head["start_time"])), utc=False)}),
                 "channel": ("channel", np.arange(n_channels)),
                 "distance": ("channel", channel_distance(uvp, n_channels)),
                 "record": ("time", index)},

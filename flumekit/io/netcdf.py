@@ -43,25 +43,36 @@ def _encoding(ds: xr.Dataset) -> dict[str, dict]:
     return enc
 
 
-#: global attribute a reader sets when the raw file gives the record's start (ISO 8601, UTC)
-RECORD_START = "record_start"
+#: the origin of the time units when the record's start is not known (a stand-in, said so)
 _UNKNOWN_START = "1970-01-01T00:00:00Z"
+_COMMENTS = {"unknown": "the record's start time is not known: the origin of the units stands "
+                        "for the start of the record",
+             "local": "the record's start is on the recording computer's clock, time zone "
+                      "unknown"}
 
 
 def _cf_time(ds: xr.Dataset) -> xr.Dataset:
     """``time`` in seconds since the record's start, as CF 4.4 wants a time coordinate: the
-    start from the raw file when known (global attribute ``record_start``), else a nominal
-    origin said to stand for the start of the record. :func:`read_dataset` does not decode
-    it, so code and analysts keep plain seconds."""
-    if "time" not in ds.variables or ds["time"].dtype.kind not in "fiu":
+    start the raw file or the run gave (its ``record_start`` attribute), else a nominal origin
+    said to stand for the start of the record (``record_start = "unknown"``). Another time axis
+    in seconds that knows its record's start (a UVP beam's own) is encoded so too.
+    :func:`read_dataset` does not decode them, so code and analysts keep plain seconds."""
+    names = [n for n in ds.coords if ds[n].dtype.kind in "fiu" and (
+        n == "time" or (ds[n].attrs.get("units") == "s"
+                        and ds[n].attrs.get(conventions.RECORD_START)))]
+    if not names:
         return ds
     ds = ds.copy()
-    start = ds.attrs.get(RECORD_START)
-    attrs = dict(ds["time"].attrs, units=f"seconds since {start or _UNKNOWN_START}")
-    if not start:
-        attrs["comment"] = ("the record's start time is not known: the origin of the units "
-                            "stands for the start of the record")
-    ds["time"].attrs = attrs
+    for name in names:
+        start = ds[name].attrs.get(conventions.RECORD_START)
+        start = None if start in (None, "", conventions.UNKNOWN_START) else str(start)
+        attrs = dict(ds[name].attrs, units=f"seconds since {start or _UNKNOWN_START}")
+        attrs[conventions.RECORD_START] = start or conventions.UNKNOWN_START
+        if attrs.get("comment") in _COMMENTS.values():  # read back from a product: said anew
+            del attrs["comment"]
+        if not start or not start.endswith("Z"):
+            attrs["comment"] = _COMMENTS["local" if start else "unknown"]
+        ds[name].attrs = attrs
     return ds
 
 

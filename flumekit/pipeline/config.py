@@ -7,9 +7,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from flumekit.campaign import Table, read_toml
 from flumekit.errors import InputError
-from flumekit.schema import Key, Problem, raise_problems, validate
+from flumekit.schema import Key, Problem, raise_problems, read_toml, validate
 
 #: a pipeline file; each file of an ``extends`` chain is checked on its own (so that a problem
 #: names its file), the required keys once merged
@@ -78,11 +77,10 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     missing = [k for k in ("name", "raw", "processed") if k not in data.get("pipeline", {})]
     raise_problems(path, [Problem(path, f"pipeline.{k}", "missing key (a string)")
                           for k in missing])
-    t = Table(data, path)
-    p = t.sub("pipeline")
+    p = data["pipeline"]  # its keys are strings: validated by PIPELINE
     base = path.parent
-    raw = (base / p.text("raw")).resolve()
-    out = Path(processed).resolve() if processed else (base / p.text("processed")).resolve()
+    raw = (base / p["raw"]).resolve()
+    out = Path(processed).resolve() if processed else (base / p["processed"]).resolve()
     scenes = {}
     for name, targets in data.get("scenes", {}).items():
         if isinstance(targets, dict):
@@ -95,5 +93,5 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     if not isinstance(stages, dict) or not all(isinstance(v, dict) for v in stages.values()):
         raise InputError(path, "expected [stages.<name>] tables", field="stages")
     synth = data.get("synth")
-    return Pipeline(path=path, name=p.text("name"), raw=raw, processed=out, synth=synth,
+    return Pipeline(path=path, name=p["name"], raw=raw, processed=out, synth=synth,
                     stages=stages, scenes=scenes)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import fnmatch
 import os
+import re
 import sys
 import time
 from collections.abc import Callable, Iterable
@@ -85,7 +86,9 @@ class Graph:
 
     def match_any(self, pattern: str) -> bool:
         """True if some target matches ``pattern``."""
-        return any(fnmatch.fnmatchcase(t, pattern) for t in self.rules)
+        if not any(c in pattern for c in "*?["):
+            return pattern in self.rules
+        return any(map(re.compile(fnmatch.translate(pattern)).match, self.rules))
 
     def closure(self, targets: Iterable[str]) -> list[str]:
         """The targets and everything they depend on, in dependency (topological) order."""
@@ -135,7 +138,7 @@ def provenance(rule: Rule, state: State, root: Path | None) -> dict:
 
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Reason to rebuild ``rule`` (None when it is up to date)."""
-    exists = os.path.exists
+    exists = state.exists
     missing = [n for n, p in rule.outputs.items() if not exists(p)]
     if rule.source:
         # a rule that creates raw data (the virtual flume) runs only where nothing exists yet:
@@ -220,11 +223,12 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
     rebuilt: set[str] = set()
     forced = set(force_targets)
     out = []
-    for t in graph.closure(targets):
-        reason = why(graph.rules[t], state, force or t in forced, rebuilt, graph)
-        if reason:
-            rebuilt.add(t)
-            out.append((t, reason))
+    with state.scan():
+        for t in graph.closure(targets):
+            reason = why(graph.rules[t], state, force or t in forced, rebuilt, graph)
+            if reason:
+                rebuilt.add(t)
+                out.append((t, reason))
     return out
 
 
@@ -300,30 +304,31 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
             if interrupted():  # a Ctrl-C that a library swallowed still stops the build
                 raise KeyboardInterrupt
             if first_error is None or keep_going:
-                for t in order:
-                    if t in done or t in busy or not pending[t] <= done:
-                        continue
-                    rule = graph.rules[t]
-                    try:
-                        reason = why(rule, state, force or t in forced, changed, graph)
-                    except FlumekitError as e:
-                        fail(t, e)
-                        continue
-                    if reason is None:
-                        done.add(t)
-                        report.skipped.append(t)
-                        events.skipped(t)
-                        continue
-                    events.started(len(done) + len(running) + 1, n_total, t, reason)
-                    try:
-                        prov = provenance(rule, state, root)
-                    except FlumekitError as e:
-                        fail(t, e)
-                        continue
-                    running[executor.submit(execute, rule, prov)] = (t, reason)
-                    busy.add(t)
-                    if first_error is not None and not keep_going:
-                        break
+                with state.scan():  # each file stat-ed once while judging the targets
+                    for t in order:
+                        if t in done or t in busy or not pending[t] <= done:
+                            continue
+                        rule = graph.rules[t]
+                        try:
+                            reason = why(rule, state, force or t in forced, changed, graph)
+                        except FlumekitError as e:
+                            fail(t, e)
+                            continue
+                        if reason is None:
+                            done.add(t)
+                            report.skipped.append(t)
+                            events.skipped(t)
+                            continue
+                        events.started(len(done) + len(running) + 1, n_total, t, reason)
+                        try:
+                            prov = provenance(rule, state, root)
+                        except FlumekitError as e:
+                            fail(t, e)
+                            continue
+                        running[executor.submit(execute, rule, prov)] = (t, reason)
+                        busy.add(t)
+                        if first_error is not None and not keep_going:
+                            break
             if not running:
                 break
             for fut in executor.wait_any(list(running)):

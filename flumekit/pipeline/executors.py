@@ -43,20 +43,53 @@ class Executor:
 
 
 class SerialExecutor(Executor):
-    """Runs each rule at once in this process (the default, and the easiest to debug)."""
+    """Runs each rule at once in this process (the default, and the easiest to debug).
+
+    With ``exit_on_interrupt`` (the command line) a Ctrl-C while a rule runs removes the
+    temporary files the rule was writing and ends the process at once (status 130), as a pool
+    worker ends on SIGTERM: a KeyboardInterrupt raised at an arbitrary point of library code
+    is not safe. One raised inside xarray's netCDF writing, between taking its (non-reentrant)
+    file lock and the ``try`` that releases it, left the lock held, and the writer's cleanup
+    then waited for it forever: the serial build that did not end after Ctrl-C. Finished
+    rules are in the build state already (saved after each), so nothing else is lost. Without
+    it (the library use, a notebook), Ctrl-C raises KeyboardInterrupt as Python does.
+    """
+
+    def __init__(self, exit_on_interrupt: bool = False):
+        self.exit_on_interrupt = exit_on_interrupt
 
     def submit(self, fn, *args):
         import concurrent.futures as cf  # here: a no-op make never needs it
 
         fut = cf.Future()
+        previous = None
+        if self.exit_on_interrupt and signal.getsignal(signal.SIGINT) not in (
+                signal.SIG_IGN, None):
+            previous = signal.signal(signal.SIGINT, _exit_interrupted)
         try:
             fut.set_result(fn(*args))
         except Exception as e:  # delivered through the future; Ctrl-C is not caught
             fut.set_exception(e)
+        finally:
+            if previous is not None:
+                signal.signal(signal.SIGINT, previous)
         return fut
 
     def wait_any(self, futures):
         return futures
+
+
+#: what the command line says when Ctrl-C ends a build
+INTERRUPTED = ("flumekit: interrupted (finished targets are kept; `flumekit make` goes on from "
+               "there)")
+
+
+def _exit_interrupted(signum, frame):
+    from flumekit.io.atomic import remove_active
+
+    remove_active()
+    print(f"\n{INTERRUPTED}", file=sys.stderr, flush=True)
+    os._exit(130)
 
 
 def _terminate(signum, frame):
@@ -147,6 +180,10 @@ class DaskExecutor(Executor):
             raise FlumekitError(f"cannot reach the Dask scheduler at {address} within "
                                 f"{timeout:g} s ({type(e).__name__}); check the address, or "
                                 "unset DASK_SCHEDULER_ADDRESS to build locally") from None
+        except ValueError as e:  # a malformed address, or another process's inproc:// one
+            raise FlumekitError(f"not a Dask scheduler address this process can reach: "
+                                f"{address} ({e}); give tcp://HOST:PORT, or unset "
+                                "DASK_SCHEDULER_ADDRESS to build locally") from None
 
     def submit(self, fn, *args):
         return self.client.submit(fn, *args, pure=False)
@@ -182,10 +219,10 @@ class DaskExecutor(Executor):
 
 
 def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes",
-                 timeout: float = DASK_TIMEOUT) -> Executor:
+                 timeout: float = DASK_TIMEOUT, exit_on_interrupt: bool = False) -> Executor:
     address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
     if address:
         return DaskExecutor(address, timeout)
     if jobs > 1:
         return PoolExecutor(jobs, kind)
-    return SerialExecutor()
+    return SerialExecutor(exit_on_interrupt=exit_on_interrupt)

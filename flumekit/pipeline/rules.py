@@ -21,8 +21,10 @@ from typing import Any
 class Rule:
     target: str  # unique name, e.g. "waves/T3.50_H0.250_r00"
     action: str  # "module:function"
-    inputs: dict[str, Path]
-    outputs: dict[str, Path]
+    # paths as Path or str (the cached rules of :mod:`flumekit.pipeline.cache` hold strings);
+    # an action always receives Paths
+    inputs: dict[str, Path | str]
+    outputs: dict[str, Path | str]
     params: dict[str, Any] = field(default_factory=dict)
     version: str = "1"  # bump when the action's results change
     run: str | None = None  # run identifier, for messages
@@ -31,7 +33,11 @@ class Rule:
     source: bool = False
 
     def params_hash(self) -> str:
-        return digest(json.dumps(self.params, sort_keys=True, default=str).encode())
+        h = self.__dict__.get("_params_hash")  # memoised: a no-op make asks for every rule's
+        if h is None:
+            h = digest(json.dumps(self.params, sort_keys=True, default=str).encode())
+            object.__setattr__(self, "_params_hash", h)  # frozen: set past the dataclass
+        return h
 
     def resolve(self) -> Callable[[dict, dict, dict], None]:
         module, _, name = self.action.partition(":")
@@ -70,7 +76,8 @@ def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str
     token = conventions.set_provenance(None if rule.source else prov)
     t0 = time.perf_counter()
     try:
-        rule.resolve()(dict(rule.inputs), dict(rule.outputs), dict(rule.params))
+        rule.resolve()({k: Path(v) for k, v in rule.inputs.items()},
+                       {k: Path(v) for k, v in rule.outputs.items()}, dict(rule.params))
         missing = [str(p) for p in rule.outputs.values() if not Path(p).exists()]
         if missing:
             raise RuntimeError(f"action did not write its outputs {missing}")

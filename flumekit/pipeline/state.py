@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import json
 import os
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from flumekit.io.atomic import atomic_path
@@ -31,6 +33,7 @@ class State:
         self.targets: dict[str, dict] = {}
         self.content: dict[str, str] = {}  # file hash -> content digest
         self.dirty = False  # a file was hashed anew since the state was read
+        self._stats: dict[str, os.stat_result | None] | None = None  # see scan()
         if path.exists():
             try:
                 data = json.loads(path.read_text())
@@ -40,10 +43,41 @@ class State:
             except (json.JSONDecodeError, OSError):
                 pass  # a corrupt state only costs a rebuild
 
+    @contextmanager
+    def scan(self) -> Iterator[None]:
+        """Within the block, each file is ``stat``-ed once: a file read by many targets (the
+        campaign file, a run's dataset feeding every summary) costs one system call per scan
+        of the targets, not one per reader. For a block in which no file that was stat-ed
+        changes: the engine scans the targets whose inputs are complete, and the outputs of a
+        rule started in a scan are read only by targets that wait for it."""
+        self._stats = {}
+        try:
+            yield
+        finally:
+            self._stats = None
+
+    def _stat(self, key: str) -> os.stat_result | None:
+        """``os.stat`` of the absolute path ``key``, None when absent (memoised in a scan)."""
+        memo = self._stats
+        if memo is not None and key in memo:
+            return memo[key]
+        try:
+            st = os.stat(key)
+        except (FileNotFoundError, NotADirectoryError):
+            st = None
+        if memo is not None:
+            memo[key] = st
+        return st
+
+    def exists(self, path) -> bool:
+        return self._stat(_key(path)) is not None
+
     def hash(self, path: Path) -> str:
         """Content hash of ``path`` (cached while its size and mtime are unchanged)."""
-        st = os.stat(path)
         key = _key(path)
+        st = self._stat(key)
+        if st is None:
+            raise FileNotFoundError(2, "No such file or directory", os.fspath(path))
         cached = self.files.get(key)
         if cached and cached[0] == st.st_size and cached[1] == st.st_mtime_ns:
             return cached[2]

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from flumekit.campaign import Campaign
+if TYPE_CHECKING:  # planning from the rules' cache never reads a campaign
+    from flumekit.campaign import Campaign
 
 
 @dataclass(frozen=True)

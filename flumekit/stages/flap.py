@@ -58,7 +58,7 @@ def build(inputs, outputs, params) -> None:
         raise InputError(raw.attrs.get("source_file", inputs["flap"]),
                          f"encoder and pressure record: {e}") from None
     write_run(ds, outputs, params, "Flap dynamics, PTO and power",
-              f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}")
+              f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw)
 
 
 def summary(inputs, outputs, params) -> None:

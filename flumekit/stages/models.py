@@ -45,9 +45,14 @@ DOCS = {
 }
 
 
+#: the choices of ``linear_pto_damping``: :data:`flumekit.flap.comparison.LINEAR_PTO_DAMPING`,
+#: repeated here because importing flumekit.flap (numpy, scipy, xarray) made planning several
+#: times slower (tests/stages checks that the two agree)
+LINEAR_PTO_DAMPING = ("energy_equivalent", "optimal")
+
+
 def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.errors import FlumekitError
-    from flumekit.flap.comparison import LINEAR_PTO_DAMPING
 
     c = ctx.campaign
     if p["coefficients"] not in ("renzi_dias", "bem"):

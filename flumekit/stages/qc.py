@@ -232,7 +232,7 @@ def uvp(inputs, outputs, params) -> None:
     # one period more on each side: the average starts on an up-crossing near the span's edge
     margin = default_pad(params["uvp_cutoff"]) + float(waves["measured_period"])
     lo, hi = span[0] - margin, span[1] + margin
-    flags, counts, names = [], [], sorted(k for k in inputs if k != "waves")
+    flags, counts, names, starts = [], [], sorted(k for k in inputs if k != "waves"), {}
     for name in names:
         b = read_mfprof(inputs[name])
         t = b["time"].values
@@ -252,6 +252,7 @@ def uvp(inputs, outputs, params) -> None:
             f[:, i0:i1] = aggregate(*(v for k, v in per.items()
                                       if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
+        starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
         counts.append([np.sum(f == val) for val in FLAG_VALUES])
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
@@ -260,7 +261,8 @@ def uvp(inputs, outputs, params) -> None:
         ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), fl.values,
                                           flag_attrs(f"beam_velocity of beam {name}"))
         ds = ds.assign_coords({tdim: (tdim, fl["time"].values,
-                                      {"units": "s", "long_name": f"time of beam {name}"})})
+                                      {"units": "s", "long_name": f"time of beam {name}",
+                                       **starts[name]})})
     ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), np.array(counts),
                                     {"units": "1", "long_name": "UVP samples per QC flag"})
     ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 
 def run_params(run) -> dict:
-    """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses)."""
+    """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses),
+    with the records' start when run.toml declares one (:func:`write_run` applies it)."""
     return {"run": run.id, "period": run.period, "height": run.height, "repeat": run.repeat,
-            "uvp_elevation": run.uvp_elevation}
+            "uvp_elevation": run.uvp_elevation, **({"start": run.start} if run.start else {})}
 
 
 def run_coords(params: dict) -> dict:
@@ -20,12 +21,48 @@ def run_coords(params: dict) -> dict:
             "uvp_elevation": float("nan") if z is None else z}
 
 
-def write_run(ds, outputs: dict, params: dict, title: str, source: str) -> None:
-    """Write one run's dataset: run coordinates (those the dataset lacks), global attributes."""
+def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None) -> None:
+    """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
+    and the start of its time axis: the one its record carries (from the raw file, through
+    every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
+    domain function made it from plain numbers), else the one run.toml declares (``start``)."""
+    from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
     ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
+    carried = None if record is None else conventions.record_start(record)
+    if carried and "time" in ds.coords and conventions.record_start(ds) is None:
+        ds = ds.copy()
+        ds["time"].attrs[conventions.RECORD_START] = carried
+    declared = params.get("start")
+    if declared and "time" in ds.coords:
+        ds = _declared_start(ds, declared, params["run"])
     write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params)
+
+
+def _declared_start(ds, declared: str, run: str):
+    """``ds`` with the start run.toml declares, where its record gives none; a record whose
+    own start departs from the declared one by more than 1 s (both in UTC, or both on the
+    lab's clock) is an error: metadata that contradicts the record is not used silently."""
+    import numpy as np
+
+    from flumekit import conventions
+    from flumekit.errors import InputError
+
+    found = conventions.record_start(ds)
+    if found is None:
+        ds = ds.copy()
+        ds["time"].attrs[conventions.RECORD_START] = declared
+        return ds
+    if found.endswith("Z") == declared.endswith("Z"):
+        gap = abs(np.datetime64(found.rstrip("Z"), "ns") - np.datetime64(declared.rstrip("Z"),
+                                                                         "ns"))
+        if gap > np.timedelta64(1, "s"):
+            raise InputError(ds.attrs.get("source_file") or f"run {run}",
+                             f"the record starts at {found}, but run.toml of run {run} declares "
+                             f"start = {declared}: correct or remove 'start' in run.toml",
+                             field="start")
+    return ds
 
 
 def summary_rule(ctx, stage: str, version: str, module: str | None = None):

@@ -87,7 +87,7 @@ def build(inputs, outputs, params) -> None:
     if warnings_:
         ds.attrs[WARNINGS] = "\n".join(warnings_)
     write_run(ds, outputs, params, "Incident and reflected waves",
-              f"flumekit waves stage from {inputs['eta']}")
+              f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
 
 
 def report(path) -> str:

@@ -15,7 +15,7 @@ with C_n = cosh(nk z_b)/cosh(nkh), S_n = sinh(nk z_b)/cosh(nkh) (Fenton 1988, Eq
 fixed frame; second-order Stokes velocities of Dean & Dalrymple 1991, §11.3, with
 ``theory="stokes2"``). Harmonic n carries the envelope to the power n, as in the elevation; the
 mean (return) current c_E < 0 of a closed flume, its square. Harmonics below
-:data:`HARMONIC_CUTOFF` of the first are left out.
+:data:`flumekit.synth.waves.HARMONIC_CUTOFF` of the first are left out.
 
 The instrument: each beam's channels (see :mod:`flumekit.uvp.geometry`) sample the velocity
 projected on the beam (positive away from the transducer, the label the reader uses by default),
@@ -41,6 +41,7 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
 
 X_WAVEMAKER = -32.7  # [m], Brito et al. 2020, §2.1 (x = 0 at 32.7 m from the wavemaker)
@@ -61,15 +62,8 @@ def _theory(theory: str | None, second_order: bool) -> str:
 
 
 def _depth_functions(k: float, n: int, depth: float, zb):
-    """cosh(jk z_b)/cosh(jkh), sinh(jk z_b)/cosh(jkh) for j = 1..n [-], shape (..., n).
-
-    Overflow-free (exponential form); ``zb`` [m] above the bed.
-    """
-    zb = np.asarray(zb, dtype=float)[..., None]
-    jk = k * np.arange(1, n + 1)
-    ep, em = np.exp(jk * (zb - depth)), np.exp(-jk * (zb + depth))
-    den = 1.0 + np.exp(-2.0 * jk * depth)
-    return (ep + em) / den, (ep - em) / den
+    """C_n(z_b), S_n(z_b) of the module notes for n = 1..n, shape (..., n); z_b above the bed."""
+    return depth_ratios(k * np.arange(1, n + 1), np.asarray(zb, dtype=float)[..., None], depth)
 
 
 def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):

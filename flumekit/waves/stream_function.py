@@ -151,7 +151,7 @@ class StreamFunctionWave:
         """
         zb = np.asarray(z, dtype=float)[..., None] + self.depth
         jk = self.wavenumber * np.arange(1, self.n_modes + 1)
-        return _cosh_sinh_over_cosh(jk, zb, self.depth)
+        return depth_ratios(jk, zb, self.depth)
 
     def velocity(self, phase, z) -> tuple[np.ndarray, np.ndarray]:
         """Fluid velocity (u, w) [m s-1] in the fixed frame.
@@ -183,8 +183,23 @@ def nonlinear_wavenumber(period: float, height: float, depth: float, g: float = 
     return stream_function_wave(period, height, depth, current="stokes", g=g).wavenumber
 
 
-def _cosh_sinh_over_cosh(jk: np.ndarray, zb, depth: float):
-    """cosh(jk zb)/cosh(jk h), sinh(jk zb)/cosh(jk h) without overflow."""
+def depth_ratios(jk, zb, depth: float) -> tuple[np.ndarray, np.ndarray]:
+    """cosh(jk z_b)/cosh(jk h) and sinh(jk z_b)/cosh(jk h) [-], the depth dependence of mode j.
+
+    Parameters
+    ----------
+    jk : array_like
+        Wavenumbers of the modes, j k [rad m-1].
+    zb : array_like
+        Elevation above the bed [m], broadcast with ``jk``.
+    depth : float
+        Water depth h [m].
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The two ratios, in the overflow-free exponential form.
+    """
     ep = np.exp(jk * (zb - depth))
     em = np.exp(-jk * (zb + depth))
     den = 1.0 + np.exp(-2.0 * jk * depth)
@@ -209,7 +224,7 @@ def _residuals(v, n: int, height: float, period: float, current: str, cosm: np.n
         ubar, q = c, v[..., 2 * n + 2:2 * n + 3]
     r = v[..., 2 * n + 3:]
     jk = k[..., None] * np.arange(1, n + 1)
-    ch, sh = _cosh_sinh_over_cosh(jk, eta[..., None], 1.0)  # (..., N+1, N)
+    ch, sh = depth_ratios(jk, eta[..., None], 1.0)  # (..., N+1, N)
     kin = -ubar * eta + np.sum(sh * cosm * b, axis=-1) + q
     uu = -ubar + np.sum(ch * cosm * jk * b, axis=-1)
     ww = np.sum(sh * sinm * jk * b, axis=-1)
