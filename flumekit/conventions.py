@@ -24,11 +24,12 @@ RECORD_START = "record_start"
 UNKNOWN_START = "unknown"
 
 
-def record_start(ds: xr.Dataset | xr.DataArray) -> str | None:
-    """The start of the record ``ds``'s time axis counts from (None when not known)."""
-    if "time" not in ds.coords:
+def record_start(ds: xr.Dataset | xr.DataArray, axis: str = "time") -> str | None:
+    """The start of the record the time axis ``axis`` of ``ds`` counts from (None when not
+    known)."""
+    if axis not in ds.coords:
         return None
-    v = ds["time"].attrs.get(RECORD_START)
+    v = ds[axis].attrs.get(RECORD_START)
     return None if v in (None, "", UNKNOWN_START) else str(v)
 
 

@@ -495,7 +495,8 @@ def test_every_kind_of_file_has_no_cf_error(built_once):
              "uvp/uvp_z0.300_r0.nc", "uvp_field.nc", "waves_summary.nc", "flap_summary.nc",
              "comparison_summary.nc", "models/hydro.nc", "ballscrew/kinematics.nc",
              "ballscrew/efficiency.nc", "ballscrew/thermal_lumped.nc",
-             "ballscrew/thermal_fem.nc"]
+             "ballscrew/thermal_fem.nc", "qc/probes/T3.50_H0.250_r0.nc",
+             "qc/uvp/uvp_z0.300_r0.nc"]
     errors = _cf_errors([out / k for k in kinds])
     assert len(errors) == len(kinds)
     assert {k: e for k, e in errors.items() if e} == {}
@@ -504,6 +505,13 @@ def test_every_kind_of_file_has_no_cf_error(built_once):
 
     with xr.open_dataset(out / "eta/T3.50_H0.250_r0.nc", decode_times=False) as ds:
         assert ds["time"].attrs["units"].startswith("seconds since ")
+        # the virtual flume's CSV says nothing of the record's start: a stand-in, said so
+        assert ds["time"].attrs["record_start"] == "unknown"
+    # a UVP beam's time axis counts from its .mfprof header's start (the PC's clock)
+    with xr.open_dataset(out / "qc/uvp/uvp_z0.300_r0.nc", decode_times=False) as ds:
+        start = ds["time_UP2"].attrs["record_start"]
+        assert start != "unknown" and not start.endswith("Z")
+        assert ds["time_UP2"].attrs["units"] == f"seconds since {start}"
     assert read_dataset(out / "eta/T3.50_H0.250_r0.nc")["time"].dtype.kind == "f"
 
 

@@ -64,8 +64,7 @@ def _cf_time(ds: xr.Dataset) -> xr.Dataset:
         return ds
     ds = ds.copy()
     for name in names:
-        start = ds[name].attrs.get(conventions.RECORD_START)
-        start = None if start in (None, "", conventions.UNKNOWN_START) else str(start)
+        start = conventions.record_start(ds, name)
         attrs = dict(ds[name].attrs, units=f"seconds since {start or _UNKNOWN_START}")
         attrs[conventions.RECORD_START] = start or conventions.UNKNOWN_START
         if attrs.get("comment") in _COMMENTS.values():  # read back from a product: said anew
@@ -73,6 +72,22 @@ def _cf_time(ds: xr.Dataset) -> xr.Dataset:
         if not start or not start.endswith("Z"):
             attrs["comment"] = _COMMENTS["local" if start else "unknown"]
         ds[name].attrs = attrs
+    return ds
+
+
+def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
+    """Unsigned bytes whose values fit (QARTOD flags 1-9) as signed bytes, ``flag_values``
+    too: CF 1.8 knows no unsigned types (compliance-checker: "the datatype is uint8")."""
+    names = [n for n, v in ds.data_vars.items()
+             if v.dtype == np.uint8 and (v.size == 0 or int(v.max()) <= np.iinfo(np.int8).max)]
+    if not names:
+        return ds
+    ds = ds.copy()
+    for name in names:
+        attrs = dict(ds[name].attrs)
+        if "flag_values" in attrs:
+            attrs["flag_values"] = np.asarray(attrs["flag_values"]).astype(np.int8)
+        ds[name] = (ds[name].dims, ds[name].values.astype(np.int8), attrs)
     return ds
 
 
@@ -88,7 +103,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     if missing:
         raise ValueError(f"{path}: dataset lacks global attributes {missing}")
     ds.attrs = conventions.provenance(ds.attrs)
-    ds = _cf_time(ds)
+    ds = _cf_time(_signed_bytes(ds))
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
     conventions.record_written(path, conventions.content_digest(ds))
