@@ -206,7 +206,6 @@ def uvp(inputs, outputs, params) -> None:
     import xarray as xr
 
     from flumekit.io.mfprof import read_mfprof
-    from flumekit.io.netcdf import read_dataset
     from flumekit.qc.flags import (
         FAIL,
         FLAG_MEANINGS,
@@ -221,7 +220,9 @@ def uvp(inputs, outputs, params) -> None:
     from flumekit.uvp.phase import default_pad
 
     th = Thresholds.from_params(params)
-    waves = read_dataset(inputs["waves"])
+    # only what the span needs (the waves dataset also holds spectra and separated series)
+    with xr.open_dataset(inputs["waves"], engine="netcdf4", decode_times=False) as w:
+        waves = w[["eta", "amplitude_scale", "steady_tolerance", "measured_period"]].load()
     try:
         span = uvp_span(waves)
     except ValueError as e:
@@ -247,7 +248,9 @@ def uvp(inputs, outputs, params) -> None:
                                gross_range=_span(params["velocity_range"]), despike=True,
                                floor=float(b.attrs.get("velocity_resolution", 0.0)),
                                amplitude=amp)
-            f[:, i0:i1] = aggregate(*per.values())
+            # the gross range, unset, evaluates nothing: it would not change the aggregate
+            f[:, i0:i1] = aggregate(*(v for k, v in per.items()
+                                      if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
         counts.append([np.sum(f == val) for val in FLAG_VALUES])
