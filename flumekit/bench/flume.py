@@ -6,8 +6,9 @@ H = 0.25 m for the UVP), synthesised run by run as the build needs them, and pri
 number the paper states next to the virtual flume's, as the pipeline's own analysis measures
 it. ``quick`` builds only the runs of the main rows (T = 3.5 s, H = 0.25 m and T = 2.5 s,
 H = 0.2 m: about 25 s on 2 loaded cores), for calibration loops; the repeat statistics and
-the Table 1 trends need the whole campaign (about 4 min). ``python -m flumekit.bench.flume
---rows main repeats trend`` chooses the row groups (:data:`ROWS`).
+the Table 1 trends need the whole campaign (80 s to 4 min, as loaded).
+``python -m flumekit.bench.flume --rows main repeats trend`` chooses the row groups
+(:data:`ROWS`).
 
 The calibrated coefficients are the defaults of :class:`flumekit.synth.flume.FlumeLosses`,
 :class:`flumekit.synth.flume.RepeatScatter` and K_p of :class:`flumekit.synth.flap.FlapTruth`.
