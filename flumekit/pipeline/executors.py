@@ -174,8 +174,19 @@ class DaskExecutor(Executor):
             raise FlumekitError("a Dask scheduler was given but dask.distributed is not "
                                 "installed: pip install 'flumekit[dask]'") from e
         self.address, self.timeout = address, timeout
+        parts = address.removeprefix("inproc://").split("/")
+        if address.startswith("inproc://") and (len(parts) < 2 or parts[1] != str(os.getpid())):
+            # refused before a Client exists: a Client that fails on it leaves a half-started
+            # event loop whose clean-up prints a traceback at exit
+            raise FlumekitError(f"not a Dask scheduler address this process can reach: "
+                                f"{address} (an inproc:// address of another process); give "
+                                "tcp://HOST:PORT, or unset DASK_SCHEDULER_ADDRESS to build "
+                                "locally")
         try:
-            self.client = Client(address, timeout=timeout)
+            # not the default client: a Client that is sets dask's global scheduler to
+            # "dask.distributed", and xarray/dask code later in the same process (tests, a
+            # notebook) then fails with "no Client active" once this one is closed
+            self.client = Client(address, timeout=timeout, set_as_default=False)
         except (OSError, TimeoutError) as e:
             raise FlumekitError(f"cannot reach the Dask scheduler at {address} within "
                                 f"{timeout:g} s ({type(e).__name__}); check the address, or "
@@ -194,7 +205,8 @@ class DaskExecutor(Executor):
         alone_since: float | None = None
         while True:
             try:
-                done, _ = wait(futures, timeout=1.0, return_when="FIRST_COMPLETED")
+                with self.client.as_current():  # wait() looks up the current client
+                    done, _ = wait(futures, timeout=1.0, return_when="FIRST_COMPLETED")
                 return list(done)
             except TimeoutError:
                 pass

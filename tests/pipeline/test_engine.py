@@ -144,9 +144,15 @@ def test_dask_executor(toy):
     distributed = pytest.importorskip("distributed")
     from flumekit.pipeline.executors import DaskExecutor
 
+    import dask
+
+    before = dask.config.get("scheduler", None)
     with distributed.LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cl:
         with DaskExecutor(cl.scheduler_address) as ex:
             assert ran(build(toy, ex=ex)) == ["double/a", "double/b", "total"]
+            # the executor leaves dask's global scheduler alone (other dask code in the
+            # process must not be routed to this cluster, nor fail once it is closed)
+            assert dask.config.get("scheduler", None) == before
     assert (toy / "processed/total.txt").read_text() == "6.0"
 
 
