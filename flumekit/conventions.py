@@ -9,6 +9,7 @@ name. Units follow UDUNITS spelling. ``time`` is seconds since the start of a re
 from __future__ import annotations
 
 import contextvars
+import functools
 import hashlib
 import json
 from dataclasses import dataclass
@@ -409,7 +410,11 @@ def reset_provenance(token) -> None:
     _PROVENANCE.reset(token)
 
 
+@functools.cache
 def _dependency_versions() -> str:
+    """Versions of the numerical libraries, looked up once per process (they cannot change
+    within it; importlib.metadata parses each package's metadata file, ~4 ms a package, which
+    every written product paid)."""
     from importlib.metadata import PackageNotFoundError, version
 
     out = []

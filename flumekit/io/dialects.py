@@ -222,9 +222,19 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
     head = header_labels(path, delimiter=d.delimiter, comment=d.comment,
                          skip_lines=d.skip_lines, header=d.header)
     jt = None if d.time == "rate" else index(d.time, head, "time")
-    t = read_text(path, delimiter=d.delimiter, decimal=d.decimal, comment=d.comment,
-                  skip_lines=d.skip_lines, header=d.header,
-                  text_columns=() if jt is None else (jt,))
+    kw = dict(delimiter=d.delimiter, decimal=d.decimal, comment=d.comment,
+              skip_lines=d.skip_lines, header=d.header)
+    t = None
+    if jt is not None:
+        # a time column of numbers (the usual case) is parsed by pandas' C parser with the
+        # others; the text path (datetimes, and the messages naming a bad time cell) only
+        # when that fails. Parsing it as text and converting cost 5x the whole numeric read
+        try:
+            t = read_text(path, **kw)
+        except InputError:
+            t = None
+    if t is None:
+        t = read_text(path, **kw, text_columns=() if jt is None else (jt,))
     labels = t.labels
     if not d.header and not d.declares_columns:  # no names: the columns in channel order
         free = [j for j in range(len(labels)) if j != jt]
