@@ -40,7 +40,8 @@ def aggregate(*flags: np.ndarray) -> np.ndarray:
 
     ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1.
     """
-    worst = _RANK[np.asarray(flags[0], dtype=np.uint8)]
+    # np.take, not fancy indexing: the same lookup at half the cost on a UVP beam's block
+    worst = np.take(_RANK, np.asarray(flags[0], dtype=np.uint8))
     for f in flags[1:]:
-        np.maximum(worst, _RANK[np.asarray(f, dtype=np.uint8)], out=worst)
-    return _FLAG_OF_RANK[worst]
+        np.maximum(worst, np.take(_RANK, np.asarray(f, dtype=np.uint8)), out=worst)
+    return np.take(_FLAG_OF_RANK, worst)

@@ -76,7 +76,9 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     block = max(3, int(round(th.block * sampling_rate)))
     finite = np.isfinite(x)
     gap = np.broadcast_to(qartod.gap_test(time, sampling_rate, th.gap_tolerance), x.shape)
-    out = {"gap": np.where(finite, gap, MISSING).astype(np.uint8),
+    # uint8 scalars: the flags are built as bytes, not as int64 then cast
+    u8 = np.uint8
+    out = {"gap": np.where(finite, gap.astype(u8, copy=False), u8(MISSING)),
            "gross_range": qartod.gross_range_test(x, gross_range)}
     if despike:
         boundary = None
@@ -95,7 +97,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         # a spike moves the derivatives of its two neighbours too, which GN then flags with it:
         # keep the samples whose departure from their neighbours' mean is the local largest
         spikes &= _local_peak(x, spikes)
-        g = np.where(finite, GOOD, MISSING).astype(np.uint8)
+        g = np.where(finite, u8(GOOD), u8(MISSING))
         if boundary is not None:
             g[boundary & finite] = NOT_EVALUATED
         g[spikes] = FAIL

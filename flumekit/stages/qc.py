@@ -240,7 +240,7 @@ def uvp(inputs, outputs, params) -> None:
         fs = (t.size - 1) / (t[-1] - t[0])
         tc = t + float(params.get("time_offset", 0.0))  # on the probes' clock
         i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
-        f = np.where(np.isfinite(v), NOT_EVALUATED, MISSING).astype(np.uint8)
+        f = np.where(np.isfinite(v), np.uint8(NOT_EVALUATED), np.uint8(MISSING))
         if i1 - i0 >= 5:
             amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
                 if "amplitude" in b else None
@@ -253,7 +253,7 @@ def uvp(inputs, outputs, params) -> None:
                                       if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        counts.append([np.sum(f == val) for val in FLAG_VALUES])
+        counts.append(np.bincount(f.ravel(), minlength=256)[FLAG_VALUES])  # one pass
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
         # beams may differ in profile count: each beam keeps its own time axis
