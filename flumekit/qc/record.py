@@ -167,32 +167,32 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     cleaned = clean(x, flags, fs, th.max_gap)
     chans = list(da[channel_dim].values) if channel_dim else [name]
     shape = (lambda a: a) if channel_dim else (lambda a: a[0])
-    out = xr.Dataset(coords={"time": ds["time"]})
-    if channel_dim:
-        out = out.assign_coords({channel_dim: da[channel_dim]})
     attrs = {k: v for k, v in da.attrs.items()}
-    out[name] = (dims, shape(cleaned), {**attrs, "ancillary_variables": f"{name}_qc",
-                                        "comment": "QC'd: failed and missing samples masked, "
-                                        f"gaps up to {th.max_gap:g} s interpolated linearly"})
-    out[f"{name}_qc"] = (dims, shape(flags), flag_attrs(name))
-    if keep_raw:
-        out[f"{name}_raw"] = (dims, shape(x), {**attrs, "long_name": attrs.get(
-            "long_name", name) + " as read, before quality control"})
     cdim = channel_dim or "channel"
-    meanings = FLAG_MEANINGS.split()
     counts = np.stack([np.sum(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
     tests = list(per_test)
     tcounts = np.stack([np.sum((per_test[k] == FAIL) | (per_test[k] == SUSPECT), axis=-1)
                         for k in tests], axis=-1)
     cd = (cdim,) if channel_dim else ()
-    out[f"{name}_qc_count"] = (cd + ("flag_meaning",), shape(counts),
-                               {"units": "1", "long_name": f"samples of {name} per QC flag"})
-    out[f"{name}_qc_test_count"] = (cd + ("qc_test",), shape(tcounts),
-                                    {"units": "1", "long_name": f"samples of {name} that each QC "
-                                     "test flagged suspect or fail"})
-    out = out.assign_coords(flag_meaning=("flag_meaning", meanings,
-                                          {"long_name": "QARTOD flag meaning"}),
-                            qc_test=("qc_test", tests, {"long_name": "QC test"}))
+    data = {name: (dims, shape(cleaned), {**attrs, "ancillary_variables": f"{name}_qc",
+                                          "comment": "QC'd: failed and missing samples masked, "
+                                          f"gaps up to {th.max_gap:g} s interpolated linearly"}),
+            f"{name}_qc": (dims, shape(flags), flag_attrs(name))}
+    if keep_raw:
+        data[f"{name}_raw"] = (dims, shape(x), {**attrs, "long_name": attrs.get(
+            "long_name", name) + " as read, before quality control"})
+    data[f"{name}_qc_count"] = (cd + ("flag_meaning",), shape(counts),
+                                {"units": "1", "long_name": f"samples of {name} per QC flag"})
+    data[f"{name}_qc_test_count"] = (cd + ("qc_test",), shape(tcounts),
+                                     {"units": "1", "long_name": f"samples of {name} that each "
+                                      "QC test flagged suspect or fail"})
+    coords = {"time": ds["time"], **({channel_dim: da[channel_dim]} if channel_dim else {}),
+              "flag_meaning": ("flag_meaning", FLAG_MEANINGS.split(),
+                               {"long_name": "QARTOD flag meaning"}),
+              "qc_test": ("qc_test", tests, {"long_name": "QC test"})}
+    # built in one call: assigning variable by variable aligned and merged each time, which
+    # cost more than the tests themselves on a flap channel
+    out = xr.Dataset(data, coords=coords)
     still = np.isnan(cleaned) & ~np.isnan(x)
     spans = [f"{chans[r]} {a:.3f}-{b:.3f} s" for r, a, b in gap_spans(still, t)]
     out.attrs[f"{name}_unfilled_gaps"] = "; ".join(spans)
