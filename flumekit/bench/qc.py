@@ -24,7 +24,8 @@ instrument (best of three, each rule executed on its own):
 * UVP: the qc/uvp rule against the uvp rule.
 
 The QC rules read the raw files, which the analysis would otherwise read itself; the time of
-that read is shown and the ratio given both with it and without it.
+that read is shown and the ratio given both with it and without it; so is the time of writing
+their products (flumekit.io.netcdf.write_dataset, which every stage's products pay alike).
 """
 
 from __future__ import annotations
@@ -221,10 +222,6 @@ def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
     return hits / total, false / n
 
 
-#: the stages that consume each instrument's QC product, per run
-CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
-
-
 def _compute_probes_flap(p: dict, f: dict, run) -> float:
     """Best time of the QC computations alone (tests, flags, masking, filling) of a run's probe
     and flap records, read beforehand [s]."""
@@ -269,10 +266,27 @@ def _compute_uvp(beams: list[Path], span) -> float:
 CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
 
 
+def _write_time(paths: list[Path]) -> float:
+    """Best time of writing the QC rule's products again (flumekit.io.netcdf.write_dataset, as
+    the rule does: CF checks, provenance, compression) [s]."""
+    from flumekit.bench import best_time
+    from flumekit.io.netcdf import read_dataset, write_dataset
+
+    data = []
+    for p in paths:
+        ds = read_dataset(p)
+        for v in ds.variables.values():
+            v.encoding = {}
+        data.append(ds)
+    with tempfile.TemporaryDirectory() as tmp:
+        return best_time(lambda: [write_dataset(d.copy(), Path(tmp) / f"{i}.nc")
+                                  for i, d in enumerate(data)])[0]
+
+
 def _timings(processed: Path, raw: Path) -> list[tuple]:
     """Per run and instrument: QC rule time, of which reading the raw files, the QC
-    computations alone, and the time of the rules that consume the QC product (best of three
-    each) [s]."""
+    computations alone and writing the products, and the time of the rules that consume the
+    QC product (best of three each) [s]."""
     from flumekit.bench import best_time
     from flumekit.campaign import load_campaign
     from flumekit.io.instruments import read_flap, read_probes
@@ -301,8 +315,9 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
             read_flap(run.file("flap"), f["sampling_rate"], f.get("dialect"))))[0]
         t_qc = run_rules([f"qc/probes/{run.id}", f"qc/flap/{run.id}"])
         t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["probes+flap"]])
+        t_write = _write_time([processed / "qc" / k / f"{run.id}.nc" for k in ("probes", "flap")])
         out.append((run.id, "probes+flap", t_qc, t_read, _compute_probes_flap(p, f, run),
-                    t_ana))
+                    t_write, t_ana))
         if f"qc/uvp/{run.id}" in rules:
             beams = [run.path / f"{b.name}.mfprof" for b in campaign.uvp.beams]
             t_read = best_time(lambda beams=beams: [read_mfprof(b) for b in beams])[0]
@@ -310,7 +325,9 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
             t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["uvp"]])
             span = read_dataset(processed / "qc" / "uvp" / f"{run.id}.nc")[
                 "evaluated_span"].values
-            out.append((run.id, "uvp", t_qc, t_read, _compute_uvp(beams, span), t_ana))
+            t_write = _write_time([processed / "qc" / "uvp" / f"{run.id}.nc"])
+            out.append((run.id, "uvp", t_qc, t_read, _compute_uvp(beams, span), t_write,
+                        t_ana))
     return out
 
 
@@ -373,11 +390,13 @@ def run(quick: bool = False) -> str:
             lines.append("QC rules against the rules consuming their product (best of 3) [s]; "
                          "probes+flap: eta, waves, flap, comparison; uvp: uvp")
             lines.append("QC: the QC rules; read: their reading of the raw files; compute: "
-                         "the QC computations alone (tests, flags, masking, filling)")
-            lines.append("run                instrument     QC   read compute analysis   "
-                         "QC/ana (QC-read)/ana compute/ana")
-            for run_id, kind, t_qc, t_read, t_cmp, t_ana in _timings(clean_p, raw):
+                         "the QC computations alone (tests, flags, masking, filling); write: "
+                         "writing their products (netCDF, as every stage writes)")
+            lines.append("run                instrument     QC   read compute  write analysis"
+                         "   QC/ana (QC-read)/ana compute/ana write/ana")
+            for run_id, kind, t_qc, t_read, t_cmp, t_wr, t_ana in _timings(clean_p, raw):
                 lines.append(f"{run_id:18s} {kind:11s} {t_qc:6.3f} {t_read:6.3f} "
-                             f"{t_cmp:6.3f} {t_ana:8.3f} {t_qc / t_ana:8.1%} "
-                             f"{(t_qc - t_read) / t_ana:13.1%} {t_cmp / t_ana:11.1%}")
+                             f"{t_cmp:6.3f} {t_wr:6.3f} {t_ana:8.3f} {t_qc / t_ana:8.1%} "
+                             f"{(t_qc - t_read) / t_ana:13.1%} {t_cmp / t_ana:11.1%} "
+                             f"{t_wr / t_ana:9.1%}")
     return "\n".join(lines)
