@@ -169,10 +169,11 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     shape = (lambda a: a) if channel_dim else (lambda a: a[0])
     attrs = {k: v for k, v in da.attrs.items()}
     cdim = channel_dim or "channel"
-    counts = np.stack([np.sum(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
+    # count_nonzero, not sum: a bool array summed is converted to integers first (5x slower)
+    counts = np.stack([np.count_nonzero(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
     tests = list(per_test)
-    tcounts = np.stack([np.sum((per_test[k] == FAIL) | (per_test[k] == SUSPECT), axis=-1)
-                        for k in tests], axis=-1)
+    tcounts = np.stack([np.count_nonzero((per_test[k] == FAIL) | (per_test[k] == SUSPECT),
+                                         axis=-1) for k in tests], axis=-1)
     cd = (cdim,) if channel_dim else ()
     data = {name: (dims, shape(cleaned), {**attrs, "ancillary_variables": f"{name}_qc",
                                           "comment": "QC'd: failed and missing samples masked, "

@@ -253,7 +253,7 @@ def uvp(inputs, outputs, params) -> None:
                                       if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        counts.append(np.bincount(f.ravel(), minlength=256)[FLAG_VALUES])  # one pass
+        counts.append([np.count_nonzero(f == val) for val in FLAG_VALUES])
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
         # beams may differ in profile count: each beam keeps its own time axis
