@@ -142,9 +142,9 @@ def test_pool_executor_gives_the_same_result(toy, kind):
 
 def test_dask_executor(toy):
     distributed = pytest.importorskip("distributed")
-    from flumekit.pipeline.executors import DaskExecutor
-
     import dask
+
+    from flumekit.pipeline.executors import DaskExecutor
 
     before = dask.config.get("scheduler", None)
     with distributed.LocalCluster(n_workers=1, processes=False, dashboard_address=None) as cl:
