@@ -188,4 +188,10 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                "torque_sign_convention": "T_h positive towards the beach; T_g, T_PTO, T_p, T_f "
                "resisting (positive when opposing theta > 0), Eq. (11)"},
     )
-    return conventions.annotate(ds.merge(summ))
+    ds = conventions.annotate(ds.merge(summ))
+    if fit.bounded:  # said in the product: Eq. (13) misses part of this PTO's pressure
+        ds.attrs["pressure_fit_bounded"] = (
+            "a coefficient of the Eq. (13) fit is held at its bound 0: the free least-squares "
+            "fit gave a negative (unphysical) value, so the pressure lags the motion in a way "
+            "Eq. (13) cannot represent")
+    return ds

@@ -29,6 +29,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+from scipy.optimize import nnls
 
 #: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
 VAPOUR_PRESSURE = 2339.0
@@ -83,6 +84,7 @@ class PressureFit(NamedTuple):
     r2: float  # coefficient of determination over all samples used
     cavitating: np.ndarray  # bool, samples on the cavitation branch of the fitted model
     fitted: np.ndarray  # fitted chamber pressure [Pa]
+    bounded: bool = False  # a coefficient is held at its bound 0 (the free fit was unphysical)
 
 
 def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
@@ -95,7 +97,9 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
     alternates a linear least-squares solve on the samples where the current model is above the
     vapour clamp with a re-classification of the samples (an active-set iteration), starting
     from the samples whose measured pressure is above the clamp. The iteration stops when the
-    set no longer changes. R² is that of the full piecewise model over all samples.
+    set no longer changes. R² is that of the full piecewise model over all samples. Both
+    coefficients are bounded below by 0 (a solve whose free optimum has one negative is
+    replaced by the non-negative least-squares one; ``bounded`` says so).
 
     Parameters
     ----------
@@ -125,6 +129,13 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
         if active.sum() < 3:
             raise ValueError("pressure fit: fewer than three samples off the cavitation branch")
         coef, *_ = np.linalg.lstsq(design[active], p[active], rcond=None)
+        if np.any(coef < 0):
+            # K_p (a loss) and I_p (the inertia of the fluid column) cannot be negative. A
+            # pressure that lags the motion (air in the chamber, a valve; not in Eq. 13) makes
+            # the free fit trade inertia for lag and return I_p < 0, which no fluid has and
+            # which the simulator rightly refuses: bounded least squares (Lawson-Hanson NNLS)
+            # keeps the fitted model physical, at a lower R².
+            coef, _ = nnls(design[active], p[active])
         new = design @ coef > clamp
         if np.array_equal(new, active):
             break
@@ -135,7 +146,8 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
     if not ss_tot > 0:
         raise ValueError("pressure fit: the measured chamber pressure is constant (R² undefined)")
     r2 = 1.0 - ss_res / ss_tot
-    return PressureFit(float(coef[0]), float(coef[1]), r2, ~active, fitted)
+    return PressureFit(float(coef[0]), float(coef[1]), r2, ~active, fitted,
+                       bool(np.any(coef == 0)))
 
 
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:

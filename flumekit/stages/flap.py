@@ -6,7 +6,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "3"
+VERSION = "4"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
 DOCS = {

@@ -50,7 +50,7 @@ def test_fit_recovers_the_truth_with_cavitation():
 
 
 @settings(max_examples=30, deadline=None)
-@given(kp=st.floats(1e5, 5e6), ip=st.floats(-5e4, 5e4), amp=st.floats(0.05, 0.8))
+@given(kp=st.floats(1e5, 5e6), ip=st.floats(0, 5e4), amp=st.floats(0.05, 0.8))
 def test_fit_exact_on_noise_free_data(kp, ip, amp):
     thd, thdd = _motion(amp=amp)
     p = chamber_pressure_model(thd, thdd, kp, ip)
@@ -86,3 +86,21 @@ def test_pressure_force():
     assert pressure_force(2e5, np.pi * 0.05**2 / 4) == pytest.approx(2e5 * 1.9634954e-3)
     with pytest.raises(ValueError):
         pressure_force(1.0, 0.0)
+
+
+def test_fit_is_bounded_at_zero_inertia_when_the_free_fit_is_negative():
+    """A pressure from Eq. (13) with I_p < 0 (what a lagging, compliant chamber looks like to
+    the fit): the free optimum is unphysical, so I_p is held at 0 and K_p is the
+    least-squares optimum given I_p = 0 (the normal equation of K_p alone, on the samples off
+    the cavitation branch), and the fit says it is bounded."""
+    thd, thdd = _motion()
+    p = chamber_pressure_model(thd, thdd, 1.0e6, -3.0e4)
+    fit = fit_pressure_model(p, thd, thdd)
+    assert fit.bounded and fit.fluid_inertia == 0.0
+    x = thd * np.abs(thd)
+    on = ~fit.cavitating
+    kp = float(x[on] @ p[on] / (x[on] @ x[on]))
+    assert fit.pressure_loss_coefficient == pytest.approx(kp, rel=1e-10)
+    assert fit.r2 < 1.0
+    free = fit_pressure_model(chamber_pressure_model(thd, thdd, 1.0e6, 2.4e4), thd, thdd)
+    assert not free.bounded
