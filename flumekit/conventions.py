@@ -240,6 +240,9 @@ VARIABLES: dict[str, Variable] = {
     "chamber_pressure_valve": _V("Pa", "pressure drop of the PTO check valve in the chamber"),
     "torque_compliance": _V("N m", "torque of the PTO chamber's compliance pressure"),
     "chamber_pressure_compliance": _V("Pa", "pressure lag of the PTO chamber's compliance"),
+    "torque_cavity": _V("N m", "torque of the PTO chamber's vapour cavity pressure"),
+    "chamber_pressure_cavity": _V("Pa", "PTO chamber pressure change while a vapour cavity "
+                                        "persists"),
     # Renzi-Dias linear model and frequency-domain response (models/renzi_dias.py, response.py)
     "period": _V("s", "wave period"),
     "excitation_torque_real": _V("N m m-1", "real part of the complex excitation torque per unit "

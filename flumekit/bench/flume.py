@@ -148,8 +148,46 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
         v["std_eta_period"] = rel_std([r["waves"].measured_period for r in reps])
         v["std_theta_amplitude"] = rel_std([r["flap"].theta_amplitude for r in reps])
         v["std_theta_period"] = rel_std([r["flap"].measured_period for r in reps])
+    notes.update(linear_pair(runs))
     notes.update(trends(runs))
     return v, notes
+
+
+def linear_pair(runs: dict) -> dict[str, str]:
+    """What PTO damping ν the linear model (Eq. A1, Renzi-Dias coefficients of the campaign's
+    flap in the flume) needs for each of the paper's two linear-model numbers at the main
+    condition, and what the other one is then: §3.3's max ⟨θ⟩ 37 % below the linear model's
+    and C_f = 0.33 cannot both hold with one ν for this geometry (issue 16)."""
+    import tempfile
+
+    from scipy.optimize import brentq
+
+    from flumekit.flap.renzi_dias.model import coefficients
+    from flumekit.hydro.response import response
+    from flumekit.synth.campaign import virtual_campaign
+
+    main = runs.get(MAIN_RUN)
+    if main is None or "waves" not in main:
+        return {}
+    with tempfile.TemporaryDirectory() as tmp:
+        camp = virtual_campaign(Path(tmp) / "default", "default", 2020)
+    flap, w = camp.flap, main["waves"]
+    period, amp = float(w.measured_period), float(w.incident_height) / 2
+    rd = coefficients(np.array([period]), camp.flume.water_depth, flap.width,
+                      flap.hinge_height, camp.flume.width)
+    th_exp = float(main["flap"].theta_phase_mean.max())
+
+    def lin(nu):
+        r = response(rd, amp, flap.inertia, flap.buoyancy_stiffness, nu).isel(period=0)
+        return float(r.theta_amplitude), float(r.capture_factor)
+
+    nu37 = brentq(lambda nu: 1 - th_exp / lin(nu)[0] - 0.37, 1.0, 1e4)
+    nu33 = brentq(lambda nu: lin(nu)[1] - 0.33, 300.0, 1e4)  # the branch above ν_opt
+    return {"linear model, (lin - exp)/lin = 37 %": (
+                f"needs nu_pto {nu37:.0f} N m s, then C_f {lin(nu37)[1]:.3f}"),
+            "linear model, C_f = 0.33": (
+                f"needs nu_pto {nu33:.0f} N m s, then (lin - exp)/lin "
+                f"{1 - th_exp / lin(nu33)[0]:.2f}")}
 
 
 def trends(runs: dict) -> dict[str, str]:

@@ -32,7 +32,7 @@ from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.synth.flume import RepeatScatter
-from flumekit.synth.waves import Beach
+from flumekit.synth.waves import RAMP_WAVES, Beach
 from flumekit.waves.theory import group_velocity, wavelength
 
 PERIODS = (2.0, 2.25, 2.5, 2.75, 3.0, 3.25, 3.5, 3.75, 4.0)  # Table 1 [s]
@@ -73,7 +73,7 @@ class Truth:
     reflection_phase: float = 0.6  # [rad]
     probe_noise: float = 0.5e-3  # probe noise, as elevation [m]
     static_seconds: float = 30.0  # record length at each static level [s]
-    ramp_waves: float = 10.0  # wavemaker ramp (quasi-steady after ~35 waves at the flap)
+    ramp_waves: float = RAMP_WAVES  # linear wavemaker ramp [periods] (steady from ~35 waves)
     x_wavemaker: float = -32.7  # [m]
     x_wp3: float = -2.0  # WP3 position [m]; WP1, WP2 follow Table 1 spacings
     x_wp4: float = -0.6  # [m]

@@ -61,7 +61,7 @@ ramps the flap), per unit incident amplitude
   With these θ reaches 0.08-0.19 rad for H = 0.15 m and 0.16-0.34 rad for H = 0.3 m over
   T = 2-4 s (the paper measured 0.19 rad at T = 3.5 s, H = 0.25 m), and C_f of the nonlinear
   PTO below is 0.075-0.16.
-* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 1.75e6) and I_p = 2.4e4 Pa s² rad⁻¹
+* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 2.86e6) and I_p = 2.4e4 Pa s² rad⁻¹
   (a water column of about 3 m in a 12 mm line behind the 50 mm bore: ρ L (A/a) |m| ≈ 2.4e4):
   the chamber reaches 0.65-4.8 bar in compression and cavitates on the suction stroke for the
   larger heights (with K_p = 1.0e6).
@@ -81,9 +81,9 @@ radiation + drag torque to the lever-arm table's interpolation error (~1e-7 rela
 
 Raw channels: encoder counts (wire shortening of Eq. (1) quantised with the campaign's
 counts_per_metre, integers, zero at θ = 0) and the chamber gauge pressure with Gaussian sensor
-noise of standard deviation 0.2 % of the rated output (5 bar by default: the linear model's
-chamber reaches up to 4.8 bar, more than a 1 bar sensor could read; the simulator's exceeds
-5 bar in the larger waves, and the sensor is not clipped).
+noise of standard deviation 0.2 % of the rated output (10 bar by default: the linear model's
+chamber reaches up to 4.8 bar, more than a 1 bar sensor could read; the flume's 4.5 bar at
+H = 0.3 m, the simulator's more than 5 bar in the larger waves; the sensor is not clipped).
 """
 
 from __future__ import annotations
@@ -129,9 +129,9 @@ class FlapTruth:
     pto_damping: float = 500.0  # linear-equivalent PTO damping ν_pto [N m s]
     viscous_damping: float = 600.0  # linearised viscous losses ν_visc [N m s]
     excitation_phase: float = 0.0  # lag of the excitation torque behind η(x=0) [rad]
-    pressure_loss_coefficient: float = 1.75e6  # K_p [Pa s2 rad-2] (flume calibration)
+    pressure_loss_coefficient: float = 2.86e6  # K_p [Pa s2 rad-2] (flume calibration)
     fluid_inertia: float = 2.4e4  # I_p [Pa s2 rad-1]
-    pressure_rated_output: float = 1.0e6  # sensor range [Pa]: the chamber reaches ~7 bar
+    pressure_rated_output: float = 1.0e6  # sensor range [Pa]: the flume's chamber ~4.5 bar
     pressure_noise: float = 0.002  # noise std as a fraction of the rated output [-]
     friction_substeps: int = 10  # fine friction steps per record step (linear model)
     simulator_substeps: int = 1  # simulator steps per record step
@@ -348,7 +348,7 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
         # the valve's pressure adds to Eq. (13)'s in the chamber (its torque m A ΔP_v acted
         # on the flap through the simulator's extra torque)
         p_true = (p_true + series["chamber_pressure_valve"]
-                  + series["chamber_pressure_compliance"])
+                  + series["chamber_pressure_compliance"] + series["chamber_pressure_cavity"])
 
     h = hydro.hydro
     w_grid = h["angular_frequency"].values

@@ -40,6 +40,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
+from flumekit.synth.waves import RAMP_WAVES
 from flumekit.uvp.geometry import beam_geometry, inside_flap
 from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
@@ -87,7 +88,7 @@ def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
 def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
                     hinge_height: float = 0.10, reflection: float = 0.2,
                     reflection_phase: float = 0.0, x_reflector: float = 0.0,
-                    x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = 10.0,
+                    x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = RAMP_WAVES,
                     second_order: bool = True, theory: str | None = None, beach=None,
                     g: float = G) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Velocity and free surface of incident + reflected regular waves (module notes).
@@ -132,7 +133,7 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
         e_i = e_r = e_b = 1.0
     else:
         cg = float(group_velocity(period, depth, g))
-        ramp_time = ramp_waves * period / 2.0
+        ramp_time = ramp_waves * period
         e_i = ramp_envelope(t - d_inc / cg, ramp_time)
         e_r = ramp_envelope(t - d_ref / cg, ramp_time)
         e_b = ramp_envelope(t - d_beach / cg, ramp_time)
@@ -271,7 +272,7 @@ def _band_limited(rng: np.random.Generator, shape: tuple[int, ...], dt: float,
 def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: float,
               depth: float, hinge_height: float = 0.10, reflection: float = 0.2,
               reflection_phase: float = 0.0, x_wavemaker: float = X_WAVEMAKER,
-              ramp_waves: float | None = 10.0, second_order: bool = True,
+              ramp_waves: float | None = RAMP_WAVES, second_order: bool = True,
               theory: str | None = None, beach=None, noise: float = 0.005,
               turbulence: tuple[float, float, float] | None = None,
               theta=None, flap_thickness: float = 0.17, maximum_depth: float | None = None,

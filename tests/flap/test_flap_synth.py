@@ -203,8 +203,9 @@ def test_simulator_pto_feeds_back_into_the_motion(campaign, hydrodynamics):
     eta = 0.12 * np.clip(t / 10, 0, 1) * np.cos(2 * np.pi * t / 3.0)
 
     def theta(**kw):
+        kw = {"model": "simulator", "pressure_loss_coefficient": 1e6, **kw}
         ds = flap_record(t, eta, period=3.0, campaign=campaign, rng=np.random.default_rng(0),
-                         truth=FlapTruth(**{"model": "simulator", **kw}), hydro=hydrodynamics)
+                         truth=FlapTruth(**kw), hydro=hydrodynamics)
         return ds.theta.values[t > 25]
 
     ratio = np.ptp(theta(pressure_loss_coefficient=4e6)) / np.ptp(theta())
@@ -260,7 +261,7 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     # the flume (simulator + extra losses): T_h defined by Eq. (11) equals the sum of the
     # recorded torques acting on the flap other than the PTO's, every loss term is recorded
     # and active (overtopping, off by default, switched on here), and the chamber pressure is
-    # Eq. (13) plus the check valve's and the compliance's
+    # Eq. (13) plus the check valve's, the compliance's and the vapour cavity's
     import dataclasses
 
     t = np.arange(0, 60, 0.01)
@@ -275,7 +276,8 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     th = ds.torque_hydrodynamic.values
     assert np.max(np.abs(th - acting)) < 1e-6 * np.max(np.abs(th))
     late = t > 40
-    for n in terms[2:] + ("chamber_pressure_valve", "chamber_pressure_compliance"):
+    for n in terms[2:] + ("chamber_pressure_valve", "chamber_pressure_compliance",
+                          "chamber_pressure_cavity"):
         assert np.max(np.abs(ds[n].values[late])) > 0, n
     # losses resist the motion; the waterline term pushes towards the beach
     w = ds.theta_dot.values
@@ -288,10 +290,18 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     p13 = chamber_pressure_model(w, ds.theta_ddot.values, k_p,
                                  truth.fluid_inertia, atmospheric_pressure=pto.atmospheric_pressure,
                                  vapour_pressure=pto.vapour_pressure, compression_sign=s_c)
-    p = p13 + ds.chamber_pressure_valve.values + ds.chamber_pressure_compliance.values
+    cavity = ds.chamber_pressure_cavity.values
+    p = p13 + ds.chamber_pressure_valve.values + ds.chamber_pressure_compliance.values + cavity
     ok = ds.cavitating.values == 0
     assert np.max(np.abs(p - ds.chamber_pressure_true.values)[ok]) < 1e-9 * np.max(np.abs(p))
     assert np.all(ds.chamber_pressure_valve.values[s_c * w <= 0] == 0)
+    # while the vapour cavity lasts the valve is shut and nothing is stored (the compliance
+    # is 0); the cavity's term takes Eq. (13)'s K_p θ̇|θ̇| down to P_v
+    # (test_flume_vapour_cavity_holds_the_refill_deficit)
+    held = cavity != 0
+    assert held.sum() > 20
+    assert np.all(ds.chamber_pressure_valve.values[held] == 0)
+    assert np.all(ds.chamber_pressure_compliance.values[held] == 0)
     # the compliance: K_p θ̇² of the compression stroke through a first-order lag of τ_c,
     # exact update per 0.01 s step: p_l[n] - p_q[n] = (p_l[n-1] - p_q[n]) exp(-dt/τ_c), and
     # p_l = 0 where the suction cavitates the chamber (K_p θ̇² ≥ P_atm - P_v)
@@ -300,10 +310,58 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     decay = np.exp(-0.01 / truth.losses.compliance_time)
     empty = (s_c * w < 0) & (k_p * w**2 >= pto.atmospheric_pressure - pto.vapour_pressure)
     assert empty.sum() > 100 and np.all(p_l[empty] == 0)
-    np.testing.assert_allclose((p_l[1:] - p_q[1:])[~empty[1:]],
-                               ((p_l[:-1] - p_q[1:]) * decay)[~empty[1:]],
+    # the lag restarts from 0 once a cavity has collapsed
+    prev = np.where(held[:-1], 0.0, p_l[:-1])
+    free = ~(empty | held)[1:]
+    np.testing.assert_allclose((p_l[1:] - p_q[1:])[free], ((prev - p_q[1:]) * decay)[free],
                                atol=1e-9 * np.max(p_l))
     assert np.all(p_l >= 0)
+
+
+def test_flume_vapour_cavity_holds_the_refill_deficit(campaign, hydrodynamics):
+    # issue 16: the single-acting cylinder's cavity (synth/flume.py) opens only when the
+    # suction outruns the refill θ̇_r = sqrt((P_atm - P_v)/K_p), holds φ times that deficit and
+    # collapses at the refill plus the compression rate: over every cavity the volume grown,
+    # recomputed from the recorded θ̇ and lever arm, is the volume collapsed within one step's
+    # change; meanwhile the atmosphere over the piston pushes the flap towards compression
+    import dataclasses
+
+    t = np.arange(0, 60, 0.01)
+    eta = 0.14 * np.clip(t / 10, 0, 1) * np.cos(2 * np.pi * t / 3.5)
+    truth = FlapTruth(model="flume")
+    ds = flap_record(t, eta, period=3.5, campaign=campaign, rng=np.random.default_rng(0),
+                     truth=truth, hydro=hydrodynamics)
+    pto = campaign.pto
+    s_c = -1 if np.median(ds.lever_arm) > 0 else 1
+    p_cav = pto.atmospheric_pressure - pto.vapour_pressure
+    k_p, dt = truth.pressure_loss_coefficient, 0.01
+    w = ds.theta_dot.values
+    d = -s_c * w - np.sqrt(p_cav / k_p)  # > 0: the suction outruns the refill
+    rate = np.abs(ds.lever_arm.values) * np.where(d > 0, truth.losses.vapour_cavity * d, d)
+    x = np.zeros(t.size)  # cavity volume over the bore area [m], explicit steps
+    for k in range(1, t.size):  # 6000 steps of a state recursion
+        x[k] = max(x[k - 1] + dt * rate[k - 1], 0.0)
+    p13 = s_c * k_p * w * np.abs(w)
+    cavity = ds.chamber_pressure_cavity.values
+    held = cavity != 0
+    assert np.array_equal(held, (x > 0) & (p13 > -p_cav))
+    assert np.count_nonzero(np.diff((x > 0).astype(int)) == 1) >= 8  # cavities opened
+    np.testing.assert_allclose(cavity[held], (-p_cav - p13)[held], rtol=1e-9)
+    # the chamber sits at P_v + s I_p θ̈ (the simulator's fluid inertia stays), never below P_v
+    p = ds.chamber_pressure_true.values
+    assert np.all(p[held] >= -p_cav)
+    np.testing.assert_allclose(p[held], (-p_cav + s_c * truth.fluid_inertia
+                                         * ds.theta_ddot.values)[held], atol=1e-9 * p_cav)
+    push = s_c * ds.torque_cavity.values
+    assert np.all(push >= 0) and np.max(push) > 10.0
+    off = dataclasses.replace(truth, losses=dataclasses.replace(truth.losses, vapour_cavity=0))
+    ds0 = flap_record(t, eta, period=3.5, campaign=campaign, rng=np.random.default_rng(0),
+                      truth=off, hydro=hydrodynamics)
+    assert np.all(ds0.torque_cavity.values == 0)
+    late = t > 40
+    # the cavity moves the flap's mean towards compression (the beach: θ̇ > 0 compresses)
+    assert s_c == 1
+    assert ds.theta.values[late].mean() > ds0.theta.values[late].mean() + 0.005
 
 
 def test_flume_moves_less_than_the_simulator(campaign, hydrodynamics):

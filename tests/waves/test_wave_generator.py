@@ -126,11 +126,12 @@ def test_envelope_arrives_with_the_group_velocity():
 
 
 def test_ramp_envelope_shape():
-    s = np.array([-1.0, 0.0, 2.0, 5.834, 50.0])
-    e = ramp_envelope(s, 1.0)
-    np.testing.assert_allclose(e, [0, 0, 1 - 3 * np.exp(-2), 1 - 6.834 * np.exp(-5.834), 1],
+    # the paddle's linear ramp: 0 before the start, τ / ramp_time, then exactly 1
+    tau = np.array([-1.0, 0.0, 0.25, 0.98, 1.0, 50.0])
+    np.testing.assert_allclose(ramp_envelope(tau, 2.0), [0, 0, 0.125, 0.49, 0.5, 1],
                                rtol=1e-12)
-    assert abs(e[3] - 0.98) < 1e-3
+    np.testing.assert_allclose(ramp_envelope(2.0 * tau, 2.0), [0, 0, 0.25, 0.98, 1, 1],
+                               rtol=1e-12)
 
 
 @pytest.mark.parametrize("period", [2.5, 3.5, 4.0])
