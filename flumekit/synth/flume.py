@@ -229,39 +229,9 @@ class ExtraTorque:
             if k_p > 0 else math.inf  # θ̇ the refill keeps up with at P_v [rad s-1]
         p_cav = pto.atmospheric_pressure - pto.vapour_pressure  # suction that cavitates [Pa]
 
-        def lever(th):
-            u = (th - th0) * inv_dth
-            i = min(max(int(u), 0), n_tab)
-            return mt[i] + (u - i) * dmt[i]
-
-        def compliance(j, om):
-            # Eq. (13)'s quadratic compression pressure through a first-order lag, updated
-            # exactly over the time since the last call (the simulator calls once per step)
-            p_q = k_p * om * om if s * om > 0 else 0.0
-            if s * om < 0 and k_p * om * om >= p_cav:
-                p_l = 0.0  # the chamber cavitates: the stored volume has returned
-            else:
-                p_l = p_q + (lag[1] - p_q) * exp(-(j - lag[0]) * half_step / tau_c)
-            lag[0], lag[1] = j, p_l
-            return p_l - p_q
-
-        def cavity(j, th, om):
-            # discrete vapour cavity: volume grows while the suction outruns the refill at the
-            # vapour pressure and shrinks at the refill plus the compression rate; the
-            # chamber stays at P_v while it lasts (returns ΔP = P_v - Eq. 13's pressure)
-            dt_c = (j - cav[0]) * half_step
-            x = cav[1] + cav[2] * dt_c
-            x = x if x > 0 else 0.0
-            c = s * om  # compression rate [rad s-1]
-            d = -c - w_refill  # > 0: the suction outruns the refill
-            rate = abs(lever(th)) * (phi * d if d > 0 else d)
-            cav[0], cav[1], cav[2] = j, x, rate
-            if x <= 0:
-                return 0.0
-            p13 = s * k_p * om * abs(om)
-            return -p_cav - (p13 if p13 > -p_cav else -p_cav)
-
         def terms(j, th, om):
+            # one call per simulator step: everything inline (no nested calls), the lever arm
+            # interpolated once
             ef = eta[j]
             c = cos(th)
             dw = (d + ef) / c
@@ -274,18 +244,43 @@ class ExtraTorque:
             over = ef - (lf * c - d)
             t_o = -k_over * over if over > 0 else 0.0
             t_b = -t_bear * tanh(om * inv_wb)
-            p_k = cavity(j, th, om) if phi > 0 else 0.0
-            if cav[1] > 0:  # the chamber at P_v: no stored volume, the valve shut
-                lag[0], lag[1] = j, 0.0
-                p_c = p_v = 0.0
-            else:
-                p_c = compliance(j, om) if tau_c > 0 else 0.0
-                p_v = 0.0
-                if s * om > 0 and p_valve > 0:
-                    p_v = -p_valve * expm1(-abs(lever(th) * om) * inv_vc)
+            u = (th - th0) * inv_dth
+            i = int(u)
+            i = 0 if i < 0 else (n_tab if i > n_tab else i)
+            m = mt[i] + (u - i) * dmt[i]
+            so = s * om  # compression rate [rad s-1]
+            p_k = p_c = p_v = 0.0
+            if phi > 0:
+                # discrete vapour cavity (module notes): its volume over the bore area grows
+                # by φ times the suction's excess over the refill and shrinks at the refill
+                # plus the compression rate, explicit over the time since the last call; the
+                # chamber stays at P_v while it lasts: ΔP = P_v - Eq. (13)'s K_p pressure
+                x = cav[1] + cav[2] * (j - cav[0]) * half_step
+                x = x if x > 0 else 0.0
+                dd = -so - w_refill  # > 0: the suction outruns the refill
+                cav[0], cav[1] = j, x
+                cav[2] = (m if m > 0 else -m) * (phi * dd if dd > 0 else dd) \
+                    if (x > 0 or dd > 0) else 0.0
+                if x > 0:
+                    p13 = k_p * so * abs(om)
+                    p_k = -p_cav - (p13 if p13 > -p_cav else -p_cav)
+                    lag[0], lag[1] = j, 0.0  # nothing stored, the valve shut
+            if p_k == 0.0 and (phi <= 0 or cav[1] <= 0):
+                if tau_c > 0:
+                    # Eq. (13)'s quadratic compression pressure through a first-order lag,
+                    # updated exactly over the time since the last call
+                    p_q = k_p * om * om if so > 0 else 0.0
+                    if so < 0 and k_p * om * om >= p_cav:
+                        p_l = 0.0  # the chamber cavitates: the stored volume has returned
+                    else:
+                        p_l = p_q + (lag[1] - p_q) * exp(-(j - lag[0]) * half_step / tau_c)
+                    lag[0], lag[1] = j, p_l
+                    p_c = p_l - p_q
+                if so > 0 and p_valve > 0:
+                    p_v = -p_valve * expm1(-abs(m * om) * inv_vc)
             if p_v == 0.0 and p_c == 0.0 and p_k == 0.0:
                 return t_d, t_w, t_o, t_b, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-            ma = lever(th) * area
+            ma = m * area
             return t_d, t_w, t_o, t_b, p_v, ma * p_v, p_c, ma * p_c, p_k, ma * p_k
 
         seen = self._seen = []
