@@ -3,7 +3,8 @@
 :func:`check_series` runs the tests on a (channel, time) block and returns the per-test flags;
 :func:`clean` masks what failed and interpolates gaps up to a declared length;
 :func:`qc_dataset` does both for one variable of a dataset and returns it with its flags
-(``<name>_qc``, CF flag attributes), the raw values (``<name>_raw``) and per-channel counts.
+(``<name>_qc``, CF flag attributes) and per-channel counts; the values as read are not repeated
+(the raw file holds them: the QC figure reads it).
 """
 
 from __future__ import annotations
@@ -146,14 +147,13 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
 
 def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
                gross_range: tuple[float, float] | None = None, despike: bool = False,
-               flat_line: bool = True, floor=None, keep_raw: bool = True) -> xr.Dataset:
+               flat_line: bool = True, floor=None) -> xr.Dataset:
     """QC of variable ``name`` of ``ds`` (dims (time,) or (channel_dim, time) in any order).
 
-    Returns a dataset with ``name`` cleaned (:func:`clean`), ``<name>_qc`` (aggregate flags),
-    ``<name>_raw`` (the values read, if ``keep_raw``) and ``<name>_qc_count`` (channel,
-    flag meaning) plus ``<name>_qc_test_count`` (channel, test): failed or suspect samples per
-    test. Attributes ``<name>_unfilled_gaps`` list the runs of masked samples longer than
-    ``max_gap``.
+    Returns a dataset with ``name`` cleaned (:func:`clean`), ``<name>_qc`` (aggregate flags)
+    and ``<name>_qc_count`` (channel, flag meaning) plus ``<name>_qc_test_count`` (channel,
+    test): failed or suspect samples per test. Attributes ``<name>_unfilled_gaps`` list the
+    runs of masked samples longer than ``max_gap``.
     """
     da = ds[name]
     dims = (channel_dim, "time") if channel_dim else ("time",)
@@ -179,9 +179,6 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
                                           "comment": "QC'd: failed and missing samples masked, "
                                           f"gaps up to {th.max_gap:g} s interpolated linearly"}),
             f"{name}_qc": (dims, shape(flags), flag_attrs(name))}
-    if keep_raw:
-        data[f"{name}_raw"] = (dims, shape(x), {**attrs, "long_name": attrs.get(
-            "long_name", name) + " as read, before quality control"})
     data[f"{name}_qc_count"] = (cd + ("flag_meaning",), shape(counts),
                                 {"units": "1", "long_name": f"samples of {name} per QC flag"})
     data[f"{name}_qc_test_count"] = (cd + ("qc_test",), shape(tcounts),

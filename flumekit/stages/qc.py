@@ -4,7 +4,10 @@ Per run and instrument one rule reads the raw record, checks it against its meta
 stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` (and the
 Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.nc``: the QC'd
 values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
-counts. The eta, flap and uvp stages read these instead of the raw files. The UVP is checked
+counts. The eta, flap and uvp stages read these instead of the raw files. The values as read
+are not repeated (the QC figure reads the raw files), and the probe and flap products are not
+deflated: written once and read once by the next stage, their float records of measured noise
+would shrink by a third at the cost of half the rule's run time. The UVP is checked
 after the waves stage, over the quasi-steady part of the run that its average may read.
 """
 
@@ -15,7 +18,7 @@ from flumekit.stages import uvp as uvp_stage
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "2"
+VERSION = "3"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -54,29 +57,48 @@ DOCS = {
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 
 
+def _reading(ctx: Context, run) -> dict:
+    """Per instrument, how its raw file is read: the parameters of :func:`read_raw` as the
+    campaign declares them ([files.<instrument>], dialect, units, clocks)."""
+    c = ctx.campaign
+    out = {"probes": {"probes": list(c.probes.names), "sampling_rate": c.probes.sampling_rate,
+                      "dialect": c.dialect("probes"), "units": c.probes.units,
+                      "time_offset": run.clock.get("probes", 0.0)}}
+    if "flap" in c.instruments:
+        out["flap"] = {"sampling_rate": c.encoder.sampling_rate, "dialect": c.dialect("flap"),
+                       "time_offset": run.clock.get("flap", 0.0)}
+    return out
+
+
+def read_raw(kind: str, path, reading: dict):
+    """The raw record of instrument ``kind`` ("probes" or "flap") read by its instrument
+    reader with the parameters of :func:`_reading` (the qc rules and the QC figure alike)."""
+    from flumekit.io.instruments import read_flap, read_probes
+
+    if kind == "probes":
+        return read_probes(path, tuple(reading["probes"]), reading["sampling_rate"],
+                           reading.get("dialect"), units=reading.get("units", "V"),
+                           time_offset=reading.get("time_offset", 0.0))
+    return read_flap(path, reading["sampling_rate"], reading.get("dialect"),
+                     time_offset=reading.get("time_offset", 0.0))
+
+
 def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     out = []
     for run in c.runs:
         rp = {**params, **run_params(run)}
-        # the raw files as the campaign declares them ([files.<instrument>], clocks)
+        reading = _reading(ctx, run)
         out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
                         inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
-                        params={**rp, "probes": list(c.probes.names),
-                                "probe_x": run.probe_x,
-                                "sampling_rate": c.probes.sampling_rate,
-                                "dialect": c.dialect("probes"), "units": c.probes.units,
-                                "time_offset": run.clock.get("probes", 0.0)},
+                        params={**rp, **reading["probes"], "probe_x": run.probe_x},
                         version=VERSION, run=run.id))
         if "flap" in c.instruments:
             out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
                             inputs={"flap": run.file("flap")},
                             outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
-                            params={**rp, "sampling_rate": c.encoder.sampling_rate,
-                                    "dialect": c.dialect("flap"),
-                                    "time_offset": run.clock.get("flap", 0.0)},
-                            version=VERSION, run=run.id))
+                            params={**rp, **reading["flap"]}, version=VERSION, run=run.id))
         if c.uvp is not None and run.kind == "uvp":
             # the UVP is checked over the quasi-steady part of the waves (the waves stage's)
             # and the filter's pad, the only samples the UVP average may read
@@ -98,17 +120,41 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
+def figure_inputs(ctx: Context, run) -> tuple[dict, dict]:
+    """Inputs and parameters of the QC figure of ``run``: the QC products of its instruments
+    and the raw probe and flap files (the values as read are drawn from them, the products do
+    not repeat them), with how to read them."""
+    c = ctx.campaign
+    reading = _reading(ctx, run)
+    inputs = {}
+    for kind in reading:
+        inputs[kind] = ctx.out("qc", kind, f"{run.id}.nc")
+        inputs[f"{kind}_raw"] = run.file(kind)
+    if c.uvp is not None and run.kind == "uvp":
+        inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
+    return inputs, {"reading": reading}
+
+
+def figure_data(inputs: dict, params: dict) -> dict:
+    """The datasets of :func:`figure_inputs`: QC products read back, raw files through their
+    instrument readers."""
+    from flumekit.io.netcdf import read_dataset
+
+    return {k: (read_raw(k[:-4], v, params["reading"][k[:-4]]) if k.endswith("_raw")
+                else read_dataset(v)) for k, v in inputs.items()}
+
+
 def _span(value):
     return None if value is None else (float(value[0]), float(value[1]))
 
 
-def _write(ds, outputs, params, title, source, warnings=()):
+def _write(ds, outputs, params, title, source, warnings=(), compress=True):
     from flumekit.stages.runs import write_run
 
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
     ds.attrs["max_gap"] = float(params["max_gap"])
-    write_run(ds, outputs, params, title, source)
+    write_run(ds, outputs, params, title, source, compress=compress)
 
 
 def _stuck(ds, name, path, max_gap):
@@ -130,16 +176,13 @@ def probes(inputs, outputs, params) -> None:
 
     import numpy as np
 
-    from flumekit.io.instruments import read_probes
     from flumekit.qc import checks
     from flumekit.qc.flags import FAIL
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["probes"])
     # dialect, units, clock: as the campaign declares them (default: the raw campaign's CSV)
-    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"],
-                      params.get("dialect"), units=params.get("units", "V"),
-                      time_offset=params.get("time_offset", 0.0))
+    raw = read_raw("probes", path, params)
     # volts to calibrate, or elevations of calibrated probes [m]
     name = "probe_voltage" if "probe_voltage" in raw else "probe_elevation"
     th = Thresholds.from_params(params)
@@ -161,7 +204,7 @@ def probes(inputs, outputs, params) -> None:
                 for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled wave probe voltages",
-           f"flumekit qc stage from {path}", warnings)
+           f"flumekit qc stage from {path}", warnings, compress=False)
 
 
 def flap(inputs, outputs, params) -> None:
@@ -169,14 +212,11 @@ def flap(inputs, outputs, params) -> None:
 
     import xarray as xr
 
-    from flumekit.io.instruments import read_flap
     from flumekit.qc import checks
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["flap"])
-    raw = read_flap(path, params["sampling_rate"], params.get("dialect"),
-                    time_offset=params.get("time_offset", 0.0))
-    raw["encoder_counts"] = raw["encoder_counts"].astype(float)
+    raw = read_raw("flap", path, params)  # qc_dataset works the integer counts as floats
     th = Thresholds.from_params(params)
     parts = []
     for name, rng, unit in (("encoder_counts", "encoder_range", " counts"),
@@ -190,7 +230,7 @@ def flap(inputs, outputs, params) -> None:
     ds = xr.merge(parts, combine_attrs="drop_conflicts")
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
-           f"flumekit qc stage from {path}")
+           f"flumekit qc stage from {path}", compress=False)
 
 
 def uvp(inputs, outputs, params) -> None:
@@ -240,7 +280,7 @@ def uvp(inputs, outputs, params) -> None:
         fs = (t.size - 1) / (t[-1] - t[0])
         tc = t + float(params.get("time_offset", 0.0))  # on the probes' clock
         i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
-        f = np.where(np.isfinite(v), np.uint8(NOT_EVALUATED), np.uint8(MISSING))
+        f = np.where(np.isfinite(v), np.int8(NOT_EVALUATED), np.int8(MISSING))
         if i1 - i0 >= 5:
             amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
                 if "amplitude" in b else None
