@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import fill_gaps
 
 
@@ -39,13 +40,21 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     shape = u.shape
     u = u.reshape(-1, shape[-1])
     valid = np.isfinite(u)
-    spikes = np.zeros(u.shape, dtype=bool)
     n = int(valid.sum(axis=-1).max()) if u.size else 0
     if n < 5:
-        return spikes.reshape(shape)
+        return np.zeros(shape, dtype=bool)
     lam2 = 2.0 * np.log(n)  # squared universal threshold, Eq. (2)
     floor = np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1, 1)
                             if np.ndim(floor) else np.asarray(floor, dtype=float), (u.shape[0], 1))
+    # every statistic is per channel (λ aside, from the longest record): a few channels at a time
+    return by_rows(lambda *b: _despike(*b, lam2, max_iterations), u, valid, floor
+                   ).reshape(shape)
+
+
+def _despike(u: np.ndarray, valid: np.ndarray, floor: np.ndarray, lam2: float,
+             max_iterations: int) -> np.ndarray:
+    """The iterations of :func:`goring_nikora` on the (channel, time) block ``u``."""
+    spikes = np.zeros(u.shape, dtype=bool)
     all_valid = bool(valid.all())
     work = u if all_valid else fill_gaps(u, valid)
     rows = np.arange(u.shape[0])  # channels still changing: only those are iterated again
@@ -62,7 +71,7 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
         if work is u:
             work = u.copy()
         work[rows] = fill_gaps(u[rows], valid[rows] & ~spikes[rows])
-    return spikes.reshape(shape)
+    return spikes
 
 
 def _central(f: np.ndarray) -> np.ndarray:

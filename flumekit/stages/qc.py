@@ -6,8 +6,7 @@ Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.n
 values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
 counts. The eta, flap and uvp stages read these instead of the raw files. The values as read
 are not repeated (the QC figure reads the raw files), and the probe and flap products are not
-deflated: written once and read once by the next stage, their float records of measured noise
-would shrink by a third at the cost of half the rule's run time. The UVP is checked
+deflated (:data:`COMPRESS`). The UVP is checked
 after the waves stage, over the quasi-steady part of the run that its average may read.
 """
 
@@ -18,7 +17,7 @@ from flumekit.stages import uvp as uvp_stage
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "3"
+VERSION = "4"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -55,6 +54,10 @@ DOCS = {
                        "than this is reported as a possible clock offset [s]",
 }
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
+#: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
+#: probe and flap records, written once and read once by the next stage, whose float records of
+#: measured noise deflate by a third only and slowly (7-10 ms a product, half the rule's time)
+COMPRESS = {"probes": False, "flap": False, "uvp": True}
 
 
 def _reading(ctx: Context, run) -> dict:
@@ -188,7 +191,7 @@ def probes(inputs, outputs, params) -> None:
     th = Thresholds.from_params(params)
     ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
-    flat = ds[f"{name}_qc_test_count"].sel(qc_test="flat_line").values / raw.sizes["time"]
+    flat = ds[f"{name}_qc"].attrs["flagged_by_flat_line"] / raw.sizes["time"]
     checks.check_alive(raw[name].transpose("probe", "time").values,
                        raw["probe"].values, path, flat, params["max_flat_fraction"],
                        " V" if name == "probe_voltage" else " m")
@@ -204,7 +207,7 @@ def probes(inputs, outputs, params) -> None:
                 for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled wave probe voltages",
-           f"flumekit qc stage from {path}", warnings, compress=False)
+           f"flumekit qc stage from {path}", warnings, compress=COMPRESS["probes"])
 
 
 def flap(inputs, outputs, params) -> None:
@@ -222,7 +225,7 @@ def flap(inputs, outputs, params) -> None:
     for name, rng, unit in (("encoder_counts", "encoder_range", " counts"),
                             ("chamber_pressure", "pressure_range", " Pa")):
         ds = qc_dataset(raw, name, th, gross_range=_span(params[rng]))
-        flat = float(ds[f"{name}_qc_test_count"].sel(qc_test="flat_line")) / raw.sizes["time"]
+        flat = float(ds[f"{name}_qc"].attrs["flagged_by_flat_line"]) / raw.sizes["time"]
         checks.check_alive(raw[name].values, [name], path, [flat],
                            params["max_flat_fraction"], unit)
         _stuck(ds, name, path, params["max_gap"])
@@ -230,7 +233,7 @@ def flap(inputs, outputs, params) -> None:
     ds = xr.merge(parts, combine_attrs="drop_conflicts")
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
-           f"flumekit qc stage from {path}", compress=False)
+           f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 
 
 def uvp(inputs, outputs, params) -> None:
@@ -255,7 +258,7 @@ def uvp(inputs, outputs, params) -> None:
         aggregate,
         flag_attrs,
     )
-    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.qc.record import Thresholds, check_series, flag_counts
     from flumekit.stages.uvp import uvp_span
     from flumekit.uvp.phase import default_pad
 
@@ -293,7 +296,7 @@ def uvp(inputs, outputs, params) -> None:
                                       if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        counts.append([np.count_nonzero(f == val) for val in FLAG_VALUES])
+        counts.append(flag_counts(f.reshape(-1)))
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
         # beams may differ in profile count: each beam keeps its own time axis
@@ -318,7 +321,8 @@ def uvp(inputs, outputs, params) -> None:
         "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
         "the waves and the filter's pad (probes' clock)"})
     _write(ds, outputs, params, "Quality-control flags of the UVP beam velocities",
-           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names))
+           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names),
+           compress=COMPRESS["uvp"])
 
 
 def summary(inputs, outputs, params) -> None:
@@ -332,13 +336,22 @@ def summary(inputs, outputs, params) -> None:
 
     from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.qc.clock import clock_departures, probe_flap_lag
+    from flumekit.qc.flags import FLAG_MEANINGS
+    from flumekit.qc.record import flag_counts
+
+    def counts(flags, name):
+        """Samples per flag of a flag variable, all its channels together."""
+        return xr.DataArray(flag_counts(flags.values.reshape(-1)), dims="flag_meaning",
+                            coords={"flag_meaning": ("flag_meaning", FLAG_MEANINGS.split(),
+                                                     {"long_name": "QARTOD flag meaning"})},
+                            attrs={"units": "1", "long_name": f"samples of {name} per QC flag"})
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
     rows, lags, periods, heights, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
-        row = {f"{name}_qc_count": p[f"{name}_qc_count"].sum("probe"),
+        row = {f"{name}_qc_count": counts(p[f"{name}_qc"], name),
                "record_period": p["record_period"]}
         warn += [w for w in p.attrs.get(WARNINGS, "").splitlines() if w]
         if f"flap/{run}" in inputs:
@@ -349,13 +362,17 @@ def summary(inputs, outputs, params) -> None:
                                        f["encoder_counts"].values, f["time"].values, period))
             periods.append(period)
             heights.append(float(p["wave_height"]))
-            row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
-                       chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
+            row.update({f"{k}_qc_count": counts(f[f"{k}_qc"], k)
+                        for k in ("encoder_counts", "chamber_pressure")})
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
         rows.append(xr.Dataset(row).drop_vars(
             ["run", "wave_period", "wave_height", "repeat", "uvp_elevation"],
             errors="ignore").expand_dims(run=[run]))
     out = xr.concat(rows, dim="run", coords="minimal", compat="override")
+    for v in out.variables.values():
+        # read back from the run products: their encoding names the run coordinates dropped
+        # here ("coordinates"), which CF checkers rightly report as missing
+        v.encoding = {}
     if lags:
         dep, basis = clock_departures(np.array(lags), np.array(periods), np.array(heights))
         out["probe_flap_lag"] = ("run", np.array(lags), {
