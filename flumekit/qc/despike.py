@@ -74,6 +74,18 @@ def _despike(u: np.ndarray, valid: np.ndarray, floor: np.ndarray, lam2: float,
     return spikes
 
 
+def _median(c: np.ndarray) -> np.ndarray:
+    """``np.median(c, axis=-1, keepdims=True)`` of a finite float32 block, bit for bit, from one
+    selection: the upper middle value, and the lower one as the largest of the values below
+    it (``np.median`` selects both, 20 % slower), averaged as numpy does (float32 sum, / 2)."""
+    k = c.shape[-1] // 2
+    p = np.partition(c, k, axis=-1)
+    hi = p[:, k:k + 1]
+    if c.shape[-1] % 2:
+        return hi.copy()
+    return (p[:, :k].max(axis=-1, keepdims=True) + hi) / np.float32(2)
+
+
 def _central(f: np.ndarray) -> np.ndarray:
     """Central difference along the last axis, one-sided at the ends (as ``np.gradient``)."""
     g = np.empty_like(f)
@@ -94,7 +106,7 @@ def _outside(w: np.ndarray, lam2: float, floor: np.ndarray) -> np.ndarray:
     sums accumulate in double), which halves the memory traffic that bounds the cost."""
     m = w.shape[-1]
     c = w.astype(np.float32)
-    c -= np.median(c, axis=-1, keepdims=True)
+    c -= _median(c)
     du = _central(c)  # (u_(i+1) - u_(i-1)) / 2, Eq. (6)
     d2 = _central(du)  # Eq. (7)
 

@@ -1,4 +1,5 @@
-"""Stage: every figure, drawn from processed datasets only, one rule per figure.
+"""Stage: every figure, drawn from processed datasets (the QC figures also from the raw probe
+and flap files, which the QC products do not repeat), one rule per figure.
 
 ``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
 those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflected separation of

@@ -230,7 +230,10 @@ def flap(inputs, outputs, params) -> None:
                            params["max_flat_fraction"], unit)
         _stuck(ds, name, path, params["max_gap"])
         parts.append(ds)
-    ds = xr.merge(parts, combine_attrs="drop_conflicts")
+    # on the same time axis, with attributes of their own names: no merge (its alignment
+    # costs more than one channel's tests)
+    ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},
+                    coords=parts[0].coords, attrs={k: v for p in parts for k, v in p.attrs.items()})
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
            f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
