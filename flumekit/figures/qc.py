@@ -6,10 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.figures.style import TWO_COLUMNS, new_figure, units_text
+from flumekit.qc.flags import FAIL, MISSING, NOT_EVALUATED, SUSPECT
 
 #: marker colours of the QARTOD flags drawn (pass and not-evaluated samples are not marked)
-FLAG_STYLE = {3: ("suspect", "tab:orange", "o"), 4: ("fail", "tab:red", "x"),
-              9: ("missing", "tab:purple", "|")}
+FLAG_STYLE = {SUSPECT: ("suspect", "tab:orange", "o"), FAIL: ("fail", "tab:red", "x"),
+              MISSING: ("missing", "tab:purple", "|")}
 #: line colours of the UVP beams
 BEAM_COLOURS = ("tab:blue", "tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
 
@@ -45,8 +46,8 @@ def _draw_uvp(ax_time, ax_bin, uvp) -> None:
     evaluated samples (per bin), from the flags of the qc stage."""
     totals = []
     for (name, t, f), colour in zip(_uvp_beams(uvp), BEAM_COLOURS, strict=False):
-        failed = f == 4
-        evaluated = (f != 2) & (f != 9)
+        failed = f == FAIL
+        evaluated = (f != NOT_EVALUATED) & (f != MISSING)
         per_profile = failed.sum(axis=0) / np.maximum(evaluated.sum(axis=0), 1)
         inside = evaluated.any(axis=0)
         ax_time.plot(t[inside], 100 * per_profile[inside], color=colour, lw=0.6,

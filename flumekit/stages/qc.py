@@ -56,7 +56,7 @@ DOCS = {
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 #: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
 #: probe and flap records, written once and read once by the next stage, whose float records of
-#: measured noise deflate by a third only and slowly (7-10 ms a product, half the rule's time)
+#: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
 COMPRESS = {"probes": False, "flap": False, "uvp": True}
 
 
@@ -143,8 +143,8 @@ def figure_data(inputs: dict, params: dict) -> dict:
     instrument readers."""
     from flumekit.io.netcdf import read_dataset
 
-    return {k: (read_raw(k[:-4], v, params["reading"][k[:-4]]) if k.endswith("_raw")
-                else read_dataset(v)) for k, v in inputs.items()}
+    return {k: (read_raw(k.removesuffix("_raw"), v, params["reading"][k.removesuffix("_raw")])
+                if k.endswith("_raw") else read_dataset(v)) for k, v in inputs.items()}
 
 
 def _span(value):
