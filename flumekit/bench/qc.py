@@ -16,12 +16,14 @@ with faults injected into its raw files with a known truth of which samples are 
 Reported: recall of each fault (flagged suspect or fail), false flags on the clean records and on
 the good samples of the faulty ones, the clock offset the QC summary finds, the analysis of the
 faulty campaign after QC against the virtual flume's truth with the tolerances of
-tests/test_virtual_flume_truth.py, and the run time of QC against the analysis, per run and
-instrument (best of three, each rule executed on its own):
+tests/test_virtual_flume_truth.py (:mod:`flumekit.bench.truth`, which both use), and the run
+time of QC against the analysis, per run and instrument (best of three, each rule executed on
+its own):
 
 * probes and flap: the qc/probes and qc/flap rules against the stages that consume them
   (eta, waves, flap, comparison);
-* UVP: the qc/uvp rule against the uvp rule.
+* UVP: the qc/uvp rule against the uvp rule;
+* per run (``all``): every QC rule of the run against every rule above that analyses it.
 
 The QC rules read the raw files, which the analysis would otherwise read itself; the time of
 that read is shown and the ratio given both with it and without it; so is the time of writing
@@ -110,49 +112,6 @@ def _make(project: Path, targets: list[str]) -> float:
     return time.perf_counter() - t0
 
 
-def _truth_errors(processed: Path, truth: Path, skip_flap: set[str]) -> list[str]:
-    """The checks of tests/test_virtual_flume_truth.py; returns the failures."""
-    import xarray as xr
-
-    from flumekit.flap.power import incident_power
-
-    fails = []
-    with xr.open_dataset(processed / "calibration.nc", decode_times=False) as cal, \
-            xr.open_dataset(truth / "calibration.nc", decode_times=False) as true:
-        if not np.allclose(cal.gain, true.gain, rtol=1e-3):
-            fails.append("calibration gain")
-    for run in sorted(p.name for p in truth.iterdir() if p.is_dir()):
-        with xr.open_dataset(processed / "waves" / f"{run}.nc", decode_times=False) as w, \
-                xr.open_dataset(truth / run / "waves.nc", decode_times=False) as t:
-            dk = abs(float(w.reflection_coefficient) - t.attrs["reflection_coefficient"])
-            dh = abs(float(w.incident_height) / t.attrs["wave_height"] - 1)
-            if dk >= 5e-3 or dh >= 5e-3:
-                fails.append(f"{run}: Kr off by {dk:.4f}, H_I by {dh:.2%}")
-        if run in skip_flap:
-            continue
-        with xr.open_dataset(processed / "flap" / f"{run}.nc", decode_times=False) as f, \
-                xr.open_dataset(truth / run / "flap.nc", decode_times=False) as t:
-            tt = f.time.values
-            win = (tt >= float(f.steady_start)) & (tt <= float(f.steady_end))
-            d = np.degrees(np.sqrt(np.mean((f.theta.values[win] - t.theta.values[win]) ** 2)))
-            w_i = incident_power(t.attrs["wave_height_target"], float(f.measured_period), 0.825,
-                                 1.31)
-            c_true = float(np.mean(t.power.values[win])) / float(w_i)
-            dc = abs(float(f.capture_factor) / c_true - 1)
-            if d >= 0.05 or dc >= 0.02:
-                fails.append(f"{run}: theta RMS {d:.3f} deg, C_f off by {dc:.2%}")
-    with xr.open_dataset(processed / "uvp_field.nc", decode_times=False) as f, \
-            xr.open_dataset(truth / "uvp_field.nc", decode_times=False) as t:
-        true = t.interp(z=f.z, x=f.x)
-        u0 = float(t.velocity_scale)
-        for name in ("u", "w"):
-            err = (f[name] - true[name]).values
-            ok = np.isfinite(err)
-            if ok.mean() <= 0.3 or np.sqrt(np.mean(err[ok] ** 2)) >= 0.02 * u0:
-                fails.append(f"uvp field {name}")
-    return fails
-
-
 def _recall(processed: Path, truth: dict) -> tuple[dict, float, int]:
     """Recall per fault kind and the false-flag fraction of the good samples."""
     import xarray as xr
@@ -226,15 +185,13 @@ def _compute_probes_flap(p: dict, f: dict, run) -> float:
     """Best time of the QC computations alone (tests, flags, masking, filling) of a run's probe
     and flap records, read beforehand [s]."""
     from flumekit.bench import best_time
-    from flumekit.io.instruments import read_flap, read_probes
     from flumekit.qc.record import Thresholds, qc_dataset
+    from flumekit.stages.qc import read_raw
 
     th = Thresholds.from_params(p)
-    probes = read_probes(run.file("probes"), tuple(p["probes"]), p["sampling_rate"],
-                         p.get("dialect"), units=p.get("units", "V"))
+    probes = read_raw("probes", run.file("probes"), p)
     name = "probe_voltage" if "probe_voltage" in probes else "probe_elevation"
-    flap = read_flap(run.file("flap"), f["sampling_rate"], f.get("dialect"))
-    flap["encoder_counts"] = flap["encoder_counts"].astype(float)
+    flap = read_raw("flap", run.file("flap"), f)
     return best_time(lambda: (qc_dataset(probes, name, th, channel_dim="probe"),
                               [qc_dataset(flap, k, th) for k in ("encoder_counts",
                                                                   "chamber_pressure")]))[0]
@@ -266,9 +223,9 @@ def _compute_uvp(beams: list[Path], span) -> float:
 CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
 
 
-def _write_time(paths: list[Path]) -> float:
+def _write_time(paths: list[Path], compress: bool) -> float:
     """Best time of writing the QC rule's products again (flumekit.io.netcdf.write_dataset, as
-    the rule does: CF checks, provenance, compression) [s]."""
+    the rule does: CF checks, provenance, compression or not) [s]."""
     from flumekit.bench import best_time
     from flumekit.io.netcdf import read_dataset, write_dataset
 
@@ -289,13 +246,13 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
     QC product (best of three each) [s]."""
     from flumekit.bench import best_time
     from flumekit.campaign import load_campaign
-    from flumekit.io.instruments import read_flap, read_probes
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
     from flumekit.pipeline.config import load_pipeline
     from flumekit.pipeline.rules import execute
     from flumekit.stages import build_rules
     from flumekit.stages.context import Context
+    from flumekit.stages.qc import COMPRESS, read_raw
 
     pipe = load_pipeline(processed.parents[1] / "pipelines" / "small.toml")
     campaign = load_campaign(raw)
@@ -310,12 +267,11 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
         p = rules[f"qc/probes/{run.id}"].params
         f = rules[f"qc/flap/{run.id}"].params
         t_read = best_time(lambda p=p, f=f, run=run: (
-            read_probes(run.file("probes"), tuple(p["probes"]), p["sampling_rate"],
-                        p.get("dialect"), units=p.get("units", "V")),
-            read_flap(run.file("flap"), f["sampling_rate"], f.get("dialect"))))[0]
+            read_raw("probes", run.file("probes"), p), read_raw("flap", run.file("flap"), f)))[0]
         t_qc = run_rules([f"qc/probes/{run.id}", f"qc/flap/{run.id}"])
         t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["probes+flap"]])
-        t_write = _write_time([processed / "qc" / k / f"{run.id}.nc" for k in ("probes", "flap")])
+        t_write = _write_time([processed / "qc" / k / f"{run.id}.nc" for k in ("probes", "flap")],
+                              COMPRESS["probes"])
         out.append((run.id, "probes+flap", t_qc, t_read, _compute_probes_flap(p, f, run),
                     t_write, t_ana))
         if f"qc/uvp/{run.id}" in rules:
@@ -325,14 +281,18 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
             t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["uvp"]])
             span = read_dataset(processed / "qc" / "uvp" / f"{run.id}.nc")[
                 "evaluated_span"].values
-            t_write = _write_time([processed / "qc" / "uvp" / f"{run.id}.nc"])
+            t_write = _write_time([processed / "qc" / "uvp" / f"{run.id}.nc"], COMPRESS["uvp"])
             out.append((run.id, "uvp", t_qc, t_read, _compute_uvp(beams, span), t_write,
                         t_ana))
+        rows = [r[2:] for r in out if r[0] == run.id]
+        if len(rows) > 1:  # every QC rule of the run against every rule analysing it
+            out.append((run.id, "all", *(sum(col) for col in zip(*rows, strict=True))))
     return out
 
 
 def run(quick: bool = False) -> str:
     """Run the benchmark and return its report as text."""
+    from flumekit.bench.truth import failures as truth_failures
     from flumekit.synth.campaign import write_campaign
 
     lines = []
@@ -381,8 +341,8 @@ def run(quick: bool = False) -> str:
                      f"{dep[SHIFTED_RUN]:+.4f} s; others: "
                      + ", ".join(f"{k} {v:+.4f}" for k, v in dep.items() if k != SHIFTED_RUN))
         lines.append(f"clock warning names the run: {SHIFTED_RUN in warned}")
-        fails = _truth_errors(fault_p, results["faulty"][0] / "raw" / "small" / "truth",
-                              skip_flap={SHIFTED_RUN})
+        fails = truth_failures(fault_p, results["faulty"][0] / "raw" / "small" / "truth",
+                               skip_flap={SHIFTED_RUN})
         lines.append("analysis after QC within the clean-data truth tolerances: "
                      + ("yes" if not fails else "NO: " + "; ".join(fails)))
         if not quick:

@@ -1,69 +1,119 @@
 """The quality-control figure of one run: every probe and flap channel as read, as QC'd, and the
-samples each flag marks."""
+samples each flag marks; for a UVP run, the beams' flags over time and per channel."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from flumekit.figures.style import TWO_COLUMNS, new_figure, units_text
+from flumekit.qc.flags import FAIL, MISSING, NOT_EVALUATED, SUSPECT
 
 #: marker colours of the QARTOD flags drawn (pass and not-evaluated samples are not marked)
-FLAG_STYLE = {3: ("suspect", "tab:orange", "o"), 4: ("fail", "tab:red", "x"),
-              9: ("missing", "tab:purple", "|")}
+FLAG_STYLE = {SUSPECT: ("suspect", "tab:orange", "o"), FAIL: ("fail", "tab:red", "x"),
+              MISSING: ("missing", "tab:purple", "|")}
+#: line colours of the UVP beams
+BEAM_COLOURS = ("tab:blue", "tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
 
 
-def _channels(probes, flap):
+def _channels(probes, flap, probes_raw, flap_raw):
     out = []
     # voltages to calibrate, or the elevations of calibrated probes
     name, units = (("probe_voltage", "V") if "probe_voltage" in probes
                    else ("probe_elevation", "m"))
     for p in probes["probe"].values:
         sel = {"probe": p}
-        out.append((str(p), probes["time"].values, probes[f"{name}_raw"].sel(sel).values,
-                    probes[name].sel(sel).values, probes[f"{name}_qc"].sel(sel).values, units))
+        raw = None if probes_raw is None else probes_raw[name].sel(sel).values
+        out.append((str(p), probes["time"].values, raw, probes[name].sel(sel).values,
+                    probes[f"{name}_qc"].sel(sel).values, units))
     if flap is not None:
         for name, label, units in (("encoder_counts", "encoder", "counts"),
                                    ("chamber_pressure", "pressure", "Pa")):
-            out.append((label, flap["time"].values, flap[f"{name}_raw"].values,
-                        flap[name].values, flap[f"{name}_qc"].values, units))
+            raw = None if flap_raw is None else flap_raw[name].values.astype(float)
+            out.append((label, flap["time"].values, raw, flap[name].values,
+                        flap[f"{name}_qc"].values, units))
     return out
 
 
-def figure_qc(probes, flap=None):
+def _uvp_beams(uvp):
+    """Per beam: (name, time [s], channels x time flags)."""
+    return [(str(b), uvp[f"time_{b}"].values,
+             uvp[f"beam_velocity_qc_{b}"].transpose("channel", ...).values)
+            for b in uvp["beam"].values]
+
+
+def _draw_uvp(ax_time, ax_bin, uvp) -> None:
+    """Failed fraction of each beam's channels per profile (over time) and of each channel's
+    evaluated samples (per bin), from the flags of the qc stage."""
+    totals = []
+    for (name, t, f), colour in zip(_uvp_beams(uvp), BEAM_COLOURS, strict=False):
+        failed = f == FAIL
+        evaluated = (f != NOT_EVALUATED) & (f != MISSING)
+        per_profile = failed.sum(axis=0) / np.maximum(evaluated.sum(axis=0), 1)
+        inside = evaluated.any(axis=0)
+        ax_time.plot(t[inside], 100 * per_profile[inside], color=colour, lw=0.6,
+                     label=f"beam {name}")
+        per_bin = failed.sum(axis=1) / np.maximum(evaluated.sum(axis=1), 1)
+        ax_bin.plot(np.arange(f.shape[0]), 100 * per_bin, color=colour, lw=0.8)
+        totals.append(f"{name} {int(failed.sum())}")
+    lo, hi = uvp["evaluated_span"].values
+    ax_time.set_title(f"UVP, checked {lo:.1f}-{hi:.1f} s, failed: " + ", ".join(totals),
+                      loc="left")
+    ax_time.set_ylabel("Failed [%]")
+    ax_bin.set_title("UVP: failed share of each channel's evaluated samples", loc="left")
+    ax_bin.set_ylabel("Failed [%]")
+    ax_bin.set_xlabel("UVP channel (bin) [-]")
+
+
+def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     """Raw (grey) and QC'd (black) records of every probe and flap channel of a run, with the
-    suspect, failed and missing samples marked at their raw values.
+    suspect, failed and missing samples marked at their raw values; with ``uvp``, two panels
+    more: the share of each beam's channels that failed per profile, over time, and the share
+    of each channel's evaluated samples that failed.
 
     Parameters
     ----------
-    probes : Dataset of the qc stage for the probes (``probe_voltage``, ``_raw``, ``_qc``).
+    probes : Dataset of the qc stage for the probes (``probe_voltage`` and ``_qc``).
     flap : Dataset of the qc stage for the encoder and pressure, or None.
+    probes_raw, flap_raw : The raw records as read by the instrument readers (the QC products
+        do not repeat them); None: only the QC'd values are drawn.
+    uvp : Dataset of the qc stage for the UVP beams (``beam_velocity_qc_<beam>``), or None.
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    chans = _channels(probes, flap)
-    fig, axes = new_figure(len(chans), 1, width=TWO_COLUMNS, row_height=1.0, sharex=True)
+    chans = _channels(probes, flap, probes_raw, flap_raw)
+    rows = len(chans) + (2 if uvp is not None else 0)
+    fig, axes = new_figure(rows, 1, width=TWO_COLUMNS, row_height=1.0)
     run = str(probes["run"].values) if "run" in probes.coords else ""
-    for ax, (label, t, raw, clean, flags, units) in zip(axes[:, 0], chans, strict=True):
-        ax.plot(t, raw, color="0.7", lw=0.6, label="as read")
+    time_axes = axes[:len(chans) + (1 if uvp is not None else 0), 0]
+    for ax in time_axes[1:]:
+        ax.sharex(time_axes[0])
+    for ax in time_axes[:-1]:
+        ax.tick_params(labelbottom=False)
+    for ax, (label, t, raw, clean, flags, units) in zip(axes[:, 0], chans, strict=False):
+        shown = clean if raw is None else raw
+        if raw is not None:
+            ax.plot(t, raw, color="0.7", lw=0.6, label="as read")
         ax.plot(t, clean, color="k", lw=0.5, label="after QC")
         counts = []
         for value, (meaning, colour, marker) in FLAG_STYLE.items():
             sel = flags == value
             counts.append(f"{int(sel.sum())} {meaning}")
             if sel.any():
-                y = np.where(np.isfinite(raw[sel]), raw[sel], np.nanmedian(raw))
+                y = np.where(np.isfinite(shown[sel]), shown[sel], np.nanmedian(shown))
                 ax.plot(t[sel], y, ls="none", marker=marker, color=colour, ms=3, mew=0.8,
                         label=meaning)
         ax.set_ylabel(f"[{units_text(units)}]")
         ax.set_title(f"{label}: " + ", ".join(counts), loc="left")
-    axes[-1, 0].set_xlabel("Time [s]")
+    if uvp is not None:
+        _draw_uvp(axes[len(chans), 0], axes[-1, 0], uvp)
+    time_axes[-1].set_xlabel("Time [s]")
     handles = {}
     for ax in axes[:, 0]:
         for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
             handles.setdefault(lab, h)
     fig.legend(list(handles.values()), list(handles), loc="outside lower center",
-               ncols=len(handles))
+               ncols=min(len(handles), 7))
     fig.suptitle(f"Quality control of run {run}" if run else "Quality control")
     return fig

@@ -60,9 +60,11 @@ def _wrong_delimiter(path: Path, line: str, number: int, delimiter: str) -> Inpu
     return None
 
 
-#: a complete last line is refused with at most this probability by the digit-count test
-#: (its rank among the column's cells)
+#: a complete last line is refused with at most this probability by the digit-count tests
 CUT_SIGNIFICANCE = 1e-3
+#: probability that a complete %g cell keeps all its significant digits (its last one is not
+#: a dropped zero)
+_G_KEPT = 0.9
 
 
 def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
@@ -71,22 +73,35 @@ def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
 
     A file cut inside its last field still parses: the cut only removes characters from the
     end of the last number. Whatever the writer's format, that leaves a cell unlike the others
-    of its column in one of these ways, tested in turn on the cells as written:
+    of its column, each test judging the cell against the format the column's own cells show:
 
-    * an exponent shorter than every other cell's, or none where every other cell has one
-      (scientific notation: ``1.234560e-05`` cut to ``1.2345``);
-    * fewer decimals than every other cell (fixed decimals: ``1.6000`` to ``1.60``);
-    * fewer significant digits than all but a fraction ``CUT_SIGNIFICANCE`` of the column's
-      cells (variable decimals, ``%g`` or shortest round-trip: a complete last line is refused
-      with at most that probability);
+    * an exponent shorter than every other cell's (C writes two digits at least), or none
+      where every other cell has one and either the mantissas have fixed decimals (``%e``:
+      ``1.234560e-05`` cut to ``1.234560``) or the value leaves the column's course (more than
+      twice its largest step from the one before). A ``%g`` column switches to fixed notation
+      at 1e-4 (``9.99991e-05`` then ``0.000100012``), its value continuous: accepted;
+    * fewer decimals than every other cell, in a column of fixed decimals (``%.4f``:
+      ``1.6000`` to ``1.60``). A ``%g`` column within one decade also shows fixed decimals
+      when none of its cells has dropped a trailing zero, which a long one cannot do
+      (probability ``_G_KEPT`` ** n below ``CUT_SIGNIFICANCE``: n >= 66) but a short one can,
+      if none of its decimals ends in a zero (which only ``%f`` writes). There, ``%g`` writing
+      the next decade with a decimal fewer (``9.99991`` then ``10.0001``) or a last digit
+      that was a zero is no cut: the cell is refused only with three significant digits fewer
+      than the others, which a complete ``%g`` cell has with probability 1e-3;
+    * in a column of variable decimals (``%g``, shortest round-trip), fewer significant digits
+      than nearly every other cell: refused when k of the n other cells have as few or fewer
+      and (k + 1) / (n + 1) <= ``CUT_SIGNIFICANCE``, the probability of a complete cell ranking
+      so low among cells like it. A column of fewer than 1 / ``CUT_SIGNIFICANCE`` cells cannot
+      show that: there, three significant digits fewer than its longest cells (three dropped
+      trailing zeros of ``%g``: probability 1e-3);
     * a value farther from the one before than twice the column's largest step between
       consecutive samples, written with fewer digits than the one before (integers, or a cut
       in the integer part: ``1234`` to ``123``).
 
-    A cut that leaves a cell like at least that fraction of the column's own (the last two or
-    three digits of a ``%g`` number, whose trailing zeros are dropped) changes the value by
-    less than its last kept digit and cannot be told from a complete line; nor can an integer
-    cut near zero that stays within twice the largest step.
+    A cut that leaves a cell like its column's own (the last two or three digits of a ``%g``
+    number, whose trailing zeros are dropped) changes the value by less than its last kept
+    digit and cannot be told from a complete line; nor can an integer cut near zero that stays
+    within twice the largest step.
     """
     rows = pd.Series(body.split("\n")).str.rstrip("\r")
     rows = rows[rows.str.strip() != ""]
@@ -104,24 +119,36 @@ def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
     dec = frac.str.len().to_numpy()
     digits = np.maximum((parts["i"].fillna("") + frac).str.lstrip("0").str.len().to_numpy(), 1)
     last, cell = cells.size - 1, cells.iloc[-1]
-    if has_exp[:last].all() and (not has_exp[last] or exp[last] < exp[:last].min()):
-        return (f"the last line ends in {cell!r}, " + ("without the exponent" if not
-                has_exp[last] else "with a shorter exponent than") + " every other value of "
-                "its column")
-    if dec[last] < dec[:last].min():
-        return (f"the last line ends in {cell!r}, with fewer decimals than every other value "
-                "of its column")
-    rank = float(np.mean(digits[:last] <= digits[last]))
-    if rank < CUT_SIGNIFICANCE:
-        return (f"the last line ends in {cell!r}, with fewer significant digits "
-                f"({digits[last]}) than all but {rank:.2%} of its column")
     x = np.asarray(column, dtype=float)
-    if x.size >= 3:
-        step = float(np.max(np.abs(np.diff(x[:-1]))))
-        if abs(x[-1] - x[-2]) > 2 * step and digits[last] < digits[last - 1]:
-            return (f"the last line ends in {cell!r}, {abs(x[-1] - x[-2]):.6g} from the value "
-                    f"before it, more than twice the largest step of its column ({step:.6g}), "
-                    "and with fewer digits")
+    step = float(np.max(np.abs(np.diff(x[:-1])))) if x.size >= 3 else np.inf
+    jump = abs(x[-1] - x[-2]) > 2 * step
+    fixed_dec = bool(np.all(dec[:last] == dec[0]))
+    if has_exp[:last].all():
+        if has_exp[last] and exp[last] < exp[:last].min():
+            return (f"the last line ends in {cell!r}, with a shorter exponent than every other "
+                    "value of its column")
+        if not has_exp[last] and ((fixed_dec and dec[last] == dec[0]) or jump):
+            return (f"the last line ends in {cell!r}, without the exponent every other value "
+                    "of its column has")
+    # k + 1 of n + 1 cells as short: with 1 / CUT_SIGNIFICANCE cells or more, the column's own
+    # digit counts judge; with fewer, three digits fewer than its longest cells do
+    k = int(np.count_nonzero(digits[:last] <= digits[last]))
+    rare = ((k + 1) / (last + 1) <= CUT_SIGNIFICANCE if last + 1 >= 1 / CUT_SIGNIFICANCE
+            else 10.0 ** -int(digits[:last].max() - digits[last]) <= CUT_SIGNIFICANCE)
+    if fixed_dec:
+        # %g never writes a trailing zero after the decimal point: one is proof of %f
+        g_like = (bool(np.all(digits[:last] == digits[0])) and _G_KEPT ** last > CUT_SIGNIFICANCE
+                  and not frac.iloc[:last].str.endswith("0").any())
+        if dec[last] < dec[0] and (not g_like or rare):
+            return (f"the last line ends in {cell!r}, with fewer decimals than every other "
+                    "value of its column")
+    elif rare:
+        return (f"the last line ends in {cell!r}, with fewer significant digits "
+                f"({digits[last]}) than all but {k} of the {last} other values of its column")
+    if jump and digits[last] < digits[last - 1]:
+        return (f"the last line ends in {cell!r}, {abs(x[-1] - x[-2]):.6g} from the value "
+                f"before it, more than twice the largest step of its column ({step:.6g}), "
+                "and with fewer digits")
     return None
 
 

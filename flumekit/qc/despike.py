@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import fill_gaps
 
 
@@ -39,13 +40,21 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     shape = u.shape
     u = u.reshape(-1, shape[-1])
     valid = np.isfinite(u)
-    spikes = np.zeros(u.shape, dtype=bool)
     n = int(valid.sum(axis=-1).max()) if u.size else 0
     if n < 5:
-        return spikes.reshape(shape)
+        return np.zeros(shape, dtype=bool)
     lam2 = 2.0 * np.log(n)  # squared universal threshold, Eq. (2)
     floor = np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1, 1)
                             if np.ndim(floor) else np.asarray(floor, dtype=float), (u.shape[0], 1))
+    # every statistic is per channel (λ aside, from the longest record): a few channels at a time
+    return by_rows(lambda *b: _despike(*b, lam2, max_iterations), u, valid, floor
+                   ).reshape(shape)
+
+
+def _despike(u: np.ndarray, valid: np.ndarray, floor: np.ndarray, lam2: float,
+             max_iterations: int) -> np.ndarray:
+    """The iterations of :func:`goring_nikora` on the (channel, time) block ``u``."""
+    spikes = np.zeros(u.shape, dtype=bool)
     all_valid = bool(valid.all())
     work = u if all_valid else fill_gaps(u, valid)
     rows = np.arange(u.shape[0])  # channels still changing: only those are iterated again
@@ -62,7 +71,19 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
         if work is u:
             work = u.copy()
         work[rows] = fill_gaps(u[rows], valid[rows] & ~spikes[rows])
-    return spikes.reshape(shape)
+    return spikes
+
+
+def _median(c: np.ndarray) -> np.ndarray:
+    """``np.median(c, axis=-1, keepdims=True)`` of a finite float32 block, bit for bit, from one
+    selection: the upper middle value, and the lower one as the largest of the values below
+    it (``np.median`` selects both, 20 % slower), averaged as numpy does (float32 sum, / 2)."""
+    k = c.shape[-1] // 2
+    p = np.partition(c, k, axis=-1)
+    hi = p[:, k:k + 1]
+    if c.shape[-1] % 2:
+        return hi.copy()
+    return (p[:, :k].max(axis=-1, keepdims=True) + hi) / np.float32(2)
 
 
 def _central(f: np.ndarray) -> np.ndarray:
@@ -85,7 +106,7 @@ def _outside(w: np.ndarray, lam2: float, floor: np.ndarray) -> np.ndarray:
     sums accumulate in double), which halves the memory traffic that bounds the cost."""
     m = w.shape[-1]
     c = w.astype(np.float32)
-    c -= np.median(c, axis=-1, keepdims=True)
+    c -= _median(c)
     du = _central(c)  # (u_(i+1) - u_(i-1)) / 2, Eq. (6)
     d2 = _central(du)  # Eq. (7)
 

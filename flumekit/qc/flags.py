@@ -17,13 +17,14 @@ SUSPECT = 3
 FAIL = 4
 MISSING = 9
 
-FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.uint8)
+#: signed bytes: CF 1.8 knows no unsigned types, and flags born int8 are written as they are
+FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.int8)
 FLAG_MEANINGS = "pass not_evaluated suspect fail missing_data"
 
 #: order of severity used to aggregate flags (missing counts as worst) and its inverse
 _RANK = np.zeros(256, dtype=np.uint8)
 _RANK[[GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING]] = [1, 0, 2, 3, 4]
-_FLAG_OF_RANK = np.array([NOT_EVALUATED, GOOD, SUSPECT, FAIL, MISSING], dtype=np.uint8)
+_FLAG_OF_RANK = np.array([NOT_EVALUATED, GOOD, SUSPECT, FAIL, MISSING], dtype=np.int8)
 
 
 def flag_attrs(variable: str, long_name: str | None = None) -> dict:

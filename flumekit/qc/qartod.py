@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT
 
@@ -254,7 +255,12 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     axis: the level form of :func:`dropout_test`."""
     x = np.asarray(x)
     shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
+    # per channel: a few channels at a time (flumekit.qc.blocks)
+    return by_rows(lambda b: _level(b, threshold), x.reshape(-1, shape[-1])).reshape(shape)
+
+
+def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
+    """:func:`level_test` of the (channel, time) block ``x2``."""
     med = robust_median(x2)[:, None]
     if x2.dtype.kind in "iu":
         # twice the deviation is an integer (the median is one or a half): exact and O(n)
@@ -266,14 +272,14 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
         bound = np.minimum(np.floor(2 * threshold * scale), np.iinfo(np.int32).max)
         f = np.full(x2.shape, GOOD, dtype=np.uint8)
         f[dev2 > bound.astype(np.int32)] = FAIL
-        return f.reshape(shape)
+        return f
     x2 = x2.astype(float)
     f = _empty_flags(x2)
     dev = np.abs(x2 - med)
     scale = np.maximum(MAD_TO_STD * robust_median(dev), resolution(x2))[:, None]
     with np.errstate(invalid="ignore"):
         f[(dev > threshold * scale) & (f != MISSING)] = FAIL
-    return f.reshape(shape)
+    return f
 
 
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,

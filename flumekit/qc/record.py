@@ -3,7 +3,8 @@
 :func:`check_series` runs the tests on a (channel, time) block and returns the per-test flags;
 :func:`clean` masks what failed and interpolates gaps up to a declared length;
 :func:`qc_dataset` does both for one variable of a dataset and returns it with its flags
-(``<name>_qc``, CF flag attributes), the raw values (``<name>_raw``) and per-channel counts.
+(``<name>_qc``, CF flag attributes) and per-channel counts; the values as read are not repeated
+(the raw file holds them: the QC figure reads it).
 """
 
 from __future__ import annotations
@@ -19,7 +20,6 @@ from flumekit.qc.despike import goring_nikora
 from flumekit.qc.fill import fill_gaps, gap_spans
 from flumekit.qc.flags import (
     FAIL,
-    FLAG_MEANINGS,
     FLAG_VALUES,
     GOOD,
     MISSING,
@@ -146,14 +146,16 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
 
 def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
                gross_range: tuple[float, float] | None = None, despike: bool = False,
-               flat_line: bool = True, floor=None, keep_raw: bool = True) -> xr.Dataset:
+               flat_line: bool = True, floor=None) -> xr.Dataset:
     """QC of variable ``name`` of ``ds`` (dims (time,) or (channel_dim, time) in any order).
 
-    Returns a dataset with ``name`` cleaned (:func:`clean`), ``<name>_qc`` (aggregate flags),
-    ``<name>_raw`` (the values read, if ``keep_raw``) and ``<name>_qc_count`` (channel,
-    flag meaning) plus ``<name>_qc_test_count`` (channel, test): failed or suspect samples per
-    test. Attributes ``<name>_unfilled_gaps`` list the runs of masked samples longer than
-    ``max_gap``.
+    Returns a dataset with ``name`` cleaned (:func:`clean`) and ``<name>_qc`` (aggregate
+    flags), whose attributes ``flagged_by_<test>`` count the samples each test flagged suspect
+    or fail, per channel (:func:`flag_counts` counts the aggregate flags). Attribute
+    ``<name>_unfilled_gaps`` lists the runs of masked samples longer than ``max_gap``.
+
+    Counts are attributes, not variables: every netCDF variable costs 0.5-1 ms to write,
+    whatever its size, and these five would cost the product a quarter of its writing time.
     """
     da = ds[name]
     dims = (channel_dim, "time") if channel_dim else ("time",)
@@ -168,29 +170,18 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     chans = list(da[channel_dim].values) if channel_dim else [name]
     shape = (lambda a: a) if channel_dim else (lambda a: a[0])
     attrs = {k: v for k, v in da.attrs.items()}
-    cdim = channel_dim or "channel"
     # count_nonzero, not sum: a bool array summed is converted to integers first (5x slower)
-    counts = np.stack([np.count_nonzero(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
-    tests = list(per_test)
-    tcounts = np.stack([np.count_nonzero((per_test[k] == FAIL) | (per_test[k] == SUSPECT),
-                                         axis=-1) for k in tests], axis=-1)
-    cd = (cdim,) if channel_dim else ()
+    by_test = {f"flagged_by_{k}": shape(np.count_nonzero((f == FAIL) | (f == SUSPECT),
+                                                         axis=-1).astype(np.int32))
+               for k, f in per_test.items()}
     data = {name: (dims, shape(cleaned), {**attrs, "ancillary_variables": f"{name}_qc",
                                           "comment": "QC'd: failed and missing samples masked, "
                                           f"gaps up to {th.max_gap:g} s interpolated linearly"}),
-            f"{name}_qc": (dims, shape(flags), flag_attrs(name))}
-    if keep_raw:
-        data[f"{name}_raw"] = (dims, shape(x), {**attrs, "long_name": attrs.get(
-            "long_name", name) + " as read, before quality control"})
-    data[f"{name}_qc_count"] = (cd + ("flag_meaning",), shape(counts),
-                                {"units": "1", "long_name": f"samples of {name} per QC flag"})
-    data[f"{name}_qc_test_count"] = (cd + ("qc_test",), shape(tcounts),
-                                     {"units": "1", "long_name": f"samples of {name} that each "
-                                      "QC test flagged suspect or fail"})
-    coords = {"time": ds["time"], **({channel_dim: da[channel_dim]} if channel_dim else {}),
-              "flag_meaning": ("flag_meaning", FLAG_MEANINGS.split(),
-                               {"long_name": "QARTOD flag meaning"}),
-              "qc_test": ("qc_test", tests, {"long_name": "QC test"})}
+            f"{name}_qc": (dims, shape(flags), {
+                **flag_attrs(name), **by_test,
+                "comment": "flagged_by_<test>: samples each QC test flagged suspect or fail"
+                + (f", per {channel_dim}" if channel_dim else "")})}
+    coords = {"time": ds["time"], **({channel_dim: da[channel_dim]} if channel_dim else {})}
     # built in one call: assigning variable by variable aligned and merged each time, which
     # cost more than the tests themselves on a flap channel
     out = xr.Dataset(data, coords=coords)
@@ -198,6 +189,12 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     spans = [f"{chans[r]} {a:.3f}-{b:.3f} s" for r, a, b in gap_spans(still, t)]
     out.attrs[f"{name}_unfilled_gaps"] = "; ".join(spans)
     return out
+
+
+def flag_counts(flags: np.ndarray) -> np.ndarray:
+    """Samples per QARTOD flag (the order of FLAG_VALUES) along the last axis."""
+    # count_nonzero, not sum: a bool array summed is converted to integers first (5x slower)
+    return np.stack([np.count_nonzero(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
 
 
 def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:

@@ -1,4 +1,5 @@
-"""Stage: every figure, drawn from processed datasets only, one rule per figure.
+"""Stage: every figure, drawn from processed datasets (the QC figures also from the raw probe
+and flap files, which the QC products do not repeat), one rule per figure.
 
 ``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
 those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflected separation of
@@ -38,6 +39,7 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.figures.style import FORMATS
+    from flumekit.stages import qc as qc_stage
     from flumekit.stages.ballscrew import FIGURE_SOURCES
 
     formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
@@ -77,10 +79,9 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
     for r in ctx.campaign.runs:
-        qc = {"probes": ctx.out("qc", "probes", f"{r.id}.nc")}
-        if "flap" in ctx.campaign.instruments:
-            qc["flap"] = ctx.out("qc", "flap", f"{r.id}.nc")
-        fig(f"qc/{r.id}", "qc:figure_qc", qc)
+        # the QC products and the raw files they were made from (the values as read)
+        qc, reading = qc_stage.figure_inputs(ctx, r)
+        fig(f"qc/{r.id}", "qc:figure_qc", qc, **reading)
     for r in ctx.campaign.runs:
         if r.kind == "waves":
             fig(f"separation/{r.id}", "waves:separation",
@@ -112,9 +113,14 @@ def draw(inputs, outputs, params) -> None:
     from flumekit.figures.style import save, style
     from flumekit.io.netcdf import read_dataset
 
-    data = {k: read_dataset(v) for k, v in inputs.items()}
-    fn = _function(params["draw"])
     draw = params["draw"]
+    if draw == "qc:figure_qc":  # raw files among the inputs, read by their instrument readers
+        from flumekit.stages.qc import figure_data
+
+        data = figure_data(inputs, params)
+    else:
+        data = {k: read_dataset(v) for k, v in inputs.items()}
+    fn = _function(draw)
     with style():
         if draw == "flap:figure_10":
             # the measured elevation at the probe nearest the flap, over the whole record
@@ -131,7 +137,7 @@ def draw(inputs, outputs, params) -> None:
                       for s in comps[0]["source"].values if str(s) != "experiment"}
             fig = fn([c.sel(source="experiment") for c in comps], models=models)
         elif draw == "qc:figure_qc":
-            fig = fn(data["probes"], data.get("flap"))
+            fig = fn(**data)
         elif draw == "flap:figure_7":
             fig = fn([data[k] for k in sorted(data)])
         else:

@@ -4,7 +4,9 @@ Per run and instrument one rule reads the raw record, checks it against its meta
 stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` (and the
 Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.nc``: the QC'd
 values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
-counts. The eta, flap and uvp stages read these instead of the raw files. The UVP is checked
+counts. The eta, flap and uvp stages read these instead of the raw files. The values as read
+are not repeated (the QC figure reads the raw files), and the probe and flap products are not
+deflated (:data:`COMPRESS`). The UVP is checked
 after the waves stage, over the quasi-steady part of the run that its average may read.
 """
 
@@ -15,7 +17,7 @@ from flumekit.stages import uvp as uvp_stage
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "2"
+VERSION = "4"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -52,6 +54,36 @@ DOCS = {
                        "than this is reported as a possible clock offset [s]",
 }
 WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
+#: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
+#: probe and flap records, written once and read once by the next stage, whose float records of
+#: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
+COMPRESS = {"probes": False, "flap": False, "uvp": True}
+
+
+def _reading(ctx: Context, run) -> dict:
+    """Per instrument, how its raw file is read: the parameters of :func:`read_raw` as the
+    campaign declares them ([files.<instrument>], dialect, units, clocks)."""
+    c = ctx.campaign
+    out = {"probes": {"probes": list(c.probes.names), "sampling_rate": c.probes.sampling_rate,
+                      "dialect": c.dialect("probes"), "units": c.probes.units,
+                      "time_offset": run.clock.get("probes", 0.0)}}
+    if "flap" in c.instruments:
+        out["flap"] = {"sampling_rate": c.encoder.sampling_rate, "dialect": c.dialect("flap"),
+                       "time_offset": run.clock.get("flap", 0.0)}
+    return out
+
+
+def read_raw(kind: str, path, reading: dict):
+    """The raw record of instrument ``kind`` ("probes" or "flap") read by its instrument
+    reader with the parameters of :func:`_reading` (the qc rules and the QC figure alike)."""
+    from flumekit.io.instruments import read_flap, read_probes
+
+    if kind == "probes":
+        return read_probes(path, tuple(reading["probes"]), reading["sampling_rate"],
+                           reading.get("dialect"), units=reading.get("units", "V"),
+                           time_offset=reading.get("time_offset", 0.0))
+    return read_flap(path, reading["sampling_rate"], reading.get("dialect"),
+                     time_offset=reading.get("time_offset", 0.0))
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
@@ -59,24 +91,17 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     out = []
     for run in c.runs:
         rp = {**params, **run_params(run)}
-        # the raw files as the campaign declares them ([files.<instrument>], clocks)
+        reading = _reading(ctx, run)
         out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
                         inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
-                        params={**rp, "probes": list(c.probes.names),
-                                "probe_x": run.probe_x,
-                                "sampling_rate": c.probes.sampling_rate,
-                                "dialect": c.dialect("probes"), "units": c.probes.units,
-                                "time_offset": run.clock.get("probes", 0.0)},
+                        params={**rp, **reading["probes"], "probe_x": run.probe_x},
                         version=VERSION, run=run.id))
         if "flap" in c.instruments:
             out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
                             inputs={"flap": run.file("flap")},
                             outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
-                            params={**rp, "sampling_rate": c.encoder.sampling_rate,
-                                    "dialect": c.dialect("flap"),
-                                    "time_offset": run.clock.get("flap", 0.0)},
-                            version=VERSION, run=run.id))
+                            params={**rp, **reading["flap"]}, version=VERSION, run=run.id))
         if c.uvp is not None and run.kind == "uvp":
             # the UVP is checked over the quasi-steady part of the waves (the waves stage's)
             # and the filter's pad, the only samples the UVP average may read
@@ -98,17 +123,41 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
+def figure_inputs(ctx: Context, run) -> tuple[dict, dict]:
+    """Inputs and parameters of the QC figure of ``run``: the QC products of its instruments
+    and the raw probe and flap files (the values as read are drawn from them, the products do
+    not repeat them), with how to read them."""
+    c = ctx.campaign
+    reading = _reading(ctx, run)
+    inputs = {}
+    for kind in reading:
+        inputs[kind] = ctx.out("qc", kind, f"{run.id}.nc")
+        inputs[f"{kind}_raw"] = run.file(kind)
+    if c.uvp is not None and run.kind == "uvp":
+        inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
+    return inputs, {"reading": reading}
+
+
+def figure_data(inputs: dict, params: dict) -> dict:
+    """The datasets of :func:`figure_inputs`: QC products read back, raw files through their
+    instrument readers."""
+    from flumekit.io.netcdf import read_dataset
+
+    return {k: (read_raw(k.removesuffix("_raw"), v, params["reading"][k.removesuffix("_raw")])
+                if k.endswith("_raw") else read_dataset(v)) for k, v in inputs.items()}
+
+
 def _span(value):
     return None if value is None else (float(value[0]), float(value[1]))
 
 
-def _write(ds, outputs, params, title, source, warnings=()):
+def _write(ds, outputs, params, title, source, warnings=(), compress=True):
     from flumekit.stages.runs import write_run
 
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
     ds.attrs["max_gap"] = float(params["max_gap"])
-    write_run(ds, outputs, params, title, source)
+    write_run(ds, outputs, params, title, source, compress=compress)
 
 
 def _stuck(ds, name, path, max_gap):
@@ -130,22 +179,19 @@ def probes(inputs, outputs, params) -> None:
 
     import numpy as np
 
-    from flumekit.io.instruments import read_probes
     from flumekit.qc import checks
     from flumekit.qc.flags import FAIL
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["probes"])
     # dialect, units, clock: as the campaign declares them (default: the raw campaign's CSV)
-    raw = read_probes(path, tuple(params["probes"]), params["sampling_rate"],
-                      params.get("dialect"), units=params.get("units", "V"),
-                      time_offset=params.get("time_offset", 0.0))
+    raw = read_raw("probes", path, params)
     # volts to calibrate, or elevations of calibrated probes [m]
     name = "probe_voltage" if "probe_voltage" in raw else "probe_elevation"
     th = Thresholds.from_params(params)
     ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
-    flat = ds[f"{name}_qc_test_count"].sel(qc_test="flat_line").values / raw.sizes["time"]
+    flat = ds[f"{name}_qc"].attrs["flagged_by_flat_line"] / raw.sizes["time"]
     checks.check_alive(raw[name].transpose("probe", "time").values,
                        raw["probe"].values, path, flat, params["max_flat_fraction"],
                        " V" if name == "probe_voltage" else " m")
@@ -161,7 +207,7 @@ def probes(inputs, outputs, params) -> None:
                 for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled wave probe voltages",
-           f"flumekit qc stage from {path}", warnings)
+           f"flumekit qc stage from {path}", warnings, compress=COMPRESS["probes"])
 
 
 def flap(inputs, outputs, params) -> None:
@@ -169,28 +215,28 @@ def flap(inputs, outputs, params) -> None:
 
     import xarray as xr
 
-    from flumekit.io.instruments import read_flap
     from flumekit.qc import checks
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["flap"])
-    raw = read_flap(path, params["sampling_rate"], params.get("dialect"),
-                    time_offset=params.get("time_offset", 0.0))
-    raw["encoder_counts"] = raw["encoder_counts"].astype(float)
+    raw = read_raw("flap", path, params)  # qc_dataset works the integer counts as floats
     th = Thresholds.from_params(params)
     parts = []
     for name, rng, unit in (("encoder_counts", "encoder_range", " counts"),
                             ("chamber_pressure", "pressure_range", " Pa")):
         ds = qc_dataset(raw, name, th, gross_range=_span(params[rng]))
-        flat = float(ds[f"{name}_qc_test_count"].sel(qc_test="flat_line")) / raw.sizes["time"]
+        flat = float(ds[f"{name}_qc"].attrs["flagged_by_flat_line"]) / raw.sizes["time"]
         checks.check_alive(raw[name].values, [name], path, [flat],
                            params["max_flat_fraction"], unit)
         _stuck(ds, name, path, params["max_gap"])
         parts.append(ds)
-    ds = xr.merge(parts, combine_attrs="drop_conflicts")
+    # on the same time axis, with attributes of their own names: no merge (its alignment
+    # costs more than one channel's tests)
+    ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},
+                    coords=parts[0].coords, attrs={k: v for p in parts for k, v in p.attrs.items()})
     ds.attrs["source_file"] = str(path)
     _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
-           f"flumekit qc stage from {path}")
+           f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 
 
 def uvp(inputs, outputs, params) -> None:
@@ -215,7 +261,7 @@ def uvp(inputs, outputs, params) -> None:
         aggregate,
         flag_attrs,
     )
-    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.qc.record import Thresholds, check_series, flag_counts
     from flumekit.stages.uvp import uvp_span
     from flumekit.uvp.phase import default_pad
 
@@ -240,7 +286,7 @@ def uvp(inputs, outputs, params) -> None:
         fs = (t.size - 1) / (t[-1] - t[0])
         tc = t + float(params.get("time_offset", 0.0))  # on the probes' clock
         i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
-        f = np.where(np.isfinite(v), np.uint8(NOT_EVALUATED), np.uint8(MISSING))
+        f = np.where(np.isfinite(v), np.int8(NOT_EVALUATED), np.int8(MISSING))
         if i1 - i0 >= 5:
             amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
                 if "amplitude" in b else None
@@ -253,7 +299,7 @@ def uvp(inputs, outputs, params) -> None:
                                       if k != "gross_range" or params["velocity_range"]))
         flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
         starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        counts.append([np.count_nonzero(f == val) for val in FLAG_VALUES])
+        counts.append(flag_counts(f.reshape(-1)))
     ds = xr.Dataset()
     for name, fl in zip(names, flags, strict=True):
         # beams may differ in profile count: each beam keeps its own time axis
@@ -278,7 +324,8 @@ def uvp(inputs, outputs, params) -> None:
         "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
         "the waves and the filter's pad (probes' clock)"})
     _write(ds, outputs, params, "Quality-control flags of the UVP beam velocities",
-           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names))
+           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names),
+           compress=COMPRESS["uvp"])
 
 
 def summary(inputs, outputs, params) -> None:
@@ -292,13 +339,22 @@ def summary(inputs, outputs, params) -> None:
 
     from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.qc.clock import clock_departures, probe_flap_lag
+    from flumekit.qc.flags import FLAG_MEANINGS
+    from flumekit.qc.record import flag_counts
+
+    def counts(flags, name):
+        """Samples per flag of a flag variable, all its channels together."""
+        return xr.DataArray(flag_counts(flags.values.reshape(-1)), dims="flag_meaning",
+                            coords={"flag_meaning": ("flag_meaning", FLAG_MEANINGS.split(),
+                                                     {"long_name": "QARTOD flag meaning"})},
+                            attrs={"units": "1", "long_name": f"samples of {name} per QC flag"})
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
     rows, lags, periods, heights, warn = [], [], [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
-        row = {f"{name}_qc_count": p[f"{name}_qc_count"].sum("probe"),
+        row = {f"{name}_qc_count": counts(p[f"{name}_qc"], name),
                "record_period": p["record_period"]}
         warn += [w for w in p.attrs.get(WARNINGS, "").splitlines() if w]
         if f"flap/{run}" in inputs:
@@ -309,13 +365,17 @@ def summary(inputs, outputs, params) -> None:
                                        f["encoder_counts"].values, f["time"].values, period))
             periods.append(period)
             heights.append(float(p["wave_height"]))
-            row.update(encoder_counts_qc_count=f["encoder_counts_qc_count"],
-                       chamber_pressure_qc_count=f["chamber_pressure_qc_count"])
+            row.update({f"{k}_qc_count": counts(f[f"{k}_qc"], k)
+                        for k in ("encoder_counts", "chamber_pressure")})
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
         rows.append(xr.Dataset(row).drop_vars(
             ["run", "wave_period", "wave_height", "repeat", "uvp_elevation"],
             errors="ignore").expand_dims(run=[run]))
     out = xr.concat(rows, dim="run", coords="minimal", compat="override")
+    for v in out.variables.values():
+        # read back from the run products: their encoding names the run coordinates dropped
+        # here ("coordinates"), which CF checkers rightly report as missing
+        v.encoding = {}
     if lags:
         dep, basis = clock_departures(np.array(lags), np.array(periods), np.array(heights))
         out["probe_flap_lag"] = ("run", np.array(lags), {

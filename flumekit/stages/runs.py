@@ -21,11 +21,13 @@ def run_coords(params: dict) -> dict:
             "uvp_elevation": float("nan") if z is None else z}
 
 
-def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None) -> None:
+def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
+              compress: bool = True) -> None:
     """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
     and the start of its time axis: the one its record carries (from the raw file, through
     every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
-    domain function made it from plain numbers), else the one run.toml declares (``start``)."""
+    domain function made it from plain numbers), else the one run.toml declares (``start``).
+    ``compress``: as :func:`flumekit.io.netcdf.write_dataset`."""
     from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
@@ -37,7 +39,8 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
     declared = params.get("start")
     if declared and "time" in ds.coords:
         ds = _declared_start(ds, declared, params["run"])
-    write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params)
+    write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params,
+                  compress=compress)
 
 
 def _declared_start(ds, declared: str, run: str):

@@ -57,8 +57,11 @@ def test_declared_period_within_tolerance_passes_and_is_recorded(tmp_path):
     out = _run_probes(tmp_path, 2.05, period=2.0)  # 2.5 % off, tolerance 10 %
     with xr.open_dataset(out) as ds:
         assert float(ds.record_period) == pytest.approx(2.0, rel=2e-3)
-        # clean record: no sample flagged suspect or fail
-        assert int(ds.probe_voltage_qc_count.sel(flag_meaning=["suspect", "fail"]).sum()) == 0
+        # clean record: no sample flagged suspect or fail, by any test
+        assert int((ds.probe_voltage_qc >= 3).sum()) == 0
+        tests = [k for k in ds.probe_voltage_qc.attrs if k.startswith("flagged_by_")]
+        assert {"flagged_by_spike", "flagged_by_flat_line", "flagged_by_dropout"} <= set(tests)
+        assert all(np.all(ds.probe_voltage_qc.attrs[k] == 0) for k in tests)
 
 
 def test_dead_probe_is_an_error_naming_file_and_probe(tmp_path):
@@ -140,7 +143,9 @@ def test_clean_flap_record_passes_untouched(tmp_path):
     path = _flap_file(tmp_path)
     params = {**_probe_params(2.0), "sampling_rate": 100.0}
     qc_stage.flap({"flap": path}, {"dataset": tmp_path / "f.nc"}, params)
+    raw = qc_stage.read_raw("flap", path, params)  # the product does not repeat the raw values
     with xr.open_dataset(tmp_path / "f.nc") as ds:
         for name in ("encoder_counts", "chamber_pressure"):
             assert int((ds[f"{name}_qc"] >= 3).sum()) == 0, name
-            np.testing.assert_array_equal(ds[name].values, ds[f"{name}_raw"].values)
+            assert f"{name}_raw" not in ds
+            np.testing.assert_array_equal(ds[name].values, raw[name].values)

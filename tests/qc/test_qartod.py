@@ -140,3 +140,31 @@ def test_clock_departures_same_condition_median_and_wrap_by_the_period():
     assert np.isnan(d[3:]).all() and basis[3].startswith("no reference")
     d, _ = clock_departures(np.array([-1.7, 1.7, 1.7]), np.full(3, 3.5), np.full(3, 0.25))
     np.testing.assert_allclose(d, [0.1, 0.0, 0.0], atol=1e-12)
+
+
+@pytest.mark.parametrize("length", [3001, 3000])
+def test_despiking_and_echo_level_per_channel_whatever_the_block(length):
+    """The despiking and the echo-level test are worked a few channels at a time
+    (flumekit.qc.blocks): each channel's flags are those of the channel tested on its own
+    (every statistic is per channel; the universal threshold's n given, the longest record),
+    for odd and even record lengths (the median's two forms), with missing samples."""
+    rng = np.random.default_rng(8)
+    m = 70  # more than two blocks
+    t = np.arange(length) / 11.6
+    u = 0.3 * np.sin(2 * np.pi * t / 3.5)[None, :] + 0.02 * rng.standard_normal((m, length))
+    u = np.round(u / 0.0073) * 0.0073
+    u.flat[rng.choice(u.size, 300, replace=False)] += rng.choice([-1, 1], 300) * 0.3
+    u[5, 100:110] = np.nan
+    u[:, -1] = np.nan  # every channel one short: n is the longest record, length - 1
+    whole = goring_nikora(u, floor=0.0073, max_iterations=3)
+    assert whole.sum() >= 250  # the spikes (and, before pruning, their neighbours)
+    # one channel with channel 1 (length - 1 valid samples: the same n), outside any block
+    for r in (0, 5, 33, 69):
+        alone = goring_nikora(u[[r, 1]], floor=0.0073, max_iterations=3)
+        np.testing.assert_array_equal(alone[0], whole[r])
+    amp = (300 + 40 * rng.standard_normal((m, length))).astype(np.int16)
+    amp[7, 2000:2030] = 900  # a boundary echo
+    level = qartod.level_test(amp, 6.0)
+    assert (level[7, 2000:2030] == F.FAIL).all()
+    for r in (0, 7, 40, 69):
+        np.testing.assert_array_equal(qartod.level_test(amp[[r]], 6.0)[0], level[r])
