@@ -102,6 +102,6 @@ def test_main_condition_reproduces_the_papers_numbers(built):
 
     processed, _ = built
     values, _ = measure({MAIN_RUN: built_runs(processed)[MAIN_RUN]})
-    for key in ("theta_max", "cf", "kr", "r2_main"):
+    for key in ("theta_max", "theta_min", "cf", "kr", "r2_main", "steady_eta", "steady_theta"):
         lo, hi = STATED[key][2]
         assert lo <= values[key] <= hi, (key, values[key])

@@ -148,6 +148,15 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
         v["std_eta_period"] = rel_std([r["waves"].measured_period for r in reps])
         v["std_theta_amplitude"] = rel_std([r["flap"].theta_amplitude for r in reps])
         v["std_theta_period"] = rel_std([r["flap"].measured_period for r in reps])
+        # the onsets are crest times (the 2 % test passes cycle by cycle), so each draw's
+        # noise and scatter can move one by a whole cycle: how many repeats are in range
+        lo, hi = STATED["steady_eta"][2]
+        for key, name in (("eta", "waves"), ("theta", "flap")):
+            x = np.array([float(r[name].steady_start) / float(r[name].measured_period)
+                          for r in reps])
+            notes[f"repeats: quasi-steady from t/T ({key})"] = (
+                f"{x.min():.1f}-{x.max():.1f}, {np.count_nonzero((x >= lo) & (x <= hi))} "
+                f"of {x.size} in [{lo}, {hi}]")
     notes.update(linear_pair(runs))
     notes.update(trends(runs))
     return v, notes

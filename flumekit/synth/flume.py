@@ -81,16 +81,15 @@ Terms (torques acting on the flap, positive towards the beach; θ̇ > 0 towards 
   there) and the volume the refill cannot supply, A |m| (|θ̇| − θ̇_r) per unit time, opens a
   vapour cavity. The cavity must collapse before the chamber can hold pressure again (the
   discrete vapour cavity model of hydraulic transients, Wylie & Streeter 1993): while it
-  lasts the chamber stays at P_v (but for I_p θ̈, below), it shrinks at the refill rate
+  lasts the chamber stays at P_v (plus I_p θ̈, below), it shrinks at the refill rate
   plus the compression stroke's A |m| (θ̇_r + s θ̇), and the atmosphere on the open upper
   chamber pushes the piston in, so the first part of the beachward stroke is not resisted
   but helped. The term returns
   ΔP_k = P_v − P_atm − max(s K_p θ̇|θ̇|, P_v − P_atm) and its torque m A ΔP_k, which pushes
   towards compression (the beach). The simulator's I_p θ̈ stays in the chamber pressure (the
-  term sees θ and θ̇ only; the simulator solves I_p θ̈ implicitly): over a cavity the true
-  pressure is P_v + s I_p θ̈, 0.1-0.3 bar above P_v at T = 3.5 s, H = 0.25 m (s θ̈ > 0 from
-  the slowing suction to the accelerating compression). Taking it out with θ̈ of the last
-  step's θ̇ difference, tried, puts the pressure a few kPa below P_v, which is not physical.
+  term sees θ and θ̇ only), so over a cavity the true pressure is P_v + s I_p θ̈, which is
+  Eq. (13)'s own cavitation branch (Brito et al. 2020: "P_v + I_p θ̈ for σ < σ_c"), 0.1-0.3
+  bar above P_v at T = 3.5 s, H = 0.25 m.
   φ, the share of the refill deficit held as a cavity (the rest taken as released
   air that redissolves at once, or leakage past the seals), is calibrated. Eq. (13) cannot fit
   the pressure plateau at P_v that runs into the compression stroke, so it lowers the fit's
@@ -111,8 +110,9 @@ sets the motion and C_f ≈ 0.12 with K_p = 2.86e6 (FlapTruth); φ = 0.21 makes 
 symmetric (pipeline: max ⟨θ⟩/π 0.060, min −0.063); P_c = 0.35 bar and τ_c = 0.125 s then give
 the Eq. (13) fit R² 0.951 at 3.5 s and 0.952 at 2.5 s, H = 0.2 m (Fig. 7: 0.95): the cavity
 lowers the long wave's R² most, the compliance the short wave's, the valve both. With the
-cavity the free fit's I_p is negative at the main condition, and the stage's fit is bounded
-at I_p = 0. β = 1 (the whole waterline torque, see above); κ = 0: the overtopping cut lowers
+cavity and the lag the free fit's I_p is negative in every run tried (T = 2-4 s, H = 0.15-0.3
+m), where the stage's fit is bounded at I_p = 0: the fluid inertia is not identified.
+β = 1 (the whole waterline torque, see above); κ = 0: the overtopping cut lowers
 C_f and deepens the lean to the sea at the main condition (κ = 0.15-0.3 with C_d1 lowered to
 keep C_f: min ⟨θ⟩/π −0.074 to −0.077 before the cavity, and no stronger T_h trend over
 Table 1). The previous calibration without the cavity (C_d1 29, K_p 1.75e6, P_c 0.88 bar,
