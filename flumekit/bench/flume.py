@@ -182,21 +182,29 @@ def linear_pair(runs: dict) -> dict[str, str]:
         camp = virtual_campaign(Path(tmp) / "default", "default", 2020)
     flap, w = camp.flap, main["waves"]
     period, amp = float(w.measured_period), float(w.incident_height) / 2
-    rd = coefficients(np.array([period]), camp.flume.water_depth, flap.width,
-                      flap.hinge_height, camp.flume.width)
     th_exp = float(main["flap"].theta_phase_mean.max())
 
-    def lin(nu):
+    def lin(nu, channel=camp.flume.width):
+        rd = coefficients(np.array([period]), camp.flume.water_depth, flap.width,
+                          flap.hinge_height, channel)
         r = response(rd, amp, flap.inertia, flap.buoyancy_stiffness, nu).isel(period=0)
         return float(r.theta_amplitude), float(r.capture_factor)
 
-    nu37 = brentq(lambda nu: 1 - th_exp / lin(nu)[0] - 0.37, 1.0, 1e4)
+    def nu37(channel=camp.flume.width):
+        return brentq(lambda nu: 1 - th_exp / lin(nu, channel)[0] - 0.37, 1.0, 1e4)
+
+    n37 = nu37()
     nu33 = brentq(lambda nu: lin(nu)[1] - 0.33, 300.0, 1e4)  # the branch above ν_opt
+    # the channel width for which the Renzi-Dias flap meets both numbers with one ν
+    b = brentq(lambda b: lin(nu37(b), b)[1] - 0.33, camp.flume.width, 2.5, xtol=1e-3)
     return {"linear model, (lin - exp)/lin = 37 %": (
-                f"needs nu_pto {nu37:.0f} N m s, then C_f {lin(nu37)[1]:.3f}"),
+                f"needs nu_pto {n37:.0f} N m s, then C_f {lin(n37)[1]:.3f}"),
             "linear model, C_f = 0.33": (
                 f"needs nu_pto {nu33:.0f} N m s, then (lin - exp)/lin "
-                f"{1 - th_exp / lin(nu33)[0]:.2f}")}
+                f"{1 - th_exp / lin(nu33)[0]:.2f}"),
+            "linear model, both with one nu_pto": (
+                f"in a channel {b:.2f} m wide (the flume: {camp.flume.width:g} m), "
+                f"nu_pto {nu37(b):.0f} N m s")}
 
 
 def trends(runs: dict) -> dict[str, str]:
