@@ -4,11 +4,12 @@ Three flap models (``FlapTruth.model``):
 
 ``"flume"`` (default): the simulator below plus the losses that the pipeline's models lack
 (:mod:`flumekit.synth.flume`: KC-dependent vortex drag, wetted length, overtopping, bearing
-friction, a check valve in the PTO line and the chamber's compliance), calibrated to what
-Brito et al. (2020) state of their flume (:mod:`flumekit.bench.flume`). The comparison
-stage's simulator and linear model then differ from the "experiment" as the paper's do.
-Every extra term is recorded in the truth, the valve's and the compliance's pressures in
-``chamber_pressure_valve`` and ``chamber_pressure_compliance``; since Eq. (13) cannot
+friction, a check valve in the PTO line, the chamber's compliance and the vapour cavity of the
+single-acting cylinder), calibrated to what Brito et al. (2020) state of their flume
+(:mod:`flumekit.bench.flume`). The comparison stage's simulator and linear model then differ
+from the "experiment" as the paper's do. Every extra term is recorded in the truth, the
+valve's, the compliance's and the cavity's pressures in ``chamber_pressure_valve``,
+``chamber_pressure_compliance`` and ``chamber_pressure_cavity``; since Eq. (13) cannot
 represent them, the truth's attributes also hold the best Eq. (13) fit to the true pressure
 over the true quasi-steady window (``eq13_pressure_loss_coefficient``,
 ``eq13_fluid_inertia``, ``eq13_r2``), the target of the flap stage's fit.
@@ -345,8 +346,8 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
     p_true = get("chamber_pressure")
     if extra is not None:
         series.update(extra.record(step=m))
-        # the valve's pressure adds to Eq. (13)'s in the chamber (its torque m A ΔP_v acted
-        # on the flap through the simulator's extra torque)
+        # the valve's, the compliance's and the cavity's pressures add to Eq. (13)'s in the
+        # chamber (their torques m A ΔP acted on the flap through the simulator's extra torque)
         p_true = (p_true + series["chamber_pressure_valve"]
                   + series["chamber_pressure_compliance"] + series["chamber_pressure_cavity"])
 
