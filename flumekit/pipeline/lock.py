@@ -31,7 +31,13 @@ def build_lock(folder: Path, wait: float | None = None,
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            holder = _holder(fd)
+            # the holder writes who it is just after taking the lock: give it a moment
+            for _ in range(20):
+                holder = _holder(fd)
+                if holder is not None:
+                    break
+                time.sleep(0.05)
+            holder = holder or "another process"
             say(f"waiting for the build lock of {folder}: held by {holder}")
             deadline = None if wait is None else time.monotonic() + wait
             while True:
@@ -56,10 +62,11 @@ def build_lock(folder: Path, wait: float | None = None,
         os.close(fd)
 
 
-def _holder(fd: int) -> str:
+def _holder(fd: int) -> str | None:
+    """Who holds the lock, as its holder wrote it; None while nothing readable is written."""
     try:
         info = json.loads(os.pread(fd, 4096, 0).decode() or "{}")
         return (f"pid {info['pid']} on {info['host']} since {info['since']} "
                 f"({info['command']})")
     except (ValueError, KeyError, OSError):
-        return "another process"
+        return None
