@@ -215,7 +215,9 @@ def _compute_uvp(beams: dict, span, time_offset: float) -> float:
     def qc():
         flags = beam_flags(beams, span, th, time_offset=time_offset)
         flags.attrs["max_gap"] = th.max_gap
-        return [clean_beam(b, flags, name) for name, b in beams.items()]
+        # as the rule does, in place (the rule's beams are its own; cleaning cleaned beams
+        # again gives them back)
+        return [clean_beam(b, flags, name, copy=False) for name, b in beams.items()]
 
     return best_time(qc)[0]
 

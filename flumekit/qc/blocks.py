@@ -18,8 +18,12 @@ ROWS = 32
 
 def by_rows(fn, *arrays: np.ndarray, rows: int = ROWS) -> np.ndarray:
     """``fn(*blocks)`` on consecutive blocks of ``rows`` rows of the 2-D ``arrays`` (all with as
-    many rows), the outputs stacked along the first axis."""
+    many rows), the outputs stacked along the first axis. Each block is C-contiguous (the
+    work runs along the rows): a block of a transposed view (a UVP beam is stored profile by
+    profile, (time, channel)) is copied on its own, as fast as transposing the whole array and
+    without a copy of the whole."""
     m = arrays[0].shape[0]
     if m <= rows:
-        return fn(*arrays)
-    return np.concatenate([fn(*(a[i:i + rows] for a in arrays)) for i in range(0, m, rows)])
+        return fn(*map(np.ascontiguousarray, arrays))
+    return np.concatenate([fn(*(np.ascontiguousarray(a[i:i + rows]) for a in arrays))
+                           for i in range(0, m, rows)])

@@ -4,13 +4,26 @@ from __future__ import annotations
 
 import numpy as np
 
+#: fraction of True below which :func:`runs` works from the True samples' indices
+SPARSE = 0.02
+
 
 def runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Runs of True along the last axis of a 2-D mask: (row, first index, length), in order.
 
     O(n) in the mask and vectorised: the edges of the runs in the flattened mask padded with a
-    False column on each side."""
+    False column on each side; or, for a sparse mask (flagged samples), the flat indices of
+    its True samples split where they stop following each other or change rows (one pass to
+    find them, the rest on those only: 0.3 against 3 ms a UVP beam)."""
     m, n = mask.shape
+    if np.count_nonzero(mask) < SPARSE * mask.size:
+        idx = np.flatnonzero(np.ascontiguousarray(mask))
+        row = idx // max(n, 1)
+        start = np.ones(idx.size, dtype=bool)
+        start[1:] = (np.diff(idx) != 1) | (row[1:] != row[:-1])
+        first = np.flatnonzero(start)
+        length = np.diff(np.append(first, idx.size))
+        return row[first], idx[first] - row[first] * n, length
     padded = np.zeros((m, n + 2), dtype=bool)
     padded[:, 1:-1] = mask
     edges = np.flatnonzero(padded[:, 1:].ravel() != padded[:, :-1].ravel())
@@ -20,7 +33,8 @@ def runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return row, starts - row * (n + 1), ends - starts
 
 
-def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None) -> np.ndarray:
+def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None, *,
+              copy: bool = True) -> np.ndarray:
     """Replace invalid samples by linear interpolation between the valid ones around them.
 
     Vectorised over channels (time along the last axis). Before the first or after the last
@@ -30,15 +44,19 @@ def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None)
     becomes 0.
 
     The work is per run of invalid samples (found in O(n)), so a record with a few flagged
-    samples costs little more than a copy.
+    samples costs little more than a copy; ``copy=False`` spares the copy: ``values`` may be
+    overwritten (the result may share its memory).
     """
     values = np.asarray(values, dtype=float)
-    valid = np.asarray(valid, dtype=bool) & np.isfinite(values)
+    valid = np.asarray(valid, dtype=bool)
+    finite = np.isfinite(values)  # in the layout of values (a transposed view: fast)
+    if not finite.all():
+        valid = valid & finite
     shape = values.shape
     n = shape[-1]
     # copied in the layout it has (a transposed view stays one: a copy in the other order
     # would cost twice as much), then filled in place
-    out = np.array(values, order="K")
+    out = np.array(values, order="K") if copy else values
     out = out.reshape(-1, n) if values.ndim else out
     if values.ndim == 0 or valid.all():
         return out.reshape(shape)

@@ -260,6 +260,12 @@ def integer_median(x: np.ndarray) -> np.ndarray:
     of the values of ranks (n - 1) // 2 and n // 2. The histogram spans ``_BINS`` values from
     the row's minimum, the rest counted in the last bin, which is exact unless a median falls
     there (a row with half its values that far up: sorted instead)."""
+    return integer_moments(x)[0]
+
+
+def integer_moments(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(median, sum, sum of squares) of each row of the integer (m, n) array ``x``, exact,
+    from one histogram per row (:func:`integer_median`); the sums as float64."""
     n = x.shape[-1]
     lo, cum, clipped = _cumulative_histogram(x)
     lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
@@ -267,7 +273,18 @@ def integer_median(x: np.ndarray) -> np.ndarray:
     far = clipped & (upper >= cum.shape[-1] - 1)
     if far.any():
         med[far] = np.median(x[far], axis=-1)
-    return med
+    count = np.diff(cum, axis=-1, prepend=0)
+    offset = np.arange(cum.shape[-1])
+    # sums about each row's minimum (small numbers), then shifted: exact in float64
+    s1 = (count * offset).sum(axis=-1).astype(float)
+    s2 = (count * offset * offset).sum(axis=-1).astype(float)
+    lo_f = lo.astype(float)
+    total, squares = s1 + n * lo_f, s2 + 2 * lo_f * s1 + n * lo_f * lo_f
+    if clipped:  # the last bin holds every value from there up: those rows summed directly
+        rows = np.flatnonzero(x.max(axis=-1) - lo >= cum.shape[-1])
+        xs = x[rows].astype(np.int64)
+        total[rows], squares[rows] = xs.sum(axis=-1), (xs * xs).sum(axis=-1)
+    return med, total, squares
 
 
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
@@ -294,6 +311,10 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     return f
 
 
+#: longest fold of the cumulative counts in :func:`_level_integer` [half steps]
+_FOLD = 256
+
+
 def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
     """:func:`level_test` of an integer block, exact, from one histogram per row: the median
     M/2 and the median absolute deviation, whose counts |2x - M| <= d are those of the values
@@ -305,10 +326,13 @@ def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
     lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
     twice = 2 * lo + lower + upper  # twice the median, M
     # the deviations' median is at most the larger distance from the median to a quartile
-    # (the quartiles hold half the values between them), in half steps: d up to that
+    # (the quartiles hold half the values between them), in half steps: d up to that; a row
+    # whose quartiles lie far apart (an echo present a quarter of the time or more) is sorted
+    # instead (below), so the few such rows do not make every row's fold long
     q1, q3 = lo + _rank(cum, (n - 1) // 4), lo + _rank(cum, (3 * n) // 4)
-    reach = int(np.max(np.maximum(twice - 2 * q1, 2 * q3 - twice))) + 2
-    d = np.arange(reach + 1)
+    reach = np.maximum(twice - 2 * q1, 2 * q3 - twice) + 2
+    folded = reach <= _FOLD
+    d = np.arange(int(reach[folded].max()) + 1 if folded.any() else 1)
     # cumulative counts padded: below the minimum 0, beyond the last bin n
     pad = np.concatenate([np.zeros((m, 1), cum.dtype), cum], axis=-1)
     top = np.minimum((twice[:, None] + d) // 2 - lo[:, None], nb - 1) + 1
@@ -317,9 +341,9 @@ def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
     high = _rank(within, n // 2)
     med_dev = 0.5 * (_rank(within, (n - 1) // 2) + high)  # the median of |2x - M|
     # exact unless a count read was the clipped bin's (or, the quartiles in it, short)
-    far = clipped & ((upper >= nb - 1) | ((twice + high) // 2 - lo >= nb - 1)
-                     | (within[:, -1] <= n // 2))
-    if far.any():  # a median or deviation in the clipped bin: the rows sorted
+    far = ~folded | (clipped & ((upper >= nb - 1) | ((twice + high) // 2 - lo >= nb - 1)
+                                | (within[:, -1] <= n // 2)))
+    if far.any():  # a median or deviation in the clipped bin, or not folded: the rows sorted
         xs = x2[far].astype(np.int64)
         twice[far] = np.rint(2 * np.median(xs, axis=-1)).astype(np.int64)
         med_dev[far] = np.median(np.abs(2 * xs - twice[far][:, None]), axis=-1)

@@ -77,16 +77,17 @@ def phase_reference(waves):
     return ups, float(waves["measured_period"])
 
 
-def clean_beam(beam, qc, name: str):
+def clean_beam(beam, qc, name: str, copy: bool = True):
     """The beam's velocities with the samples that failed quality control masked and short
-    gaps interpolated (:func:`flumekit.qc.record.clean`, the flags of the qc stage)."""
+    gaps interpolated (:func:`flumekit.qc.record.clean`, the flags of the qc stage).
+    ``copy=False``: the beam's own velocity array is cleaned (a beam read for the caller)."""
     from flumekit.qc.record import clean
 
     flags = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
     t = beam["time"].values
     v = beam["beam_velocity"].transpose("channel", "time").values
     fs = (t.size - 1) / (t[-1] - t[0])
-    cleaned = clean(v, flags, fs, float(qc.attrs["max_gap"]))
+    cleaned = clean(v, flags, fs, float(qc.attrs["max_gap"]), copy=copy)
     return beam.assign(beam_velocity=beam["beam_velocity"].copy(
         data=cleaned.T if beam["beam_velocity"].dims[0] == "time" else cleaned))
 
@@ -173,7 +174,7 @@ def build(inputs, outputs, params) -> None:
         raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
     qc = check_beams(raw, qc_span(span, float(waves["measured_period"]), params["cutoff"]),
                      params, outputs["qc"], [inputs[n] for n in names])
-    beams = {n: clean_beam(raw[n], qc, n) for n in names}
+    beams = {n: clean_beam(raw[n], qc, n, copy=False) for n in names}  # read for this rule
     if params["time_offset"]:  # the run file's declared clock offset of the UVP [s]
         beams = {k: v.assign_coords(time=v["time"] + params["time_offset"])
                  for k, v in beams.items()}
