@@ -130,7 +130,7 @@ class FlapTruth:
     pto_damping: float = 500.0  # linear-equivalent PTO damping ν_pto [N m s]
     viscous_damping: float = 600.0  # linearised viscous losses ν_visc [N m s]
     excitation_phase: float = 0.0  # lag of the excitation torque behind η(x=0) [rad]
-    pressure_loss_coefficient: float = 2.86e6  # K_p [Pa s2 rad-2] (flume calibration)
+    pressure_loss_coefficient: float = 3.0e6  # K_p [Pa s2 rad-2] (flume calibration)
     fluid_inertia: float = 2.4e4  # I_p [Pa s2 rad-1]
     pressure_rated_output: float = 1.0e6  # sensor range [Pa]: the flume's chamber ~4.5 bar
     pressure_noise: float = 0.002  # noise std as a fraction of the rated output [-]

@@ -159,7 +159,7 @@ class FlumeLosses:
     bearing_rate: float = 0.01  # ω_b [rad s-1]
     valve_pressure: float = 0.35e5  # P_c [Pa]
     valve_speed: float = 0.04  # v_c [m s-1]
-    compliance_time: float = 0.125  # τ_c [s], lag of the chamber pressure (compressibility)
+    compliance_time: float = 0.105  # τ_c [s], lag of the chamber pressure (compressibility)
     vapour_cavity: float = 0.21  # φ [-], share of the suction's flow deficit held as a cavity
 
     def __post_init__(self):
@@ -224,6 +224,7 @@ class ExtraTorque:
         lag = [0, 0.0]  # half-step index and lagged pressure of the last call
         # vapour cavity: half-step index, cavity volume over the bore area [m], its rate [m s-1]
         cav = [0, 0.0, 0.0]
+        cav_open = [False]  # whether the last call had a cavity
         phi = losses.vapour_cavity
         w_refill = math.sqrt((pto.atmospheric_pressure - pto.vapour_pressure) / k_p) \
             if k_p > 0 else math.inf  # θ̇ the refill keeps up with at P_v [rad s-1]
@@ -250,6 +251,9 @@ class ExtraTorque:
             m = mt[i] + (u - i) * dmt[i]
             so = s * om  # compression rate [rad s-1]
             p_k = p_c = p_v = 0.0
+            p13 = k_p * so * abs(om)
+            p13 = p13 if p13 > -p_cav else -p_cav  # Eq. (13)'s pressure as simulated [Pa]
+            in_cav = False
             if phi > 0:
                 # discrete vapour cavity (module notes): its volume over the bore area grows
                 # by φ times the suction's excess over the refill and shrinks at the refill
@@ -261,23 +265,27 @@ class ExtraTorque:
                 cav[0], cav[1] = j, x
                 cav[2] = (m if m > 0 else -m) * (phi * dd if dd > 0 else dd) \
                     if (x > 0 or dd > 0) else 0.0
-                if x > 0:
-                    p13 = k_p * so * abs(om)
-                    p_k = -p_cav - (p13 if p13 > -p_cav else -p_cav)
-                    lag[0], lag[1] = j, 0.0  # nothing stored, the valve shut
-            if p_k == 0.0 and (phi <= 0 or cav[1] <= 0):
-                if tau_c > 0:
-                    # Eq. (13)'s quadratic compression pressure through a first-order lag,
-                    # updated exactly over the time since the last call
-                    p_q = k_p * om * om if so > 0 else 0.0
-                    if so < 0 and k_p * om * om >= p_cav:
-                        p_l = 0.0  # the chamber cavitates: the stored volume has returned
-                    else:
-                        p_l = p_q + (lag[1] - p_q) * exp(-(j - lag[0]) * half_step / tau_c)
-                    lag[0], lag[1] = j, p_l
-                    p_c = p_l - p_q
-                if so > 0 and p_valve > 0:
-                    p_v = -p_valve * expm1(-abs(m * om) * inv_vc)
+                in_cav = x > 0
+                if in_cav:
+                    p_k = -p_cav - p13
+            if not in_cav and so > 0 and p_valve > 0:
+                p_v = -p_valve * expm1(-abs(m * om) * inv_vc)
+            if tau_c > 0:
+                # the compliance: the chamber holds the pressure of the compression stroke's
+                # resistances (Eq. (13)'s K_p θ̇² and the valve) only through a first-order
+                # lag, updated exactly over the time since the last call; a cavity holds
+                # nothing (target 0). The stored part p_l - p_q carries over when a cavity
+                # opens (the stored volume returns first) and, when it collapses, is reset so
+                # that the chamber pressure goes on from P_v instead of jumping
+                p_q = 0.0 if (in_cav or so <= 0) else k_p * om * om + p_v
+                if cav_open[0] and not in_cav:
+                    lag[1] += -p_cav - p13 - p_v + p_q  # collapse: P = p13 + p_v + p_l - p_q = P_v
+                cav_open[0] = in_cav
+                p_l = p_q + (lag[1] - p_q) * exp(-(j - lag[0]) * half_step / tau_c)
+                lag[0], lag[1] = j, p_l
+                p_c = p_l - p_q
+                floor = -p_cav - p13 - p_v - p_k  # the chamber never goes below P_v
+                p_c = p_c if p_c > floor else floor
             if p_v == 0.0 and p_c == 0.0 and p_k == 0.0:
                 return t_d, t_w, t_o, t_b, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
             ma = m * area
