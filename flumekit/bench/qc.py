@@ -22,12 +22,18 @@ its own):
 
 * probes and flap: the qc/probes and qc/flap rules against the stages that consume them
   (eta, waves, flap, comparison);
-* UVP: the qc/uvp rule against the uvp rule;
-* per run (``all``): every QC rule of the run against every rule above that analyses it.
+* UVP: the uvp rule checks the beams it reads before analysing them
+  (flumekit.stages.qc.check_beams): its QC is the computation of the flags
+  (flumekit.qc.record.beam_flags), the writing of the flag product and the masking and filling
+  of the beams (flumekit.stages.uvp.clean_beam), each timed on its own on the rule's inputs;
+  its analysis is the rest of the rule (the rule's time minus that QC). The beams are read
+  once, by the rule, for both: that read is the analysis's;
+* per run (``all``): every QC of the run against every analysis above.
 
-The QC rules read the raw files, which the analysis would otherwise read itself; the time of
-that read is shown and the ratio given both with it and without it; so is the time of writing
-their products (flumekit.io.netcdf.write_dataset, which every stage's products pay alike).
+The probe and flap QC rules read the raw files, which the analysis would otherwise read itself;
+the time of that read is shown and the ratio given both with it and without it; so is the time
+of writing their products (flumekit.io.netcdf.write_dataset, which every stage's products pay
+alike).
 """
 
 from __future__ import annotations
@@ -197,29 +203,25 @@ def _compute_probes_flap(p: dict, f: dict, run) -> float:
                                                                   "chamber_pressure")]))[0]
 
 
-def _compute_uvp(beams: list[Path], span) -> float:
-    """Best time of the UVP QC computations alone over the span the qc stage checks [s]."""
+def _compute_uvp(beams: dict, span, time_offset: float) -> float:
+    """Best time of the UVP QC computations of the uvp rule on beams read beforehand: the flags
+    (:func:`flumekit.qc.record.beam_flags`) and the masking and filling of the beams [s]."""
     from flumekit.bench import best_time
-    from flumekit.io.mfprof import read_mfprof
-    from flumekit.qc.flags import aggregate
-    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.qc.record import Thresholds, beam_flags
+    from flumekit.stages.uvp import clean_beam
 
     th = Thresholds()
-    blocks = []
-    for path in beams:
-        b = read_mfprof(path)
-        t = b["time"].values
-        i0, i1 = int(np.searchsorted(t, span[0])), int(np.searchsorted(t, span[1], "right"))
-        blocks.append((b["beam_velocity"].transpose("channel", "time").values[:, i0:i1],
-                       t[i0:i1], (t.size - 1) / (t[-1] - t[0]),
-                       b["amplitude"].transpose("channel", "time").values[:, i0:i1],
-                       float(b.attrs["velocity_resolution"])))
-    return best_time(lambda: [aggregate(*check_series(v, t, fs, th, despike=True, floor=r,
-                                                      amplitude=a).values())
-                              for v, t, fs, a, r in blocks])[0]
+
+    def qc():
+        flags = beam_flags(beams, span, th, time_offset=time_offset)
+        flags.attrs["max_gap"] = th.max_gap
+        return [clean_beam(b, flags, name) for name, b in beams.items()]
+
+    return best_time(qc)[0]
 
 
-#: the stages that consume each instrument's QC product, per run
+#: the stages that consume each instrument's QC product, per run (the uvp rule checks the beams
+#: itself: see the module's docstring)
 CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp",)}
 
 
@@ -274,16 +276,17 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
                               COMPRESS["probes"])
         out.append((run.id, "probes+flap", t_qc, t_read, _compute_probes_flap(p, f, run),
                     t_write, t_ana))
-        if f"qc/uvp/{run.id}" in rules:
-            beams = [run.path / f"{b.name}.mfprof" for b in campaign.uvp.beams]
-            t_read = best_time(lambda beams=beams: [read_mfprof(b) for b in beams])[0]
-            t_qc = run_rules([f"qc/uvp/{run.id}"])
-            t_ana = run_rules([f"{s}/{run.id}" for s in CONSUMERS["uvp"]])
+        if f"uvp/{run.id}" in rules:
+            beams = {b.name: read_mfprof(run.path / f"{b.name}.mfprof")
+                     for b in campaign.uvp.beams}
+            t_rule = run_rules([f"{s}/{run.id}" for s in CONSUMERS["uvp"]])
             span = read_dataset(processed / "qc" / "uvp" / f"{run.id}.nc")[
                 "evaluated_span"].values
+            t_cmp = _compute_uvp(beams, span, run.clock.get("uvp", 0.0))
             t_write = _write_time([processed / "qc" / "uvp" / f"{run.id}.nc"], COMPRESS["uvp"])
-            out.append((run.id, "uvp", t_qc, t_read, _compute_uvp(beams, span), t_write,
-                        t_ana))
+            # no read of its own: the rule reads the beams once, for its analysis
+            out.append((run.id, "uvp", t_cmp + t_write, 0.0, t_cmp, t_write,
+                        t_rule - t_cmp - t_write))
         rows = [r[2:] for r in out if r[0] == run.id]
         if len(rows) > 1:  # every QC rule of the run against every rule analysing it
             out.append((run.id, "all", *(sum(col) for col in zip(*rows, strict=True))))
@@ -347,11 +350,14 @@ def run(quick: bool = False) -> str:
                      + ("yes" if not fails else "NO: " + "; ".join(fails)))
         if not quick:
             lines.append("")
-            lines.append("QC rules against the rules consuming their product (best of 3) [s]; "
-                         "probes+flap: eta, waves, flap, comparison; uvp: uvp")
-            lines.append("QC: the QC rules; read: their reading of the raw files; compute: "
-                         "the QC computations alone (tests, flags, masking, filling); write: "
-                         "writing their products (netCDF, as every stage writes)")
+            lines.append("QC against the analysis of its product (best of 3) [s]; "
+                         "probes+flap: the qc rules against eta, waves, flap, comparison; uvp: "
+                         "the uvp rule's QC (flags, their product, masking and filling) against "
+                         "the rest of the rule")
+            lines.append("QC: the QC rules (uvp: compute + write); read: their reading of the "
+                         "raw files (uvp: none, the rule reads the beams once); compute: the QC "
+                         "computations alone (tests, flags, masking, filling); write: writing "
+                         "their products (netCDF, as every stage writes)")
             lines.append("run                instrument     QC   read compute  write analysis"
                          "   QC/ana (QC-read)/ana compute/ana write/ana")
             for run_id, kind, t_qc, t_read, t_cmp, t_wr, t_ana in _timings(clean_p, raw):

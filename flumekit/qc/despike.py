@@ -10,6 +10,7 @@ import numpy as np
 
 from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import fill_gaps
+from flumekit.qc.qartod import integer_median
 
 
 def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 20
@@ -40,7 +41,7 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     shape = u.shape
     u = u.reshape(-1, shape[-1])
     valid = np.isfinite(u)
-    n = int(valid.sum(axis=-1).max()) if u.size else 0
+    n = int(np.count_nonzero(valid, axis=-1).max()) if u.size else 0
     if n < 5:
         return np.zeros(shape, dtype=bool)
     lam2 = 2.0 * np.log(n)  # squared universal threshold, Eq. (2)
@@ -75,15 +76,26 @@ def _despike(u: np.ndarray, valid: np.ndarray, floor: np.ndarray, lam2: float,
 
 
 def _median(c: np.ndarray) -> np.ndarray:
-    """``np.median(c, axis=-1, keepdims=True)`` of a finite float32 block, bit for bit, from one
-    selection: the upper middle value, and the lower one as the largest of the values below
-    it (``np.median`` selects both, 20 % slower), averaged as numpy does (float32 sum, / 2)."""
+    """``np.median(c, axis=-1, keepdims=True)`` of a finite float32 block, bit for bit.
+
+    Rows of whole numbers (a quantised record in units of its step) from their histogram
+    (:func:`flumekit.qc.qartod.integer_median`, O(n), exact: their median is a whole or half
+    number), the others from one selection: the upper middle value, and the lower one as the
+    largest of the values below it (``np.median`` selects both, 20 % slower), averaged as numpy
+    does (float32 sum, / 2)."""
     k = c.shape[-1] // 2
-    p = np.partition(c, k, axis=-1)
+    whole = (np.rint(c) == c).all(axis=-1)
+    out = np.empty((c.shape[0], 1), dtype=np.float32)
+    if whole.any():
+        w = c if whole.all() else c[whole]
+        out[whole, 0] = integer_median(w.astype(np.int32))
+    if whole.all():
+        return out
+    p = np.partition(c[~whole], k, axis=-1)
     hi = p[:, k:k + 1]
-    if c.shape[-1] % 2:
-        return hi.copy()
-    return (p[:, :k].max(axis=-1, keepdims=True) + hi) / np.float32(2)
+    out[~whole] = hi if c.shape[-1] % 2 else (p[:, :k].max(axis=-1, keepdims=True) + hi
+                                                ) / np.float32(2)
+    return out
 
 
 def _central(f: np.ndarray) -> np.ndarray:
@@ -105,7 +117,13 @@ def _outside(w: np.ndarray, lam2: float, floor: np.ndarray) -> np.ndarray:
     worked in single precision (7 digits, far finer than a velocity record's resolution; the
     sums accumulate in double), which halves the memory traffic that bounds the cost."""
     m = w.shape[-1]
-    c = w.astype(np.float32)
+    # in units of the floor where there is one (a quantised record's step: its values become
+    # whole numbers, exact in single precision, and their median a histogram's); the test is
+    # the same in any unit
+    unit = np.where(floor > 0, floor, 1.0)
+    c = np.empty(w.shape, dtype=np.float32)
+    np.multiply(w, 1.0 / unit, out=c, casting="same_kind")
+    floor = floor / unit
     c -= _median(c)
     du = _central(c)  # (u_(i+1) - u_(i-1)) / 2, Eq. (6)
     d2 = _central(du)  # Eq. (7)

@@ -36,7 +36,10 @@ def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None)
     valid = np.asarray(valid, dtype=bool) & np.isfinite(values)
     shape = values.shape
     n = shape[-1]
-    out = values.reshape(-1, n).copy() if values.ndim else values.copy()
+    # copied in the layout it has (a transposed view stays one: a copy in the other order
+    # would cost twice as much), then filled in place
+    out = np.array(values, order="K")
+    out = out.reshape(-1, n) if values.ndim else out
     if values.ndim == 0 or valid.all():
         return out.reshape(shape)
     row, first, length = runs(~valid.reshape(-1, n))

@@ -21,11 +21,6 @@ MISSING = 9
 FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.int8)
 FLAG_MEANINGS = "pass not_evaluated suspect fail missing_data"
 
-#: order of severity used to aggregate flags (missing counts as worst) and its inverse
-_RANK = np.zeros(256, dtype=np.uint8)
-_RANK[[GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING]] = [1, 0, 2, 3, 4]
-_FLAG_OF_RANK = np.array([NOT_EVALUATED, GOOD, SUSPECT, FAIL, MISSING], dtype=np.int8)
-
 
 def flag_attrs(variable: str, long_name: str | None = None) -> dict:
     """CF attributes of the flag variable of ``variable`` (QARTOD values and meanings)."""
@@ -41,8 +36,25 @@ def aggregate(*flags: np.ndarray) -> np.ndarray:
 
     ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1.
     """
-    # np.take, not fancy indexing: the same lookup at half the cost on a UVP beam's block
-    worst = np.take(_RANK, np.asarray(flags[0], dtype=np.uint8))
-    for f in flags[1:]:
-        np.maximum(worst, np.take(_RANK, np.asarray(f, dtype=np.uint8)), out=worst)
-    return np.take(_FLAG_OF_RANK, worst)
+    # the flag values are their order of severity but for NOT_EVALUATED, which is taken as 0
+    # for the maximum and restored after: byte arithmetic, a third of the cost of a table
+    # lookup (np.take) per test on a UVP beam
+    worst = None
+    for f in flags:
+        f = np.asarray(f)
+        f = f.view(np.uint8) if f.dtype == np.int8 else f.astype(np.uint8)
+        key = f - choose(f == NOT_EVALUATED, NOT_EVALUATED, 0)
+        worst = key if worst is None else np.maximum(worst, key, out=worst)
+    worst += choose(worst == 0, NOT_EVALUATED, 0)
+    return worst.view(np.int8)
+
+
+def choose(condition: np.ndarray, yes: int, no: int) -> np.ndarray:
+    """Flag ``yes`` where ``condition``, else ``no``, as bytes (uint8).
+
+    Byte arithmetic on the condition (``no + condition * (yes - no)``, modulo 256): numpy's
+    ``where`` with two scalars, or a masked assignment, costs 10-15 times as much on an
+    irregular condition (measured on a UVP beam's block: 6.6 against 100 us)."""
+    f = np.asarray(condition, dtype=bool).view(np.uint8) * np.uint8((yes - no) % 256)
+    f += np.uint8(no)
+    return f

@@ -28,7 +28,7 @@ import numpy as np
 
 from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import runs
-from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT
+from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT, choose
 
 #: ratio of the standard deviation to the median absolute deviation of a normal distribution
 MAD_TO_STD = 1.4826
@@ -38,10 +38,16 @@ def resolution(x: np.ndarray) -> np.ndarray:
     """Smallest non-zero step between consecutive samples per channel (quantisation) [x]."""
     x = np.asarray(x)
     if x.dtype.kind in "iu":  # integers: no NaN, and a smaller type to scan
-        d = np.abs(np.diff(x.astype(np.int32), axis=-1))
-        d[d == 0] = np.iinfo(np.int32).max
-        r = d.min(axis=-1) if d.shape[-1] else np.zeros(d.shape[:-1], np.int32)
-        return np.where(r == np.iinfo(np.int32).max, 0.0, r.astype(float))
+        if not x.shape[-1]:
+            return np.zeros(x.shape[:-1])
+        d = np.diff(x.astype(np.int32), axis=-1)
+        np.abs(d, out=d)
+        # |step| - 1 as unsigned: a zero step wraps to the largest value, so the minimum is
+        # that of the non-zero steps (one pass instead of replacing the zeros)
+        u = d.view(np.uint32)
+        u -= np.uint32(1)
+        r = u.min(axis=-1).astype(np.int64) + 1
+        return np.where(r > np.iinfo(np.uint32).max, 0.0, r.astype(float))
     d = np.abs(np.diff(np.asarray(x, dtype=float), axis=-1))
     d = np.where(np.isfinite(d) & (d > 0), d, np.inf)
     r = d.min(axis=-1)
@@ -78,9 +84,7 @@ def local_scale(stat: np.ndarray, block: int, floor: np.ndarray | float = 0.0) -
 
 
 def _empty_flags(x: np.ndarray) -> np.ndarray:
-    f = np.full(x.shape, GOOD, dtype=np.uint8)
-    f[~np.isfinite(x)] = MISSING
-    return f
+    return choose(np.isfinite(x), GOOD, MISSING)
 
 
 def _local_test_start(x, min_samples: int, floor):
@@ -99,11 +103,10 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     """QARTOD gross range: FAIL outside ``fail_span`` (sensor limits), SUSPECT outside
     ``suspect_span`` (user limits) [units of x]. ``None``: not evaluated (2)."""
     x = np.asarray(x, dtype=float)
+    if fail_span is None and suspect_span is None:
+        return choose(np.isfinite(x), NOT_EVALUATED, MISSING)
     f = _empty_flags(x)
     finite = f != MISSING
-    if fail_span is None and suspect_span is None:
-        f[finite] = NOT_EVALUATED
-        return f
     with np.errstate(invalid="ignore"):
         if suspect_span is not None:
             lo, hi = sorted(suspect_span)
@@ -212,7 +215,7 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     x = np.asarray(x)
     if x.dtype.kind in "iu" and x.size:
         x2 = x.reshape(-1, x.shape[-1])
-        return _histogram_median(x2).reshape(x.shape[:-1])
+        return integer_median(x2).reshape(x.shape[:-1])
     x = np.asarray(x, dtype=float)
     nan = np.isnan(x)
     if not nan.any():
@@ -225,25 +228,43 @@ def robust_median(x: np.ndarray) -> np.ndarray:
 
 
 #: bins of the histogram median; values beyond the last fall in it (a median there is recomputed)
-_BINS = 1024
+_BINS = 4096
 
 
-def _histogram_median(x: np.ndarray) -> np.ndarray:
+def _cumulative_histogram(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(lo, cum, clipped) of the integer (m, n) array ``x``: each row's minimum, the cumulative
+    counts of its values lo, lo + 1, ... (one bin each, at most ``_BINS``; larger values are
+    counted in the last bin, then ``clipped``), from one ``bincount`` of the whole block."""
+    m = x.shape[0]
+    lo = x.min(axis=-1).astype(np.int64)
+    span = int((x.max(axis=-1) - lo).max()) + 1
+    nb = min(span, _BINS)
+    idx = x.astype(np.intp)
+    if span > nb:
+        idx -= lo[:, None]
+        np.minimum(idx, nb - 1, out=idx)
+        idx += (np.arange(m, dtype=np.intp) * nb)[:, None]
+    else:  # every value has its bin: one pass fewer
+        idx -= (lo - np.arange(m, dtype=np.int64) * nb)[:, None]
+    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * nb).reshape(m, nb), axis=-1)
+    return lo, cum, span > nb
+
+
+def _rank(cum: np.ndarray, r) -> np.ndarray:
+    """Bin of the value of rank ``r`` (0-based, per row or scalar) of cumulative counts."""
+    return np.argmax(cum > np.reshape(r, (-1, 1)), axis=-1)
+
+
+def integer_median(x: np.ndarray) -> np.ndarray:
     """Exact median of each row of the integer (m, n) array ``x`` from its histogram: the mean
     of the values of ranks (n - 1) // 2 and n // 2. The histogram spans ``_BINS`` values from
     the row's minimum, the rest counted in the last bin, which is exact unless a median falls
     there (a row with half its values that far up: sorted instead)."""
-    m, n = x.shape
-    lo = x.min(axis=-1).astype(np.int64)
-    idx = x.astype(np.int64)
-    idx -= lo[:, None]
-    np.minimum(idx, _BINS - 1, out=idx)
-    idx += (np.arange(m, dtype=np.int64) * _BINS)[:, None]
-    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * _BINS).reshape(m, _BINS), axis=-1)
-    lower = np.argmax(cum > (n - 1) // 2, axis=-1)
-    upper = np.argmax(cum > n // 2, axis=-1)
+    n = x.shape[-1]
+    lo, cum, clipped = _cumulative_histogram(x)
+    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
     med = lo + 0.5 * (lower + upper)
-    far = upper >= _BINS - 1
+    far = clipped & (upper >= cum.shape[-1] - 1)
     if far.any():
         med[far] = np.median(x[far], axis=-1)
     return med
@@ -261,18 +282,9 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
 
 def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     """:func:`level_test` of the (channel, time) block ``x2``."""
+    if x2.dtype.kind in "iu" and x2.size:
+        return _level_integer(x2, threshold)
     med = robust_median(x2)[:, None]
-    if x2.dtype.kind in "iu":
-        # twice the deviation is an integer (the median is one or a half): exact and O(n)
-        dev2 = 2 * x2.astype(np.int32)
-        dev2 -= np.rint(2 * med).astype(np.int32)
-        np.abs(dev2, out=dev2)
-        scale = np.maximum(MAD_TO_STD * 0.5 * robust_median(dev2), resolution(x2))[:, None]
-        # an integer exceeds a bound where it exceeds the bound's floor
-        bound = np.minimum(np.floor(2 * threshold * scale), np.iinfo(np.int32).max)
-        f = np.full(x2.shape, GOOD, dtype=np.uint8)
-        f[dev2 > bound.astype(np.int32)] = FAIL
-        return f
     x2 = x2.astype(float)
     f = _empty_flags(x2)
     dev = np.abs(x2 - med)
@@ -280,6 +292,47 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         f[(dev > threshold * scale) & (f != MISSING)] = FAIL
     return f
+
+
+def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
+    """:func:`level_test` of an integer block, exact, from one histogram per row: the median
+    M/2 and the median absolute deviation, whose counts |2x - M| <= d are those of the values
+    between (M - d)/2 and (M + d)/2, read from the cumulative histogram (no second pass over
+    the deviations)."""
+    m, n = x2.shape
+    lo, cum, clipped = _cumulative_histogram(x2)
+    nb = cum.shape[-1]
+    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
+    twice = 2 * lo + lower + upper  # twice the median, M
+    # the deviations' median is at most the larger distance from the median to a quartile
+    # (the quartiles hold half the values between them), in half steps: d up to that
+    q1, q3 = lo + _rank(cum, (n - 1) // 4), lo + _rank(cum, (3 * n) // 4)
+    reach = int(np.max(np.maximum(twice - 2 * q1, 2 * q3 - twice))) + 2
+    d = np.arange(reach + 1)
+    # cumulative counts padded: below the minimum 0, beyond the last bin n
+    pad = np.concatenate([np.zeros((m, 1), cum.dtype), cum], axis=-1)
+    top = np.minimum((twice[:, None] + d) // 2 - lo[:, None], nb - 1) + 1
+    bottom = np.maximum(-((d - twice[:, None]) // 2) - 1 - lo[:, None], -1) + 1
+    within = np.take_along_axis(pad, top, -1) - np.take_along_axis(pad, bottom, -1)
+    high = _rank(within, n // 2)
+    med_dev = 0.5 * (_rank(within, (n - 1) // 2) + high)  # the median of |2x - M|
+    # exact unless a count read was the clipped bin's (or, the quartiles in it, short)
+    far = clipped & ((upper >= nb - 1) | ((twice + high) // 2 - lo >= nb - 1)
+                     | (within[:, -1] <= n // 2))
+    if far.any():  # a median or deviation in the clipped bin: the rows sorted
+        xs = x2[far].astype(np.int64)
+        twice[far] = np.rint(2 * np.median(xs, axis=-1)).astype(np.int64)
+        med_dev[far] = np.median(np.abs(2 * xs - twice[far][:, None]), axis=-1)
+    scale = np.maximum(MAD_TO_STD * 0.5 * med_dev, resolution(x2))
+    # |2x - M| > bound, bound the floor of 2 threshold scale, for an integer x: x beyond
+    # floor((M + bound)/2) or below ceil((M - bound)/2), compared in the record's own type
+    bound = np.minimum(np.floor(2 * threshold * scale), np.iinfo(np.int32).max)
+    bound = bound.astype(np.int64)
+    info = np.iinfo(x2.dtype)
+    hi = np.clip((twice + bound) // 2, info.min, info.max).astype(x2.dtype)[:, None]
+    lo_ = np.clip(-((bound - twice) // 2), info.min, info.max).astype(x2.dtype)[:, None]
+    out = (x2 > hi) | (x2 < lo_)
+    return choose(out, FAIL, GOOD)
 
 
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,

@@ -20,12 +20,14 @@ from flumekit.qc.despike import goring_nikora
 from flumekit.qc.fill import fill_gaps, gap_spans
 from flumekit.qc.flags import (
     FAIL,
+    FLAG_MEANINGS,
     FLAG_VALUES,
     GOOD,
     MISSING,
     NOT_EVALUATED,
     SUSPECT,
     aggregate,
+    choose,
     flag_attrs,
 )
 
@@ -76,10 +78,13 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     block = max(3, int(round(th.block * sampling_rate)))
     finite = np.isfinite(x)
     gap = np.broadcast_to(qartod.gap_test(time, sampling_rate, th.gap_tolerance), x.shape)
-    # uint8 scalars: the flags are built as bytes, not as int64 then cast
-    u8 = np.uint8
-    out = {"gap": np.where(finite, gap.astype(u8, copy=False), u8(MISSING)),
-           "gross_range": qartod.gross_range_test(x, gross_range)}
+    # built as bytes (flags.choose), not as int64 then cast; a gap-free time axis (the rule)
+    # makes the gap flags those of the missing samples
+    if (gap == GOOD).all():
+        gap = choose(finite, GOOD, MISSING)
+    else:
+        gap = np.where(finite, gap.astype(np.uint8, copy=False), np.uint8(MISSING))
+    out = {"gap": gap, "gross_range": qartod.gross_range_test(x, gross_range)}
     if despike:
         boundary = None
         if amplitude is not None:
@@ -97,7 +102,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         # a spike moves the derivatives of its two neighbours too, which GN then flags with it:
         # keep the samples whose departure from their neighbours' mean is the local largest
         spikes &= _local_peak(x, spikes)
-        g = np.where(finite, u8(GOOD), u8(MISSING))
+        g = choose(finite, GOOD, MISSING)
         if boundary is not None:
             g[boundary & finite] = NOT_EVALUATED
         g[spikes] = FAIL
@@ -201,3 +206,79 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
     """The runs of masked samples of ``name`` longer than the interpolation limit."""
     text = ds.attrs.get(f"{name}_unfilled_gaps", "")
     return [s for s in text.split("; ") if s]
+
+
+def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thresholds, *,
+               time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
+               ) -> xr.Dataset:
+    """QC flags of UVP beam velocities: the Goring-Nikora despiking and the echo-level test of
+    :func:`check_series`, per beam, over ``span`` only; samples outside are not evaluated (2).
+
+    The UVP average reads N waves of the quasi-steady part of the run and the filter's pad
+    either side (:mod:`flumekit.uvp.window`), so only those samples need checking: there the
+    flow is stationary, as the despiking's universal threshold assumes (the ramp-up and the
+    decay are not).
+
+    Parameters
+    ----------
+    beams : Beam name -> beam record (``beam_velocity`` [m s-1] and optionally ``amplitude``
+        on (time, channel) or (channel, time), ``time`` [s], attribute
+        ``velocity_resolution`` [m s-1]), as read from the ``.mfprof`` files.
+    span : (start, end) of the samples checked, on the probes' clock [s].
+    th : Thresholds (``despike_iterations``, ``dropout`` for the echo level, ``gap_tolerance``).
+    time_offset : Clock offset of the UVP: beam time + offset is on the probes' clock [s].
+    gross_range : [min, max] of the velocities [m s-1]; None: not evaluated.
+
+    Returns
+    -------
+    Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>) (each beam keeps its
+    own time axis: beams may differ in profile count), the samples per flag of each beam
+    (``beam_velocity_qc_count``), the failed fraction of the evaluated samples and the
+    ``evaluated_span``.
+    """
+    lo, hi = span
+    names = sorted(beams)
+    ds = xr.Dataset()
+    counts = []
+    for name in names:
+        b = beams[name]
+        t = b["time"].values
+        v = b["beam_velocity"].transpose("channel", "time").values
+        fs = (t.size - 1) / (t[-1] - t[0])
+        tc = t + float(time_offset)  # on the probes' clock
+        i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
+        f = np.full(v.shape, NOT_EVALUATED, dtype=np.uint8)
+        finite = np.isfinite(b["beam_velocity"].values)  # in the record's own layout
+        if not finite.all():
+            f[~finite.T if b["beam_velocity"].dims[0] == "time" else ~finite] = MISSING
+        if i1 - i0 >= 5:
+            amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
+                if "amplitude" in b else None
+            per = check_series(v[:, i0:i1], t[i0:i1], fs, th, gross_range=gross_range,
+                               despike=True, amplitude=amp,
+                               floor=float(b.attrs.get("velocity_resolution", 0.0)))
+            # the gross range, unset, evaluates nothing: it would not change the aggregate
+            f[:, i0:i1] = aggregate(*(v for k, v in per.items()
+                                      if k != "gross_range" or gross_range is not None))
+        counts.append(flag_counts(f.reshape(-1)))
+        tdim = f"time_{name}"
+        start = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
+        ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), f.view(np.int8),
+                                          flag_attrs(f"beam_velocity of beam {name}"))
+        ds = ds.assign_coords({tdim: (tdim, t, {"units": "s", "long_name": f"time of beam {name}",
+                                                **start})})
+    c = np.array(counts)
+    ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c,
+                                    {"units": "1", "long_name": "UVP samples per QC flag"})
+    ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
+                          flag_meaning=("flag_meaning", FLAG_MEANINGS.split(),
+                                        {"long_name": "QARTOD flag meaning"}))
+    evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
+    ds["beam_velocity_failed_fraction"] = (
+        ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
+        {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
+         "control"})
+    ds["evaluated_span"] = (("bound",), np.array([lo, hi]), {
+        "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
+        "the waves and the filter's pad (probes' clock)"})
+    return ds

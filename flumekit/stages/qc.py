@@ -1,19 +1,22 @@
 """Stage: quality control of every run's instrument records, before any analysis.
 
 Per run and instrument one rule reads the raw record, checks it against its metadata (dead or
-stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` (and the
-Goring-Nikora despiking for UVP velocities) and writes ``qc/<instrument>/<run>.nc``: the QC'd
-values (failed samples masked, short gaps interpolated), the per-sample QARTOD flags and the
-counts. The eta, flap and uvp stages read these instead of the raw files. The values as read
-are not repeated (the QC figure reads the raw files), and the probe and flap products are not
-deflated (:data:`COMPRESS`). The UVP is checked
-after the waves stage, over the quasi-steady part of the run that its average may read.
+stuck channels, the declared period), runs the QARTOD battery of :mod:`flumekit.qc` and writes
+``qc/<instrument>/<run>.nc``: the QC'd values (failed samples masked, short gaps interpolated),
+the per-sample QARTOD flags and the counts. The eta and flap stages read these instead of the
+raw files. The values as read are not repeated (the QC figure reads the raw files), and the
+probe and flap products are not deflated (:data:`COMPRESS`).
+
+The UVP beams are checked (Goring-Nikora despiking, echo level) by the rule that analyses them,
+before its analysis: :func:`check_beams`, called by the uvp rule, writes ``qc/uvp/<run>.nc``
+with the per-sample flags. Their analysis reads the beams whole, 18 MB a run: a rule of its own
+would read them twice and cost more than the QC itself (measured: ``flumekit bench qc``). The
+UVP is checked over the quasi-steady part of the run that its average may read.
 """
 
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
-from flumekit.stages import uvp as uvp_stage
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
@@ -58,6 +61,9 @@ WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings 
 #: probe and flap records, written once and read once by the next stage, whose float records of
 #: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
 COMPRESS = {"probes": False, "flap": False, "uvp": True}
+#: the [stages.qc] parameters of the UVP's quality control, which the uvp rules carry (they
+#: check the beams they read: :func:`check_beams`)
+UVP_PARAMS = ("despike_iterations", "dropout", "gap_tolerance", "max_gap", "velocity_range")
 
 
 def _reading(ctx: Context, run) -> dict:
@@ -102,18 +108,6 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                             inputs={"flap": run.file("flap")},
                             outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
                             params={**rp, **reading["flap"]}, version=VERSION, run=run.id))
-        if c.uvp is not None and run.kind == "uvp":
-            # the UVP is checked over the quasi-steady part of the waves (the waves stage's)
-            # and the filter's pad, the only samples the UVP average may read
-            out.append(Rule(f"qc/uvp/{run.id}", "flumekit.stages.qc:uvp",
-                            inputs={**{b.name: run.path / f"{b.name}.mfprof"
-                                       for b in c.uvp.beams},
-                                    "waves": ctx.out("waves", f"{run.id}.nc")},
-                            outputs={"dataset": ctx.out("qc", "uvp", f"{run.id}.nc")},
-                            params={**rp, "uvp_cutoff": ctx.stage_params(
-                                        "uvp", uvp_stage.DEFAULTS)["cutoff"],
-                                    "time_offset": run.clock.get("uvp", 0.0)},
-                            version=VERSION, run=run.id))
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
               for r in c.runs for kind in ("probes", "flap")
               if kind == "probes" or "flap" in c.instruments}
@@ -239,93 +233,21 @@ def flap(inputs, outputs, params) -> None:
            f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 
 
-def uvp(inputs, outputs, params) -> None:
-    """Goring-Nikora despiking of every beam over the quasi-steady part of the waves; the flags
-    (not the velocities) are written.
+def check_beams(beams: dict, span: tuple[float, float], params: dict, path, sources):
+    """Quality control of a run's UVP beams, called by its uvp rule on the beams it has read:
+    the flags of :func:`flumekit.qc.record.beam_flags` over ``span`` [s] with the [stages.qc]
+    parameters ``params["qc"]`` (:data:`UVP_PARAMS`), written to ``path``
+    (``qc/uvp/<run>.nc``); returns them, with attribute ``max_gap`` [s]."""
+    from flumekit.qc.record import Thresholds, beam_flags
 
-    The UVP average reads N waves of the quasi-steady part of the run and the filter's pad
-    either side (:mod:`flumekit.uvp.window`), so only those samples are checked: there the
-    flow is stationary, as the despiking's universal threshold assumes (the ramp-up and the
-    decay are not), and nothing else is read. Samples outside are not evaluated (flag 2).
-    """
-    import numpy as np
-    import xarray as xr
-
-    from flumekit.io.mfprof import read_mfprof
-    from flumekit.qc.flags import (
-        FAIL,
-        FLAG_MEANINGS,
-        FLAG_VALUES,
-        MISSING,
-        NOT_EVALUATED,
-        aggregate,
-        flag_attrs,
-    )
-    from flumekit.qc.record import Thresholds, check_series, flag_counts
-    from flumekit.stages.uvp import uvp_span
-    from flumekit.uvp.phase import default_pad
-
-    th = Thresholds.from_params(params)
-    # only what the span needs (the waves dataset also holds spectra and separated series)
-    with xr.open_dataset(inputs["waves"], engine="netcdf4", decode_times=False) as w:
-        waves = w[["eta", "amplitude_scale", "steady_tolerance", "measured_period"]].load()
-    try:
-        span = uvp_span(waves)
-    except ValueError as e:
-        from flumekit.errors import InputError
-
-        raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
-    # one period more on each side: the average starts on an up-crossing near the span's edge
-    margin = default_pad(params["uvp_cutoff"]) + float(waves["measured_period"])
-    lo, hi = span[0] - margin, span[1] + margin
-    flags, counts, names, starts = [], [], sorted(k for k in inputs if k != "waves"), {}
-    for name in names:
-        b = read_mfprof(inputs[name])
-        t = b["time"].values
-        v = b["beam_velocity"].transpose("channel", "time").values
-        fs = (t.size - 1) / (t[-1] - t[0])
-        tc = t + float(params.get("time_offset", 0.0))  # on the probes' clock
-        i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
-        f = np.where(np.isfinite(v), np.int8(NOT_EVALUATED), np.int8(MISSING))
-        if i1 - i0 >= 5:
-            amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
-                if "amplitude" in b else None
-            per = check_series(v[:, i0:i1], t[i0:i1], fs, th,
-                               gross_range=_span(params["velocity_range"]), despike=True,
-                               floor=float(b.attrs.get("velocity_resolution", 0.0)),
-                               amplitude=amp)
-            # the gross range, unset, evaluates nothing: it would not change the aggregate
-            f[:, i0:i1] = aggregate(*(v for k, v in per.items()
-                                      if k != "gross_range" or params["velocity_range"]))
-        flags.append(xr.DataArray(f, dims=("channel", "time"), coords={"time": t}))
-        starts[name] = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        counts.append(flag_counts(f.reshape(-1)))
-    ds = xr.Dataset()
-    for name, fl in zip(names, flags, strict=True):
-        # beams may differ in profile count: each beam keeps its own time axis
-        tdim = f"time_{name}"
-        ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), fl.values,
-                                          flag_attrs(f"beam_velocity of beam {name}"))
-        ds = ds.assign_coords({tdim: (tdim, fl["time"].values,
-                                      {"units": "s", "long_name": f"time of beam {name}",
-                                       **starts[name]})})
-    ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), np.array(counts),
-                                    {"units": "1", "long_name": "UVP samples per QC flag"})
-    ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
-                          flag_meaning=("flag_meaning", FLAG_MEANINGS.split(),
-                                        {"long_name": "QARTOD flag meaning"}))
-    c = np.array(counts)
-    evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
-    ds["beam_velocity_failed_fraction"] = (
-        ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
-        {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
-         "control"})
-    ds["evaluated_span"] = (("bound",), np.array([lo, hi]), {
-        "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
-        "the waves and the filter's pad (probes' clock)"})
-    _write(ds, outputs, params, "Quality-control flags of the UVP beam velocities",
-           "flumekit qc stage from " + ", ".join(str(inputs[n]) for n in names),
-           compress=COMPRESS["uvp"])
+    qc = params["qc"]
+    ds = beam_flags(beams, span, Thresholds.from_params(qc),
+                    time_offset=float(params.get("time_offset", 0.0)),
+                    gross_range=_span(qc["velocity_range"]))
+    _write(ds, {"dataset": path}, {**params, "max_gap": qc["max_gap"]},
+           "Quality-control flags of the UVP beam velocities",
+           "flumekit qc stage from " + ", ".join(map(str, sources)), compress=COMPRESS["uvp"])
+    return ds
 
 
 def summary(inputs, outputs, params) -> None:

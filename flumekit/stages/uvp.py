@@ -13,7 +13,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
-VERSION = "3"
+VERSION = "4"
 NEEDS = "uvp"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
@@ -31,18 +31,24 @@ DOCS = {
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
+    from flumekit.stages import qc as qc_stage
+
     c = ctx.campaign
     runs = [r for r in c.runs if r.kind == "uvp"]
+    qc_params = ctx.stage_params("qc", qc_stage.DEFAULTS)
+    qc = {k: qc_params[k] for k in qc_stage.UVP_PARAMS}
     out = []
     for run in runs:
         inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
         inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
-                      qc=ctx.out("qc", "uvp", f"{run.id}.nc"),
                       flap=ctx.out("flap", f"{run.id}.nc"))
-        p = {**params, **run_params(run), "time_offset": run.clock.get("uvp", 0.0)}
+        p = {**params, **run_params(run), "time_offset": run.clock.get("uvp", 0.0), "qc": qc}
+        # the rule checks the beams it reads before analysing them and writes their QC flags
+        # too (flumekit.stages.qc.check_beams)
         out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
-                        outputs={"dataset": ctx.out("uvp", f"{run.id}.nc")}, params=p,
-                        version=VERSION, run=run.id))
+                        outputs={"dataset": ctx.out("uvp", f"{run.id}.nc"),
+                                 "qc": ctx.out("qc", "uvp", f"{run.id}.nc")},
+                        params=p, version=VERSION, run=run.id))
     if runs:
         inputs = {r.id: ctx.out("uvp", f"{r.id}.nc") for r in runs}
         inputs["campaign"] = ctx.campaign_file
@@ -99,6 +105,17 @@ def uvp_span(waves) -> tuple[float, float]:
                        0.75 * float(waves.attrs["wave_period"]))
 
 
+def qc_span(span: tuple[float, float], period: float, cutoff: float) -> tuple[float, float]:
+    """The span of the UVP records quality-controlled [s]: the quasi-steady part of the waves
+    ``span`` (:func:`uvp_span`) and, on each side, the low-pass filter's pad and one period
+    [s] more (the average starts on an up-crossing near the span's edge): the only samples
+    the average may read."""
+    from flumekit.uvp.phase import default_pad
+
+    margin = default_pad(cutoff) + period
+    return span[0] - margin, span[1] + margin
+
+
 def flagged_profiles(qc, name: str, offset: float = 0.0):
     """The profiles of beam ``name`` at which most channels failed QC (or were missing)."""
     from flumekit.qc.flags import FAIL, MISSING
@@ -109,10 +126,12 @@ def flagged_profiles(qc, name: str, offset: float = 0.0):
     return Flagged(qc[f"time_{name}"].values + offset, bad)
 
 
-def averaging_window(waves, qc, theta, beams, params, pad: float) -> tuple[float, float]:
+def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
+                     ) -> tuple[float, float]:
     """(start, period) of the run's phase average (:func:`flumekit.uvp.window.averaging_start`):
-    N periods in the quasi-steady part of the waves with the UVP beams and the flap angle clean.
-    An error names the run, the instrument and its flagged span when there is none."""
+    N periods in the quasi-steady part of the waves (``span`` [s], default :func:`uvp_span`)
+    with the UVP beams and the flap angle clean. An error names the run, the instrument and its
+    flagged span when there is none."""
     import numpy as np
 
     from flumekit.errors import InputError
@@ -123,7 +142,7 @@ def averaging_window(waves, qc, theta, beams, params, pad: float) -> tuple[float
     records = {f"UVP beam {b}": flagged_profiles(qc, b, offset) for b in beams}
     records["flap angle"] = Flagged(theta["time"].values, ~np.isfinite(theta.values))
     try:
-        span = uvp_span(waves)
+        span = uvp_span(waves) if span is None else span
         start = averaging_start(ups, period, params["n_cycles"], pad, span, records,
                                 float(qc.attrs["max_gap"]), run=params["run"])
     except ValueError as e:
@@ -132,33 +151,42 @@ def averaging_window(waves, qc, theta, beams, params, pad: float) -> tuple[float
 
 
 def build(inputs, outputs, params) -> None:
+    """The run's beams read once, quality-controlled (:func:`flumekit.stages.qc.check_beams`,
+    which writes their flags), cleaned and phase-averaged."""
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
+    from flumekit.errors import InputError
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
+    from flumekit.stages.qc import check_beams
     from flumekit.uvp import phase_average_beams
     from flumekit.uvp.phase import default_pad
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
-    qc = read_dataset(inputs["qc"])
-    beams = {b.name: clean_beam(read_mfprof(inputs[b.name]), qc, b.name)
-             for b in campaign.uvp.beams}
+    names = [b.name for b in campaign.uvp.beams]
+    raw = {n: read_mfprof(inputs[n]) for n in names}
+    waves = read_dataset(inputs["waves"])
+    try:
+        span = uvp_span(waves)
+    except ValueError as e:
+        raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
+    qc = check_beams(raw, qc_span(span, float(waves["measured_period"]), params["cutoff"]),
+                     params, outputs["qc"], [inputs[n] for n in names])
+    beams = {n: clean_beam(raw[n], qc, n) for n in names}
     if params["time_offset"]:  # the run file's declared clock offset of the UVP [s]
         beams = {k: v.assign_coords(time=v["time"] + params["time_offset"])
                  for k, v in beams.items()}
     theta = read_dataset(inputs["flap"])["theta"]
-    start, period = averaging_window(read_dataset(inputs["waves"]), qc, theta,
-                                     {b.name: inputs[b.name] for b in campaign.uvp.beams},
-                                     params, default_pad(params["cutoff"]))
+    start, period = averaging_window(waves, qc, theta, {n: inputs[n] for n in names}, params,
+                                     default_pad(params["cutoff"]), span)
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
                              start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
                              cutoff=params["cutoff"], order=params["order"], theta=theta,
                              flap_thickness=campaign.flap.thickness, margin=params["margin"],
                              min_amplitude=params["min_amplitude"])
     write_run(ds, outputs, params, "Phase-averaged UVP beam velocities",
-              "flumekit uvp stage from "
-              + ", ".join(str(inputs[b.name]) for b in campaign.uvp.beams))
+              "flumekit uvp stage from " + ", ".join(str(inputs[n]) for n in names))
 
 
 def field(inputs, outputs, params) -> None:

@@ -80,14 +80,18 @@ def test_probe_fault_does_not_move_the_uvp_average(builds):
         assert same.mean() > 0.995
 
 
-def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds, tmp_path):
+def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds):
+    """The uvp rule's window of N waves with the beams clean, from their QC flags
+    (flumekit.stages.uvp.averaging_window, which the rule calls after checking the beams)."""
     from flumekit.campaign import load_campaign
+    from flumekit.io.netcdf import read_dataset
     from flumekit.qc.flags import FAIL
     from flumekit.stages import uvp as uvp_stage
+    from flumekit.uvp.phase import default_pad
 
     processed = builds["clean"]
     raw = processed.parents[1] / "raw" / "small"
-    qc = xr.load_dataset(processed / "qc" / "uvp" / f"{RUN}.nc", decode_times=False)
+    qc = read_dataset(processed / "qc" / "uvp" / f"{RUN}.nc")
     t = qc["time_UP2"].values
     # UP2 drops out (every channel fails) over 200-215 s: every window of 50 waves of the
     # quasi-steady part (from 123 s) holds it
@@ -95,17 +99,69 @@ def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds, tmp_pa
     flags[:, (t >= 200.0) & (t <= 215.0)] = FAIL
     qc["beam_velocity_qc_UP2"] = (qc["beam_velocity_qc_UP2"].dims, flags,
                                   qc["beam_velocity_qc_UP2"].attrs)
-    qc.to_netcdf(tmp_path / "qc.nc")
-    campaign = load_campaign(raw)
-    run = next(r for r in campaign.runs if r.id == RUN)
-    inputs = {b.name: run.path / f"{b.name}.mfprof" for b in campaign.uvp.beams}
-    inputs.update(campaign=raw / "campaign.toml", qc=tmp_path / "qc.nc",
-                  waves=processed / "waves" / f"{RUN}.nc", flap=processed / "flap" / f"{RUN}.nc")
-    params = {**uvp_stage.DEFAULTS, "run": RUN, "period": 3.5, "height": 0.25, "repeat": 0,
-              "uvp_elevation": 0.3, "kind": "uvp", "time_offset": 0.0}
+    run = next(r for r in load_campaign(raw).runs if r.id == RUN)
+    beams = {b: run.path / f"{b}.mfprof" for b in ("UP1", "UP2", "UP3")}
+    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0}
+    waves = read_dataset(processed / "waves" / f"{RUN}.nc")
+    theta = read_dataset(processed / "flap" / f"{RUN}.nc")["theta"]
+    # the clean flags leave a window
+    uvp_stage.averaging_window(waves, read_dataset(processed / "qc" / "uvp" / f"{RUN}.nc"),
+                               theta, beams, params, default_pad(params["cutoff"]))
     with pytest.raises(InputError) as e:
-        uvp_stage.build(inputs, {"dataset": tmp_path / "uvp.nc"}, params)
+        uvp_stage.averaging_window(waves, qc, theta, beams, params,
+                                   default_pad(params["cutoff"]))
     msg = str(e.value)
     assert RUN in msg and "UVP beam UP2" in msg and "flagged over 200.0" in msg
     assert "UP2.mfprof" in msg  # the file
-    assert not (tmp_path / "uvp.nc").exists()
+
+
+def test_uvp_rule_checks_the_beams_it_reads(builds):
+    """The uvp rule checks the beams it has read (flumekit.stages.qc.check_beams) instead of
+    reading the flags of a qc rule that read them too: its flag product is the Goring-Nikora
+    and echo-level flags of each beam over the evaluated span (the aggregate with the gap test,
+    not evaluated outside), and its phase average is the one computed from that product read
+    back, as the uvp rule computed it before (within 1e-12 relative; equal on this run)."""
+    from flumekit.campaign import load_campaign
+    from flumekit.io.mfprof import read_mfprof
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.qc.flags import NOT_EVALUATED, aggregate
+    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.stages import uvp as uvp_stage
+    from flumekit.uvp import phase_average_beams
+    from flumekit.uvp.phase import default_pad
+
+    processed = builds["clean"]
+    raw = processed.parents[1] / "raw" / "small"
+    campaign = load_campaign(raw)
+    run = next(r for r in campaign.runs if r.id == RUN)
+    qc = read_dataset(processed / "qc" / "uvp" / f"{RUN}.nc")
+    lo, hi = qc["evaluated_span"].values
+    beams = {b.name: read_mfprof(run.path / f"{b.name}.mfprof") for b in campaign.uvp.beams}
+    for name, b in beams.items():
+        t = b["time"].values
+        inside = (t >= lo) & (t <= hi)
+        v = b["beam_velocity"].transpose("channel", "time").values[:, inside]
+        a = b["amplitude"].transpose("channel", "time").values[:, inside]
+        per = check_series(v, t[inside], (t.size - 1) / (t[-1] - t[0]), Thresholds(),
+                           despike=True, floor=float(b.attrs["velocity_resolution"]),
+                           amplitude=a)
+        f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
+        np.testing.assert_array_equal(f[:, inside], aggregate(per["gap"], per["goring_nikora"]))
+        assert (f[:, ~inside] == NOT_EVALUATED).all()
+    # the analysis from the flag product read back
+    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0}
+    waves = read_dataset(processed / "waves" / f"{RUN}.nc")
+    theta = read_dataset(processed / "flap" / f"{RUN}.nc")["theta"]
+    start, period = uvp_stage.averaging_window(
+        waves, qc, theta, {b: run.path / f"{b}.mfprof" for b in beams}, params,
+        default_pad(params["cutoff"]))
+    ds = phase_average_beams({n: uvp_stage.clean_beam(b, qc, n) for n, b in beams.items()},
+                             campaign.uvp, run.uvp_elevation, period=period, start=start,
+                             n_cycles=params["n_cycles"], n_phase=params["n_phase"],
+                             cutoff=params["cutoff"], order=params["order"], theta=theta,
+                             flap_thickness=campaign.flap.thickness, margin=params["margin"],
+                             min_amplitude=params["min_amplitude"])
+    built = read_dataset(processed / "uvp" / f"{RUN}.nc")
+    for v in ("beam_velocity", "beam_velocity_std", "beam_velocity_ci"):
+        np.testing.assert_allclose(built[v].values, ds[v].values, rtol=1e-12, atol=0)
+    assert np.isfinite(built["beam_velocity"].values).any()
