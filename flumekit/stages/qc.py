@@ -28,7 +28,7 @@ DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None, "clock_tolerance": 0.05}
+            "velocity_range": None, "clock_tolerance": 0.1}
 DOCS = {
     "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
                      "x_n - (x_(n-1) + x_(n+1))/2 [-]",

@@ -62,7 +62,7 @@ ramps the flap), per unit incident amplitude
   With these θ reaches 0.08-0.19 rad for H = 0.15 m and 0.16-0.34 rad for H = 0.3 m over
   T = 2-4 s (the paper measured 0.19 rad at T = 3.5 s, H = 0.25 m), and C_f of the nonlinear
   PTO below is 0.075-0.16.
-* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 2.86e6) and I_p = 2.4e4 Pa s² rad⁻¹
+* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 3.0e6) and I_p = 2.4e4 Pa s² rad⁻¹
   (a water column of about 3 m in a 12 mm line behind the 50 mm bore: ρ L (A/a) |m| ≈ 2.4e4):
   the chamber reaches 0.65-4.8 bar in compression and cavitates on the suction stroke for the
   larger heights (with K_p = 1.0e6).
@@ -130,7 +130,7 @@ class FlapTruth:
     pto_damping: float = 500.0  # linear-equivalent PTO damping ν_pto [N m s]
     viscous_damping: float = 600.0  # linearised viscous losses ν_visc [N m s]
     excitation_phase: float = 0.0  # lag of the excitation torque behind η(x=0) [rad]
-    pressure_loss_coefficient: float = 2.86e6  # K_p [Pa s2 rad-2] (flume calibration)
+    pressure_loss_coefficient: float = 3.0e6  # K_p [Pa s2 rad-2] (flume calibration)
     fluid_inertia: float = 2.4e4  # I_p [Pa s2 rad-1]
     pressure_rated_output: float = 1.0e6  # sensor range [Pa]: the flume's chamber ~4.5 bar
     pressure_noise: float = 0.002  # noise std as a fraction of the rated output [-]

@@ -88,9 +88,17 @@ def test_raw_channels(record, campaign, model):
     truth = FlapTruth()
     assert np.std(noise) == pytest.approx(truth.pressure_noise * truth.pressure_rated_output,
                                           rel=0.05)
-    # the cavitation clamp is reached and never crossed (Eq. 14, sigma_c = 0)
+    # the cavitation clamp is reached and never crossed (Eq. 14, sigma_c = 0). In the flume
+    # the chamber's compliance (flumekit.synth.flume) holds a stored pressure that decays
+    # exponentially (tau_c ~ 0.1 s) into each cavitation, so the clamp is approached to within
+    # that tail: below 1e-4 of the clamp after the ~1 s of suction (e^-9 of ~0.5 bar)
     clamp = pto.vapour_pressure - pto.atmospheric_pressure
-    assert ds.chamber_pressure_true.min() == clamp and ds.cavitating.sum() > 0
+    p_min = float(ds.chamber_pressure_true.min())
+    assert ds.cavitating.sum() > 0
+    if model == "flume":
+        assert clamp <= p_min < clamp + 1e-4 * abs(clamp)
+    else:
+        assert p_min == clamp
     # the truth satisfies Eq. (11)
     lhs = ds.torque_hydrodynamic
     rhs = ds.torque_inertia + ds.torque_gravity + ds.torque_pressure + ds.torque_friction
@@ -302,20 +310,36 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
     assert held.sum() > 20
     assert np.all(ds.chamber_pressure_valve.values[held] == 0)
     assert np.all(ds.chamber_pressure_compliance.values[held] == 0)
-    # the compliance: K_p θ̇² of the compression stroke through a first-order lag of τ_c,
-    # exact update per 0.01 s step: p_l[n] - p_q[n] = (p_l[n-1] - p_q[n]) exp(-dt/τ_c), and
-    # p_l = 0 where the suction cavitates the chamber (K_p θ̇² ≥ P_atm - P_v)
-    p_q = np.where(s_c * w > 0, k_p * w**2, 0.0)
-    p_l = p_q + ds.chamber_pressure_compliance.values
+    # the compliance (synth/flume.py), recomputed here as a state recursion over the 0.01 s
+    # steps: the lag L follows p_q (K_p θ̇² plus the valve on the compression stroke, else 0)
+    # exactly, L[n] - p_q[n] = (L[n-1] - p_q[n]) exp(-dt/τ_c); the chamber pressure is
+    # P = max(p13 + valve + L - p_q, P_v) with p13 = s K_p θ̇|θ̇|, and when a cavity has
+    # collapsed L restarts so that P goes on from P_v
+    p_cav = pto.atmospheric_pressure - pto.vapour_pressure
+    p13u = s_c * k_p * w * np.abs(w)
+    valve = ds.chamber_pressure_valve.values
+    p_q = np.where(s_c * w > 0, k_p * w**2 + valve, 0.0)
+    p_q[held] = 0.0
     decay = np.exp(-0.01 / truth.losses.compliance_time)
-    empty = (s_c * w < 0) & (k_p * w**2 >= pto.atmospheric_pressure - pto.vapour_pressure)
-    assert empty.sum() > 100 and np.all(p_l[empty] == 0)
-    # the lag restarts from 0 once a cavity has collapsed
-    prev = np.where(held[:-1], 0.0, p_l[:-1])
-    free = ~(empty | held)[1:]
-    np.testing.assert_allclose((p_l[1:] - p_q[1:])[free], ((prev - p_q[1:]) * decay)[free],
-                               atol=1e-9 * np.max(p_l))
-    assert np.all(p_l >= 0)
+    lag, expected = 0.0, np.zeros(t.size)
+    for k in range(t.size):  # 6000 steps of a state recursion
+        if not held[k] and k and held[k - 1]:
+            lag = -p_cav - p13u[k] - valve[k] + p_q[k]
+        else:
+            lag = p_q[k] + (lag - p_q[k]) * decay
+        if not held[k]:
+            expected[k] = (max(p13u[k] + valve[k] + lag - p_q[k], -p_cav)
+                           - max(p13u[k], -p_cav) - valve[k])
+    np.testing.assert_allclose(ds.chamber_pressure_compliance.values, expected,
+                               atol=1e-9 * np.max(np.abs(p_q)))
+    # the chamber pressure is continuous through the cavity: at P_v on the step after each
+    # collapse (before the fix it restarted from the atmosphere, a step of ~0.9 bar)
+    chamber = (np.maximum(p13u, -p_cav) + valve + ds.chamber_pressure_compliance.values
+               + cavity)
+    after = np.flatnonzero(held[:-1] & ~held[1:]) + 1
+    assert after.size >= 8
+    np.testing.assert_allclose(chamber[after], -p_cav, atol=1e-6 * p_cav)
+    assert np.all(chamber >= -p_cav * (1 + 1e-12))
 
 
 def test_flume_vapour_cavity_holds_the_refill_deficit(campaign, hydrodynamics):
