@@ -252,8 +252,7 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
     """
     lo, hi = span
     names = sorted(beams)
-    ds = xr.Dataset()
-    counts = []
+    data, coords, counts = {}, {}, []
     for name in names:
         b = beams[name]
         t = b["time"].values
@@ -277,22 +276,22 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
         counts.append(flag_counts(f.reshape(-1)))
         tdim = f"time_{name}"
         start = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        ds[f"beam_velocity_qc_{name}"] = (("channel", tdim), f.view(np.int8),
-                                          flag_attrs(f"beam_velocity of beam {name}"))
-        ds = ds.assign_coords({tdim: (tdim, t, {"units": "s", "long_name": f"time of beam {name}",
-                                                **start})})
+        data[f"beam_velocity_qc_{name}"] = (("channel", tdim), f.view(np.int8),
+                                            flag_attrs(f"beam_velocity of beam {name}"))
+        coords[tdim] = (tdim, t, {"units": "s", "long_name": f"time of beam {name}", **start})
     c = np.array(counts)
-    ds["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c,
-                                    {"units": "1", "long_name": "UVP samples per QC flag"})
-    ds = ds.assign_coords(beam=("beam", names, {"long_name": "UVP transducer name"}),
-                          flag_meaning=("flag_meaning", FLAG_MEANINGS.split(),
-                                        {"long_name": "QARTOD flag meaning"}))
+    data["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c,
+                                      {"units": "1", "long_name": "UVP samples per QC flag"})
     evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
-    ds["beam_velocity_failed_fraction"] = (
+    data["beam_velocity_failed_fraction"] = (
         ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
         {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
          "control"})
-    ds["evaluated_span"] = (("bound",), np.array([lo, hi]), {
+    data["evaluated_span"] = (("bound",), np.array([lo, hi]), {
         "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
         "the waves and the filter's pad (probes' clock)"})
-    return ds
+    coords["beam"] = ("beam", names, {"long_name": "UVP transducer name"})
+    coords["flag_meaning"] = ("flag_meaning", FLAG_MEANINGS.split(),
+                              {"long_name": "QARTOD flag meaning"})
+    # built in one call: assigned variable by variable, each aligned and merged anew
+    return xr.Dataset(data, coords=coords)
