@@ -163,11 +163,11 @@ def _outside(w: np.ndarray, lam2: float, floor: np.ndarray) -> np.ndarray:
     sc1, sc2, whole = _centre(c)
     du = _central(c)  # (u_(i+1) - u_(i-1)) / 2, Eq. (6)
     d2 = _central(du)  # Eq. (7)
-    if whole.all():  # exact values: the telescoped sums are the sums
-        sdu, sd2 = _central_sum(c), _central_sum(du)
-    else:
-        sdu = du.sum(axis=-1, keepdims=True, dtype=np.float64)
-        sd2 = d2.sum(axis=-1, keepdims=True, dtype=np.float64)
+    # exact values (whole-number rows): the telescoped sums are the sums; the others summed
+    sdu, sd2 = _central_sum(c), _central_sum(du)
+    if not whole.all():
+        sdu[~whole] = du[~whole].sum(axis=-1, keepdims=True, dtype=np.float64)
+        sd2[~whole] = d2[~whole].sum(axis=-1, keepdims=True, dtype=np.float64)
     cd = c * d2
     du *= du  # Δu² from here on
     d2 *= d2  # (Δ²u)² from here on
