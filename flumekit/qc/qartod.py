@@ -343,10 +343,14 @@ def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
     # exact unless a count read was the clipped bin's (or, the quartiles in it, short)
     far = ~folded | (clipped & ((upper >= nb - 1) | ((twice + high) // 2 - lo >= nb - 1)
                                 | (within[:, -1] <= n // 2)))
-    if far.any():  # a median or deviation in the clipped bin, or not folded: the rows sorted
+    if far.any():  # not folded, or a count read in the clipped bin: the deviations' own
+        # histogram (sorted where even that is clipped), the median sorted where it was
         xs = x2[far].astype(np.int64)
-        twice[far] = np.rint(2 * np.median(xs, axis=-1)).astype(np.int64)
-        med_dev[far] = np.median(np.abs(2 * xs - twice[far][:, None]), axis=-1)
+        resort = clipped & (upper >= nb - 1)
+        if resort[far].any():
+            r = resort[far]
+            twice[far & resort] = np.rint(2 * np.median(xs[r], axis=-1)).astype(np.int64)
+        med_dev[far] = integer_median(np.abs(2 * xs - twice[far][:, None]))
     scale = np.maximum(MAD_TO_STD * 0.5 * med_dev, resolution(x2))
     # |2x - M| > bound, bound the floor of 2 threshold scale, for an integer x: x beyond
     # floor((M + bound)/2) or below ceil((M - bound)/2), compared in the record's own type
