@@ -168,3 +168,65 @@ def test_despiking_and_echo_level_per_channel_whatever_the_block(length):
     assert (level[7, 2000:2030] == F.FAIL).all()
     for r in (0, 7, 40, 69):
         np.testing.assert_array_equal(qartod.level_test(amp[[r]], 6.0)[0], level[r])
+
+
+def test_echo_level_and_integer_statistics_exact_against_sorting():
+    """The echo-level test reads the median and the median absolute deviation of integer
+    records from histograms (folded for the deviations, their own for rows whose quartiles lie
+    far apart, sorted where a value falls in a clipped bin): the flags and medians are those of
+    the definition computed by sorting (np.median), on records of every kind that reaches a
+    different path: small ranges, wide ranges (clipped bins), an echo over half the record,
+    coarse steps."""
+    rng = np.random.default_rng(12)
+
+    def by_sorting(x, threshold):
+        med = np.median(x, axis=-1)
+        dev2 = np.abs(2 * x.astype(np.int64) - np.rint(2 * med).astype(np.int64)[:, None])
+        steps = np.abs(np.diff(x.astype(np.int64), axis=-1))
+        res = np.where(steps > 0, steps, np.iinfo(np.int64).max).min(axis=-1)
+        res = np.where(res == np.iinfo(np.int64).max, 0, res)
+        scale = np.maximum(qartod.MAD_TO_STD * 0.5 * np.median(dev2, axis=-1), res)
+        bound = np.floor(2 * threshold * scale)[:, None]
+        return np.where(dev2 > bound, F.FAIL, F.GOOD)
+
+    for kind in range(5):
+        m, n = 40, 301 + kind
+        if kind == 0:
+            x = rng.integers(-5, 5, (m, n))
+        elif kind == 1:  # echo amplitudes with a boundary echo
+            x = (300 + 40 * rng.standard_normal((m, n))).astype(np.int16)
+            x[3, 100:130] = 2900
+        elif kind == 2:  # wider than the histogram's bins
+            x = rng.integers(0, 9000, (m, n)).astype(np.int16)
+        elif kind == 3:  # the echo over half the record
+            x = (300 + 10 * rng.standard_normal((m, n))).astype(np.int16)
+            x[:, : n // 2 + 1] += 3000
+        else:  # coarse steps and a far mode
+            x = (rng.integers(0, 3, (m, n)) * 8 + rng.choice([0, 2000], (m, n), p=[.7, .3]))
+            x = x.astype(np.int32)
+        for threshold in (6.0, 1.0):
+            np.testing.assert_array_equal(qartod.level_test(x, threshold),
+                                          by_sorting(x, threshold))
+        np.testing.assert_array_equal(qartod.robust_median(x), np.median(x, axis=-1))
+        med, total, squares = qartod.integer_moments(x)
+        np.testing.assert_array_equal(total, x.astype(np.int64).sum(axis=-1))
+        np.testing.assert_array_equal(squares, (x.astype(np.int64) ** 2).sum(axis=-1))
+
+
+def test_runs_of_sparse_and_dense_masks():
+    """runs() finds the same runs from a sparse mask's indices as from its edges."""
+    from flumekit.qc import fill
+
+    rng = np.random.default_rng(5)
+    for density in (0.003, 0.01, 0.3, 0.9):
+        mask = rng.random((7, 500)) < density
+        mask[2, -3:] = True  # a run at a row's end, next to one at the next row's start
+        mask[3, :2] = True
+        row, first, length = fill.runs(mask)
+        rebuilt = np.zeros_like(mask)
+        for r, a, k in zip(row, first, length, strict=True):
+            assert not rebuilt[r, a:a + k].any() and mask[r, a:a + k].all()
+            rebuilt[r, a:a + k] = True
+            assert a == 0 or not mask[r, a - 1]
+            assert a + k == mask.shape[1] or not mask[r, a + k]
+        np.testing.assert_array_equal(rebuilt, mask)
