@@ -114,7 +114,9 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
               if kind == "probes" or "flap" in c.instruments}
     out.append(Rule("qc_summary", "flumekit.stages.qc:summary", inputs=inputs,
                     outputs={"dataset": ctx.out("qc_summary.nc")},
-                    params={"clock_tolerance": params["clock_tolerance"]}, version=VERSION))
+                    params={"clock_tolerance": params["clock_tolerance"],
+                            "conditions": {r.id: [r.period, r.height] for r in c.runs}},
+                    version=VERSION))
     return out
 
 
@@ -130,7 +132,7 @@ def figure_inputs(ctx: Context, run) -> tuple[dict, dict]:
         inputs[f"{kind}_raw"] = run.file(kind)
     if c.uvp is not None and run.kind == "uvp":
         inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
-    return inputs, {"reading": reading}
+    return inputs, {"reading": reading, "run": run.id}
 
 
 def figure_data(inputs: dict, params: dict) -> dict:
@@ -138,8 +140,11 @@ def figure_data(inputs: dict, params: dict) -> dict:
     instrument readers."""
     from flumekit.io.netcdf import read_dataset
 
-    return {k: (read_raw(k.removesuffix("_raw"), v, params["reading"][k.removesuffix("_raw")])
+    data = {k: (read_raw(k.removesuffix("_raw"), v, params["reading"][k.removesuffix("_raw")])
                 if k.endswith("_raw") else read_dataset(v)) for k, v in inputs.items()}
+    # the products carry no run coordinate: the figure names its run from the rule's
+    data["probes"] = data["probes"].assign_coords(run=params["run"])
+    return data
 
 
 def _span(value):
@@ -152,7 +157,9 @@ def _write(ds, outputs, params, title, source, warnings=(), compress=True):
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
     ds.attrs["max_gap"] = float(params["max_gap"])
-    write_run(ds, outputs, params, title, source, compress=compress)
+    # no run coordinates: qc_summary stacks its own counts, and the rule's title and
+    # parameters name the run (3 ms a product: a tenth of a probe or flap QC rule)
+    write_run(ds, outputs, params, title, source, compress=compress, coords=False)
 
 
 def _stuck(ds, name, path, max_gap):
@@ -283,11 +290,11 @@ def summary(inputs, outputs, params) -> None:
         if f"flap/{run}" in inputs:
             f = read_dataset(inputs[f"flap/{run}"])
             near = p[name].isel(probe=int(np.argmin(np.abs(p["x"].values))))
-            period = float(p["wave_period"])
+            period, height = params["conditions"][run]  # the run's wave condition [s, m]
             lags.append(probe_flap_lag(near.values, p["time"].values,
                                        f["encoder_counts"].values, f["time"].values, period))
             periods.append(period)
-            heights.append(float(p["wave_height"]))
+            heights.append(height)
             row.update({f"{k}_qc_count": counts(f[f"{k}_qc"], k)
                         for k in ("encoder_counts", "chamber_pressure")})
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]

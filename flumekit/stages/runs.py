@@ -22,16 +22,20 @@ def run_coords(params: dict) -> dict:
 
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
-              compress: bool = True) -> None:
+              compress: bool = True, coords: bool = True) -> None:
     """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
     and the start of its time axis: the one its record carries (from the raw file, through
     every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
     domain function made it from plain numbers), else the one run.toml declares (``start``).
-    ``compress``: as :func:`flumekit.io.netcdf.write_dataset`."""
+    ``compress``: as :func:`flumekit.io.netcdf.write_dataset`. ``coords=False``: no run
+    coordinates (a product that no summary stacks along ``run``; each variable costs 0.5-1 ms
+    to write, and its title and parameters name the run)."""
     from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
-    ds = ds.assign_coords({k: v for k, v in run_coords(params).items() if k not in ds.coords})
+    if coords:
+        ds = ds.assign_coords({k: v for k, v in run_coords(params).items()
+                               if k not in ds.coords})
     carried = None if record is None else conventions.record_start(record)
     if carried and "time" in ds.coords and conventions.record_start(ds) is None:
         ds = ds.copy()

@@ -72,7 +72,10 @@ def test_offset_of_a_single_run_condition_is_found_from_the_neighbouring_conditi
                       {**_params(t_wave, h, name), "sampling_rate": 100.0})
         inputs[f"probes/{name}"], inputs[f"flap/{name}"] = out_p, out_f
     summary = tmp_path / "summary.nc"
-    qc_stage.summary(inputs, {"dataset": summary}, {"clock_tolerance": 0.05})
+    # the wave condition of each run, as the qc_summary rule passes it from the campaign
+    conditions = {f"T{t:.2f}_H{h:.3f}_r0": [t, h] for t, h in CONDITIONS}
+    qc_stage.summary(inputs, {"dataset": summary},
+                     {"clock_tolerance": 0.05, "conditions": conditions})
     with xr.open_dataset(summary) as s:
         dep = dict(zip(s.run.values.tolist(), s.clock_departure.values.tolist(), strict=True))
         warned = s.attrs.get("flumekit_warnings", "")
