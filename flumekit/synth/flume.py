@@ -258,7 +258,9 @@ class ExtraTorque:
             so = s * om  # compression rate [rad s-1]
             p_k = p_c = p_v = 0.0
             p13u = k_p * so * abs(om)  # Eq. (13)'s K_p pressure [Pa]
-            p13 = p13u if p13u > -p_cav else -p_cav  # as the simulator clamps it
+            # clamped at P_v as the simulator clamps it, there with I_p θ̈ added, which this
+            # term does not see (at H = 0.3 m the two clamps part for a sample or two)
+            p13 = p13u if p13u > -p_cav else -p_cav
             dd = -so - w_refill  # > 0: the suction outruns the refill
             # the chamber holds the compression stroke's resistances (K_p θ̇² and the valve)
             # through the compliance's first-order lag (module notes); a cavity holds nothing
