@@ -260,7 +260,20 @@ def integer_median(x: np.ndarray) -> np.ndarray:
     of the values of ranks (n - 1) // 2 and n // 2. The histogram spans ``_BINS`` values from
     the row's minimum, the rest counted in the last bin, which is exact unless a median falls
     there (a row with half its values that far up: sorted instead)."""
-    return integer_moments(x)[0]
+    lo, cum, clipped = _cumulative_histogram(x)
+    return _histogram_median(x, lo, cum, clipped)
+
+
+def _histogram_median(x, lo, cum, clipped) -> np.ndarray:
+    """:func:`integer_median` from the rows' cumulative histogram (:func:`_cumulative_histogram`
+    of ``x``)."""
+    n = x.shape[-1]
+    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
+    med = lo + 0.5 * (lower + upper)
+    far = clipped & (upper >= cum.shape[-1] - 1)
+    if far.any():
+        med[far] = np.median(x[far], axis=-1)
+    return med
 
 
 def integer_moments(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -268,11 +281,7 @@ def integer_moments(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     from one histogram per row (:func:`integer_median`); the sums as float64."""
     n = x.shape[-1]
     lo, cum, clipped = _cumulative_histogram(x)
-    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
-    med = lo + 0.5 * (lower + upper)
-    far = clipped & (upper >= cum.shape[-1] - 1)
-    if far.any():
-        med[far] = np.median(x[far], axis=-1)
+    med = _histogram_median(x, lo, cum, clipped)
     count = np.diff(cum, axis=-1, prepend=0)
     offset = np.arange(cum.shape[-1])
     # sums about each row's minimum (small numbers), then shifted: exact in float64

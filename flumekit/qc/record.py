@@ -271,8 +271,8 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
                                despike=True, amplitude=amp,
                                floor=float(b.attrs.get("velocity_resolution", 0.0)))
             # the gross range, unset, evaluates nothing: it would not change the aggregate
-            f[:, i0:i1] = aggregate(*(v for k, v in per.items()
-                                      if k != "gross_range" or gross_range is not None))
+            f[:, i0:i1] = aggregate(*(flags for test, flags in per.items()
+                                      if test != "gross_range" or gross_range is not None))
         counts.append(flag_counts(f.reshape(-1)))
         tdim = f"time_{name}"
         start = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
