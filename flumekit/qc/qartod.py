@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.qc.blocks import by_rows
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT, choose
 
@@ -209,13 +208,7 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
 
 def robust_median(x: np.ndarray) -> np.ndarray:
     """Median along the last axis ignoring NaN, vectorised over the other axes (numpy's
-    ``nanmedian`` loops over rows in Python for long rows); NaN where a row has no value.
-    Integer records (echo amplitudes, counts) of a modest range take an exact O(n) path: the
-    per-row histogram of the values."""
-    x = np.asarray(x)
-    if x.dtype.kind in "iu" and x.size:
-        x2 = x.reshape(-1, x.shape[-1])
-        return integer_median(x2).reshape(x.shape[:-1])
+    ``nanmedian`` loops over rows in Python for long rows); NaN where a row has no value."""
     x = np.asarray(x, dtype=float)
     nan = np.isnan(x)
     if not nan.any():
@@ -227,89 +220,23 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     return np.where(k > 0, 0.5 * (lo + hi), np.nan)
 
 
-#: bins of the histogram median; values beyond the last fall in it (a median there is recomputed)
-_BINS = 4096
-
-
-def _cumulative_histogram(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
-    """(lo, cum, clipped) of the integer (m, n) array ``x``: each row's minimum, the cumulative
-    counts of its values lo, lo + 1, ... (one bin each, at most ``_BINS``; larger values are
-    counted in the last bin, then ``clipped``), from one ``bincount`` of the whole block."""
-    m = x.shape[0]
-    lo = x.min(axis=-1).astype(np.int64)
-    span = int((x.max(axis=-1) - lo).max()) + 1
-    nb = min(span, _BINS)
-    idx = x.astype(np.intp)
-    if span > nb:
-        idx -= lo[:, None]
-        np.minimum(idx, nb - 1, out=idx)
-        idx += (np.arange(m, dtype=np.intp) * nb)[:, None]
-    else:  # every value has its bin: one pass fewer
-        idx -= (lo - np.arange(m, dtype=np.int64) * nb)[:, None]
-    cum = np.cumsum(np.bincount(idx.ravel(), minlength=m * nb).reshape(m, nb), axis=-1)
-    return lo, cum, span > nb
-
-
-def _rank(cum: np.ndarray, r) -> np.ndarray:
-    """Bin of the value of rank ``r`` (0-based, per row or scalar) of cumulative counts."""
-    return np.argmax(cum > np.reshape(r, (-1, 1)), axis=-1)
-
-
-def integer_median(x: np.ndarray) -> np.ndarray:
-    """Exact median of each row of the integer (m, n) array ``x`` from its histogram: the mean
-    of the values of ranks (n - 1) // 2 and n // 2. The histogram spans ``_BINS`` values from
-    the row's minimum, the rest counted in the last bin, which is exact unless a median falls
-    there (a row with half its values that far up: sorted instead)."""
-    lo, cum, clipped = _cumulative_histogram(x)
-    return _histogram_median(x, lo, cum, clipped)
-
-
-def _histogram_median(x, lo, cum, clipped) -> np.ndarray:
-    """:func:`integer_median` from the rows' cumulative histogram (:func:`_cumulative_histogram`
-    of ``x``)."""
-    n = x.shape[-1]
-    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
-    med = lo + 0.5 * (lower + upper)
-    far = clipped & (upper >= cum.shape[-1] - 1)
-    if far.any():
-        med[far] = np.median(x[far], axis=-1)
-    return med
-
-
-def integer_moments(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(median, sum, sum of squares) of each row of the integer (m, n) array ``x``, exact,
-    from one histogram per row (:func:`integer_median`); the sums as float64."""
-    n = x.shape[-1]
-    lo, cum, clipped = _cumulative_histogram(x)
-    med = _histogram_median(x, lo, cum, clipped)
-    count = np.diff(cum, axis=-1, prepend=0)
-    offset = np.arange(cum.shape[-1])
-    # sums about each row's minimum (small numbers), then shifted: exact in float64
-    s1 = (count * offset).sum(axis=-1).astype(float)
-    s2 = (count * offset * offset).sum(axis=-1).astype(float)
-    lo_f = lo.astype(float)
-    total, squares = s1 + n * lo_f, s2 + 2 * lo_f * s1 + n * lo_f * lo_f
-    if clipped:  # the last bin holds every value from there up: those rows summed directly
-        rows = np.flatnonzero(x.max(axis=-1) - lo >= cum.shape[-1])
-        xs = x[rows].astype(np.int64)
-        total[rows], squares[rows] = xs.sum(axis=-1), (xs * xs).sum(axis=-1)
-    return med, total, squares
-
-
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """FAIL where |x - median(x)| exceeds ``threshold`` robust standard deviations of x over
     the record (1.4826 MAD, at least the channel's resolution), per channel along the last
-    axis: the level form of :func:`dropout_test`."""
+    axis: the level form of :func:`dropout_test`. Integer records (echo amplitudes) are tested
+    exactly, compiled (:func:`flumekit.qc.kernels.level_fail_rows`)."""
     x = np.asarray(x)
     shape = x.shape
-    # per channel: a few channels at a time (flumekit.qc.blocks)
-    return by_rows(lambda b: _level(b, threshold), x.reshape(-1, shape[-1])).reshape(shape)
+    x2 = x.reshape(-1, shape[-1])
+    if x.dtype.kind in "iu" and x.size:
+        from flumekit.qc.kernels import level_fail_rows
+
+        return choose(level_fail_rows(x2, float(threshold)), FAIL, GOOD).reshape(shape)
+    return _level(x2, threshold).reshape(shape)
 
 
 def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
-    """:func:`level_test` of the (channel, time) block ``x2``."""
-    if x2.dtype.kind in "iu" and x2.size:
-        return _level_integer(x2, threshold)
+    """:func:`level_test` of the (channel, time) block ``x2`` of real numbers."""
     med = robust_median(x2)[:, None]
     x2 = x2.astype(float)
     f = _empty_flags(x2)
@@ -318,58 +245,6 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     with np.errstate(invalid="ignore"):
         f[(dev > threshold * scale) & (f != MISSING)] = FAIL
     return f
-
-
-#: longest fold of the cumulative counts in :func:`_level_integer` [half steps]
-_FOLD = 256
-
-
-def _level_integer(x2: np.ndarray, threshold: float) -> np.ndarray:
-    """:func:`level_test` of an integer block, exact, from one histogram per row: the median
-    M/2 and the median absolute deviation, whose counts |2x - M| <= d are those of the values
-    between (M - d)/2 and (M + d)/2, read from the cumulative histogram (no second pass over
-    the deviations)."""
-    m, n = x2.shape
-    lo, cum, clipped = _cumulative_histogram(x2)
-    nb = cum.shape[-1]
-    lower, upper = _rank(cum, (n - 1) // 2), _rank(cum, n // 2)
-    twice = 2 * lo + lower + upper  # twice the median, M
-    # the deviations' median is at most the larger distance from the median to a quartile
-    # (the quartiles hold half the values between them), in half steps: d up to that; a row
-    # whose quartiles lie far apart (an echo present a quarter of the time or more) is sorted
-    # instead (below), so the few such rows do not make every row's fold long
-    q1, q3 = lo + _rank(cum, (n - 1) // 4), lo + _rank(cum, (3 * n) // 4)
-    reach = np.maximum(twice - 2 * q1, 2 * q3 - twice) + 2
-    folded = reach <= _FOLD
-    d = np.arange(int(reach[folded].max()) + 1 if folded.any() else 1)
-    # cumulative counts padded: below the minimum 0, beyond the last bin n
-    pad = np.concatenate([np.zeros((m, 1), cum.dtype), cum], axis=-1)
-    top = np.minimum((twice[:, None] + d) // 2 - lo[:, None], nb - 1) + 1
-    bottom = np.maximum(-((d - twice[:, None]) // 2) - 1 - lo[:, None], -1) + 1
-    within = np.take_along_axis(pad, top, -1) - np.take_along_axis(pad, bottom, -1)
-    high = _rank(within, n // 2)
-    med_dev = 0.5 * (_rank(within, (n - 1) // 2) + high)  # the median of |2x - M|
-    # exact unless a count read was the clipped bin's (or, the quartiles in it, short)
-    far = ~folded | (clipped & ((upper >= nb - 1) | ((twice + high) // 2 - lo >= nb - 1)
-                                | (within[:, -1] <= n // 2)))
-    if far.any():  # not folded, or a count read in the clipped bin: the deviations' own
-        # histogram (sorted where even that is clipped), the median sorted where it was
-        xs = x2[far].astype(np.int64)
-        resort = clipped & (upper >= nb - 1)
-        if resort[far].any():
-            r = resort[far]
-            twice[far & resort] = np.rint(2 * np.median(xs[r], axis=-1)).astype(np.int64)
-        med_dev[far] = integer_median(np.abs(2 * xs - twice[far][:, None]))
-    scale = np.maximum(MAD_TO_STD * 0.5 * med_dev, resolution(x2))
-    # |2x - M| > bound, bound the floor of 2 threshold scale, for an integer x: x beyond
-    # floor((M + bound)/2) or below ceil((M - bound)/2), compared in the record's own type
-    bound = np.minimum(np.floor(2 * threshold * scale), np.iinfo(np.int32).max)
-    bound = bound.astype(np.int64)
-    info = np.iinfo(x2.dtype)
-    hi = np.clip((twice + bound) // 2, info.min, info.max).astype(x2.dtype)[:, None]
-    lo_ = np.clip(-((bound - twice) // 2), info.min, info.max).astype(x2.dtype)[:, None]
-    out = (x2 > hi) | (x2 < lo_)
-    return choose(out, FAIL, GOOD)
 
 
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,

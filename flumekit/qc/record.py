@@ -73,8 +73,8 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     see a solid boundary, such as the flap crossing the channel, not the fluid; they are not
     evaluated (2) and do not enter the despiking statistics.
     """
-    # time contiguous: every test runs along it (the despiking copies a few channels at a time
-    # itself, flumekit.qc.blocks)
+    # time contiguous: every test runs along it (the despiking copies each channel itself,
+    # flumekit.qc.kernels)
     x = np.asarray(x, dtype=float) if despike else np.ascontiguousarray(x, dtype=float)
     block = max(3, int(round(th.block * sampling_rate)))
     finite = np.isfinite(x)

@@ -172,11 +172,11 @@ def test_despiking_and_echo_level_per_channel_whatever_the_block(length):
 
 def test_echo_level_and_integer_statistics_exact_against_sorting():
     """The echo-level test reads the median and the median absolute deviation of integer
-    records from histograms (folded for the deviations, their own for rows whose quartiles lie
-    far apart, sorted where a value falls in a clipped bin): the flags and medians are those of
-    the definition computed by sorting (np.median), on records of every kind that reaches a
-    different path: small ranges, wide ranges (clipped bins), an echo over half the record,
-    coarse steps."""
+    records from histograms (the deviations' from the values'), and sorts rows spanning more
+    values than the histogram has bins (flumekit.qc.kernels): the flags and medians are those
+    of the definition computed by sorting (np.median), on records of every kind that reaches
+    a different path: small ranges, wide ranges, an echo over half the record, coarse steps,
+    a span beyond the bins, a transposed (strided) layout."""
     rng = np.random.default_rng(12)
 
     def by_sorting(x, threshold):
@@ -189,28 +189,27 @@ def test_echo_level_and_integer_statistics_exact_against_sorting():
         bound = np.floor(2 * threshold * scale)[:, None]
         return np.where(dev2 > bound, F.FAIL, F.GOOD)
 
-    for kind in range(5):
+    for kind in range(6):
         m, n = 40, 301 + kind
         if kind == 0:
             x = rng.integers(-5, 5, (m, n))
         elif kind == 1:  # echo amplitudes with a boundary echo
             x = (300 + 40 * rng.standard_normal((m, n))).astype(np.int16)
             x[3, 100:130] = 2900
-        elif kind == 2:  # wider than the histogram's bins
+        elif kind == 2:  # a wide range
             x = rng.integers(0, 9000, (m, n)).astype(np.int16)
         elif kind == 3:  # the echo over half the record
             x = (300 + 10 * rng.standard_normal((m, n))).astype(np.int16)
             x[:, : n // 2 + 1] += 3000
-        else:  # coarse steps and a far mode
+        elif kind == 4:  # coarse steps and a far mode
             x = (rng.integers(0, 3, (m, n)) * 8 + rng.choice([0, 2000], (m, n), p=[.7, .3]))
             x = x.astype(np.int32)
+        else:  # counts spanning more values than the histogram's bins (sorted), transposed
+            x = np.ascontiguousarray(rng.integers(-60000, 60000, (n, m)).astype(np.int32)).T
         for threshold in (6.0, 1.0):
             np.testing.assert_array_equal(qartod.level_test(x, threshold),
                                           by_sorting(x, threshold))
         np.testing.assert_array_equal(qartod.robust_median(x), np.median(x, axis=-1))
-        med, total, squares = qartod.integer_moments(x)
-        np.testing.assert_array_equal(total, x.astype(np.int64).sum(axis=-1))
-        np.testing.assert_array_equal(squares, (x.astype(np.int64) ** 2).sum(axis=-1))
 
 
 def test_runs_of_sparse_and_dense_masks():
@@ -230,3 +229,73 @@ def test_runs_of_sparse_and_dense_masks():
             assert a == 0 or not mask[r, a - 1]
             assert a + k == mask.shape[1] or not mask[r, a + k]
         np.testing.assert_array_equal(rebuilt, mask)
+
+
+def _goring_nikora_by_definition(u, floor, lam2, iterations, valid):
+    """Goring and Nikora (2002) on one channel, written from the paper with numpy: the
+    fluctuation about the median, np.gradient for Δu and Δ²u (Eqs. 6-7), the three ellipses
+    with the third rotated by θ (Eq. 9) in rotated coordinates, its axes from Eqs. (10)-(11);
+    spikes and invalid samples replaced by linear interpolation (ends held) between
+    iterations."""
+    t = np.arange(u.size)
+    unit = floor if floor > 0 else 1.0
+    ok = valid.copy()
+    spikes = np.zeros(u.size, dtype=bool)
+
+    def var(a):
+        return max(np.mean(a * a) - np.mean(a) ** 2, (floor / unit) ** 2)
+
+    for _ in range(iterations):
+        w = np.interp(t, t[ok], u[ok] / unit)
+        if np.all(np.abs(w - np.rint(w)) <= 1e-6):
+            w = np.rint(w)
+        c = w - np.median(w)
+        du = np.gradient(c)
+        d2 = np.gradient(du)
+        theta = np.arctan2(np.sum(c * d2), np.sum(c * c))
+        a1, b1 = lam2 * var(c), lam2 * var(d2)
+        cos2, sin2 = np.cos(theta) ** 2, np.sin(theta) ** 2
+        a2 = (a1 * cos2 - b1 * sin2) / (cos2 - sin2)
+        b2 = (b1 * cos2 - a1 * sin2) / (cos2 - sin2)
+        if not (a2 > 0 and b2 > 0):
+            a2, b2 = a1, b1
+        xr = c * np.cos(theta) + d2 * np.sin(theta)
+        yr = -c * np.sin(theta) + d2 * np.cos(theta)
+        out = ((c ** 2 / a1 + du ** 2 / (lam2 * var(du)) > 1)
+               | (d2 ** 2 / b1 + du ** 2 / (lam2 * var(du)) > 1)
+               | (xr ** 2 / a2 + yr ** 2 / b2 > 1))
+        new = out & ok
+        if not new.any():
+            break
+        spikes |= new
+        ok &= ~new
+    return spikes
+
+
+@pytest.mark.parametrize("quantised", [True, False])
+def test_goring_nikora_equals_its_definition(quantised):
+    """The compiled despiking (flumekit.qc.kernels) flags what the paper's definition, written
+    independently above, flags: sample for sample, with spikes, missing and excluded samples,
+    one and several iterations, quantised (whole numbers in units of the floor: the
+    histogram median) and continuous records, in a transposed (strided) layout."""
+    rng = np.random.default_rng(21)
+    m, n = 24, 2901
+    t = np.arange(n) / 11.6
+    u = 0.3 * np.sin(2 * np.pi * t / 3.5)[None, :] + 0.02 * rng.standard_normal((m, n))
+    idx = rng.choice(u.size, 200, replace=False)
+    u.flat[idx] += rng.choice([-1, 1], 200) * rng.uniform(0.1, 0.3, 200)
+    floor = 0.0073
+    if quantised:
+        u = np.round(u / floor) * floor
+    u[3, 500:520] = np.nan
+    exclude = np.zeros(u.shape, dtype=bool)
+    exclude[7, 1000:1010] = True
+    u = np.ascontiguousarray(u.T).T  # stored profile by profile, as a UVP beam
+    valid = np.isfinite(u) & ~exclude
+    lam2 = 2 * np.log(valid.sum(axis=-1).max())
+    for iterations in (1, 4):
+        got = goring_nikora(u, floor=floor, max_iterations=iterations, exclude=exclude)
+        want = np.array([_goring_nikora_by_definition(u[r], floor, lam2, iterations, valid[r])
+                         for r in range(m)])
+        assert want.sum() >= 200  # the spikes are found (and some of their neighbours)
+        np.testing.assert_array_equal(got, want)
