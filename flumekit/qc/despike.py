@@ -42,11 +42,41 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     valid = np.isfinite(u)
     if exclude is not None:
         valid &= ~np.asarray(exclude, dtype=bool).reshape(u.shape)
-    n = int(np.count_nonzero(valid, axis=-1).max()) if u.size else 0
-    if n < 5:
+    lam2 = _universal(valid)
+    if not lam2:
         return np.zeros(shape, dtype=bool)
-    lam2 = 2.0 * np.log(n)  # squared universal threshold, Eq. (2)
-    floor = np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1), (u.shape[0],))
     # every statistic is per channel (λ aside, from the longest record): channel by channel
-    return goring_nikora_rows(u, valid, np.ascontiguousarray(floor), lam2,
+    return goring_nikora_rows(u, valid, _floors(floor, u.shape[0]), lam2,
                               int(max_iterations)).reshape(shape)
+
+
+def _universal(valid: np.ndarray) -> float:
+    """λ² = 2 ln n of the longest record of valid samples (Eq. 2), the same for every
+    channel; 0 when it is shorter than 5 samples."""
+    n = valid.shape[-1] if valid.all() else int(np.count_nonzero(valid, axis=-1).max())
+    return 2.0 * np.log(n) if n >= 5 else 0.0
+
+
+def _floors(floor, m: int) -> np.ndarray:
+    """The floor of each of ``m`` channels, from one or one per channel [m s-1]."""
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1),
+                                                (m,)))
+
+
+def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 1,
+                  valid: np.ndarray | None = None) -> np.ndarray:
+    """QARTOD flags of the despiking (:func:`goring_nikora`) of velocity records (channel,
+    time; any layout), as bytes: FAIL at the spikes whose departure from their neighbours'
+    mean, |u_n - (u_(n-1) + u_(n+1))/2|, is at least that of both neighbours (a spike moves
+    the derivatives of its two neighbours too, which the method then flags with it: GN 2002,
+    §4), MISSING where not finite, NOT_EVALUATED where finite but not ``valid``, else GOOD.
+
+    Parameters are those of :func:`goring_nikora`; ``u`` is 2-D; ``valid``: the samples
+    tested (the finite ones less those excluded; None: the finite ones).
+    """
+    from flumekit.qc.kernels import despike_flags_rows
+
+    u = np.asarray(u, dtype=float)
+    valid = np.isfinite(u) if valid is None else np.asarray(valid, dtype=bool)
+    return despike_flags_rows(u, valid, _floors(floor, u.shape[0]), _universal(valid),
+                              int(max_iterations))

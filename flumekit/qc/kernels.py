@@ -18,10 +18,19 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED
 from flumekit.qc.qartod import MAD_TO_STD
 
 #: bins of the histogram median of whole-number records (values spanning more are sorted)
 HIST_BINS = 1 << 14
+
+#: whole-number records worked in integers (:func:`_outside`): values of at most 2^16 steps,
+#: rows of at most 2^20 samples, so that no sum exceeds 2^62
+_WHOLE_MAX = 1 << 16
+_WHOLE_N = 1 << 20
+
+#: no non-zero step (the start of a channel's resolution)
+_NO_STEP = np.int64(2) ** 62
 
 
 @njit(cache=True)
@@ -68,71 +77,58 @@ def _fill(src, ok, unit, w):
 
 
 @njit(cache=True)
-def _snap(w):
-    """(whole, lo, hi) of the record ``w``: whether every value lies within 1e-6 of a whole
-    number (a quantised record in units of its step, up to the rounding of the division),
-    then snapped to it, and the extremes."""
-    err = 0.0
-    lo = hi = w[0]
+def _fill_quantised(src, ok, unit, w):
+    """:func:`_fill`, the filled samples rounded to whole numbers where the ok ones are whole
+    (a quantised record in units of its step): the placeholders stay on the instrument's grid,
+    and the record is worked in integers (:func:`_outside`)."""
+    _fill(src, ok, unit, w)
     for i in range(w.size):
-        v = w[i]
-        err = max(err, abs(v - np.rint(v)))
-        lo = min(lo, v)
-        hi = max(hi, v)
-    if err > 1e-6:
-        return False, lo, hi
+        if ok[i] and abs(w[i] - np.rint(w[i])) > 1e-6:
+            return
     for i in range(w.size):
-        w[i] = np.rint(w[i])
-    return True, np.rint(lo), np.rint(hi)
+        w[i] = np.rint(w[i])  # halves to even, as numpy rounds
 
 
 @njit(cache=True)
-def _median(w, whole, lo, hi, hist, tmp):
-    """Median of ``w``: from its histogram when its values are whole numbers of a modest span
-    (O(n), exact), else by selection on the copy ``tmp``."""
-    if whole and hi - lo < hist.size:
-        span = int(hi - lo) + 1
-        hist[:span] = 0
-        for i in range(w.size):
-            hist[int(w[i] - lo)] += 1
-        a, b = _ranked(hist, span, w.size)
-        return lo + 0.5 * (a + b)
-    tmp[:] = w
-    return np.median(tmp)
+def _whole(w, k):
+    """Whether every value of ``w`` lies within 1e-6 of a whole number (a quantised record in
+    units of its step, up to the rounding of the division) of at most 2^30; then those
+    numbers in ``k`` (int32) and their extremes."""
+    bad = False
+    lo = hi = np.int32(0)
+    for i in range(w.size):  # no branch: the loop vectorises
+        r = np.floor(w[i] + 0.5)
+        bad |= (abs(w[i] - r) > 1e-6) | (abs(r) > 2.0 ** 30)
+        k[i] = np.int32(r) if abs(r) <= 2.0 ** 30 else 0
+        lo = min(lo, k[i]) if i else k[i]
+        hi = max(hi, k[i]) if i else k[i]
+    return not bad, lo, hi
 
 
 @njit(cache=True)
-def _outside(w, whole, lo, hi, lam2, fl, c, du, d2, hist, tmp, out):
-    """out[i]: sample i of the record ``w`` lies outside one of the three ellipses
-    (Goring and Nikora 2002, Eqs. 2, 6-11; see :func:`flumekit.qc.despike.goring_nikora`).
-    ``fl``: floor of the standard deviations, in the units of ``w``."""
-    n = w.size
-    med = _median(w, whole, lo, hi, hist, tmp)
-    for i in range(n):
-        c[i] = w[i] - med  # u, the fluctuation about the median
-    # central differences, one-sided at the ends (np.gradient): Eqs. (6)-(7)
-    du[0], du[n - 1] = c[1] - c[0], c[n - 1] - c[n - 2]
+def _differences(C, D, E):
+    """D = 4Δu and E = 8Δ²u from C = 2u (any numeric type): central differences, one-sided at
+    the ends as np.gradient's (GN 2002, Eqs. 6-7), in units where each is an integer when u
+    is a whole or half number."""
+    n = C.size
+    D[0], D[n - 1] = 2 * (C[1] - C[0]), 2 * (C[n - 1] - C[n - 2])
     for i in range(1, n - 1):
-        du[i] = 0.5 * (c[i + 1] - c[i - 1])
-    d2[0], d2[n - 1] = du[1] - du[0], du[n - 1] - du[n - 2]
+        D[i] = C[i + 1] - C[i - 1]
+    E[0], E[n - 1] = 2 * (D[1] - D[0]), 2 * (D[n - 1] - D[n - 2])
     for i in range(1, n - 1):
-        d2[i] = 0.5 * (du[i + 1] - du[i - 1])
-    # sums in order (no reassociation): the same bits on every CPU
-    s1 = s2 = t1 = t2 = q1 = q2 = scd = 0.0
-    for i in range(n):
-        x, y, z = c[i], du[i], d2[i]
-        s1 += x
-        s2 += x * x
-        t1 += y
-        t2 += y * y
-        q1 += z
-        q2 += z * z
-        scd += x * z
+        E[i] = D[i + 1] - D[i - 1]
+
+
+@njit(cache=True)
+def _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl):
+    """The coefficients of the three ellipse tests (GN 2002, Eqs. 2, 9-11) from the sums of
+    C = 2u, D = 4Δu, E = 8Δ²u, of their squares and of C E; ``fl``: floor of the standard
+    deviations, in the units of u."""
     f2 = fl * fl
-    su2 = max(s2 / n - (s1 / n) ** 2, f2)
-    sdu2 = max(t2 / n - (t1 / n) ** 2, f2)
-    sd22 = max(q2 / n - (q1 / n) ** 2, f2)
-    theta = np.arctan2(scd, s2)  # Eq. (9)
+    su2 = max(s2 / (4.0 * n) - (s1 / (2.0 * n)) ** 2, f2)
+    sdu2 = max(t2 / (16.0 * n) - (t1 / (4.0 * n)) ** 2, f2)
+    sd22 = max(q2 / (64.0 * n) - (q1 / (8.0 * n)) ** 2, f2)
+    theta = np.arctan2(sce / 16.0, s2 / 4.0)  # Eq. (9)
     cs, sn = np.cos(theta), np.sin(theta)
     cos2, sin2 = cs * cs, sn * sn
     a1, b1 = lam2 * su2, lam2 * sd22
@@ -147,13 +143,17 @@ def _outside(w, whole, lo, hi, lam2, fl, c, du, d2, hist, tmp, out):
             a2, b2 = x2, y2
     # (u, Δu) and (Δu, Δ²u) ellipses with semi-axes λσ; the third rotated by θ:
     # x_r²/a² + y_r²/b² with x_r = u cosθ + Δ²u sinθ, y_r = -u sinθ + Δ²u cosθ, expanded
-    k_du = 1.0 / (lam2 * sdu2)
-    k_u1, k_d1 = 1.0 / a1, 1.0 / b1
-    k_u3 = cos2 / a2 + sin2 / b2
-    k_d3 = sin2 / a2 + cos2 / b2
-    k_c3 = 2.0 * sn * cs * (1.0 / a2 - 1.0 / b2)
-    for i in range(n):
-        x, y, z = c[i], du[i], d2[i]
+    return (1.0 / (lam2 * sdu2), 1.0 / a1, 1.0 / b1, cos2 / a2 + sin2 / b2,
+            sin2 / a2 + cos2 / b2, 2.0 * sn * cs * (1.0 / a2 - 1.0 / b2))
+
+
+@njit(cache=True)
+def _test(X, xs, shift, D, ds, E, es, coefficients, out):
+    """out[i]: sample i lies outside one of the three ellipses, u = xs X - shift,
+    Δu = ds D, Δ²u = es E (each exact: whole and half numbers, scaled by powers of 2)."""
+    k_du, k_u1, k_d1, k_u3, k_d3, k_c3 = coefficients
+    for i in range(X.size):
+        x, y, z = xs * X[i] - shift, ds * D[i], es * E[i]
         q = y * y * k_du
         xx, zz = x * x, z * z
         # bitwise |: no branch, the loop vectorises
@@ -162,48 +162,169 @@ def _outside(w, whole, lo, hi, lam2, fl, c, du, d2, hist, tmp, out):
 
 
 @njit(cache=True)
-def goring_nikora_rows(u, valid, floor, lam2, max_iterations):
-    """Spikes of each row of ``u`` (channel, time; any memory layout) by the phase-space
-    method, iterated: a spike is replaced by linear interpolation and the row tested again
-    until no new spike is found, ``max_iterations`` at most. Samples not ``valid`` are
-    interpolated over and never flagged. The row is worked in units of its ``floor`` (the
-    velocity resolution), where a quantised record's values are whole numbers.
+def _outside(w, lam2, fl, work, out):
+    """out[i]: sample i of the record ``w`` (units of the floor) lies outside one of the three
+    ellipses (Goring and Nikora 2002; see :func:`flumekit.qc.despike.goring_nikora`), about
+    its median.
 
-    Returns the boolean spike mask, u's shape."""
+    A record of whole numbers (a quantised one) of modest size is worked in integers: its
+    median from its histogram (O(n)), C = 2u, D = 4Δu, E = 8Δ²u and their sums exact, those
+    of C from those of the record itself (C = 2k - 2M: D and E do not depend on the median,
+    so one pass gives the histogram, D, E and every sum). Other records: the median by
+    selection, the sums in double precision, in order (no reassociation: the same bits on
+    every CPU). Both forms give a whole-number record the same statistics and flags bit for
+    bit (scaling by a power of 2 is exact in floating point)."""
+    k, D, E, hist, Cf, Df, Ef = work
+    n = w.size
+    whole, lo, hi = _whole(w, k)
+    if whole and hi - lo < HIST_BINS and n <= _WHOLE_N and max(-lo, hi) <= _WHOLE_MAX:
+        span = hi - lo + 1
+        hist[:span] = 0
+        for i in range(n):
+            hist[k[i] - lo] += 1
+        # D and E of k: halves of those of C = 2k - 2M (the median cancels)
+        _differences(k, D, E)
+        sk = skk = sd = sdd = se = see = ske = np.int64(0)
+        for i in range(n):
+            x, y, z = np.int64(k[i]), np.int64(D[i]), np.int64(E[i])
+            sk += x
+            skk += x * x
+            sd += y
+            sdd += y * y
+            se += z
+            see += z * z
+            ske += x * z
+        a, b = _ranked(hist, span, n)
+        twice = 2 * lo + a + b  # 2M, an integer
+        # the sums of C = 2k - 2M, D_C = 2D and E_C = 2E from those of k, D and E
+        c = _coefficients(n, 2 * sk - n * twice, 4 * skk - 4 * twice * sk + n * twice * twice,
+                          2 * sd, 4 * sdd, 2 * se, 4 * see, 4 * ske - 2 * twice * se, lam2, fl)
+        _test(k, 1.0, 0.5 * twice, D, 0.5, E, 0.25, c, out)
+        return
+    if whole:  # too wide for the integers: snapped all the same
+        for i in range(n):
+            w[i] = np.floor(w[i] + 0.5)
+    Df[:] = w  # a copy to select in
+    med = np.median(Df)
+    for i in range(n):
+        Cf[i] = 2.0 * (w[i] - med)
+    _differences(Cf, Df, Ef)
+    s1 = s2 = t1 = t2 = q1 = q2 = sce = 0.0
+    for i in range(n):
+        x, y, z = Cf[i], Df[i], Ef[i]
+        s1 += x
+        s2 += x * x
+        t1 += y
+        t2 += y * y
+        q1 += z
+        q2 += z * z
+        sce += x * z
+    c = _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl)
+    _test(Cf, 0.5, 0.0, Df, 0.25, Ef, 0.125, c, out)
+
+
+@njit(cache=True)
+def _buffers(n):
+    """Work arrays of one row of n samples: (record as read, record worked, outside, ok) and
+    those of :func:`_outside`."""
+    return (np.empty(n), np.empty(n), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_),
+            (np.empty(n, dtype=np.int32), np.empty(n, dtype=np.int32),
+             np.empty(n, dtype=np.int32), np.empty(HIST_BINS, dtype=np.int64),
+             np.empty(n), np.empty(n), np.empty(n)))
+
+
+@njit(cache=True)
+def _spikes_row(src, ok, every, floor, lam2, max_iterations, sp, buffers):
+    """Goring-Nikora on one row ``src`` with its valid samples ``ok`` (all valid: ``every``;
+    updated: the spikes leave it), iterated: a spike is replaced by linear interpolation (on
+    the record's grid when it is quantised) and the row tested again until no new spike is
+    found, ``max_iterations`` at most. The spikes are set in ``sp``. The row is worked in
+    units of its ``floor`` (the velocity resolution), where a quantised record's values are
+    whole numbers; ``buffers[1]`` holds it so when ``every`` (the caller's copy)."""
+    _, w, out, _, work = buffers
+    n = src.size
+    unit = floor if floor > 0.0 else 1.0
+    fl = floor / unit
+    if not every:
+        _fill_quantised(src, ok, unit, w)
+    for it in range(max_iterations):
+        _outside(w, lam2, fl, work, out)
+        changed = False
+        for i in range(n):
+            new = out[i] & ok[i]
+            sp[i] |= new
+            ok[i] &= ~new
+            changed |= new
+        if not changed or it == max_iterations - 1:
+            break
+        _fill_quantised(src, ok, unit, w)
+
+
+@njit(cache=True)
+def goring_nikora_rows(u, valid, floor, lam2, max_iterations):
+    """Spikes of each row of ``u`` (channel, time; any memory layout), its ``valid`` samples
+    only (:func:`_spikes_row`), with the squared universal threshold ``lam2``; per-row
+    ``floor``. Returns the boolean spike mask, u's shape."""
     m, n = u.shape
     spikes = np.zeros((m, n), dtype=np.bool_)
-    src, w, c = np.empty(n), np.empty(n), np.empty(n)
-    du, d2, tmp = np.empty(n), np.empty(n), np.empty(n)
-    ok = np.empty(n, dtype=np.bool_)
-    out = np.empty(n, dtype=np.bool_)
-    hist = np.empty(HIST_BINS, dtype=np.int64)
+    buffers = _buffers(n)
+    src, w, _, ok, _ = buffers
     for r in range(m):
         unit = floor[r] if floor[r] > 0.0 else 1.0
-        fl = floor[r] / unit
         every = True
         for i in range(n):  # the row copied once: a transposed view is strided
             src[i] = u[r, i]
+            w[i] = src[i] / unit
             ok[i] = valid[r, i]
             every &= ok[i]
-        if every:
-            for i in range(n):
-                w[i] = src[i] / unit
-        else:
-            _fill(src, ok, unit, w)
-        sp = spikes[r]
-        for it in range(max_iterations):
-            whole, lo, hi = _snap(w)
-            _outside(w, whole, lo, hi, lam2, fl, c, du, d2, hist, tmp, out)
-            changed = False
-            for i in range(n):
-                new = out[i] & ok[i]
-                sp[i] |= new
-                ok[i] &= ~new
-                changed |= new
-            if not changed or it == max_iterations - 1:
-                break
-            _fill(src, ok, unit, w)
+        _spikes_row(src, ok, every, floor[r], lam2, max_iterations, spikes[r], buffers)
     return spikes
+
+
+@njit(cache=True)
+def _departure(x, k):
+    """|x_k - (x_(k-1) + x_(k+1))/2|, 0 at the first and last samples."""
+    if k < 1 or k > x.size - 2:
+        return 0.0
+    return abs(x[k] - 0.5 * (x[k - 1] + x[k + 1]))
+
+
+@njit(cache=True)
+def despike_flags_rows(u, valid, floor, lam2, max_iterations):
+    """QARTOD flags of the Goring-Nikora despiking of each row of ``u`` (channel, time; any
+    layout), its ``valid`` samples only: FAIL at the spikes whose departure from their
+    neighbours' mean is the local largest (a spike moves the derivatives of its two
+    neighbours, which the method then flags with it), MISSING where not finite, NOT_EVALUATED
+    where finite but not valid, else GOOD. The others are interpolated over
+    (:func:`_spikes_row`); ``lam2``: the squared universal threshold (Eq. 2; 0: too few
+    samples, nothing evaluated)."""
+    m, n = u.shape
+    flags = np.empty((m, n), dtype=np.uint8)
+    buffers = _buffers(n)
+    src, w, _, ok, _ = buffers
+    sp = np.empty(n, dtype=np.bool_)
+    for r in range(m):
+        unit = floor[r] if floor[r] > 0.0 else 1.0
+        every = True
+        f = flags[r]
+        for i in range(n):  # the row copied once: a transposed view is strided
+            v = u[r, i]
+            src[i] = v
+            w[i] = v / unit
+            finite = np.isfinite(v)
+            ok[i] = valid[r, i]
+            every &= ok[i]
+            f[i] = GOOD if ok[i] else (NOT_EVALUATED if finite else MISSING)
+        if lam2 == 0.0:
+            continue
+        sp[:] = False
+        _spikes_row(src, ok, every, floor[r], lam2, max_iterations, sp, buffers)
+        for j in range(n):
+            if sp[j]:
+                d = _departure(src, j)
+                if d >= _departure(src, j - 1) and d >= _departure(src, j + 1):
+                    f[j] = FAIL
+    return flags
 
 
 # -- echo-level test (flumekit.qc.qartod.level_test, integer records) -------------------------
@@ -224,17 +345,17 @@ def level_fail_rows(x, threshold):
     dhist = np.empty(2 * HIST_BINS + 1, dtype=np.int64)
     r1, r2 = (n - 1) // 2, n // 2
     for r in range(m):
-        res = 0
-        lo = hi = np.int64(x[r, 0])
         for i in range(n):  # the row copied once (a transposed view is strided)
-            v = np.int64(x[r, i])
-            row[i] = v
-            lo = min(lo, v)
-            hi = max(hi, v)
-            if i:
-                d = abs(v - row[i - 1])
-                if d > 0 and (res == 0 or d < res):
-                    res = d
+            row[i] = x[r, i]
+        lo = hi = row[0]
+        for i in range(n):
+            lo = min(lo, row[i])
+            hi = max(hi, row[i])
+        res = _NO_STEP  # the smallest non-zero step
+        for i in range(1, n):
+            d = abs(row[i] - row[i - 1])
+            res = min(res, d if d > 0 else _NO_STEP)
+        res = 0 if res == _NO_STEP else res
         span = hi - lo + 1
         if span <= HIST_BINS:
             hist[:span] = 0
@@ -254,7 +375,8 @@ def level_fail_rows(x, threshold):
             dev = np.sort(np.abs(2 * row - twice))
             a, b = dev[r1], dev[r2]
         scale = max(MAD_TO_STD * 0.5 * (0.5 * (a + b)), float(res))
-        bound = np.floor(2.0 * threshold * scale)
+        # |2x - 2M| > bound for an integer: beyond its floor, compared in integers
+        bound = np.int64(min(np.floor(2.0 * threshold * scale), 2.0 ** 62))
         for i in range(n):
             fail[r, i] = abs(2 * row[i] - twice) > bound
     return fail

@@ -223,16 +223,22 @@ def robust_median(x: np.ndarray) -> np.ndarray:
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """FAIL where |x - median(x)| exceeds ``threshold`` robust standard deviations of x over
     the record (1.4826 MAD, at least the channel's resolution), per channel along the last
-    axis: the level form of :func:`dropout_test`. Integer records (echo amplitudes) are tested
+    axis: the level form of :func:`dropout_test`."""
+    x = np.asarray(x)
+    if x.dtype.kind in "iu" and x.size:
+        return choose(level_fail(x, threshold), FAIL, GOOD)
+    return _level(x.reshape(-1, x.shape[-1]), threshold).reshape(x.shape)
+
+
+def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
+    """Where :func:`level_test` fails (bool). Integer records (echo amplitudes) are tested
     exactly, compiled (:func:`flumekit.qc.kernels.level_fail_rows`)."""
     x = np.asarray(x)
-    shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
     if x.dtype.kind in "iu" and x.size:
         from flumekit.qc.kernels import level_fail_rows
 
-        return choose(level_fail_rows(x2, float(threshold)), FAIL, GOOD).reshape(shape)
-    return _level(x2, threshold).reshape(shape)
+        return level_fail_rows(x.reshape(-1, x.shape[-1]), float(threshold)).reshape(x.shape)
+    return level_test(x, threshold) == FAIL
 
 
 def _level(x2: np.ndarray, threshold: float) -> np.ndarray:

@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit.qc import qartod
-from flumekit.qc.despike import goring_nikora
+from flumekit.qc.despike import despike_flags
 from flumekit.qc.fill import fill_gaps, gap_spans
 from flumekit.qc.flags import (
     FAIL,
@@ -66,7 +66,8 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     """Per-test QARTOD flags of a (channel, time) block (time along the last axis).
 
     ``despike`` runs the Goring-Nikora phase-space test instead of the spike, rate-of-change,
-    flat-line and dropout tests (velocity records: quantised, turbulent, partly without echo).
+    flat-line and dropout tests (velocity records: quantised, turbulent, partly without echo),
+    and the gross range test only when a range is given.
     ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
     ``amplitude`` (echo amplitude of a velocity record, same shape): samples whose echo is far
     above the channel's usual one (:func:`~flumekit.qc.qartod.level_test` on the amplitude)
@@ -78,35 +79,27 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     x = np.asarray(x, dtype=float) if despike else np.ascontiguousarray(x, dtype=float)
     block = max(3, int(round(th.block * sampling_rate)))
     finite = np.isfinite(x)
-    gap = np.broadcast_to(qartod.gap_test(time, sampling_rate, th.gap_tolerance), x.shape)
+    gap = qartod.gap_test(time, sampling_rate, th.gap_tolerance)
     # built as bytes (flags.choose), not as int64 then cast; a gap-free time axis (the rule)
     # makes the gap flags those of the missing samples
     if (gap == GOOD).all():
         gap = choose(finite, GOOD, MISSING)
     else:
-        gap = np.where(finite, gap.astype(np.uint8, copy=False), np.uint8(MISSING))
-    out = {"gap": gap, "gross_range": qartod.gross_range_test(x, gross_range)}
+        gap = np.where(finite, np.broadcast_to(gap.astype(np.uint8), x.shape), np.uint8(MISSING))
+    out = {"gap": gap}
+    if gross_range is not None or not despike:  # unset, it evaluates nothing
+        out["gross_range"] = qartod.gross_range_test(x, gross_range)
     if despike:
-        boundary = None
+        valid = finite
         if amplitude is not None:
             # the level form of the dropout test: runs of repeated echo values say nothing
             # about a boundary
-            boundary = qartod.level_test(amplitude, th.dropout) == FAIL
+            boundary = qartod.level_fail(amplitude, th.dropout)
             if boundary.any():
                 # the sampling volume straddles the boundary for a few profiles either side
-                boundary = _widen(boundary, BOUNDARY_PROFILES)
-            else:
-                boundary = None
-        spikes = goring_nikora(x, floor=0.0 if floor is None else floor,
-                               max_iterations=th.despike_iterations, exclude=boundary)
-        g = choose(finite, GOOD, MISSING)
-        if boundary is not None:
-            g[boundary & finite] = NOT_EVALUATED
-        # a spike moves the derivatives of its two neighbours too, which GN then flags with it:
-        # keep the samples whose departure from their neighbours' mean is the local largest
-        g2 = g.reshape(-1, g.shape[-1])
-        g2[_local_peaks(x, spikes)] = FAIL
-        out["goring_nikora"] = g2.reshape(g.shape)
+                valid = finite & ~_widen(boundary, BOUNDARY_PROFILES)
+        out["goring_nikora"] = despike_flags(x, 0.0 if floor is None else floor,
+                                             th.despike_iterations, valid=valid)
         return out
     out["spike"] = qartod.spike_test(x, th.spike_suspect, th.spike_fail, block, floor)
     out["rate_of_change"] = qartod.rate_of_change_test(x, th.rate_of_change, block, floor)
@@ -127,26 +120,6 @@ def _widen(mask: np.ndarray, k: int) -> np.ndarray:
         out[..., s:] |= mask[..., :-s]
         out[..., :-s] |= mask[..., s:]
     return out
-
-
-def _local_peaks(x: np.ndarray, where: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(row, sample) indices, x seen as (row, time), of the samples of ``where`` whose
-    departure from their neighbours' mean, |x_n - (x_(n-1) + x_(n+1))/2| (0 at the first and
-    last samples), is at least that of both neighbours; evaluated at those samples only."""
-    n = x.shape[-1]
-    x2 = x.reshape(-1, n)
-    # flat indices (np.nonzero on a 2-D array costs 8 times as much)
-    r, j = np.divmod(np.flatnonzero(np.ascontiguousarray(where)), n)
-
-    def dep(k):
-        inner = (k >= 1) & (k <= n - 2)
-        kk = np.clip(k, 1, max(n - 2, 1))
-        v = np.abs(x2[r, kk] - 0.5 * (x2[r, kk - 1] + x2[r, np.minimum(kk + 1, n - 1)]))
-        return np.where(inner, v, 0.0)
-
-    d = dep(j)
-    keep = (d >= dep(j - 1)) & (d >= dep(j + 1))
-    return r[keep], j[keep]
 
 
 def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float, *,
@@ -226,12 +199,13 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
                time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
                ) -> xr.Dataset:
     """QC flags of UVP beam velocities: the Goring-Nikora despiking and the echo-level test of
-    :func:`check_series`, per beam, over ``span`` only; samples outside are not evaluated (2).
+    :func:`check_series`, per beam, over ``span`` only; the samples outside are not evaluated,
+    and not stored.
 
-    The UVP average reads N waves of the quasi-steady part of the run and the filter's pad
-    either side (:mod:`flumekit.uvp.window`), so only those samples need checking: there the
-    flow is stationary, as the despiking's universal threshold assumes (the ramp-up and the
-    decay are not).
+    The UVP average reads N waves and the filter's pad either side
+    (:func:`flumekit.stages.uvp.build`), so only those samples need checking: there the flow is
+    stationary, as the despiking's universal threshold assumes (the ramp-up and the decay are
+    not).
 
     Parameters
     ----------
@@ -245,10 +219,10 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
 
     Returns
     -------
-    Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>) (each beam keeps its
-    own time axis: beams may differ in profile count), the samples per flag of each beam
-    (``beam_velocity_qc_count``), the failed fraction of the evaluated samples and the
-    ``evaluated_span``.
+    Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>), the profiles of the
+    beam within ``span`` (each beam keeps its own time axis: beams may differ in profile
+    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``),
+    the failed fraction of the evaluated samples and the ``evaluated_span``.
     """
     lo, hi = span
     names = sorted(beams)
@@ -256,40 +230,45 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
     for name in names:
         b = beams[name]
         t = b["time"].values
-        v = b["beam_velocity"].transpose("channel", "time").values
         fs = (t.size - 1) / (t[-1] - t[0])
         tc = t + float(time_offset)  # on the probes' clock
         i0, i1 = int(np.searchsorted(tc, lo)), int(np.searchsorted(tc, hi, side="right"))
-        f = np.full(v.shape, NOT_EVALUATED, dtype=np.uint8)
-        finite = np.isfinite(b["beam_velocity"].values)  # in the record's own layout
-        if not finite.all():
-            f[~finite.T if b["beam_velocity"].dims[0] == "time" else ~finite] = MISSING
+        v = b["beam_velocity"].transpose("channel", "time").values[:, i0:i1]
         if i1 - i0 >= 5:
             amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
                 if "amplitude" in b else None
-            per = check_series(v[:, i0:i1], t[i0:i1], fs, th, gross_range=gross_range,
+            per = check_series(v, t[i0:i1], fs, th, gross_range=gross_range,
                                despike=True, amplitude=amp,
                                floor=float(b.attrs.get("velocity_resolution", 0.0)))
-            # the gross range, unset, evaluates nothing: it would not change the aggregate
-            f[:, i0:i1] = aggregate(*(flags for test, flags in per.items()
-                                      if test != "gross_range" or gross_range is not None))
-        counts.append(flag_counts(f.reshape(-1)))
+            if gross_range is None and not (per["gap"] == FAIL).any():
+                # the aggregate without its work: the gap test on a gap-free time axis passes
+                # every finite sample (so a sample the despiking did not evaluate reads pass)
+                # and flags the missing ones, as the despiking does
+                g = per["goring_nikora"]
+                f = (g - (g == NOT_EVALUATED).view(np.uint8) * np.uint8(NOT_EVALUATED - GOOD)
+                     ).view(np.int8)
+            else:
+                f = aggregate(*per.values())
+        else:  # too short to test
+            f = choose(np.isfinite(v), NOT_EVALUATED, MISSING).view(np.int8)
+        counts.append(flag_counts(f.view(np.uint8).reshape(-1)))
         tdim = f"time_{name}"
         start = {k: v for k, v in b["time"].attrs.items() if k == "record_start"}
-        data[f"beam_velocity_qc_{name}"] = (("channel", tdim), f.view(np.int8),
+        data[f"beam_velocity_qc_{name}"] = (("channel", tdim), f,
                                             flag_attrs(f"beam_velocity of beam {name}"))
-        coords[tdim] = (tdim, t, {"units": "s", "long_name": f"time of beam {name}", **start})
+        coords[tdim] = (tdim, t[i0:i1], {
+            "units": "s", "long_name": f"time of beam {name} (the profiles checked)", **start})
     c = np.array(counts)
-    data["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c,
-                                      {"units": "1", "long_name": "UVP samples per QC flag"})
+    data["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c, {
+        "units": "1", "long_name": "UVP samples of the evaluated span per QC flag"})
     evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
     data["beam_velocity_failed_fraction"] = (
         ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
         {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
          "control"})
     data["evaluated_span"] = (("bound",), np.array([lo, hi]), {
-        "units": "s", "long_name": "span of the UVP records checked: the quasi-steady part of "
-        "the waves and the filter's pad (probes' clock)"})
+        "units": "s", "long_name": "span of the UVP records checked: the waves the average "
+        "reads and the filter's pad (probes' clock)"})
     coords["beam"] = ("beam", names, {"long_name": "UVP transducer name"})
     coords["flag_meaning"] = ("flag_meaning", FLAG_MEANINGS.split(),
                               {"long_name": "QARTOD flag meaning"})

@@ -11,8 +11,10 @@ The UVP beams are checked (Goring-Nikora despiking, echo level) by the rule that
 before its analysis: :func:`check_beams`, called by the uvp rule, writes ``qc/uvp/<run>.nc``
 with the per-sample flags. Their analysis reads the beams whole, 18 MB a run: a rule of its own
 would read them and the waves a second time, 25-30 ms a run before any checking, a tenth of
-the uvp rule (``flumekit bench qc``). The UVP is checked over the quasi-steady part of the run
-that its average may read.
+the uvp rule (``flumekit bench qc``). The UVP is checked where its average reads: over the
+earliest window of N waves that the waves and the flap angle allow, and over the whole
+quasi-steady part of the run only when the beams are not clean there
+(:func:`flumekit.stages.uvp.build`).
 """
 
 from __future__ import annotations

@@ -13,7 +13,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
-VERSION = "4"
+VERSION = "5"
 NEEDS = "uvp"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"n_cycles": 50, "n_phase": 100, "cutoff": 2.0, "order": 4, "margin": 0.01,
             "method": "least_squares", "dx": 0.01, "min_amplitude": None}
@@ -79,17 +79,26 @@ def phase_reference(waves):
 
 def clean_beam(beam, qc, name: str, copy: bool = True):
     """The beam's velocities with the samples that failed quality control masked and short
-    gaps interpolated (:func:`flumekit.qc.record.clean`, the flags of the qc stage).
-    ``copy=False``: the beam's own velocity array is cleaned (a beam read for the caller)."""
+    gaps interpolated (:func:`flumekit.qc.record.clean`, the flags of the qc stage), over the
+    profiles checked (``time_<name>`` of ``qc``); the others as read. ``copy=False``: the
+    beam's own velocity array is cleaned (a beam read for the caller)."""
+    import numpy as np
+
     from flumekit.qc.record import clean
 
     flags = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
     t = beam["time"].values
+    checked = qc[f"time_{name}"].values
+    i0 = int(np.searchsorted(t, checked[0])) if checked.size else 0
+    span = slice(i0, i0 + checked.size)
+    if not np.array_equal(t[span], checked):
+        raise ValueError(f"beam {name}: the QC flags are not of this record's profiles")
     v = beam["beam_velocity"].transpose("channel", "time").values
+    out = np.array(v) if copy else v
     fs = (t.size - 1) / (t[-1] - t[0])
-    cleaned = clean(v, flags, fs, float(qc.attrs["max_gap"]), copy=copy)
+    out[:, span] = clean(v[:, span], flags, fs, float(qc.attrs["max_gap"]), copy=False)
     return beam.assign(beam_velocity=beam["beam_velocity"].copy(
-        data=cleaned.T if beam["beam_velocity"].dims[0] == "time" else cleaned))
+        data=out.T if beam["beam_velocity"].dims[0] == "time" else out))
 
 
 #: a profile most of whose channels failed quality control is a dropout of the instrument
@@ -107,45 +116,58 @@ def uvp_span(waves) -> tuple[float, float]:
 
 
 def qc_span(span: tuple[float, float], period: float, cutoff: float) -> tuple[float, float]:
-    """The span of the UVP records quality-controlled [s]: the quasi-steady part of the waves
-    ``span`` (:func:`uvp_span`) and, on each side, the low-pass filter's pad and one period
-    [s] more (the average starts on an up-crossing near the span's edge): the only samples
-    the average may read."""
+    """The span of the UVP records quality-controlled when the average's first window is not
+    clean [s]: the quasi-steady part of the waves ``span`` (:func:`uvp_span`) and, on each
+    side, the low-pass filter's pad and one period [s] more (the average starts on an
+    up-crossing near the span's edge): every sample the average may read."""
     from flumekit.uvp.phase import default_pad
 
     margin = default_pad(cutoff) + period
     return span[0] - margin, span[1] + margin
 
 
-def flagged_profiles(qc, name: str, offset: float = 0.0):
-    """The profiles of beam ``name`` at which most channels failed QC (or were missing)."""
+def window_span(beams, start: float, end: float, pad: float) -> tuple[float, float]:
+    """The span of the UVP records that the average of the waves ``start``-``end`` reads [s]
+    (probes' clock): ``pad`` either side and the profile beyond each end
+    (:func:`flumekit.uvp.phase.phase_average_beams` takes the samples around its window)."""
+    dt = max(float(b["time"][-1] - b["time"][0]) / max(b.sizes["time"] - 1, 1)
+             for b in beams.values())
+    return start - pad - 1.5 * dt, end + pad + 1.5 * dt
+
+
+def beam_records(qc, names, offset: float = 0.0) -> dict:
+    """Per beam, the profiles at which most channels failed QC (or were missing), as the
+    average's window sees them (:class:`flumekit.uvp.window.Flagged`, probes' clock)."""
     from flumekit.qc.flags import FAIL, MISSING
     from flumekit.uvp.window import Flagged
 
-    f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
-    bad = ((f == FAIL) | (f == MISSING)).mean(axis=0) > DROPOUT_FRACTION
-    return Flagged(qc[f"time_{name}"].values + offset, bad)
+    out = {}
+    for name in names:
+        f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
+        bad = ((f == FAIL) | (f == MISSING)).mean(axis=0) > DROPOUT_FRACTION
+        out[f"UVP beam {name}"] = Flagged(qc[f"time_{name}"].values + offset, bad)
+    return out
 
 
 def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
                      ) -> tuple[float, float]:
     """(start, period) of the run's phase average (:func:`flumekit.uvp.window.averaging_start`):
     N periods in the quasi-steady part of the waves (``span`` [s], default :func:`uvp_span`)
-    with the UVP beams and the flap angle clean. An error names the run, the instrument and its
-    flagged span when there is none."""
+    with the UVP beams (their QC flags ``qc``; None: the beams not considered) and the flap
+    angle clean. An error names the run, the instrument and its flagged span when there is
+    none."""
     import numpy as np
 
     from flumekit.errors import InputError
     from flumekit.uvp.window import Flagged, averaging_start
 
     ups, period = phase_reference(waves)
-    offset = float(params["time_offset"])
-    records = {f"UVP beam {b}": flagged_profiles(qc, b, offset) for b in beams}
+    records = {} if qc is None else beam_records(qc, beams, float(params["time_offset"]))
     records["flap angle"] = Flagged(theta["time"].values, ~np.isfinite(theta.values))
     try:
         span = uvp_span(waves) if span is None else span
         start = averaging_start(ups, period, params["n_cycles"], pad, span, records,
-                                float(qc.attrs["max_gap"]), run=params["run"])
+                                float(params["qc"]["max_gap"]), run=params["run"])
     except ValueError as e:
         raise InputError(", ".join(str(p) for p in beams.values()), str(e)) from None
     return start, period
@@ -163,6 +185,7 @@ def build(inputs, outputs, params) -> None:
     from flumekit.stages.qc import check_beams
     from flumekit.uvp import phase_average_beams
     from flumekit.uvp.phase import default_pad
+    from flumekit.uvp.window import blocking
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     names = [b.name for b in campaign.uvp.beams]
@@ -172,15 +195,27 @@ def build(inputs, outputs, params) -> None:
         span = uvp_span(waves)
     except ValueError as e:
         raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
-    qc = check_beams(raw, qc_span(span, float(waves["measured_period"]), params["cutoff"]),
-                     params, outputs["qc"], [inputs[n] for n in names])
-    beams = {n: clean_beam(raw[n], qc, n, copy=False) for n in names}  # read for this rule
-    if params["time_offset"]:  # the run file's declared clock offset of the UVP [s]
-        beams = {k: v.assign_coords(time=v["time"] + params["time_offset"])
-                 for k, v in beams.items()}
     theta = read_dataset(inputs["flap"])["theta"]
-    start, period = averaging_window(waves, qc, theta, {n: inputs[n] for n in names}, params,
-                                     default_pad(params["cutoff"]), span)
+    files = {n: inputs[n] for n in names}
+    pad = default_pad(params["cutoff"])
+    # the average takes the earliest window of N waves with every instrument it reads clean.
+    # The beams are checked first over the earliest window the waves and the flap angle
+    # allow, the samples the average then reads (with clean beams, the usual case, it is the
+    # average's: 70 % of the quasi-steady part at the paper's 50 waves of 3.5 s), and over the
+    # whole quasi-steady part, where the window may then move, only when a fault rules it out
+    start, period = averaging_window(waves, None, theta, files, params, pad, span)
+    end = start + params["n_cycles"] * period
+    offset = float(params["time_offset"])
+    qc = check_beams(raw, window_span(raw, start, end, pad), params, outputs["qc"],
+                     list(files.values()))
+    if blocking(beam_records(qc, names, offset), start - pad, end + pad,
+                float(params["qc"]["max_gap"]))[0]:
+        qc = check_beams(raw, qc_span(span, period, params["cutoff"]), params, outputs["qc"],
+                         list(files.values()))
+        start, period = averaging_window(waves, qc, theta, files, params, pad, span)
+    beams = {n: clean_beam(raw[n], qc, n, copy=False) for n in names}  # read for this rule
+    if offset:  # the run file's declared clock offset of the UVP [s]
+        beams = {k: v.assign_coords(time=v["time"] + offset) for k, v in beams.items()}
     ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
                              start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
                              cutoff=params["cutoff"], order=params["order"], theta=theta,

@@ -106,6 +106,26 @@ def bad_spans(record: Flagged, max_gap: float) -> list[tuple[float, float]]:
             for a, n in zip(first[long_], length[long_], strict=True)]
 
 
+def blocking(records: Mapping[str, Flagged], lo: np.ndarray, hi: np.ndarray,
+             max_gap: float) -> list[list[str]]:
+    """Return, per window [lo, hi] [s], what rules it out (empty: clean).
+
+    An instrument of ``records`` that does not cover the window, or holds a run of bad samples
+    longer than ``max_gap`` [s] in it.
+    """
+    lo, hi = np.atleast_1d(lo), np.atleast_1d(hi)
+    blocked: list[list[str]] = [[] for _ in lo]
+    for name, rec in records.items():  # a handful of instruments
+        t = rec.time
+        cover = (lo >= t[0] - 1e-9) & (hi <= t[-1] + 1e-9)
+        for i in np.flatnonzero(~cover):
+            blocked[i].append(f"{name} records {t[0]:.1f}-{t[-1]:.1f} s only")
+        for a, b in bad_spans(rec, max_gap):
+            for i in np.flatnonzero((lo <= b) & (hi >= a)):
+                blocked[i].append(f"{name} flagged over {a:.2f}-{b:.2f} s")
+    return blocked
+
+
 def averaging_start(reference: float | np.ndarray, period: float, n_cycles: int, pad: float,
                     span: tuple[float, float], records: Mapping[str, Flagged],
                     max_gap: float, run: str = "") -> float:
@@ -147,20 +167,8 @@ def averaging_start(reference: float | np.ndarray, period: float, n_cycles: int,
     # extrapolate from the reference nearest each start (the period's error grows with k)
     near = ref[np.argmin(np.abs(starts[:, None] - ref[None, :]), axis=1)]
     starts = near + np.round((starts - near) / period) * period
-    lo, hi = starts - pad, starts + n_cycles * period + pad
-    blocked: list[list[str]] = [[] for _ in starts]
-    ok = np.ones(starts.size, dtype=bool)
-    for name, rec in records.items():  # a handful of instruments
-        t = rec.time
-        cover = (lo >= t[0] - 1e-9) & (hi <= t[-1] + 1e-9)
-        for i in np.flatnonzero(~cover):
-            blocked[i].append(f"{name} records {t[0]:.1f}-{t[-1]:.1f} s only")
-        ok &= cover
-        for a, b in bad_spans(rec, max_gap):
-            hit = (lo <= b) & (hi >= a)
-            for i in np.flatnonzero(hit):
-                blocked[i].append(f"{name} flagged over {a:.2f}-{b:.2f} s")
-            ok &= ~hit
+    blocked = blocking(records, starts - pad, starts + n_cycles * period + pad, max_gap)
+    ok = np.array([not b for b in blocked])
     if ok.any():
         return float(starts[np.argmax(ok)])
     reasons = list(dict.fromkeys(r for b in blocked for r in b))

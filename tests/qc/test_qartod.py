@@ -235,8 +235,8 @@ def _goring_nikora_by_definition(u, floor, lam2, iterations, valid):
     """Goring and Nikora (2002) on one channel, written from the paper with numpy: the
     fluctuation about the median, np.gradient for Δu and Δ²u (Eqs. 6-7), the three ellipses
     with the third rotated by θ (Eq. 9) in rotated coordinates, its axes from Eqs. (10)-(11);
-    spikes and invalid samples replaced by linear interpolation (ends held) between
-    iterations."""
+    spikes and invalid samples replaced by linear interpolation (ends held; rounded to the
+    record's step when it is quantised) between iterations."""
     t = np.arange(u.size)
     unit = floor if floor > 0 else 1.0
     ok = valid.copy()
@@ -247,7 +247,7 @@ def _goring_nikora_by_definition(u, floor, lam2, iterations, valid):
 
     for _ in range(iterations):
         w = np.interp(t, t[ok], u[ok] / unit)
-        if np.all(np.abs(w - np.rint(w)) <= 1e-6):
+        if np.all(np.abs(w[ok] - np.rint(w[ok])) <= 1e-6):  # quantised: on its grid
             w = np.rint(w)
         c = w - np.median(w)
         du = np.gradient(c)

@@ -86,6 +86,7 @@ def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds):
     from flumekit.campaign import load_campaign
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.flags import FAIL
+    from flumekit.stages import qc as qc_stage
     from flumekit.stages import uvp as uvp_stage
     from flumekit.uvp.phase import default_pad
 
@@ -101,7 +102,7 @@ def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds):
                                   qc["beam_velocity_qc_UP2"].attrs)
     run = next(r for r in load_campaign(raw).runs if r.id == RUN)
     beams = {b: run.path / f"{b}.mfprof" for b in ("UP1", "UP2", "UP3")}
-    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0}
+    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0, "qc": qc_stage.DEFAULTS}
     waves = read_dataset(processed / "waves" / f"{RUN}.nc")
     theta = read_dataset(processed / "flap" / f"{RUN}.nc")["theta"]
     # the clean flags leave a window
@@ -118,14 +119,16 @@ def test_uvp_dropout_without_clean_window_names_run_beam_and_span(builds):
 def test_uvp_rule_checks_the_beams_it_reads(builds):
     """The uvp rule checks the beams it has read (flumekit.stages.qc.check_beams) instead of
     reading the flags of a qc rule that read them too: its flag product is the Goring-Nikora
-    and echo-level flags of each beam over the evaluated span (the aggregate with the gap test,
-    not evaluated outside), and its phase average is the one computed from that product read
-    back, as the uvp rule computed it before (within 1e-12 relative; equal on this run)."""
+    and echo-level flags of each beam over the evaluated span (the aggregate with the gap test;
+    the profiles outside are neither checked nor stored), that span is the samples its
+    average reads, and its phase average is the one computed from that product read back
+    (within 1e-12 relative; equal on this run)."""
     from flumekit.campaign import load_campaign
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
-    from flumekit.qc.flags import NOT_EVALUATED, aggregate
+    from flumekit.qc.flags import aggregate
     from flumekit.qc.record import Thresholds, check_series
+    from flumekit.stages import qc as qc_stage
     from flumekit.stages import uvp as uvp_stage
     from flumekit.uvp import phase_average_beams
     from flumekit.uvp.phase import default_pad
@@ -146,10 +149,10 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
                            despike=True, floor=float(b.attrs["velocity_resolution"]),
                            amplitude=a)
         f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
-        np.testing.assert_array_equal(f[:, inside], aggregate(per["gap"], per["goring_nikora"]))
-        assert (f[:, ~inside] == NOT_EVALUATED).all()
+        np.testing.assert_array_equal(qc[f"time_{name}"].values, t[inside])
+        np.testing.assert_array_equal(f, aggregate(per["gap"], per["goring_nikora"]))
     # the analysis from the flag product read back
-    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0}
+    params = {**uvp_stage.DEFAULTS, "run": RUN, "time_offset": 0.0, "qc": qc_stage.DEFAULTS}
     waves = read_dataset(processed / "waves" / f"{RUN}.nc")
     theta = read_dataset(processed / "flap" / f"{RUN}.nc")["theta"]
     start, period = uvp_stage.averaging_window(
@@ -162,6 +165,51 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
                              flap_thickness=campaign.flap.thickness, margin=params["margin"],
                              min_amplitude=params["min_amplitude"])
     built = read_dataset(processed / "uvp" / f"{RUN}.nc")
+    # what was checked is what the average reads: its N waves, the filter's pad either side
+    # and the profile beyond (0.086 s apart)
+    pad = default_pad(params["cutoff"])
+    assert float(built.phase_reference) == start
+    assert start - pad - 0.2 < lo < start - pad - 0.086
+    assert start + params["n_cycles"] * period + pad + 0.086 < hi
+    assert hi < start + params["n_cycles"] * period + pad + 0.2
     for v in ("beam_velocity", "beam_velocity_std", "beam_velocity_ci"):
         np.testing.assert_allclose(built[v].values, ds[v].values, rtol=1e-12, atol=0)
     assert np.isfinite(built["beam_velocity"].values).any()
+
+
+def test_uvp_fault_in_the_first_window_checks_the_steady_part_and_moves_the_average(
+        builds, tmp_path, monkeypatch):
+    """The uvp rule checks the beams over the first window the waves and the flap angle allow;
+    when a beam fails there (UP2 missing over 150-165 s, inside it), it checks the whole
+    quasi-steady part and the average moves to the first clean window after the fault."""
+    import flumekit.io.mfprof as mfprof
+    from flumekit.io.netcdf import read_dataset
+
+    clean = builds["clean"]
+    project = clean.parents[1]
+    copy = tmp_path / "project"
+    shutil.copytree(project / "pipelines", copy / "pipelines")
+    shutil.copytree(project / "raw", copy / "raw")
+    read = mfprof.read_mfprof
+
+    def faulty(path, **kw):
+        b = read(path, **kw)
+        if Path(path).name == "UP2.mfprof":
+            t = b["time"].values
+            v = b["beam_velocity"].values.copy()
+            v[(t >= 150.0) & (t <= 165.0)] = np.nan  # (time, channel)
+            b = b.assign(beam_velocity=b["beam_velocity"].copy(data=v))
+        return b
+
+    monkeypatch.setattr(mfprof, "read_mfprof", faulty)
+    _make(copy, f"uvp/{RUN}")
+    got = copy / "processed" / "small"
+    first = read_dataset(clean / "qc" / "uvp" / f"{RUN}.nc")["evaluated_span"].values
+    qc = read_dataset(got / "qc" / "uvp" / f"{RUN}.nc")
+    span = qc["evaluated_span"].values
+    assert span[0] < first[0] - 3.0 and span[1] > first[1] + 20.0  # the steady part, + margins
+    start = float(read_dataset(got / "uvp" / f"{RUN}.nc").phase_reference)
+    pad = 3.0  # the low-pass filter's (flumekit.uvp.phase.default_pad at 2 Hz)
+    assert 165.0 < start - pad < 165.0 + 3.6  # the first start after the fault, 1 period on
+    before = float(read_dataset(clean / "uvp" / f"{RUN}.nc").phase_reference)
+    assert before < 150.0
