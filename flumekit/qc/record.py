@@ -221,8 +221,9 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
     -------
     Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>), the profiles of the
     beam within ``span`` (each beam keeps its own time axis: beams may differ in profile
-    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``),
-    the failed fraction of the evaluated samples and the ``evaluated_span``.
+    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``;
+    every netCDF variable costs a millisecond to write, so no more) and the
+    ``evaluated_span``.
     """
     lo, hi = span
     names = sorted(beams)
@@ -261,11 +262,6 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
     c = np.array(counts)
     data["beam_velocity_qc_count"] = (("beam", "flag_meaning"), c, {
         "units": "1", "long_name": "UVP samples of the evaluated span per QC flag"})
-    evaluated = c.sum(axis=1) - c[:, list(FLAG_VALUES).index(NOT_EVALUATED)]
-    data["beam_velocity_failed_fraction"] = (
-        ("beam",), c[:, list(FLAG_VALUES).index(FAIL)] / np.maximum(evaluated, 1),
-        {"units": "1", "long_name": "fraction of the evaluated UVP samples that failed quality "
-         "control"})
     data["evaluated_span"] = (("bound",), np.array([lo, hi]), {
         "units": "s", "long_name": "span of the UVP records checked: the waves the average "
         "reads and the filter's pad (probes' clock)"})
