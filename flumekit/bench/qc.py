@@ -159,7 +159,7 @@ def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
     of the clean beams, over the span the qc stage checks (the quasi-steady part of the run)."""
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
-    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.qc.record import Thresholds, check_beam
 
     th = Thresholds()
     hits = total = false = n = 0
@@ -172,8 +172,8 @@ def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
         v = b["beam_velocity"].transpose("channel", "time").values[:, i0:i1]
         a = b["amplitude"].transpose("channel", "time").values[:, i0:i1]
         fs = (t.size - 1) / (t[-1] - t[0])
-        kw = dict(despike=True, floor=float(b.attrs["velocity_resolution"]), amplitude=a)
-        clean = check_series(v, t[i0:i1], fs, th, **kw)["goring_nikora"]
+        kw = dict(floor=float(b.attrs["velocity_resolution"]), amplitude=a)
+        clean = check_beam(v, t[i0:i1], fs, th, **kw)["goring_nikora"]
         false += int((clean >= 3).sum())
         n += clean.size
         fluid = clean == 1
@@ -181,7 +181,7 @@ def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
         idx = rng.choice(cand, 200, replace=False)
         w = v.copy().ravel()
         w[idx] += rng.choice([-1, 1], 200) * rng.uniform(0.1, 0.3, 200)
-        g = check_series(w.reshape(v.shape), t[i0:i1], fs, th, **kw)["goring_nikora"].ravel()
+        g = check_beam(w.reshape(v.shape), t[i0:i1], fs, th, **kw)["goring_nikora"].ravel()
         hits += int((g[idx] >= 3).sum())
         total += idx.size
     return hits / total, false / n

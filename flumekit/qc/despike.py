@@ -42,19 +42,9 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     valid = np.isfinite(u)
     if exclude is not None:
         valid &= ~np.asarray(exclude, dtype=bool).reshape(u.shape)
-    lam2 = _universal(valid)
-    if not lam2:
-        return np.zeros(shape, dtype=bool)
     # every statistic is per channel (λ aside, from the longest record): channel by channel
-    return goring_nikora_rows(u, valid, _floors(floor, u.shape[0]), lam2,
-                              int(max_iterations)).reshape(shape)
-
-
-def _universal(valid: np.ndarray) -> float:
-    """λ² = 2 ln n of the longest record of valid samples (Eq. 2), the same for every
-    channel; 0 when it is shorter than 5 samples."""
-    n = valid.shape[-1] if valid.all() else int(np.count_nonzero(valid, axis=-1).max())
-    return 2.0 * np.log(n) if n >= 5 else 0.0
+    return goring_nikora_rows(u, valid, _floors(floor, u.shape[0]), int(max_iterations)
+                              ).reshape(shape)
 
 
 def _floors(floor, m: int) -> np.ndarray:
@@ -64,19 +54,17 @@ def _floors(floor, m: int) -> np.ndarray:
 
 
 def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 1,
-                  valid: np.ndarray | None = None) -> np.ndarray:
+                  exclude: np.ndarray | None = None) -> np.ndarray:
     """QARTOD flags of the despiking (:func:`goring_nikora`) of velocity records (channel,
     time; any layout), as bytes: FAIL at the spikes whose departure from their neighbours'
     mean, |u_n - (u_(n-1) + u_(n+1))/2|, is at least that of both neighbours (a spike moves
     the derivatives of its two neighbours too, which the method then flags with it: GN 2002,
-    §4), MISSING where not finite, NOT_EVALUATED where finite but not ``valid``, else GOOD.
+    §4), MISSING where not finite, NOT_EVALUATED where finite and ``exclude``, else GOOD.
 
-    Parameters are those of :func:`goring_nikora`; ``u`` is 2-D; ``valid``: the samples
-    tested (the finite ones less those excluded; None: the finite ones).
+    Parameters are those of :func:`goring_nikora`; ``u`` is 2-D.
     """
     from flumekit.qc.kernels import despike_flags_rows
 
     u = np.asarray(u, dtype=float)
-    valid = np.isfinite(u) if valid is None else np.asarray(valid, dtype=bool)
-    return despike_flags_rows(u, valid, _floors(floor, u.shape[0]), _universal(valid),
-                              int(max_iterations))
+    exclude = np.zeros(u.shape, dtype=bool) if exclude is None else np.asarray(exclude, bool)
+    return despike_flags_rows(u, exclude, _floors(floor, u.shape[0]), int(max_iterations))

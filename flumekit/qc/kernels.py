@@ -261,12 +261,29 @@ def _spikes_row(src, ok, every, floor, lam2, max_iterations, sp, buffers):
 
 
 @njit(cache=True)
-def goring_nikora_rows(u, valid, floor, lam2, max_iterations):
+def _universal(tested):
+    """λ² = 2 ln n (Goring and Nikora 2002, Eq. 2) of the longest row of samples ``tested``
+    (boolean, channel x time), the same for every row; 0 below 5 samples (nothing is
+    evaluated)."""
+    m, n = tested.shape
+    count = np.zeros(m, dtype=np.int64)
+    for i in range(n):  # channel fastest: the memory order of a beam read profile by profile
+        for r in range(m):
+            count[r] += tested[r, i]
+    longest = count.max() if m else 0
+    return 2.0 * np.log(longest) if longest >= 5 else 0.0
+
+
+@njit(cache=True)
+def goring_nikora_rows(u, valid, floor, max_iterations):
     """Spikes of each row of ``u`` (channel, time; any memory layout), its ``valid`` samples
-    only (:func:`_spikes_row`), with the squared universal threshold ``lam2``; per-row
-    ``floor``. Returns the boolean spike mask, u's shape."""
+    only (:func:`_spikes_row`, λ of :func:`_universal`); per-row ``floor``. Returns the
+    boolean spike mask, u's shape."""
     m, n = u.shape
     spikes = np.zeros((m, n), dtype=np.bool_)
+    lam2 = _universal(valid)
+    if lam2 == 0.0:
+        return spikes
     buffers = _buffers(n)
     src, w, _, ok, _ = buffers
     for r in range(m):
@@ -290,15 +307,19 @@ def _departure(x, k):
 
 
 @njit(cache=True)
-def despike_flags_rows(u, valid, floor, lam2, max_iterations):
+def despike_flags_rows(u, exclude, floor, max_iterations):
     """QARTOD flags of the Goring-Nikora despiking of each row of ``u`` (channel, time; any
-    layout), its ``valid`` samples only: FAIL at the spikes whose departure from their
-    neighbours' mean is the local largest (a spike moves the derivatives of its two
-    neighbours, which the method then flags with it), MISSING where not finite, NOT_EVALUATED
-    where finite but not valid, else GOOD. The others are interpolated over
-    (:func:`_spikes_row`); ``lam2``: the squared universal threshold (Eq. 2; 0: too few
-    samples, nothing evaluated)."""
+    layout), its finite samples not ``exclude``-d only (λ of :func:`_universal`): FAIL at the
+    spikes whose departure from their neighbours' mean is the local largest (a spike moves
+    the derivatives of its two neighbours, which the method then flags with it), MISSING
+    where not finite, NOT_EVALUATED where finite and excluded, else GOOD. The others are
+    interpolated over (:func:`_spikes_row`)."""
     m, n = u.shape
+    tested = np.empty((m, n), dtype=np.bool_)
+    for i in range(n):  # channel fastest: the memory order of a beam read profile by profile
+        for r in range(m):
+            tested[r, i] = np.isfinite(u[r, i]) & ~exclude[r, i]
+    lam2 = _universal(tested)
     flags = np.empty((m, n), dtype=np.uint8)
     buffers = _buffers(n)
     src, w, _, ok, _ = buffers
@@ -311,10 +332,9 @@ def despike_flags_rows(u, valid, floor, lam2, max_iterations):
             v = u[r, i]
             src[i] = v
             w[i] = v / unit
-            finite = np.isfinite(v)
-            ok[i] = valid[r, i]
+            ok[i] = tested[r, i]
             every &= ok[i]
-            f[i] = GOOD if ok[i] else (NOT_EVALUATED if finite else MISSING)
+            f[i] = GOOD if ok[i] else (NOT_EVALUATED if np.isfinite(v) else MISSING)
         if lam2 == 0.0:
             continue
         sp[:] = False

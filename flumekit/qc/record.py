@@ -1,6 +1,7 @@
 """Quality control of one instrument record: the QARTOD battery, aggregation, masking, filling.
 
-:func:`check_series` runs the tests on a (channel, time) block and returns the per-test flags;
+:func:`check_series` runs the tests on a (channel, time) block of probe or flap records and
+returns the per-test flags (:func:`check_beam` those of a UVP beam's velocities);
 :func:`clean` masks what failed and interpolates gaps up to a declared length;
 :func:`qc_dataset` does both for one variable of a dataset and returns it with its flags
 (``<name>_qc``, CF flag attributes) and per-channel counts; the values as read are not repeated
@@ -60,23 +61,16 @@ class Thresholds:
 
 
 def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
-                 gross_range: tuple[float, float] | None = None, despike: bool = False,
-                 flat_line: bool = True, floor: np.ndarray | float | None = None,
-                 amplitude: np.ndarray | None = None) -> dict[str, np.ndarray]:
-    """Per-test QARTOD flags of a (channel, time) block (time along the last axis).
+                 gross_range: tuple[float, float] | None = None, flat_line: bool = True,
+                 floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:
+    """Per-test QARTOD flags of a (channel, time) block of probe or flap records (time along
+    the last axis): gap, gross range, spike, rate of change, flat line, dropout.
 
-    ``despike`` runs the Goring-Nikora phase-space test instead of the spike, rate-of-change,
-    flat-line and dropout tests (velocity records: quantised, turbulent, partly without echo),
-    and the gross range test only when a range is given.
     ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
-    ``amplitude`` (echo amplitude of a velocity record, same shape): samples whose echo is far
-    above the channel's usual one (:func:`~flumekit.qc.qartod.level_test` on the amplitude)
-    see a solid boundary, such as the flap crossing the channel, not the fluid; they are not
-    evaluated (2) and do not enter the despiking statistics.
+    Velocity records take :func:`check_beam` instead.
     """
-    # time contiguous: every test runs along it (the despiking copies each channel itself,
-    # flumekit.qc.kernels)
-    x = np.asarray(x, dtype=float) if despike else np.ascontiguousarray(x, dtype=float)
+    # time contiguous: every test runs along it
+    x = np.ascontiguousarray(x, dtype=float)
     block = max(3, int(round(th.block * sampling_rate)))
     finite = np.isfinite(x)
     gap = qartod.gap_test(time, sampling_rate, th.gap_tolerance)
@@ -86,21 +80,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         gap = choose(finite, GOOD, MISSING)
     else:
         gap = np.where(finite, np.broadcast_to(gap.astype(np.uint8), x.shape), np.uint8(MISSING))
-    out = {"gap": gap}
-    if gross_range is not None or not despike:  # unset, it evaluates nothing
-        out["gross_range"] = qartod.gross_range_test(x, gross_range)
-    if despike:
-        valid = finite
-        if amplitude is not None:
-            # the level form of the dropout test: runs of repeated echo values say nothing
-            # about a boundary
-            boundary = qartod.level_fail(amplitude, th.dropout)
-            if boundary.any():
-                # the sampling volume straddles the boundary for a few profiles either side
-                valid = finite & ~_widen(boundary, BOUNDARY_PROFILES)
-        out["goring_nikora"] = despike_flags(x, 0.0 if floor is None else floor,
-                                             th.despike_iterations, valid=valid)
-        return out
+    out = {"gap": gap, "gross_range": qartod.gross_range_test(x, gross_range)}
     out["spike"] = qartod.spike_test(x, th.spike_suspect, th.spike_fail, block, floor)
     out["rate_of_change"] = qartod.rate_of_change_test(x, th.rate_of_change, block, floor)
     # runs of repeated values are judged without the spikes, which would cut them in two
@@ -109,6 +89,35 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         out["flat_line"] = qartod.flat_line_test(held, sampling_rate, th.flat_line_suspect,
                                                  th.flat_line_fail, th.flat_line_tolerance)
     out["dropout"] = qartod.dropout_test(held, sampling_rate, th.dropout, th.hold)
+    return out
+
+
+def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
+               floor: np.ndarray | float = 0.0, amplitude: np.ndarray | None = None,
+               gross_range: tuple[float, float] | None = None) -> dict[str, np.ndarray]:
+    """Per-test QARTOD flags of a UVP beam's (channel, time) velocities (quantised,
+    turbulent, partly without echo): the gap (timing) test of the profiles, broadcast
+    (read-only); the gross range test when a range is given; the Goring-Nikora phase-space
+    despiking (:func:`flumekit.qc.despike.despike_flags`, which flags the missing samples).
+
+    ``amplitude`` (echo amplitude, same shape): samples whose echo is far above the channel's
+    usual one (:func:`~flumekit.qc.qartod.level_test` on the amplitude) see a solid boundary,
+    such as the flap crossing the channel, not the fluid; they are not evaluated (2) by the
+    despiking and do not enter its statistics, nor do the profiles next to them.
+    """
+    gap = qartod.gap_test(time, sampling_rate, th.gap_tolerance)
+    out = {"gap": np.broadcast_to(choose(gap == FAIL, FAIL, GOOD), v.shape)}
+    if gross_range is not None:  # unset, it evaluates nothing
+        out["gross_range"] = qartod.gross_range_test(v, gross_range)
+    exclude = None
+    if amplitude is not None:
+        # the level form of the dropout test: runs of repeated echo values say nothing
+        # about a boundary
+        boundary = qartod.level_fail(amplitude, th.dropout)
+        if boundary.any():
+            # the sampling volume straddles the boundary for a few profiles either side
+            exclude = _widen(boundary, BOUNDARY_PROFILES)
+    out["goring_nikora"] = despike_flags(v, floor, th.despike_iterations, exclude=exclude)
     return out
 
 
@@ -134,8 +143,8 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
 
 
 def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
-               gross_range: tuple[float, float] | None = None, despike: bool = False,
-               flat_line: bool = True, floor=None) -> xr.Dataset:
+               gross_range: tuple[float, float] | None = None, flat_line: bool = True,
+               floor=None) -> xr.Dataset:
     """QC of variable ``name`` of ``ds`` (dims (time,) or (channel_dim, time) in any order).
 
     Returns a dataset with ``name`` cleaned (:func:`clean`) and ``<name>_qc`` (aggregate
@@ -152,8 +161,8 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     x = np.atleast_2d(da.values.astype(float))
     t = ds["time"].values.astype(float)
     fs = float(ds.attrs.get("sampling_rate") or (t.size - 1) / (t[-1] - t[0]))
-    per_test = check_series(x, t, fs, th, gross_range=gross_range, despike=despike,
-                            flat_line=flat_line, floor=floor)
+    per_test = check_series(x, t, fs, th, gross_range=gross_range, flat_line=flat_line,
+                            floor=floor)
     flags = aggregate(*per_test.values())
     cleaned = clean(x, flags, fs, th.max_gap)
     chans = list(da[channel_dim].values) if channel_dim else [name]
@@ -198,8 +207,8 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
 def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thresholds, *,
                time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
                ) -> xr.Dataset:
-    """QC flags of UVP beam velocities: the Goring-Nikora despiking and the echo-level test of
-    :func:`check_series`, per beam, over ``span`` only; the samples outside are not evaluated,
+    """QC flags of UVP beam velocities: the aggregate of the tests of :func:`check_beam`, per
+    beam, over ``span`` only; the samples outside are not evaluated,
     and not stored.
 
     The UVP average reads N waves and the filter's pad either side
@@ -238,13 +247,11 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
         if i1 - i0 >= 5:
             amp = b["amplitude"].transpose("channel", "time").values[:, i0:i1] \
                 if "amplitude" in b else None
-            per = check_series(v, t[i0:i1], fs, th, gross_range=gross_range,
-                               despike=True, amplitude=amp,
-                               floor=float(b.attrs.get("velocity_resolution", 0.0)))
-            if gross_range is None and not (per["gap"] == FAIL).any():
-                # the aggregate without its work: the gap test on a gap-free time axis passes
-                # every finite sample (so a sample the despiking did not evaluate reads pass)
-                # and flags the missing ones, as the despiking does
+            per = check_beam(v, t[i0:i1], fs, th, gross_range=gross_range, amplitude=amp,
+                             floor=float(b.attrs.get("velocity_resolution", 0.0)))
+            if len(per) == 2 and not (per["gap"] == FAIL).any():
+                # the aggregate without its work: the gap test passes every sample of a
+                # gap-free time axis, so a sample the despiking did not evaluate reads pass
                 g = per["goring_nikora"]
                 f = (g - (g == NOT_EVALUATED).view(np.uint8) * np.uint8(NOT_EVALUATED - GOOD)
                      ).view(np.int8)

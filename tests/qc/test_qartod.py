@@ -10,7 +10,7 @@ from flumekit.qc import qartod
 from flumekit.qc.clock import clock_departures
 from flumekit.qc.despike import goring_nikora
 from flumekit.qc.fill import fill_gaps
-from flumekit.qc.record import Thresholds, check_series, clean
+from flumekit.qc.record import Thresholds, check_beam, check_series, clean
 
 
 def _wave(fs: float, seconds: float, period: float, amplitude: float, noise: float, rng,
@@ -82,7 +82,7 @@ def test_goring_nikora_finds_spikes_in_velocity_records():
     th = Thresholds()
 
     def spikes(v):
-        g = check_series(v, t, 11.6, th, despike=True, floor=0.0073)["goring_nikora"]
+        g = check_beam(v, t, 11.6, th, floor=0.0073)["goring_nikora"]
         return g == F.FAIL
 
     assert spikes(u).mean() <= 1e-3  # clean record

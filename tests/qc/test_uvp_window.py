@@ -127,7 +127,7 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.flags import aggregate
-    from flumekit.qc.record import Thresholds, check_series
+    from flumekit.qc.record import Thresholds, check_beam
     from flumekit.stages import qc as qc_stage
     from flumekit.stages import uvp as uvp_stage
     from flumekit.uvp import phase_average_beams
@@ -145,9 +145,8 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
         inside = (t >= lo) & (t <= hi)
         v = b["beam_velocity"].transpose("channel", "time").values[:, inside]
         a = b["amplitude"].transpose("channel", "time").values[:, inside]
-        per = check_series(v, t[inside], (t.size - 1) / (t[-1] - t[0]), Thresholds(),
-                           despike=True, floor=float(b.attrs["velocity_resolution"]),
-                           amplitude=a)
+        per = check_beam(v, t[inside], (t.size - 1) / (t[-1] - t[0]), Thresholds(),
+                         floor=float(b.attrs["velocity_resolution"]), amplitude=a)
         f = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
         np.testing.assert_array_equal(qc[f"time_{name}"].values, t[inside])
         np.testing.assert_array_equal(f, aggregate(per["gap"], per["goring_nikora"]))
