@@ -261,16 +261,20 @@ def _spikes_row(src, ok, every, floor, lam2, max_iterations, sp, buffers):
 
 
 @njit(cache=True)
-def _universal(tested):
-    """λ² = 2 ln n (Goring and Nikora 2002, Eq. 2) of the longest row of samples ``tested``
-    (boolean, channel x time), the same for every row; 0 below 5 samples (nothing is
-    evaluated)."""
-    m, n = tested.shape
-    count = np.zeros(m, dtype=np.int64)
-    for i in range(n):  # channel fastest: the memory order of a beam read profile by profile
-        for r in range(m):
-            count[r] += tested[r, i]
-    longest = count.max() if m else 0
+def _universal(u, exclude):
+    """λ² = 2 ln n (Goring and Nikora 2002, Eq. 2) of the longest row of samples tested, the
+    finite ones of ``u`` not ``exclude``-d (channel x time), the same for every row; 0 below 5
+    samples (nothing is evaluated). A row tested whole ends the search (the usual case: the
+    first)."""
+    m, n = u.shape
+    longest = 0
+    for r in range(m):
+        count = 0
+        for i in range(n):
+            count += np.isfinite(u[r, i]) & ~exclude[r, i]
+        longest = max(longest, count)
+        if longest == n:
+            break
     return 2.0 * np.log(longest) if longest >= 5 else 0.0
 
 
@@ -281,7 +285,7 @@ def goring_nikora_rows(u, valid, floor, max_iterations):
     boolean spike mask, u's shape."""
     m, n = u.shape
     spikes = np.zeros((m, n), dtype=np.bool_)
-    lam2 = _universal(valid)
+    lam2 = _universal(u, ~valid)
     if lam2 == 0.0:
         return spikes
     buffers = _buffers(n)
@@ -315,11 +319,7 @@ def despike_flags_rows(u, exclude, floor, max_iterations):
     where not finite, NOT_EVALUATED where finite and excluded, else GOOD. The others are
     interpolated over (:func:`_spikes_row`)."""
     m, n = u.shape
-    tested = np.empty((m, n), dtype=np.bool_)
-    for i in range(n):  # channel fastest: the memory order of a beam read profile by profile
-        for r in range(m):
-            tested[r, i] = np.isfinite(u[r, i]) & ~exclude[r, i]
-    lam2 = _universal(tested)
+    lam2 = _universal(u, exclude)
     flags = np.empty((m, n), dtype=np.uint8)
     buffers = _buffers(n)
     src, w, _, ok, _ = buffers
@@ -332,7 +332,7 @@ def despike_flags_rows(u, exclude, floor, max_iterations):
             v = u[r, i]
             src[i] = v
             w[i] = v / unit
-            ok[i] = tested[r, i]
+            ok[i] = np.isfinite(v) & ~exclude[r, i]
             every &= ok[i]
             f[i] = GOOD if ok[i] else (NOT_EVALUATED if np.isfinite(v) else MISSING)
         if lam2 == 0.0:
