@@ -96,7 +96,9 @@ def clean_beam(beam, qc, name: str, copy: bool = True):
     v = beam["beam_velocity"].transpose("channel", "time").values
     out = np.array(v) if copy else v
     fs = (t.size - 1) / (t[-1] - t[0])
-    out[:, span] = clean(v[:, span], flags, fs, float(qc.attrs["max_gap"]), copy=False)
+    cleaned = clean(out[:, span], flags, fs, float(qc.attrs["max_gap"]), copy=False)
+    if not np.may_share_memory(cleaned, out):  # cleaned in place, as a rule
+        out[:, span] = cleaned
     return beam.assign(beam_velocity=beam["beam_velocity"].copy(
         data=out.T if beam["beam_velocity"].dims[0] == "time" else out))
 

@@ -126,7 +126,7 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
     from flumekit.campaign import load_campaign
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
-    from flumekit.qc.flags import aggregate
+    from flumekit.qc.flags import FAIL, aggregate
     from flumekit.qc.record import Thresholds, check_beam
     from flumekit.stages import qc as qc_stage
     from flumekit.stages import uvp as uvp_stage
@@ -157,7 +157,13 @@ def test_uvp_rule_checks_the_beams_it_reads(builds):
     start, period = uvp_stage.averaging_window(
         waves, qc, theta, {b: run.path / f"{b}.mfprof" for b in beams}, params,
         default_pad(params["cutoff"]))
-    ds = phase_average_beams({n: uvp_stage.clean_beam(b, qc, n) for n, b in beams.items()},
+    as_read = {n: b["beam_velocity"].values.copy() for n, b in beams.items()}
+    cleaned = {n: uvp_stage.clean_beam(b, qc, n) for n, b in beams.items()}
+    for n, b in beams.items():  # a copy cleaned (where a sample failed), the beam untouched
+        np.testing.assert_array_equal(b["beam_velocity"].values, as_read[n])
+        failed = bool((qc[f"beam_velocity_qc_{n}"] == FAIL).any())
+        assert np.array_equal(cleaned[n]["beam_velocity"].values, as_read[n]) != failed
+    ds = phase_average_beams(cleaned,
                              campaign.uvp, run.uvp_elevation, period=period, start=start,
                              n_cycles=params["n_cycles"], n_phase=params["n_phase"],
                              cutoff=params["cutoff"], order=params["order"], theta=theta,
