@@ -23,12 +23,16 @@ its own):
 * probes and flap: the qc/probes and qc/flap rules against the stages that consume them
   (eta, waves, flap, comparison);
 * UVP: the uvp rule checks the beams it reads before analysing them
-  (flumekit.stages.qc.check_beams): its QC is the computation of the flags
-  (flumekit.qc.record.beam_flags), the writing of the flag product and the masking and filling
-  of the beams (flumekit.stages.uvp.clean_beam), each timed on its own on the rule's inputs;
-  its analysis is the rest of the rule (the rule's time minus that QC). The beams are read
-  once, by the rule, for both: that read is the analysis's;
-* per run (``all``): every QC of the run against every analysis above.
+  (flumekit.stages.qc.check_beams), over the samples its average reads: its QC is the
+  computation of the flags (flumekit.qc.record.beam_flags), the writing of the flag product and
+  the masking and filling of the beams (flumekit.stages.uvp.clean_beam), each timed on its own
+  on the rule's inputs; its analysis is the rest of the rule (the rule's time minus that QC).
+  The beams are read once, by the rule, for both: that read is the analysis's;
+* per run (``all``): every QC of the run against every analysis above;
+* once per process: the despiking and echo-level loops are compiled (numba,
+  flumekit.qc.kernels); a process pays once for importing numba and loading them from their
+  cache, measured in a fresh process that has imported the analysis's modules, and shared by
+  the UVP runs it checks: its share of a UVP run is given for the paper campaign.
 
 The probe and flap QC rules read the raw files, which the analysis would otherwise read itself;
 the time of that read is shown and the ratio given both with it and without it; so is the time
