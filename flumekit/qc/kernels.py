@@ -2,14 +2,16 @@
 echo-level test, channel by channel.
 
 Both make a handful of passes over each channel's record and keep per-channel statistics
-(medians, sums); written with numpy, every pass is a temporary array, and a UVP beam (360
-channels x 3000 profiles) took 13-21 ms to despike and 6 ms for the echo level. Compiled, one
-channel's record stays in the CPU's cache through all passes (see ``flumekit bench qc``).
-The numpy definitions they must equal are in tests/qc/test_qartod.py.
+(medians, sums); written with numpy, every pass was a temporary array, and a UVP beam (360
+channels x 2100-2900 profiles) took 13-21 ms to despike and 5.5 ms for the echo level.
+Compiled, one channel's record stays in the CPU's cache through all passes, and a quantised
+record is worked in integers: 3-4.5 and 1.5 ms (``flumekit bench qc``). The definitions they
+must equal, written with numpy, are in tests/qc/test_qartod.py.
 
-Imported only by the tests that need it, so numba (0.2 s to import) is not loaded by the
-probe and flap QC or any other stage. ``cache=True``: compiled once per installation, into
-this package's ``__pycache__`` (numba falls back to a user cache directory when that is not
+Imported only by the UVP tests, so that the probe and flap QC and the other stages do not load
+numba: a process pays 0.4-0.5 s once for it (import, and the first use, which loads the
+kernels from their cache). ``cache=True``: compiled once per installation (17 s), into this
+package's ``__pycache__`` (numba falls back to a user cache directory when that is not
 writable).
 """
 
@@ -120,6 +122,23 @@ def _differences(C, D, E):
 
 
 @njit(cache=True)
+def _sums(X, D, E, zero):
+    """(ΣX, ΣX², ΣD, ΣD², ΣE, ΣE², ΣXE), accumulated from ``zero`` (int64: exact, whatever the
+    order; float64: in order, no reassociation, the same bits on every CPU)."""
+    s1 = s2 = t1 = t2 = q1 = q2 = sxe = zero
+    for i in range(X.size):
+        x, y, z = X[i] + zero, D[i] + zero, E[i] + zero
+        s1 += x
+        s2 += x * x
+        t1 += y
+        t2 += y * y
+        q1 += z
+        q2 += z * z
+        sxe += x * z
+    return s1, s2, t1, t2, q1, q2, sxe
+
+
+@njit(cache=True)
 def _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl):
     """The coefficients of the three ellipse tests (GN 2002, Eqs. 2, 9-11) from the sums of
     C = 2u, D = 4Δu, E = 8Δ²u, of their squares and of C E; ``fl``: floor of the standard
@@ -170,7 +189,7 @@ def _outside(w, lam2, fl, work, out):
     A record of whole numbers (a quantised one) of modest size is worked in integers: its
     median from its histogram (O(n)), C = 2u, D = 4Δu, E = 8Δ²u and their sums exact, those
     of C from those of the record itself (C = 2k - 2M: D and E do not depend on the median,
-    so one pass gives the histogram, D, E and every sum). Other records: the median by
+    so no pass waits for it). Other records: the median by
     selection, the sums in double precision, in order (no reassociation: the same bits on
     every CPU). Both forms give a whole-number record the same statistics and flags bit for
     bit (scaling by a power of 2 is exact in floating point)."""
@@ -184,16 +203,7 @@ def _outside(w, lam2, fl, work, out):
             hist[k[i] - lo] += 1
         # D and E of k: halves of those of C = 2k - 2M (the median cancels)
         _differences(k, D, E)
-        sk = skk = sd = sdd = se = see = ske = np.int64(0)
-        for i in range(n):
-            x, y, z = np.int64(k[i]), np.int64(D[i]), np.int64(E[i])
-            sk += x
-            skk += x * x
-            sd += y
-            sdd += y * y
-            se += z
-            see += z * z
-            ske += x * z
+        sk, skk, sd, sdd, se, see, ske = _sums(k, D, E, np.int64(0))
         a, b = _ranked(hist, span, n)
         twice = 2 * lo + a + b  # 2M, an integer
         # the sums of C = 2k - 2M, D_C = 2D and E_C = 2E from those of k, D and E
@@ -209,17 +219,7 @@ def _outside(w, lam2, fl, work, out):
     for i in range(n):
         Cf[i] = 2.0 * (w[i] - med)
     _differences(Cf, Df, Ef)
-    s1 = s2 = t1 = t2 = q1 = q2 = sce = 0.0
-    for i in range(n):
-        x, y, z = Cf[i], Df[i], Ef[i]
-        s1 += x
-        s2 += x * x
-        t1 += y
-        t2 += y * y
-        q1 += z
-        q2 += z * z
-        sce += x * z
-    c = _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl)
+    c = _coefficients(n, *_sums(Cf, Df, Ef, 0.0), lam2, fl)
     _test(Cf, 0.5, 0.0, Df, 0.25, Ef, 0.125, c, out)
 
 
