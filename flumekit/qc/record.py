@@ -208,8 +208,7 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
                time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
                ) -> xr.Dataset:
     """QC flags of UVP beam velocities: the aggregate of the tests of :func:`check_beam`, per
-    beam, over ``span`` only; the samples outside are not evaluated,
-    and not stored.
+    beam, over ``span`` only; the samples outside are neither evaluated nor stored.
 
     The UVP average reads N waves and the filter's pad either side
     (:func:`flumekit.stages.uvp.build`), so only those samples need checking: there the flow is
@@ -230,9 +229,8 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
     -------
     Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>), the profiles of the
     beam within ``span`` (each beam keeps its own time axis: beams may differ in profile
-    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``;
-    every netCDF variable costs a millisecond to write, so no more) and the
-    ``evaluated_span``.
+    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``)
+    and the ``evaluated_span``.
     """
     lo, hi = span
     names = sorted(beams)
@@ -249,7 +247,7 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
                 if "amplitude" in b else None
             per = check_beam(v, t[i0:i1], fs, th, gross_range=gross_range, amplitude=amp,
                              floor=float(b.attrs.get("velocity_resolution", 0.0)))
-            if len(per) == 2 and not (per["gap"] == FAIL).any():
+            if gross_range is None and not (per["gap"] == FAIL).any():
                 # the aggregate without its work: the gap test passes every sample of a
                 # gap-free time axis, so a sample the despiking did not evaluate reads pass
                 g = per["goring_nikora"]
