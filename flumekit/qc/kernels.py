@@ -98,7 +98,7 @@ def _whole(w, k):
     numbers in ``k`` (int32) and their extremes."""
     bad = False
     lo = hi = np.int32(0)
-    for i in range(w.size):  # no branch: the loop vectorises
+    for i in range(w.size):
         r = np.floor(w[i] + 0.5)
         bad |= (abs(w[i] - r) > 1e-6) | (abs(r) > 2.0 ** 30)
         k[i] = np.int32(r) if abs(r) <= 2.0 ** 30 else 0
