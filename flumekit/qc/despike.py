@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.qc.flags import FAIL
+
 
 def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 20,
                   exclude: np.ndarray | None = None) -> np.ndarray:
@@ -34,23 +36,12 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     -------
     Boolean array of u's shape, True at spikes.
     """
-    from flumekit.qc.kernels import goring_nikora_rows
-
     u = np.asarray(u, dtype=float)
     shape = u.shape
     u = u.reshape(-1, shape[-1])
-    valid = np.isfinite(u)
-    if exclude is not None:
-        valid &= ~np.asarray(exclude, dtype=bool).reshape(u.shape)
+    ex = None if exclude is None else np.asarray(exclude, dtype=bool).reshape(u.shape)
     # every statistic is per channel (λ aside, from the longest record): channel by channel
-    return goring_nikora_rows(u, valid, _floors(floor, u.shape[0]), int(max_iterations)
-                              ).reshape(shape)
-
-
-def _floors(floor, m: int) -> np.ndarray:
-    """The floor of each of ``m`` channels, from one or one per channel [m s-1]."""
-    return np.ascontiguousarray(np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1),
-                                                (m,)))
+    return (_flags(u, floor, max_iterations, ex, peaks=False) == FAIL).reshape(shape)
 
 
 def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 1,
@@ -63,8 +54,15 @@ def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
 
     Parameters are those of :func:`goring_nikora`; ``u`` is 2-D.
     """
+    return _flags(np.asarray(u, dtype=float), floor, max_iterations, exclude, peaks=True)
+
+
+def _flags(u: np.ndarray, floor, max_iterations: int, exclude, peaks: bool) -> np.ndarray:
+    """:func:`flumekit.qc.kernels.despike_flags_rows` on the 2-D ``u``; ``floor`` one or one
+    per channel [m s-1]."""
     from flumekit.qc.kernels import despike_flags_rows
 
-    u = np.asarray(u, dtype=float)
     exclude = np.zeros(u.shape, dtype=bool) if exclude is None else np.asarray(exclude, bool)
-    return despike_flags_rows(u, exclude, _floors(floor, u.shape[0]), int(max_iterations))
+    floors = np.ascontiguousarray(np.broadcast_to(np.asarray(floor, dtype=float).reshape(-1),
+                                                  (u.shape[0],)))
+    return despike_flags_rows(u, exclude, floors, int(max_iterations), peaks)

@@ -279,30 +279,6 @@ def _universal(u, exclude):
 
 
 @njit(cache=True)
-def goring_nikora_rows(u, valid, floor, max_iterations):
-    """Spikes of each row of ``u`` (channel, time; any memory layout), its ``valid`` samples
-    only (:func:`_spikes_row`, λ of :func:`_universal`); per-row ``floor``. Returns the
-    boolean spike mask, u's shape."""
-    m, n = u.shape
-    spikes = np.zeros((m, n), dtype=np.bool_)
-    lam2 = _universal(u, ~valid)
-    if lam2 == 0.0:
-        return spikes
-    buffers = _buffers(n)
-    src, w, _, ok, _ = buffers
-    for r in range(m):
-        unit = floor[r] if floor[r] > 0.0 else 1.0
-        every = True
-        for i in range(n):  # the row copied once: a transposed view is strided
-            src[i] = u[r, i]
-            w[i] = src[i] / unit
-            ok[i] = valid[r, i]
-            every &= ok[i]
-        _spikes_row(src, ok, every, floor[r], lam2, max_iterations, spikes[r], buffers)
-    return spikes
-
-
-@njit(cache=True)
 def _departure(x, k):
     """|x_k - (x_(k-1) + x_(k+1))/2|, 0 at the first and last samples."""
     if k < 1 or k > x.size - 2:
@@ -311,13 +287,14 @@ def _departure(x, k):
 
 
 @njit(cache=True)
-def despike_flags_rows(u, exclude, floor, max_iterations):
+def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
     """QARTOD flags of the Goring-Nikora despiking of each row of ``u`` (channel, time; any
-    layout), its finite samples not ``exclude``-d only (λ of :func:`_universal`): FAIL at the
-    spikes whose departure from their neighbours' mean is the local largest (a spike moves
-    the derivatives of its two neighbours, which the method then flags with it), MISSING
-    where not finite, NOT_EVALUATED where finite and excluded, else GOOD. The others are
-    interpolated over (:func:`_spikes_row`)."""
+    layout), its finite samples not ``exclude``-d only (λ of :func:`_universal`; per-row
+    ``floor``): FAIL at the spikes (``peaks``: at those only whose departure from their
+    neighbours' mean is the local largest, since a spike moves the derivatives of its two
+    neighbours, which the method then flags with it), MISSING where not finite,
+    NOT_EVALUATED where finite and excluded, else GOOD. The others are interpolated over
+    (:func:`_spikes_row`)."""
     m, n = u.shape
     lam2 = _universal(u, exclude)
     flags = np.empty((m, n), dtype=np.uint8)
@@ -342,7 +319,7 @@ def despike_flags_rows(u, exclude, floor, max_iterations):
         for j in range(n):
             if sp[j]:
                 d = _departure(src, j)
-                if d >= _departure(src, j - 1) and d >= _departure(src, j + 1):
+                if not peaks or (d >= _departure(src, j - 1) and d >= _departure(src, j + 1)):
                     f[j] = FAIL
     return flags
 
