@@ -34,6 +34,10 @@ def _encoding(ds: xr.Dataset, compress: bool = True) -> dict[str, dict]:
                 e["dtype"] = "int32"
             if name in ds.dims:
                 e["_FillValue"] = None
+        elif var.dtype.kind in "USO":
+            # variable-length strings: a width taken from the encoding of the first file read
+            # (a run name 'run1') would cut every longer name of a summary ('run10' -> 'run1')
+            e["dtype"] = str
         elif var.dtype.kind == "c":
             raise TypeError(f"variable '{name}' is complex: store real and imaginary parts")
         if np.issubdtype(var.dtype, np.datetime64):
@@ -126,4 +130,10 @@ def read_dataset(path: str | Path) -> xr.Dataset:
     """Open a flumekit netCDF file fully into memory (the file is closed on return)."""
     with xr.open_dataset(path, engine="netcdf4", decode_times=False,
                          decode_timedelta=False) as ds:
-        return ds.load()
+        ds = ds.load()
+    for var in ds.variables.values():
+        if var.dtype.kind in "USO":
+            # the width of this file's strings is no property of the data: kept in the
+            # encoding it would cut longer strings of any dataset this one is stacked into
+            var.encoding.pop("dtype", None)
+    return ds
