@@ -70,6 +70,42 @@ def _read(path: Path, depth: int = 0) -> dict:
     return _merge(_read(path.parent / parent, depth + 1), data)
 
 
+def check_outside_raw(raw: Path, processed: Path, source: Path, key: str) -> None:
+    """Refuse a processed folder among the raw files, before anything runs.
+
+    Parameters
+    ----------
+    raw, processed : pathlib.Path
+        The raw campaign and the processed folder, resolved (symlinks followed).
+    source : pathlib.Path
+        The pipeline file that declared them, named in the error.
+    key : str
+        Where ``processed`` came from (``"processed"`` or ``"--processed"``).
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When ``processed`` is the raw folder, lies in its ``runs/`` (or is ``runs/``), or
+        holds the raw campaign: outputs would mix with raw files, and a later ``clean`` or a
+        glob over a run folder would take one for the other. A processed folder beside
+        ``runs/`` inside the campaign folder (``raw = "."``, ``processed = "processed"``, as a
+        lab keeps one folder per campaign) is allowed: nothing reads it as raw.
+    """
+    runs = raw / "runs"
+    if processed == raw:
+        why = "is the raw campaign folder"
+    elif processed == runs or runs in processed.parents:
+        why = "lies in the runs/ folder of the raw campaign"
+    elif processed in raw.parents:
+        why = "contains the raw campaign"
+    else:
+        return
+    where = "field 'pipeline.processed'" if key == "processed" else "option --processed"
+    raise InputError(source, f"the processed folder {processed} ({where}) {why} {raw}: "
+                     "outputs would be written among raw files. Choose a folder outside the raw "
+                     "campaign (or beside its runs/ folder)")
+
+
 def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipeline:
     """Read a pipeline file; relative paths in it are relative to the file's folder."""
     path = Path(path)
@@ -81,6 +117,7 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     base = path.parent
     raw = (base / p["raw"]).resolve()
     out = Path(processed).resolve() if processed else (base / p["processed"]).resolve()
+    check_outside_raw(raw, out, path, "processed" if processed is None else "--processed")
     scenes = {}
     for name, targets in data.get("scenes", {}).items():
         if isinstance(targets, dict):
