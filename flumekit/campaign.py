@@ -125,7 +125,9 @@ CAMPAIGN: dict[str, Key] = {
     "flume": Key("table", "the flume", table={
         "water_depth": _num("still water depth h", "m", positive=True),
         "width": _num("flume width", "m", positive=True, required=False),
-        "length": _num("flume length", "m", positive=True, required=False)}),
+        "length": _num("flume length", "m", positive=True, required=False),
+        "density": _num("water density rho (the energy flux of irregular seas)", "kg m-3",
+                        positive=True, required=False, default=1000.0)}),
     "flap": Key("table", "bottom-hinged flap (with [pto] and [encoder])", required=False,
                 table={
         "height": _num("flap height (descriptive)", "m", positive=True, required=False),
@@ -185,12 +187,31 @@ CAMPAIGN: dict[str, Key] = {
 INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
                     "calibration": "calibration/probes.csv"}
 
+#: run kinds: regular waves (with or without UVP) and irregular sea states
+RUN_KINDS = ("waves", "uvp", "irregular")
+#: the keys of a run.toml's [run] that only a regular, or only an irregular run has
+REGULAR_KEYS = ("period", "height")
+SEA_STATE_KEYS = ("hm0", "tp", "te", "gamma", "seed", "duration")
+
 RUN: dict[str, Key] = {
     "run": Key("table", "the wave condition", table={
-        "kind": Key("text", "waves, or uvp (the run also has .mfprof files)", required=False,
-                    default="waves", choices=("waves", "uvp")),
-        "period": _num("target wave period", "s", positive=True),
-        "height": _num("target wave height", "m", positive=True, required=False),
+        "kind": Key("text", "waves (regular), uvp (regular, the run also has .mfprof files) or "
+                    "irregular (a sea state: hm0 with tp or te, no period)", required=False,
+                    default="waves", choices=RUN_KINDS),
+        "period": _num("regular runs: target wave period", "s", positive=True, required=False),
+        "height": _num("regular runs: target wave height", "m", positive=True, required=False),
+        "hm0": _num("irregular runs: target significant wave height Hm0 = 4 sqrt(m0)", "m",
+                    positive=True, required=False),
+        "tp": _num("irregular runs: target peak period (or te)", "s", positive=True,
+                   required=False),
+        "te": _num("irregular runs: target energy period Tm-1,0 (or tp)", "s", positive=True,
+                   required=False),
+        "gamma": _num("irregular runs: JONSWAP peak enhancement factor of the target spectrum",
+                      positive=True, required=False),
+        "seed": Key("integer", "irregular runs: seed of the wavemaker's random phases",
+                    required=False),
+        "duration": _num("irregular runs: nominal duration of the wavemaker signal", "s",
+                         positive=True, required=False),
         "repeat": Key("integer", "repeat number of the condition", required=False, default=0),
         "uvp_elevation": _num("UVP runs: elevation of the horizontal transducer", "m",
                               required=False),
@@ -220,6 +241,19 @@ class Flume:
     water_depth: float  # [m]
     width: float | None = None  # [m], required with the flap (the channel of its models)
     length: float | None = None  # [m], descriptive: no computation reads it
+    density: float = 1000.0  # [kg m-3], fresh water unless declared
+
+
+@dataclass(frozen=True)
+class SeaState:
+    """The target sea state of an irregular run (a JONSWAP spectrum)."""
+
+    hm0: float  # significant wave height [m]
+    tp: float | None = None  # peak period [s] (one of tp and te is declared)
+    te: float | None = None  # energy period Tm-1,0 [s]
+    gamma: float | None = None  # peak enhancement [-], None when not declared
+    seed: int | None = None
+    duration: float | None = None  # [s]
 
 
 @dataclass(frozen=True)
@@ -327,9 +361,9 @@ class UVP:
 class Run:
     id: str
     path: Path
-    kind: str  # "waves" or "uvp"
-    period: float  # [s]
-    height: float | None  # [m], None when not declared
+    kind: str  # "waves", "uvp" or "irregular"
+    period: float | None  # [s], None for an irregular run
+    height: float | None  # [m], None when not declared (and for an irregular run)
     repeat: int
     probe_x: dict[str, float]  # probe name -> x [m]
     uvp_elevation: float | None  # [m]
@@ -337,6 +371,12 @@ class Run:
     clock: dict[str, float] = field(default_factory=dict)  # instrument -> time offset [s]
     still_water: Any = None  # the run's still-water rule (None: the campaign's)
     start: str | None = None  # declared start of the records, ISO 8601 (Z: UTC), see _iso
+    sea_state: SeaState | None = None  # the target sea state of an irregular run
+
+    @property
+    def irregular(self) -> bool:
+        """Whether the run is an irregular sea state (no period, a target spectrum)."""
+        return self.kind == "irregular"
 
     def file(self, instrument: str) -> Path:
         return self.files[instrument]
@@ -403,6 +443,24 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
                              "elevation of the horizontal transducer [m]"))
     if kind == "uvp" and campaign.uvp is None:
         found.append(Problem(path, "run.kind", "a 'uvp' run needs [uvp] in campaign.toml"))
+    if kind == "irregular":
+        found += [Problem(path, f"run.{k}", "an irregular run has no regular-wave " + k
+                          + ": declare its sea state (hm0 with tp or te)")
+                  for k in REGULAR_KEYS if k in r]
+        if "hm0" not in r:
+            found.append(Problem(path, "run.hm0", "missing key: the target significant wave "
+                                 "height of the irregular run [m]"))
+        if ("tp" in r) == ("te" in r):
+            found.append(Problem(path, "run.tp", "declare exactly one of tp (peak period) and "
+                                 "te (energy period) [s]"))
+    else:
+        found += [Problem(path, f"run.{k}", f"a regular run ('{kind}') has no sea state: for "
+                          "an irregular run declare kind = \"irregular\"")
+                  for k in SEA_STATE_KEYS if k in r]
+        if "period" not in r:
+            found.append(Problem(path, "run.period", "missing key: the target wave period [s] "
+                                 "(for an irregular sea state declare kind = \"irregular\" "
+                                 "with hm0 and tp or te)"))
     clock = _table(data, "clock")
     for k in clock:
         if k in ("flap", "uvp") and k not in campaign.instruments:
@@ -418,8 +476,15 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
         problems += found
         return None
     sw = _table(data, "still_water").get("rule")
-    return Run(id=path.parent.name, path=path.parent, kind=kind, period=float(r["period"]),
-               height=float(r["height"]) if "height" in r else None,
+    sea = None
+    if kind == "irregular":
+        sea = SeaState(float(r["hm0"]), *(float(r[k]) if k in r else None
+                                          for k in ("tp", "te", "gamma")),
+                       int(r["seed"]) if "seed" in r else None,
+                       float(r["duration"]) if "duration" in r else None)
+    return Run(id=path.parent.name, path=path.parent, kind=kind,
+               period=float(r["period"]) if "period" in r else None,
+               height=float(r["height"]) if "height" in r else None, sea_state=sea,
                repeat=int(r.get("repeat", 0)), probe_x={n: float(px[n]) for n in names},
                uvp_elevation=float(r["uvp_elevation"]) if kind == "uvp" else None,
                files=files, clock={k: float(clock.get(k, 0.0)) for k in ("probes", "flap", "uvp")},
@@ -516,7 +581,8 @@ def load_campaign(root: str | Path) -> Campaign:
     raise_problems(path, problems)
 
     c = data["campaign"]
-    flume = Flume(float(fl["water_depth"]), fl.get("width"), fl.get("length"))
+    flume = Flume(float(fl["water_depth"]), fl.get("width"), fl.get("length"),
+                  float(fl.get("density", 1000.0)))
     flap = pto = enc = None
     if f:
         flap = Flap(**{k: float(f[k]) for k in Flap.__dataclass_fields__ if k in f})
