@@ -67,6 +67,9 @@ VARIABLES: dict[str, Variable] = {
     "level": _V("m", "static calibration water level relative to the still-water level"),
     "wave_period": _V("s", "target wave period"),
     "wave_height": _V("m", "target wave height"),
+    "wave_hm0": _V("m", "target significant wave height Hm0 of an irregular run"),
+    "wave_tp": _V("s", "target peak period of an irregular run"),
+    "wave_te": _V("s", "target energy period Tm-1,0 of an irregular run"),
     "repeat": _V("1", "repeat number of the test condition"),
     "uvp_elevation": _V("m", "elevation of the horizontal UVP transducer (UP2)"),
     "sampling_rate": _V("Hz", "sampling rate"),
@@ -126,6 +129,13 @@ VARIABLES: dict[str, Variable] = {
     "incident_phase": _V("rad",
                          "phase of the first-harmonic incident wave, eta = a cos(omega t + phase)"),
     "steady_cycles": _V("1", "number of wave cycles in the quasi-steady window"),
+    "analysis_start": _V("s", "start of the analysed span of an irregular run"),
+    "analysis_end": _V("s", "end of the analysed span of an irregular run"),
+    "reflection_coefficient_spectrum": _V("1", "reflection coefficient per frequency band "
+                                          "Kr(f) = sqrt(S_R / S_I)"),
+    "low_frequency_energy_fraction": _V("1", "share of the records' variance below half the "
+                                        "peak frequency"),
+    "reflected_hm0": _V("m", "spectral significant height Hm0 of the reflected wave"),
     # --- flap ---
     "theta": _V("rad", "flap rotation angle, positive towards the beach"),
     "theta_dot": _V("rad s-1", "flap angular velocity"),

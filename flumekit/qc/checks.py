@@ -49,15 +49,86 @@ def check_height(declared: float, measured: float, tolerance: float, warning: fl
                  run_file: Path, what: str) -> str | None:
     """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the
     declared height and the measured one)."""
+    return check_declared("height", declared, measured, "m", tolerance, warning, run_file,
+                          what, "height_tolerance")
+
+
+def check_declared(key: str, declared: float, measured: float, unit: str, tolerance: float,
+                   warning: float, run_file: Path, what: str, parameter: str) -> str | None:
+    """A declared run value against the measured one: an error beyond ``tolerance``, a
+    warning (returned text) beyond ``warning`` (relative differences).
+
+    Parameters
+    ----------
+    key : str
+        The key of ``[run]`` in run.toml (``height``, ``hm0``, ``tp``, ``te``).
+    declared, measured : float
+        The declared and the measured value [``unit``].
+    unit : str
+        Their unit, for the message.
+    tolerance, warning : float
+        Relative differences beyond which the run is refused, or a warning recorded [-].
+    run_file : pathlib.Path
+        The run.toml, named in the message.
+    what : str
+        What was measured (e.g. "incident height at the flap").
+    parameter : str
+        The ``[stages.waves]`` parameter holding ``tolerance``.
+
+    Returns
+    -------
+    str or None
+        The warning, or None.
+    """
     rel = abs(measured / declared - 1.0)
-    msg = (f"declared height {declared:g} m differs from the measured {what} "
-           f"{measured:.4g} m by {rel:.0%}")
+    msg = (f"declared {key} {declared:g} {unit} differs from the measured {what} "
+           f"{measured:.4g} {unit} by {rel:.0%}")
     if not rel <= tolerance:
         raise InputError(run_file, f"{msg}, more than the tolerance {tolerance:.0%} "
-                         "([stages.waves] height_tolerance)", field="run.height")
+                         f"([stages.waves] {parameter})", field=f"run.{key}")
     if rel > warning:
-        return f"{run_file}: run.height: {msg}"
+        return f"{run_file}: run.{key}: {msg}"
     return None
+
+
+def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction: float,
+               run_file: Path, record: Path) -> None:
+    """Error when the records contradict the run's declared kind: a regular run whose records
+    are an irregular sea, or an irregular run whose records are a regular wave train.
+
+    The detection is the one :func:`flumekit.waves.separate` uses: a record holding at least
+    ``regular_fraction`` of its variance at its peak frequency and the harmonics of it
+    (:func:`flumekit.waves.harmonic_energy_fraction`) is regular. Analysed as the other kind,
+    a record gives a confident wrong answer (an irregular sea read as a regular wave: the
+    first-harmonic Kr of one random bin).
+
+    Parameters
+    ----------
+    kind : str
+        The declared kind ("waves", "uvp": regular; "irregular").
+    peak_frequency : float
+        The records' peak frequency [Hz].
+    share : float
+        Their share of variance at the peak and its harmonics [-].
+    regular_fraction : float
+        The share from which a record is regular [-]
+        (:data:`flumekit.waves.REGULAR_FRACTION`).
+    run_file, record : pathlib.Path
+        The run.toml and the probe file, named in the message.
+    """
+    regular = share >= regular_fraction
+    looks = (f"{share:.1%} of the variance of {record} lies at its peak {peak_frequency:.4g} Hz "
+             f"(T = {1 / peak_frequency:.4g} s) and the harmonics of it (a regular wave train "
+             f"holds {regular_fraction:.0%} or more)")
+    if kind == "irregular" and regular:
+        raise InputError(run_file, f"the run is declared irregular, but its record is a "
+                         f"regular wave train: {looks}. Declare kind = \"waves\" with its "
+                         "period (and height), or check the probe file", field="run.kind")
+    if kind != "irregular" and not regular:
+        raise InputError(run_file, f"the run is declared regular (kind = \"{kind}\"), but its "
+                         f"record is an irregular sea: only {looks}. Declare kind = "
+                         "\"irregular\" with hm0 and tp (or te) instead of period, or check the "
+                         "probe file", field="run.kind")
 
 
 def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,

@@ -25,9 +25,9 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
         if rule is None:
             rule = "mean" if calibrated else "none"
         params = {"probes": list(c.probes.names), "probe_x": run.probe_x,
-                  "sampling_rate": c.probes.sampling_rate, "kind": run.kind,
+                  "sampling_rate": c.probes.sampling_rate,
                   "time_offset": run.clock.get("probes", 0.0), "still_water": rule,
-                  **run_params(run)}
+                  **run_params(run, c)}
         inputs = {"probes": ctx.out("qc", "probes", f"{run.id}.nc")}
         if not calibrated:
             inputs["calibration"] = ctx.out("calibration.nc")

@@ -23,7 +23,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     out = []
     for run in c.runs:
-        p = {**params, **run_params(run), "sampling_rate": c.encoder.sampling_rate}
+        p = {**params, **run_params(run, c), "sampling_rate": c.encoder.sampling_rate}
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
                         inputs={"flap": ctx.out("qc", "flap", f"{run.id}.nc"),
                                 "campaign": ctx.campaign_file,

@@ -77,7 +77,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     for run in c.runs:
         params = {**geometry, "dt": p["dt"], "simulator": p["simulator"],
                   "friction": p["friction"], "spin_up_periods": p["spin_up_periods"],
-                  "linear_pto_damping": p["linear_pto_damping"], **run_params(run)}
+                  "linear_pto_damping": p["linear_pto_damping"], **run_params(run, c)}
         out.append(Rule(f"comparison/{run.id}", "flumekit.stages.models:compare",
                         inputs={"flap": ctx.out("flap", f"{run.id}.nc"),
                                 "waves": ctx.out("waves", f"{run.id}.nc"),

@@ -99,7 +99,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     out = []
     for run in c.runs:
-        rp = {**params, **run_params(run)}
+        rp = {**params, **run_params(run, c)}
         reading = _reading(ctx, run)
         out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
                         inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
@@ -186,6 +186,7 @@ def probes(inputs, outputs, params) -> None:
     from flumekit.qc import checks
     from flumekit.qc.flags import FAIL
     from flumekit.qc.record import Thresholds, qc_dataset
+    from flumekit.waves.records import REGULAR_FRACTION, harmonic_energy_fraction
 
     path = Path(inputs["probes"])
     # dialect, units, clock: as the campaign declares them (default: the raw campaign's CSV)
@@ -201,9 +202,16 @@ def probes(inputs, outputs, params) -> None:
                        " V" if name == "probe_voltage" else " m")
     v = ds[name].transpose("probe", "time").values
     ok = ds[f"{name}_qc"].transpose("probe", "time").values != FAIL
-    period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
-    checks.check_period(params["period"], period, params["period_tolerance"],
-                        Path(inputs["run"]), path)
+    good = np.where(ok, v, np.nan)
+    period = checks.dominant_period(good, params["sampling_rate"])
+    # the record's kind as flumekit.waves.separate detects it, against the declared one
+    f1, share = harmonic_energy_fraction(np.where(ok, v - np.nanmean(good, axis=-1,
+                                                                     keepdims=True), 0.0),
+                                         1.0 / params["sampling_rate"])
+    checks.check_kind(params["kind"], f1, share, REGULAR_FRACTION, Path(inputs["run"]), path)
+    if params["period"] is not None:  # an irregular run's sea state is checked by its waves
+        checks.check_period(params["period"], period, params["period_tolerance"],
+                            Path(inputs["run"]), path)
     ds = ds.assign_coords(x=("probe", [float(params["probe_x"][p]) for p in params["probes"]]))
     ds["record_period"] = ((), period, {"units": "s", "long_name": "dominant period of the "
                                         "probe records (spectral peak)"})
@@ -282,7 +290,7 @@ def summary(inputs, outputs, params) -> None:
                             attrs={"units": "1", "long_name": f"samples of {name} per QC flag"})
 
     runs = sorted({k.split("/", 1)[1] for k in inputs})
-    rows, lags, periods, heights, warn = [], [], [], [], []
+    rows, lags, warn = [], [], []
     for run in runs:
         p = read_dataset(inputs[f"probes/{run}"])
         name = "probe_voltage" if "probe_voltage" in p else "probe_elevation"
@@ -291,12 +299,12 @@ def summary(inputs, outputs, params) -> None:
         warn += [w for w in p.attrs.get(WARNINGS, "").splitlines() if w]
         if f"flap/{run}" in inputs:
             f = read_dataset(inputs[f"flap/{run}"])
-            near = p[name].isel(probe=int(np.argmin(np.abs(p["x"].values))))
             period, height = params["conditions"][run]  # the run's wave condition [s, m]
-            lags.append(probe_flap_lag(near.values, p["time"].values,
-                                       f["encoder_counts"].values, f["time"].values, period))
-            periods.append(period)
-            heights.append(height)
+            if period is not None:  # a regular run: its lag against its condition's
+                near = p[name].isel(probe=int(np.argmin(np.abs(p["x"].values))))
+                lag = probe_flap_lag(near.values, p["time"].values,
+                                     f["encoder_counts"].values, f["time"].values, period)
+                lags.append((run, lag, period, height))
             row.update({f"{k}_qc_count": counts(f[f"{k}_qc"], k)
                         for k in ("encoder_counts", "chamber_pressure")})
             warn += [w for w in f.attrs.get(WARNINGS, "").splitlines() if w]
@@ -309,12 +317,19 @@ def summary(inputs, outputs, params) -> None:
         # here ("coordinates"), which CF checkers rightly report as missing
         v.encoding = {}
     if lags:
-        dep, basis = clock_departures(np.array(lags), np.array(periods), np.array(heights))
-        out["probe_flap_lag"] = ("run", np.array(lags), {
+        lagged, lag_values, periods, heights = (list(c) for c in zip(*lags, strict=True))
+        dep, basis = clock_departures(np.array(lag_values), np.array(periods),
+                                      np.array(heights, dtype=float))
+        # NaN for a run without a lag (an irregular run has no condition to compare with)
+        index = {r: i for i, r in enumerate(runs)}
+        full_lag, full_dep = np.full(len(runs), np.nan), np.full(len(runs), np.nan)
+        full_lag[[index[r] for r in lagged]] = lag_values
+        full_dep[[index[r] for r in lagged]] = dep
+        out["probe_flap_lag"] = ("run", full_lag, {
             "units": "s", "long_name": "cross-correlation offset to add to the flap's time "
             "stamps to align the encoder with the probe nearest the flap (the physical lag, "
             "modulo a period, and any clock offset)"})
-        out["clock_departure"] = ("run", dep, {
+        out["clock_departure"] = ("run", full_dep, {
             "units": "s", "long_name": "that offset minus the one expected for the run's wave "
             "condition (the median of three runs or more of the condition, else a fit over "
             "the neighbouring conditions): the flap's clock offset where large; NaN without a "
@@ -325,9 +340,9 @@ def summary(inputs, outputs, params) -> None:
                  f"what T = {t:g} s, H = {h:g} m should give ({b}): a clock offset between "
                  "the probes and the flap? If so declare it in the run's run.toml "
                  f"([clock] flap = {d:.3f})"
-                 for r, lag, d, t, h, b in zip(runs, lags, dep, periods, heights, basis,
-                                               strict=True) if abs(d) > tol]
-        reference = "\n".join(f"{r}: {b}" for r, b in zip(runs, basis, strict=True))
+                 for r, lag, d, t, h, b in zip(lagged, lag_values, dep, periods, heights,
+                                               basis, strict=True) if abs(d) > tol]
+        reference = "\n".join(f"{r}: {b}" for r, b in zip(lagged, basis, strict=True))
     else:
         reference = ""
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}

@@ -3,22 +3,42 @@
 from __future__ import annotations
 
 
-def run_params(run) -> dict:
+def run_params(run, campaign=None) -> dict:
     """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses),
-    with the records' start when run.toml declares one (:func:`write_run` applies it)."""
-    return {"run": run.id, "period": run.period, "height": run.height, "repeat": run.repeat,
-            "uvp_elevation": run.uvp_elevation, **({"start": run.start} if run.start else {})}
+    with the records' start when run.toml declares one (:func:`write_run` applies it).
+
+    ``kind`` is the run's kind ("waves", "uvp", "irregular"), ``sea_state`` the target sea
+    state of an irregular run (a dict, else None); ``sea_state_coords``: whether the runs of
+    ``campaign`` carry the target sea state as coordinates (when any run is irregular, so
+    that every run of a mixed campaign has the same coordinates).
+    """
+    sea = run.sea_state
+    return {"run": run.id, "kind": run.kind, "period": run.period, "height": run.height,
+            "repeat": run.repeat, "uvp_elevation": run.uvp_elevation,
+            "sea_state": None if sea is None else dict(sea.__dict__),
+            "sea_state_coords": bool(campaign is not None
+                                     and any(r.irregular for r in campaign.runs)),
+            **({"start": run.start} if run.start else {})}
 
 
 def run_coords(params: dict) -> dict:
     """Run parameters as scalar coordinates, so runs concatenate along ``run``.
 
-    ``uvp_elevation`` is NaN for runs without UVP, so every run has the same coordinates.
+    ``uvp_elevation`` is NaN for runs without UVP, the target period and height NaN for an
+    irregular run and its target Hm0, Tp and Te (``wave_hm0``, ``wave_tp``, ``wave_te``,
+    present when the campaign has irregular runs) NaN for a regular one, so every run has the
+    same coordinates.
     """
-    z = params.get("uvp_elevation")
-    return {"run": params["run"], "wave_period": params["period"],
-            "wave_height": params["height"], "repeat": params["repeat"],
-            "uvp_elevation": float("nan") if z is None else z}
+    def nan(v):
+        return float("nan") if v is None else v
+
+    out = {"run": params["run"], "wave_period": nan(params["period"]),
+           "wave_height": nan(params["height"]), "repeat": params["repeat"],
+           "uvp_elevation": nan(params.get("uvp_elevation"))}
+    if params.get("sea_state_coords"):
+        sea = params.get("sea_state") or {}
+        out.update({f"wave_{k}": nan(sea.get(k)) for k in ("hm0", "tp", "te")})
+    return out
 
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,

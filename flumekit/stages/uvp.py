@@ -42,7 +42,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
         inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
         inputs.update(campaign=ctx.campaign_file, waves=ctx.out("waves", f"{run.id}.nc"),
                       flap=ctx.out("flap", f"{run.id}.nc"))
-        p = {**params, **run_params(run), "time_offset": run.clock.get("uvp", 0.0), "qc": qc}
+        p = {**params, **run_params(run, c), "time_offset": run.clock.get("uvp", 0.0), "qc": qc}
         # the rule checks the beams it reads before analysing them and writes their QC flags
         # too (flumekit.stages.qc.check_beams)
         out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,

@@ -9,7 +9,10 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 VERSION = "4"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
             "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
-            "noise_factor": 3.0, "height_tolerance": 0.25, "height_warning": 0.1}
+            "noise_factor": 3.0, "height_tolerance": 0.25, "height_warning": 0.1,
+            "irregular_method": "zelt_skjelbreia", "gauge_weights": None, "span": None,
+            "n_bins": None, "sea_state_tolerance": 0.25, "sea_state_warning": 0.05,
+            "low_frequency_warning": 0.05}
 DOCS = {
     "method": "separation method: 'mansard_funke' (3 probes), 'goda_suzuki' (2) or "
               "'zelt_skjelbreia' (2 or more)",
@@ -30,6 +33,22 @@ DOCS = {
     "height_tolerance": "declared run height vs the measured incident height: relative "
                         "difference beyond which the run is refused [-]",
     "height_warning": "relative difference beyond which a warning is recorded [-]",
+    "irregular_method": "separation method of irregular runs: 'zelt_skjelbreia' (2 or more "
+                        "probes, Zelt & Skjelbreia 1992), 'mansard_funke' (3) or "
+                        "'goda_suzuki' (2)",
+    "gauge_weights": "irregular runs: weight of each separation probe in the least squares "
+                     "(Zelt & Skjelbreia 1992), in the order of [probes] separation; none: "
+                     "equal",
+    "span": "irregular runs: [start, end] of the analysed span [s]; none: detected (after the "
+            "wavemaker's ramp and the reflection's travel to the probes)",
+    "n_bins": "irregular runs: periodogram bins per band of the smoothed spectra and Kr(f) "
+              "[-]; none: the bins spanning fp/16 (at least 4)",
+    "sea_state_tolerance": "declared hm0 and tp (or te) vs the measured incident ones: "
+                           "relative difference beyond which the run is refused [-]",
+    "sea_state_warning": "relative difference beyond which a warning is recorded [-] (model-"
+                         "test practice: 5 %)",
+    "low_frequency_warning": "irregular runs: share of the variance below fp/2 (bound long "
+                             "waves, seiching) beyond which the run is flagged [-]",
 }
 
 
@@ -37,8 +56,8 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     out = []
     for run in c.runs:
-        p = {**params, "depth": c.flume.water_depth,
-             "separation_probes": list(c.probes.separation), **run_params(run)}
+        p = {**params, "depth": c.flume.water_depth, "density": c.flume.density,
+             "separation_probes": list(c.probes.separation), **run_params(run, c)}
         out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
                         inputs={"eta": ctx.out("eta", f"{run.id}.nc"),
                                 "run": run.path / "run.toml", "probes": run.file("probes")},
@@ -53,7 +72,7 @@ def build(inputs, outputs, params) -> None:
 
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
-    from flumekit.qc.checks import check_height
+    from flumekit.qc.checks import check_declared, check_height
     from flumekit.stages.qc import WARNINGS
     from flumekit.waves import analyse_run
 
@@ -62,32 +81,54 @@ def build(inputs, outputs, params) -> None:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            ds = analyse_run(eta, params["depth"], params["period"], params["x_ref"],
+            ds = (_irregular(eta, params) if params["kind"] == "irregular" else analyse_run(eta, params["depth"], params["period"], params["x_ref"],
                              method=params["method"],
                              separation_probes=params["separation_probes"],
                              n_harmonics=params["n_harmonics"],
                              bound_harmonics=params["bound_harmonics"],
                              amplitude_dispersion=params["amplitude_dispersion"],
                              tolerance=params["tolerance"], min_cycles=params["min_cycles"],
-                             noise_factor=params["noise_factor"])
+                             noise_factor=params["noise_factor"]))
         except ValueError as e:  # a dead probe, a record too short: the message names the probe
             raise InputError(inputs["probes"], str(e)) from None
-    for w in caught:
-        if issubclass(w.category, UserWarning):
-            print(f"warning: run {params['run']}: {w.message}")
-    # the declared height only labels the run (the analysis uses the measured one), so a
-    # moderate disagreement is a warning and a gross one an error; an undeclared one is not
-    # checked
-    warned = None
+    recorded = [f"{inputs['probes']}: {w.message}" for w in caught
+                if issubclass(w.category, UserWarning)]
+    for w in recorded:
+        print(f"warning: run {params['run']}: {w}")
+    # the declared height (sea state) only labels the run (the analysis uses the measured
+    # one), so a moderate disagreement is a warning and a gross one an error; an undeclared
+    # one is not checked
+    warned = []
     if params["height"] is not None:
-        warned = check_height(params["height"], float(ds["incident_height"]),
-                              params["height_tolerance"], params["height_warning"],
-                              inputs["run"], "incident height at the flap")
-    warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), warned) if w]
+        warned.append(check_height(params["height"], float(ds["incident_height"]),
+                                   params["height_tolerance"], params["height_warning"],
+                                   inputs["run"], "incident height at the flap"))
+    sea = params.get("sea_state") or {}
+    for key, measured, unit, what in (
+            ("hm0", "hm0", "m", "incident Hm0 at the flap"),
+            ("tp", "tp", "s", "incident peak period (smoothed spectrum)"),
+            ("te", "te", "s", "incident energy period Tm-1,0")):
+        if sea.get(key) is not None:
+            warned.append(check_declared(key, sea[key], float(ds[measured]), unit,
+                                         params["sea_state_tolerance"],
+                                         params["sea_state_warning"], inputs["run"], what,
+                                         "sea_state_tolerance"))
+    warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), *recorded, *warned) if w]
     if warnings_:
         ds.attrs[WARNINGS] = "\n".join(warnings_)
     write_run(ds, outputs, params, "Incident and reflected waves",
               f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
+
+
+def _irregular(eta, params):
+    """The analysis of an irregular run (:func:`flumekit.waves.analyse_irregular_run`)."""
+    from flumekit.waves import analyse_irregular_run
+
+    return analyse_irregular_run(
+        eta, params["depth"], params["x_ref"], method=params["irregular_method"],
+        separation_probes=params["separation_probes"], gauge_weights=params["gauge_weights"],
+        span=params["span"], n_bins=params["n_bins"],
+        low_frequency_warning=params["low_frequency_warning"], rho=params["density"])
 
 
 def report(path) -> str:
@@ -95,6 +136,10 @@ def report(path) -> str:
     from flumekit.io.netcdf import read_dataset
 
     ds = read_dataset(path)
+    if "hm0" in ds:
+        return (f"bulk Kr = {float(ds.reflection_coefficient):.3f}, Hm0 = {float(ds.hm0):.4g} m, "
+                f"Tp = {float(ds.tp):.4g} s, Te = {float(ds.te):.4g} s over "
+                f"{float(ds.analysis_end - ds.analysis_start):.0f} s (irregular)")
     crit = ds["steady_tolerance"].attrs.get("criterion", "tolerance") \
         if "steady_tolerance" in ds else "tolerance"
     return (f"first-harmonic Kr = {float(ds.reflection_coefficient):.3f}, "

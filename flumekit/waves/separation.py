@@ -163,7 +163,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
              bound_harmonics: bool | None = None,
              wavenumbers: tuple[float, float] | None = None,
              window: str | None = None, max_condition: float = MAX_CONDITION,
-             warn_fraction: float = 0.01, g: float = G) -> xr.Dataset:
+             warn_fraction: float = 0.01, gauge_weights=None, g: float = G) -> xr.Dataset:
     """Separate incident and reflected waves from simultaneous probe records.
 
     Parameters
@@ -227,6 +227,10 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     warn_fraction : float
         Warn (:class:`SeparationWarning`) when masked bins hold more than this
         fraction of the measured energy in the band [-].
+    gauge_weights : sequence of float, optional
+        Weight of each probe's equation in the least squares, one per probe (Zelt &
+        Skjelbreia 1992: a noisier probe weighs less); default equal weights. Their pair
+        weights W_p W_q sin²(k Δx_pq) follow from the weighted normal equations.
     g : float
         Gravitational acceleration [m s-2].
 
@@ -328,7 +332,15 @@ def separate(eta, depth: float, method: str = "mansard_funke",
 
     phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
     columns = np.stack([phase, np.exp(1j * k_r[:, None] * x[None, :])], axis=-1)  # (F, P, 2)
-    sol, cond, masked = lstsq_normal(columns, np.stack(rhs, axis=-1), max_condition)
+    rows = np.stack(rhs, axis=-1)
+    if gauge_weights is not None:
+        w = np.asarray(gauge_weights, dtype=float)
+        if w.shape != x.shape or not np.all(w > 0) or not np.all(np.isfinite(w)):
+            raise ValueError(f"gauge_weights: one positive weight per probe ({x.size}), got "
+                             f"{np.asarray(gauge_weights).tolist()}")
+        root = np.sqrt(w / w.mean())[None, :, None]
+        columns, rows = columns * root, rows * root
+    sol, cond, masked = lstsq_normal(columns, rows, max_condition)
     a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
     # energy bookkeeping on the (tapered) spectrum used for statistics
     e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,

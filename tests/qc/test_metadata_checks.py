@@ -29,8 +29,9 @@ def _record(tmp_path: Path, period: float = 2.0, seconds: float = 60.0, dead: st
                        np.column_stack([t] + cols))
 
 
-def _probe_params(period: float) -> dict:
-    return {**qc_stage.DEFAULTS, "run": "r", "period": period, "height": 0.1, "repeat": 0,
+def _probe_params(period: float | None, kind: str = "waves") -> dict:
+    return {**qc_stage.DEFAULTS, "run": "r", "kind": kind, "period": period,
+            "height": None if period is None else 0.1, "repeat": 0,
             "uvp_elevation": None, "probes": PROBES, "sampling_rate": FS,
             "probe_x": {p: -1.0 - i for i, p in enumerate(PROBES)}}
 
@@ -62,6 +63,54 @@ def test_declared_period_within_tolerance_passes_and_is_recorded(tmp_path):
         tests = [k for k in ds.probe_voltage_qc.attrs if k.startswith("flagged_by_")]
         assert {"flagged_by_spike", "flagged_by_flat_line", "flagged_by_dropout"} <= set(tests)
         assert all(np.all(ds.probe_voltage_qc.attrs[k] == 0) for k in tests)
+
+
+def _irregular_record(tmp_path: Path, seconds: float = 300.0) -> Path:
+    """A probes.csv of a random-phase sea (a Gaussian spectrum about 0.5 Hz) at three probes."""
+    rng = np.random.default_rng(4)
+    t = np.arange(int(seconds * FS)) / FS
+    f = np.arange(1, 800) / seconds
+    a = 0.02 * np.exp(-(((f - 0.5) / 0.1) ** 2))
+    phases = rng.uniform(0, 2 * np.pi, (len(PROBES), f.size))
+    cols = [2.5 + (a * np.cos(2 * np.pi * f * t[:, None] + ph)).sum(axis=1) for ph in phases]
+    return write_table(tmp_path / "probes.csv", [("time", "s")] + [(p, "V") for p in PROBES],
+                       np.column_stack([t] + cols))
+
+
+def test_irregular_record_in_a_regular_run_is_an_error(tmp_path):
+    """A random sea declared as a regular run: refused, naming run.toml and run.kind, with
+    what the record looks like (the detection of flumekit.waves.separate)."""
+    path = _irregular_record(tmp_path)
+    run = tmp_path / "run.toml"
+    run.write_text("[run]\nperiod = 2.0\nheight = 0.1\n")
+    with pytest.raises(InputError) as e:
+        qc_stage.probes({"probes": path, "run": run}, {"dataset": tmp_path / "qc.nc"},
+                        _probe_params(2.0))
+    msg = str(e.value)
+    assert "run.toml" in msg and "run.kind" in msg and "irregular sea" in msg
+    assert 'kind = "irregular"' in msg and "probes.csv" in msg
+    assert not (tmp_path / "qc.nc").exists()
+
+
+def test_regular_record_in_an_irregular_run_is_an_error(tmp_path):
+    path = _record(tmp_path, 2.0, seconds=120.0)
+    run = tmp_path / "run.toml"
+    run.write_text('[run]\nkind = "irregular"\nhm0 = 0.1\ntp = 2.0\n')
+    with pytest.raises(InputError) as e:
+        qc_stage.probes({"probes": path, "run": run}, {"dataset": tmp_path / "qc.nc"},
+                        _probe_params(None, "irregular"))
+    msg = str(e.value)
+    assert "run.kind" in msg and "regular wave train" in msg and "T = 2" in msg
+
+
+def test_irregular_record_in_an_irregular_run_passes(tmp_path):
+    path = _irregular_record(tmp_path)
+    run = tmp_path / "run.toml"
+    run.write_text('[run]\nkind = "irregular"\nhm0 = 0.1\ntp = 2.0\n')
+    out = tmp_path / "qc.nc"
+    qc_stage.probes({"probes": path, "run": run}, {"dataset": out},
+                    _probe_params(None, "irregular"))
+    assert out.exists()
 
 
 def test_dead_probe_is_an_error_naming_file_and_probe(tmp_path):
