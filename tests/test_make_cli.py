@@ -82,6 +82,16 @@ def test_make_builds_then_rebuilds_nothing(built_once, small_raw):
     assert after == fresh  # raw data untouched by the builds
 
 
+def test_make_builds_every_target_list_shows(built_once):
+    """Every scene means every target: after `make`, `list` shows none missing (the QC
+    summary and the QC figures belong to the default scenes)."""
+    r = flumekit("list", "--pipeline", "pipelines/small.toml", cwd=built_once)
+    assert r.returncode == 0, r.stderr
+    missing = [line for line in r.stdout.splitlines() if "missing" in line]
+    assert missing == []
+    assert "qc_summary" in r.stdout and "figure/qc/" in r.stdout
+
+
 def test_every_dataset_has_units_long_names_and_history(built_once):
     files = sorted((built_once / "processed" / "small").rglob("*.nc"))
     assert files
