@@ -169,6 +169,7 @@ class SteadyWindow:
     period: float  # mean period of the window [s]
     height: float  # mean crest-to-trough height of the window
     tolerance: float = 0.02  # relative crest tolerance applied [-]
+    settled: float | None = None  # start of the first cycle within the tolerance [s]
 
 
 def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,
@@ -191,7 +192,11 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
         (probe resolution, short-crested disturbances, seiching) exceeds the paper's 2 %, a
         fixed 2 % rejects steady cycles at random and the "longest run" is a few cycles long;
         with 3 σ a steady cycle is rejected with probability 0.3 % (Gaussian scatter) while a
-        ramp-up still is. 0 applies ``tolerance`` alone.
+        ramp-up still is. The test then applies to the median deviation of each cycle and its
+        four neighbours: the crest of a noisy cycle is the largest of several samples near
+        the peak, whose scatter has a heavier upper tail than a Gaussian's, and one or two
+        such crests must not cut a window of a hundred steady cycles in two (a ramp-up, a
+        trend over consecutive cycles, is still rejected). 0 applies ``tolerance`` alone.
     """
     c = cycles(x, time, min_period=min_period)
     if c.crest.size < 4:
@@ -202,7 +207,12 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
     if noise_factor > 0:
         scatter = 1.4826 * float(np.nanmedian(np.abs(half - scale))) / abs(scale)
         tolerance = max(tolerance, noise_factor * scatter)
-    ok = np.abs(c.crest - scale) <= tolerance * abs(scale)
+    dev = np.abs(c.crest - scale)
+    if noise_factor > 0:  # the median of each cycle's deviation and its four neighbours'
+        padded = np.concatenate([dev[:1], dev[:1], dev, dev[-1:], dev[-1:]])
+        n = dev.size
+        dev = np.median(np.stack([padded[i:i + n] for i in range(5)]), axis=0)
+    ok = dev <= tolerance * abs(scale)
     # longest run of consecutive True
     padded = np.concatenate([[False], ok, [False]])
     edges = np.flatnonzero(np.diff(padded.astype(int)))
@@ -215,7 +225,7 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
         start=float(c.start[a]), end=float(c.start[b - 1] + c.period[b - 1]),
         amplitude_scale=scale, n_cycles=int(b - a),
         period=float(np.mean(c.period[a:b])), height=float(np.mean(c.height[a:b])),
-        tolerance=float(tolerance))
+        tolerance=float(tolerance), settled=float(c.start[starts[0]]))
 
 
 def steady_window_or_centred(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,

@@ -9,7 +9,7 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 VERSION = "4"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
             "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
-            "noise_factor": 3.0, "height_tolerance": 0.25, "height_warning": 0.1,
+            "noise_factor": 4.0, "height_tolerance": 0.25, "height_warning": 0.1,
             "irregular_method": "zelt_skjelbreia", "gauge_weights": None, "span": None,
             "n_bins": None, "sea_state_tolerance": 0.25, "sea_state_warning": 0.05,
             "low_frequency_warning": 0.05}
@@ -26,10 +26,12 @@ DOCS = {
     "tolerance": "quasi-steady window: largest relative deviation of a cycle's crest from the "
                  "amplitude scale [-] (Brito et al. 2020, §2.5: 0.02)",
     "min_cycles": "fewest whole periods the probes' common quasi-steady window must hold [-]",
-    "noise_factor": "quasi-steady fallback when 'tolerance' leaves fewer than min_cycles "
-                    "periods: each probe's tolerance becomes noise_factor x the robust relative "
-                    "scatter of its crests (3: a steady cycle is rejected with probability "
-                    "0.3 %); 0 = the paper's criterion only [-]",
+    "noise_factor": "noise-aware quasi-steady criterion, used when 'tolerance' keeps fewer "
+                    "than min_cycles periods or fewer than 80 % of its own: each probe's "
+                    "tolerance becomes noise_factor x the robust relative scatter of its "
+                    "crests, tested on the median of each cycle and its neighbours (4: the "
+                    "heavier-than-Gaussian tail of noisy crests); 0 = the paper's criterion "
+                    "only [-]",
     "height_tolerance": "declared run height vs the measured incident height: relative "
                         "difference beyond which the run is refused [-]",
     "height_warning": "relative difference beyond which a warning is recorded [-]",

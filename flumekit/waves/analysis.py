@@ -24,7 +24,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                 separation_probes=None, n_harmonics: int = 8,
                 bound_harmonics: bool = True, amplitude_dispersion: bool = True,
                 tolerance: float = 0.02, min_cycles: int = 10,
-                noise_factor: float = 3.0, max_condition: float = MAX_CONDITION,
+                noise_factor: float = 4.0, max_condition: float = MAX_CONDITION,
                 g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
@@ -70,10 +70,14 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     min_cycles : int
         Fewest whole periods the common quasi-steady window must hold [-].
     noise_factor : float
-        Fallback when ``tolerance`` leaves fewer than ``min_cycles`` common periods (a noisy
-        record): each probe's tolerance is raised to ``noise_factor`` times the robust relative
-        scatter of its crests (:func:`flumekit.signal.quasi_steady_window`); 0 turns the
-        fallback off [-]. The tolerance applied is returned as ``steady_tolerance``.
+        The noise-aware criterion: each probe's tolerance raised to ``noise_factor`` times the
+        robust relative scatter of its crests (:func:`flumekit.signal.quasi_steady_window`).
+        It replaces the paper's when that keeps fewer than ``min_cycles`` common periods or
+        fewer than 80 % of the noise-aware window's (on a noisy record the paper's 2 % is the
+        noise level and rejects steady cycles at random); 0 applies the paper's alone [-].
+        The criterion kept is the ``steady_criterion`` attribute, the tolerance applied
+        ``steady_tolerance``; a window holding fewer than half of the periods that follow its
+        start is a :class:`~flumekit.waves.SeparationWarning`.
     max_condition : float
         Largest condition number of the separation accepted per bin [-].
     g : float
@@ -116,11 +120,16 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
 
     # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
     # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
+    # The noise-aware criterion is also the measure of what follows the ramp: the paper's is
+    # kept unless it keeps fewer than 80 % of those cycles (its 2 % is then the noise level
+    # and it rejects steady cycles at random).
     criteria = [("tolerance", 0.0)] + ([("crest noise", noise_factor)] if noise_factor > 0
                                        else [])
-    for criterion, factor in criteria:  # noqa: B007 (the criterion kept is recorded)
-        windows = []
+    found: dict[str, tuple] = {}
+    failure = None
+    for criterion, factor in criteria:
         try:
+            windows = []
             for p in range(v.shape[0]):  # a handful of probes
                 try:
                     windows.append(quasi_steady_window(v[p], t, tolerance=tolerance,
@@ -128,17 +137,37 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                                                        noise_factor=factor))
                 except ValueError as e:  # name the probe (a dead probe, a short record)
                     raise ValueError(f"probe {probes[p]}: {e}") from None
-        except ValueError:
-            if factor == criteria[-1][1]:
-                raise
+        except ValueError as e:
+            failure = e
             continue
         start = max(w.start for w in windows)
         end = min(w.end for w in windows)
         t_meas = float(np.mean([w.period for w in windows]))
         n_per = int(np.floor((end - start) / t_meas + 1e-9))
-        if n_per >= max(min_cycles, 2):
-            break
+        found[criterion] = (windows, start, end, t_meas, n_per)
+    if not found:
+        raise failure
+    enough = max(min_cycles, 2)
+    paper, noisy = found.get("tolerance"), found.get("crest noise")
+    if paper is not None and paper[4] >= enough and (noisy is None
+                                                      or paper[4] >= 0.8 * noisy[4]):
+        criterion = "tolerance"
+    elif noisy is not None and noisy[4] >= enough:
+        criterion = "crest noise"
     else:
+        criterion = "tolerance" if noisy is None else "crest noise"
+    windows, start, end, t_meas, n_per = found[criterion]
+    # what follows the ramp: whole periods from the first cycle every probe has within the
+    # tolerance (the end of the ramp) to the end of the record
+    settled = max(w.settled for w in windows)
+    following = int(np.floor((t[-1] - settled) / t_meas + 1e-9))
+    if n_per >= enough and 2 * n_per < following:
+        warnings.warn(f"the quasi-steady window ({criterion} criterion) keeps {n_per} of the "
+                      f"{following} periods that follow the ramp ({settled:.1f} s to the end of "
+                      "the record): crests scatter beyond the tolerance after it (a disturbance, "
+                      "a dropout, re-reflection); check the record or the window",
+                      SeparationWarning, stacklevel=2)
+    if n_per < enough:
         raise ValueError(
             f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
             f"than {max(min_cycles, 2)} periods of {t_meas:.3g} s (windows: "
