@@ -462,23 +462,32 @@ def test_one_run_synthesised_alone_is_the_run_of_the_whole_campaign(tmp_path, sm
 def _readme_snippet() -> str:
     text = (ROOT / "README.md").read_text()
     blocks = [b.split("```", 1)[0] for b in text.split("```python")[1:]]
-    (snippet,) = [b for b in blocks if "open_mfdataset" in b]
+    (snippet,) = [b for b in blocks if "open_processed" in b and "import pandas" not in b]
     return snippet
 
 
-@pytest.mark.parametrize("stage", ["eta", "waves", "flap", "comparison", "uvp"])
-def test_readme_open_mfdataset_keeps_every_run_and_its_coordinates(built_once, stage):
+@pytest.mark.parametrize("stage", ["eta", "waves", "flap", "comparison", "uvp", "qc/probes"])
+def test_readme_recipe_keeps_every_run_and_its_coordinates(built_once, stage):
+    """The README's one call: every run with its coordinates, and the very dataset that
+    xarray's concatenation of the files gives (read with xarray, an independent reader)."""
     import warnings
+
+    from flumekit.io.netcdf import read_dataset
 
     files = sorted((built_once / "processed/small" / stage).glob("*.nc"))
     assert files
-    code = _readme_snippet().replace("processed/default/flap/*.nc",
-                                     str(built_once / "processed/small" / stage / "*.nc"))
+    code = _readme_snippet().replace('"processed/default", "flap"',
+                                     f'"{built_once / "processed/small"}", "{stage}"')
     scope: dict = {}
     with warnings.catch_warnings():
         warnings.simplefilter("error", FutureWarning)  # no default that xarray is changing
         exec(code, scope)
     ds = scope["ds"]
+    expected = xr.concat([read_dataset(f) for f in files], dim="run", join="outer",
+                         combine_attrs="drop_conflicts", coords="different", compat="equals")
+    xr.testing.assert_identical(ds, expected)
+    if stage.startswith("qc/"):  # QC products carry no run coordinates
+        return
     assert ds.sizes["run"] == len(files)
     for i, f in enumerate(files):
         with xr.open_dataset(f) as one:
