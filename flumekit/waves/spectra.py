@@ -127,10 +127,10 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     sampling_rate : float, optional
         Sampling rate [Hz]; required for an array.
     segment_duration : float, optional
-        Length of a segment [s]; the frequency resolution is its inverse. Default: the largest
-        power-of-two number of samples not above 1/8 of the record, which with an overlap of
-        one half gives at least 15 segments (ν ≥ 28 for Hann windows) and a resolution of
-        8 to 16 segments per record length.
+        Length of a segment [s]; the frequency resolution is its inverse. Default: 1/8 of the
+        record (the even number of samples 2 floor(N/16)), which with the default overlap of
+        one half gives 15 segments covering the whole record but for fewer than 16 samples
+        (ν ≈ 28.5 for Hann windows) and a resolution of 8/duration.
     overlap : float
         Overlap of consecutive segments as a fraction of a segment [-], in [0, 1).
     window : str or tuple
@@ -203,7 +203,7 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     if n < 16:
         raise ValueError(f"spectrum: the record has {n} samples, fewer than 16")
     if segment_duration is None:
-        nperseg = 2 ** int(np.floor(np.log2(n / 8))) if n >= 16 else n
+        nperseg = 2 * (n // 16)
     else:
         nperseg = int(round(segment_duration * fs))
         if not 8 <= nperseg <= n:
