@@ -399,11 +399,21 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
             "spectral_narrowness": np.sqrt(np.clip(m0 * m2 / m1**2 - 1.0, 0.0, None)),
             "peakedness": 2.0 / m0**2 * (f * s**2 * width).sum("frequency"),
         }
-    ds = xr.Dataset({k: v.drop_vars("frequency", errors="ignore") for k, v in out.items()})
+    ds = xr.Dataset({k: _bare(v) for k, v in out.items()})
     ds.attrs = {"band": [float(fv[0]), float(fv[-1])], "tp_smoothed_method": method,
                 "moments": "m_n = sum of f^n S(f) df over the band, df the bin width; "
                            "no tail added"}
     return conventions.annotate(ds)
+
+
+def _bare(v: xr.DataArray) -> xr.DataArray:
+    """Drop the frequency coordinate and the attributes, which the registry gives.
+
+    1/f would otherwise keep the frequency's long name.
+    """
+    v = v.drop_vars("frequency", errors="ignore").copy(deep=False)
+    v.attrs = {}
+    return v
 
 
 def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarray:

@@ -331,3 +331,19 @@ def test_energy_flux_broadcasts_depth():
     assert float(j[1]) == pytest.approx(float(energy_flux(s, 0.825)), rel=1e-12)
     with pytest.raises(ValueError, match="depth"):
         energy_flux(s, 0.0)
+
+
+def test_outputs_carry_exactly_the_registry_attributes():
+    from flumekit import conventions
+
+    eta = xr.DataArray(gaussian_sea(300, 10.0, 0.1, 2.0, seed=6), dims="time",
+                       coords={"time": np.arange(3000) / 10.0})
+    eta.attrs = {"units": "m", "long_name": "surface elevation"}
+    s = spectrum(eta)
+    p = spectral_parameters(s.variance_density)
+    j = energy_flux(s.variance_density, 0.5)
+    for ds in (s, p, j.to_dataset()):
+        conventions.check(ds)
+        for name in ds.data_vars:
+            assert ds[name].attrs == conventions.attrs(name), name
+    assert s.frequency.attrs == conventions.attrs("frequency")

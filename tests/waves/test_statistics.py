@@ -146,3 +146,16 @@ def test_wave_statistics_refuses_what_it_cannot_analyse():
         wave_statistics(np.where(t > 20, np.nan, np.sin(t)), 10.0)
     with pytest.raises(ValueError, match="no complete"):
         wave_statistics(np.sin(2 * np.pi * t / 80.0), 10.0)  # half a wave
+
+
+def test_outputs_carry_the_registry_attributes():
+    from flumekit import conventions
+
+    eta = gaussian_sea(300, 10.0, narrow, seed=7)
+    up = wave_statistics(eta, 10.0)
+    conventions.check(up)
+    for name in up.data_vars:
+        assert up[name].attrs == conventions.attrs(name), name
+    down = wave_statistics(eta, 10.0, crossing="down")
+    assert down.tz.attrs["long_name"] == "mean zero down-crossing period"
+    assert "standard_name" not in down.tz.attrs  # CF's is the up-crossing period
