@@ -171,10 +171,10 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     Audio and Electroacoustics 15(2), 70-73.
 
     Percival, D. B. & Walden, A. T. (1993). Spectral analysis for physical applications.
-    Cambridge University Press, Section 6.17, Eqs. (292b) and (313c).
+    Cambridge University Press, Section 6.17, Eq. (292b).
 
     Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Section 3.5.
+    Press, Chapter 3.
 
     Examples
     --------
@@ -288,7 +288,7 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
 
     The moments m_n = Σ f^n S(f) Δf over the bins with f > 0 inside ``band`` (the bin widths
     of the frequency grid, so that m0 is the variance the bins hold), and from them
-    (IAHR/PIANC 1986; Holthuijsen 2007, Section 4.2):
+    (IAHR/PIANC 1986; Holthuijsen 2007, Chapter 4):
 
     - ``hm0`` = 4 sqrt(m0), the spectral significant wave height;
     - ``tp`` = 1/f of the largest bin, the peak period of the discrete spectrum;
@@ -338,7 +338,7 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
 
     Goda, Y. (1970). Numerical experiments on wave statistics with spectral simulation. Report
     of the Port and Harbour Research Institute 9(3), 3-57; Goda, Y. (2010). Random seas and
-    design of maritime structures, 3rd ed., World Scientific, Section 10.1 (peakedness Qp).
+    design of maritime structures, 3rd ed., World Scientific, Chapter 2 (peakedness Qp).
 
     Longuet-Higgins, M. S. (1975). On the joint distribution of the periods and amplitudes of
     sea waves. J. Geophys. Res. 80(18), 2688-2694.
@@ -441,7 +441,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
 
     J = ρ g Σ S(f) c_g(f, h) Δf over the bins with f > 0 in ``band``, with the linear group
     velocity :func:`~flumekit.waves.group_velocity` of each frequency (IEC TS 62600-101;
-    Holthuijsen 2007, Eq. 5.4.2 per frequency). For a narrow spectrum J is the regular-wave
+    Holthuijsen 2007, Section 5.4, per frequency). For a narrow spectrum J is the regular-wave
     flux of the height Hm0/√2; in deep water J = ρ g² Hm0² Te / (64 π).
 
     Parameters
@@ -471,10 +471,11 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
     References
     ----------
     Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Sections 5.4 and 7.3.
+    Press, Section 5.4.
 
     IEC TS 62600-101 (2015). Marine energy - Wave, tidal and other water current converters -
-    Part 101: Wave energy resource assessment and characterization, Eq. (4).
+    Part 101: Wave energy resource assessment and characterization (omnidirectional
+    wave power).
 
     Examples
     --------

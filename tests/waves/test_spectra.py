@@ -190,7 +190,8 @@ def test_each_parameter_equals_its_definition_on_the_analytic_jonswap():
         assert float(p[name]) == pytest.approx(value, rel=1e-10), name
     assert float(p.hm0) == pytest.approx(hm0, rel=1e-8)
     assert float(p.tp) == tp  # the peak lies on a bin (0.5 Hz)
-    # Goda's Qp of JONSWAP with γ = 3.3 is about 3.3 (Goda 2010, Table 2.2 range 2.7-4.2)
+    # a sanity bound besides the definition: Qp = 2 for Pierson-Moskowitz, higher for a
+    # peaked JONSWAP (3.3 here)
     assert 2.7 < float(p.peakedness) < 4.2
 
 
@@ -209,6 +210,8 @@ def test_mean_periods_of_pierson_moskowitz_against_their_closed_forms():
     assert float(p.tm02) == pytest.approx(b**-0.25 / math.sqrt(math.gamma(0.5)), rel=1.2e-4)
     assert float(p.tm_10) == pytest.approx(b**-0.25 * math.gamma(1.25), rel=2e-5)
     assert float(p.m0) == pytest.approx(1 / (4 * b), rel=1e-6)
+    # Goda's Qp: 2/m0² ∫ f S² df = 2 (A²/(16 B²)) / (A/(4B))² = 2 exactly
+    assert float(p.peakedness) == pytest.approx(2.0, rel=1e-5)
 
 
 def test_band_limits_the_moments_and_parabolic_peak_is_exact_for_a_parabola():
@@ -282,8 +285,8 @@ def test_against_mhkit_when_available():
     f = np.linspace(0.01, 5.0, 5000)
     s = jonswap(f, 0.1, 2.0)
     p = spectral_parameters(as_da(s, f))
-    spec = pd.DataFrame({"S": s}, index=pd.Index(f, name="frequency"))
-    # mhkit integrates by trapezoids over the same bins: equal to the end-bin halves
+    spec = pd.Series(s, index=pd.Index(f, name="frequency"))
+    # mhkit sums S Δf over the same bins with f > 0 (IEC TS 62600-101 Eq. 8)
     assert float(np.squeeze(resource.significant_wave_height(spec))) == pytest.approx(
         float(p.hm0), rel=1e-4)
     assert float(np.squeeze(resource.energy_period(spec))) == pytest.approx(float(p.tm_10),
