@@ -226,8 +226,10 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     if nperseg % 2 == 0:
         dof_f[-1] = dof / 2
     alpha = 1.0 - confidence
-    lower = dof_f / stats.chi2.ppf(1 - alpha / 2, dof_f)
-    upper = dof_f / stats.chi2.ppf(alpha / 2, dof_f)
+    # two distinct values of ν: the quantiles once each, not per bin
+    nus, inverse = np.unique(dof_f, return_inverse=True)
+    lower = (nus / stats.chi2.ppf(1 - alpha / 2, nus))[inverse]
+    upper = (nus / stats.chi2.ppf(alpha / 2, nus))[inverse]
     dims = (*da.dims[:-1], "frequency")
     coords = {k: v for k, v in da.coords.items() if "time" not in v.dims}
     coords["frequency"] = freq
@@ -369,51 +371,42 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
         raise ValueError(f"spectral_parameters: method must be one of {TP_METHODS}, "
                          f"got {method!r}")
     s, width = _in_band(variance_density, band, "spectral_parameters")
-    f = s["frequency"]
-    fv = f.values
-
-    def moment(n: int) -> xr.DataArray:
-        return (s * f**n * width).sum("frequency")
-
-    m = {name: moment(n) for name, n in (("m_minus1", -1), ("m0", 0), ("m1", 1), ("m2", 2),
-                                          ("m4", 4))}
-    ipeak = s.argmax(dim="frequency")
-    tp = 1.0 / f.isel(frequency=ipeak)
-    if method == "delft":
-        s4 = s**4
-        tp_s = (s4 * width).sum("frequency") / (s4 * f * width).sum("frequency")
-    else:
-        tp_s = 1.0 / _parabolic_peak(s.values, fv, ipeak.values)
-        tp_s = xr.DataArray(tp_s, dims=ipeak.dims, coords=ipeak.coords)
+    s = s.transpose(..., "frequency")
+    fv = s["frequency"].values
+    w = width.values
+    sv = s.values  # (..., frequency): the sums below are matrix products over the last axis
+    orders = (-1, 0, 1, 2, 4)
+    moments = sv @ np.stack([fv**n * w for n in orders], axis=-1)
+    m_1, m0, m1, m2, m4 = np.moveaxis(moments, -1, 0)
+    ipeak = np.argmax(sv, axis=-1)
     with np.errstate(divide="ignore", invalid="ignore"):
-        m0, m1, m2, m4 = m["m0"], m["m1"], m["m2"], m["m4"]
+        if method == "delft":
+            # S⁴ of the spectrum scaled by its peak: the ratio is unchanged, no underflow
+            s4 = (sv / np.take_along_axis(sv, ipeak[..., None], axis=-1)) ** 4
+            tp_s = (s4 @ w) / (s4 @ (fv * w))
+        else:
+            tp_s = 1.0 / _parabolic_peak(sv, fv, ipeak)
+        has = m0 > 0
         out = {
-            **m,
+            "m_minus1": m_1, "m0": m0, "m1": m1, "m2": m2, "m4": m4,
             "hm0": 4.0 * np.sqrt(m0),
-            "tp": tp.where(m0 > 0),
-            "tp_smoothed": tp_s.where(m0 > 0),
+            "tp": np.where(has, 1.0 / fv[ipeak], np.nan),
+            "tp_smoothed": np.where(has, tp_s, np.nan),
             "tm01": m0 / m1,
             "tm02": np.sqrt(m0 / m2),
-            "tm_10": m["m_minus1"] / m0,
+            "tm_10": m_1 / m0,
             "spectral_width": np.sqrt(np.clip(1.0 - m2**2 / (m0 * m4), 0.0, None)),
             "spectral_narrowness": np.sqrt(np.clip(m0 * m2 / m1**2 - 1.0, 0.0, None)),
-            "peakedness": 2.0 / m0**2 * (f * s**2 * width).sum("frequency"),
+            "peakedness": 2.0 / m0**2 * ((sv**2) @ (fv * w)),
         }
-    ds = xr.Dataset({k: _bare(v) for k, v in out.items()})
+    dims = s.dims[:-1]
+    coords = {k: v for k, v in s.coords.items() if "frequency" not in v.dims}
+    ds = xr.Dataset({k: (dims, np.asarray(v, dtype=float)) for k, v in out.items()},
+                    coords=coords)
     ds.attrs = {"band": [float(fv[0]), float(fv[-1])], "tp_smoothed_method": method,
                 "moments": "m_n = sum of f^n S(f) df over the band, df the bin width; "
                            "no tail added"}
     return conventions.annotate(ds)
-
-
-def _bare(v: xr.DataArray) -> xr.DataArray:
-    """Drop the frequency coordinate and the attributes, which the registry gives.
-
-    1/f would otherwise keep the frequency's long name.
-    """
-    v = v.drop_vars("frequency", errors="ignore").copy(deep=False)
-    v.attrs = {}
-    return v
 
 
 def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarray:
