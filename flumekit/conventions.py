@@ -155,7 +155,7 @@ VARIABLES: dict[str, Variable] = {
     "spectral_narrowness": _V("1", "spectral narrowness nu = sqrt(m0 m2/m1^2 - 1)"),
     "peakedness": _V("1", "Goda's spectral peakedness Qp = 2/m0^2 int f S^2 df"),
     "spectral_energy_flux": _V("W m-1", "energy flux per unit crest width of the wave spectrum, "
-                               "rho g int S(f) c_g(f) df"),
+                               "rho g int S(f) c_g(f) df", "sea_surface_wave_energy_flux"),
     "wave": _V("1", "index of the individual zero-crossing wave in the record"),
     "individual_wave_height": _V("m", "trough-to-crest height of the individual zero-crossing "
                                  "wave"),
@@ -171,7 +171,7 @@ VARIABLES: dict[str, Variable] = {
                 "sea_surface_wave_mean_height_of_highest_tenth"),
     "hmax": _V("m", "height of the highest zero-crossing wave",
                "sea_surface_wave_maximum_height"),
-    "tz": _V("s", "mean zero-crossing period", "sea_surface_wave_zero_upcrossing_period"),
+    "tz": _V("s", "mean zero-crossing period", "sea_surface_wave_mean_period"),
     # --- flap ---
     "theta": _V("rad", "flap rotation angle, positive towards the beach"),
     "theta_dot": _V("rad s-1", "flap angular velocity"),

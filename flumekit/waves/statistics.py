@@ -146,5 +146,4 @@ def wave_statistics(eta, sampling_rate: float | None = None, *,
     ds = conventions.annotate(ds)
     if crossing == "down":
         ds["tz"].attrs["long_name"] = "mean zero down-crossing period"
-        ds["tz"].attrs.pop("standard_name", None)
     return ds

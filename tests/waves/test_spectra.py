@@ -350,3 +350,18 @@ def test_outputs_carry_exactly_the_registry_attributes():
         for name in ds.data_vars:
             assert ds[name].attrs == conventions.attrs(name), name
     assert s.frequency.attrs == conventions.attrs("frequency")
+
+
+def test_standard_names_are_in_the_cf_table():
+    # the table compliance-checker ships (the one the netCDF checks use), when installed
+    resources = pytest.importorskip("importlib.resources")
+    pytest.importorskip("compliance_checker")
+    from flumekit import conventions
+
+    table = (resources.files("compliance_checker") / "data"
+             / "cf-standard-name-table.xml").read_text(encoding="utf-8")
+    names = ["variance_density", "hm0", "tp", "tm01", "tm02", "tm_10", "spectral_energy_flux",
+             "h1_3", "t1_3", "h1_10", "hmax", "tz"]
+    for name in names:
+        var = conventions.VARIABLES[name]
+        assert f'<entry id="{var.standard_name}">' in table, name

@@ -158,4 +158,4 @@ def test_outputs_carry_the_registry_attributes():
         assert up[name].attrs == conventions.attrs(name), name
     down = wave_statistics(eta, 10.0, crossing="down")
     assert down.tz.attrs["long_name"] == "mean zero down-crossing period"
-    assert "standard_name" not in down.tz.attrs  # CF's is the up-crossing period
+    assert down.tz.attrs["standard_name"] == "sea_surface_wave_mean_period"
