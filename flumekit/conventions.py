@@ -341,6 +341,52 @@ VARIABLES: dict[str, Variable] = {
     "control_radius": _V("m", "radial coordinate of the control point"),
     "control_axial": _V("m", "axial coordinate of the control point"),
     "control_region": _V("1", "material region holding the control point"),
+    # sea state: spectrum, spectral parameters, zero-crossing statistics (waves/spectra.py,
+    # waves/statistics.py); CF standard names where the CF table has one
+    "variance_density": _V("m2 s", "one-sided variance density of the surface elevation",
+                           "sea_surface_wave_variance_spectral_density"),
+    "variance_density_lower": _V("m2 s", "lower bound of the confidence interval of the "
+                                 "variance density"),
+    "variance_density_upper": _V("m2 s", "upper bound of the confidence interval of the "
+                                 "variance density"),
+    "degrees_of_freedom": _V("1", "equivalent degrees of freedom of the spectral estimate"),
+    "m_minus1": _V("m2 s", "spectral moment of order -1, m_-1"),
+    "m0": _V("m2", "spectral moment of order 0, m0 (variance)"),
+    "m1": _V("m2 s-1", "spectral moment of order 1, m1"),
+    "m2": _V("m2 s-2", "spectral moment of order 2, m2"),
+    "m4": _V("m2 s-4", "spectral moment of order 4, m4"),
+    "hm0": _V("m", "spectral significant wave height Hm0 = 4 sqrt(m0)",
+              "sea_surface_wave_significant_height"),
+    "tp": _V("s", "peak period of the discrete spectrum",
+             "sea_surface_wave_period_at_variance_spectral_density_maximum"),
+    "tp_smoothed": _V("s", "smoothed peak period"),
+    "tm01": _V("s", "mean period m0/m1", "sea_surface_wave_mean_period_from_variance_spectral_"
+               "density_first_frequency_moment"),
+    "tm02": _V("s", "mean period sqrt(m0/m2)", "sea_surface_wave_mean_period_from_variance_"
+               "spectral_density_second_frequency_moment"),
+    "tm_10": _V("s", "energy period Te = m_-1/m0", "sea_surface_wave_mean_period_from_variance_"
+                "spectral_density_inverse_frequency_moment"),
+    "spectral_width": _V("1", "spectral width epsilon = sqrt(1 - m2^2/(m0 m4))"),
+    "spectral_narrowness": _V("1", "spectral narrowness nu = sqrt(m0 m2/m1^2 - 1)"),
+    "peakedness": _V("1", "Goda's spectral peakedness Qp = 2/m0^2 int f S^2 df"),
+    "spectral_energy_flux": _V("W m-1", "energy flux per unit crest width of the wave spectrum, "
+                               "rho g int S(f) c_g(f) df", "sea_surface_wave_energy_flux"),
+    "wave": _V("1", "index of the individual zero-crossing wave in the record"),
+    "individual_wave_height": _V("m", "trough-to-crest height of the individual zero-crossing "
+                                 "wave"),
+    "individual_wave_period": _V("s", "period of the individual zero-crossing wave"),
+    "individual_wave_start": _V("s", "time of the zero crossing that starts the individual wave"),
+    "number_of_waves": _V("1", "number of zero-crossing waves in the record"),
+    "hrms": _V("m", "root-mean-square height of the zero-crossing waves"),
+    "h1_3": _V("m", "mean height of the highest third of the zero-crossing waves, H1/3",
+               "sea_surface_wave_significant_height"),
+    "t1_3": _V("s", "mean period of the highest third of the zero-crossing waves, T1/3",
+               "sea_surface_wave_significant_period"),
+    "h1_10": _V("m", "mean height of the highest tenth of the zero-crossing waves, H1/10",
+                "sea_surface_wave_mean_height_of_highest_tenth"),
+    "hmax": _V("m", "height of the highest zero-crossing wave",
+               "sea_surface_wave_maximum_height"),
+    "tz": _V("s", "mean zero-crossing period", "sea_surface_wave_mean_period"),
     # --- truth of the virtual flume ---
 }
 

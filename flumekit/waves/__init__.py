@@ -4,7 +4,10 @@ The names an analyst needs: :func:`separate` (incident and reflected waves from 
 numpy, pandas or xarray), :func:`probe_record` (a record in the shape the wave functions use),
 :func:`analyse_run` (quasi-steady window and separation of one regular-wave run), the linear
 theory (:func:`wavenumber`, :func:`wavelength`, ...), the probe layout checks and
-:mod:`~flumekit.waves.calibration` (probe calibration).
+:mod:`~flumekit.waves.calibration` (probe calibration); the sea state of an irregular record:
+:func:`spectrum` (Welch, with its confidence interval), :func:`spectral_parameters` (Hm0, Tp,
+Tm01, Tm02, Te, ...), :func:`spectral_energy_flux` (:func:`flumekit.waves.spectra.energy_flux`,
+the finite-depth flux of a spectrum) and :func:`wave_statistics` (zero-crossing waves).
 """
 
 from flumekit.waves import calibration
@@ -22,6 +25,9 @@ from flumekit.waves.records import (
     refine_frequency,
 )
 from flumekit.waves.separation import SeparationWarning, separate
+from flumekit.waves.spectra import energy_flux as spectral_energy_flux
+from flumekit.waves.spectra import spectral_parameters, spectrum
+from flumekit.waves.statistics import wave_statistics
 from flumekit.waves.theory import (
     energy_flux,
     group_velocity,
@@ -36,4 +42,5 @@ __all__ = [
     "check_layout", "condition_number", "energy_flux", "group_velocity",
     "harmonic_energy_fraction", "phase_velocity", "probe_record", "probe_spacing",
     "refine_frequency", "separate", "stokes2_coefficient", "wavelength", "wavenumber",
+    "spectral_energy_flux", "spectral_parameters", "spectrum", "wave_statistics",
 ]
