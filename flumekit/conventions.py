@@ -366,6 +366,9 @@ VARIABLES: dict[str, Variable] = {
                "spectral_density_second_frequency_moment"),
     "tm_10": _V("s", "energy period Te = m_-1/m0", "sea_surface_wave_mean_period_from_variance_"
                 "spectral_density_inverse_frequency_moment"),
+    "te": _V("s", "energy period Te = Tm-1,0 = m_-1/m0 of the incident wave",
+             "sea_surface_wave_mean_period_from_variance_spectral_density_inverse_frequency_"
+             "moment"),
     "spectral_width": _V("1", "spectral width epsilon = sqrt(1 - m2^2/(m0 m4))"),
     "spectral_narrowness": _V("1", "spectral narrowness nu = sqrt(m0 m2/m1^2 - 1)"),
     "peakedness": _V("1", "Goda's spectral peakedness Qp = 2/m0^2 int f S^2 df"),

@@ -164,11 +164,14 @@ def label(name: str | None = None, symbol: str | None = None, units: str | None 
 
 
 def condition(ds) -> str:
-    """"T = 3.5 s, H = 0.25 m" from a run dataset's ``wave_period``/``wave_height``."""
+    """"T = 3.5 s, H = 0.25 m" from a run dataset's ``wave_period``/``wave_height`` (an
+    irregular run's "Hm0 = 0.1 m, Tp = 2 s" from ``wave_hm0``, ``wave_tp``, ``wave_te``)."""
     import math
 
     parts = []
-    for name, symbol in (("wave_period", "T = {:g} s"), ("wave_height", "H = {:g} m")):
+    for name, symbol in (("wave_period", "T = {:g} s"), ("wave_height", "H = {:g} m"),
+                         ("wave_hm0", "Hm0 = {:g} m"), ("wave_tp", "Tp = {:g} s"),
+                         ("wave_te", "Te = {:g} s")):
         # a run file may leave the height undeclared (NaN): not shown
         if (name in ds.coords or name in ds.variables) and math.isfinite(float(ds[name])):
             parts.append(symbol.format(float(ds[name])))

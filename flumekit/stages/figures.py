@@ -32,7 +32,9 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
     if wanted != "auto":
         ctx.campaign.run(wanted)  # KeyError names the campaign and the run
         return wanted
-    waves = [r for r in runs if r.kind == "waves"] or list(runs)
+    waves = [r for r in runs if r.kind == "waves"] or [r for r in runs if not r.irregular]
+    if not waves:  # the paper's single-run figures are of a regular run
+        return None
     paper = [r for r in waves if (r.period, r.height) == (3.5, 0.25)]
     return (paper or waves)[0].id
 
@@ -75,7 +77,8 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
             pressure += [match[0].id] if match else []
         fig("fig07", "flap:figure_7",
             {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
-        every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs}
+        every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs
+                 if not r.irregular}  # regular-wave amplitudes against period
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
     for r in ctx.campaign.runs:
@@ -83,9 +86,9 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
         qc, reading = qc_stage.figure_inputs(ctx, r)
         fig(f"qc/{r.id}", "qc:figure_qc", qc, **reading)
     for r in ctx.campaign.runs:
-        if r.kind == "waves":
-            fig(f"separation/{r.id}", "waves:separation",
-                {"waves": ctx.out("waves", f"{r.id}.nc")})
+        if r.kind in ("waves", "irregular"):
+            fig(f"separation/{r.id}", "sea_state:separation" if r.irregular
+                else "waves:separation", {"waves": ctx.out("waves", f"{r.id}.nc")})
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
         fig("fig11", "uvp:fig11", {"field": ctx.out("uvp_field.nc")})
         fig("fig12", "uvp:fig12", {"field": ctx.out("uvp_field.nc")})

@@ -126,8 +126,12 @@ def _irregular(eta, params):
     """The analysis of an irregular run (:func:`flumekit.waves.analyse_irregular_run`)."""
     from flumekit.waves import analyse_irregular_run
 
+    sea = params["sea_state"]
+    # JONSWAP with gamma 1-7: Te = 0.86-0.92 Tp (the target steers the band, not the result)
+    target = sea["tp"] if sea["tp"] is not None else sea["te"] / 0.9
     return analyse_irregular_run(
         eta, params["depth"], params["x_ref"], method=params["irregular_method"],
+        peak_period=target,
         separation_probes=params["separation_probes"], gauge_weights=params["gauge_weights"],
         span=params["span"], n_bins=params["n_bins"],
         low_frequency_warning=params["low_frequency_warning"], rho=params["density"])

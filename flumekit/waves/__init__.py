@@ -12,6 +12,7 @@ the finite-depth flux of a spectrum) and :func:`wave_statistics` (zero-crossing 
 
 from flumekit.waves import calibration
 from flumekit.waves.analysis import analyse_run
+from flumekit.waves.irregular import LowFrequencyWarning, analyse_irregular_run
 from flumekit.waves.layout import (
     MAX_CONDITION,
     check_layout,
@@ -38,7 +39,8 @@ from flumekit.waves.theory import (
 )
 
 __all__ = [
-    "MAX_CONDITION", "REGULAR_FRACTION", "SeparationWarning", "analyse_run", "calibration",
+    "MAX_CONDITION", "REGULAR_FRACTION", "LowFrequencyWarning", "SeparationWarning",
+    "analyse_irregular_run", "analyse_run", "calibration",
     "check_layout", "condition_number", "energy_flux", "group_velocity",
     "harmonic_energy_fraction", "phase_velocity", "probe_record", "probe_spacing",
     "refine_frequency", "separate", "stokes2_coefficient", "wavelength", "wavenumber",
