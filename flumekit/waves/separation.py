@@ -26,7 +26,6 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from scipy import signal as _sig
 
 from flumekit import conventions
 from flumekit.signal import uniform_step
@@ -310,6 +309,8 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
     rhs = [c.T]
     if window is not None:
+        from scipy import signal as _sig  # seconds to import; only a windowed fit needs it
+
         w = _sig.get_window(window, n)
         w = w / np.sqrt(np.mean(w * w))
         rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
