@@ -12,8 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal as _sig
-from scipy import stats as _stats
 
 #: largest deviation of a sampling interval from the mean step, relative to the step: far above
 #: the rounding of float times (1e-16 relative per value, 1e-10 of a 0.01 s step at t = 1e4 s)
@@ -74,6 +72,9 @@ def lowpass(x: np.ndarray, sampling_rate: float, cutoff: float, order: int = 4,
     order : int
         Order of the single-pass Butterworth design (4 in Brito et al. 2020, §2.3).
     """
+    # scipy.signal costs seconds to import: paid by the callers that filter, not by every import
+    from scipy import signal as _sig
+
     _check_rate(sampling_rate, cutoff)
     sos = _sig.butter(order, cutoff, btype="low", fs=sampling_rate, output="sos")
     return _sig.sosfiltfilt(sos, np.asarray(x, dtype=float), axis=axis)
@@ -317,6 +318,8 @@ def phase_average(x: np.ndarray, time: np.ndarray, period: float, start: float, 
     cyc = resample_cycles(x, time, period, start, n_cycles, n_phase, kind=kind)
     mean = cyc.mean(axis=-2)
     std = cyc.std(axis=-2, ddof=1)
+    from scipy import stats as _stats  # imported here: seconds to import, used only here
+
     ci = _stats.t.ppf(0.975, n_cycles - 1) * std / np.sqrt(n_cycles)
     return PhaseAverage(phase=np.arange(n_phase) / n_phase, mean=mean, std=std, ci95=ci,
                         n_cycles=n_cycles)

@@ -108,7 +108,47 @@ def run(quick: bool = False) -> str:
             "periodic with deterministic amplitudes, so the untapered transform is exact and a "
             "Hann taper only adds sampling variability (wave groups weighted unevenly); on real "
             "records it reduces leakage.")
-    return "\n".join([head, *lines, note, "", _stream_function_table(repeats)])
+    return "\n".join([head, *lines, note, "", _toolbox_table(repeats),
+                      "", _stream_function_table(repeats)])
+
+
+def _toolbox_table(repeats: int) -> str:
+    """``separate`` with its defaults against the Deltares wave toolbox's Zelt & Skjelbreia
+    separation (``decompose_linear_ZS``, the Mansard-Funke least squares with three probes) on
+    the same 10-minute, 3-probe, 25 Hz regular record, timed in the same run.
+
+    The toolbox is not a dependency of flumekit: install it for the bench only
+    (``pip install deltares-wave-toolbox``); without it the row says so.
+    """
+    period = 3.5
+    x12, x23 = probe_spacing(period, DEPTH)
+    x = np.array([-6.0, -6.0 + x12, -6.0 + x12 + x23])
+    t = np.arange(int(10 * 60 * FS)) / FS
+    d = _probes(regular_wave_field(t, x, period=period, height=0.2, depth=DEPTH,
+                                   reflection=0.1, theory="stokes2"), np.random.default_rng(0))
+    ours = _time(lambda: separate(d, DEPTH), repeats)
+    irregular = _time(lambda: separate(d, DEPTH, regular=False), repeats)
+    rows = [f"{'10-min regular record, 3 probes, 25 Hz':<44}{'median':>9}{'best':>8}",
+            f"{'':<44}{'[ms]':>9}{'[ms]':>8}",
+            f"{'flumekit separate (defaults: regular)':<44}{ours[0] * 1e3:>9.2f}"
+            f"{ours[1] * 1e3:>8.2f}",
+            f"{'flumekit separate (regular=False)':<44}{irregular[0] * 1e3:>9.2f}"
+            f"{irregular[1] * 1e3:>8.2f}"]
+    try:
+        from deltares_wave_toolbox.cores.core_wave_decomposition import decompose_linear_ZS
+    except ImportError:
+        rows.append("Deltares wave toolbox: not installed (pip install deltares-wave-toolbox "
+                    "for this comparison)")
+        return "\n".join(rows)
+    series = np.ascontiguousarray(d.values.T)
+    theirs = _time(lambda: decompose_linear_ZS(d.time.values, series, DEPTH, x, np.ones(3)),
+                   max(3, repeats // 5))
+    rows.append(f"{'Deltares wave toolbox decompose_linear_ZS':<44}{theirs[0] * 1e3:>9.2f}"
+                f"{theirs[1] * 1e3:>8.2f}")
+    rows.append(f"separate is {theirs[0] / ours[0]:.1f} times faster than the toolbox (medians; "
+                f"{theirs[1] / ours[1]:.1f} on the best times; regular=False "
+                f"{theirs[0] / irregular[0]:.1f}); the toolbox returns the time series only.")
+    return "\n".join(rows)
 
 
 def _stream_function_table(repeats: int) -> str:

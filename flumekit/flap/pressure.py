@@ -29,7 +29,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import nnls
 
 #: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
 VAPOUR_PRESSURE = 2339.0
@@ -134,7 +133,10 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
             # pressure that lags the motion (air in the chamber, a valve; not in Eq. 13) makes
             # the free fit trade inertia for lag and return I_p < 0, which no fluid has and
             # which the simulator rightly refuses: bounded least squares (Lawson-Hanson NNLS)
-            # keeps the fitted model physical, at a lower R².
+            # keeps the fitted model physical, at a lower R². (scipy.optimize is imported here:
+            # a large import that only this branch needs.)
+            from scipy.optimize import nnls
+
             coef, _ = nnls(design[active], p[active])
         new = design @ coef > clamp
         if np.array_equal(new, active):

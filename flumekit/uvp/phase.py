@@ -18,7 +18,6 @@ from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
-from scipy.ndimage import minimum_filter1d
 
 from flumekit import conventions
 from flumekit.campaign import UVP
@@ -75,6 +74,8 @@ def _dilate(keep: np.ndarray, seconds: float, period: float) -> np.ndarray:
     half = int(np.ceil(seconds / period * n_phase))
     if half <= 0:
         return keep
+    from scipy.ndimage import minimum_filter1d  # imported where used: keeps `import` light
+
     return minimum_filter1d(keep.astype(np.uint8), 2 * half + 1, axis=-1, mode="wrap") > 0
 
 

@@ -26,7 +26,6 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from scipy import signal as _sig
 
 from flumekit import conventions
 from flumekit.signal import uniform_step
@@ -72,24 +71,28 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
         Bool, shape (F,).
     """
     mc = np.conj(columns)
-    # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than a
-    # batched matmul or einsum of tiny matrices), and Mᴴb (F, K, R)
-    gram = mc[:, 0, :, None] * columns[:, 0, None, :]
-    for p in range(1, columns.shape[1]):
-        gram += mc[:, p, :, None] * columns[:, p, None, :]
-    r = np.einsum("fpk,fpr->fkr", mc, rhs)
-    if gram.shape[-1] == 2:
-        # closed form for 2 unknowns: eigenvalues m ± q of [[a, b], [b*, d]] and Cramer's rule
-        a, b, d = gram[:, 0, 0].real, gram[:, 0, 1], gram[:, 1, 1].real
+    r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
+    if columns.shape[-1] == 2:
+        # closed form for 2 unknowns: the Gram matrix [[a, b], [b*, d]] from sums over the
+        # probes, its eigenvalues m ± q and Cramer's rule
+        c0, c1 = columns[..., 0], columns[..., 1]
+        a = (c0.real ** 2 + c0.imag ** 2).sum(axis=1)
+        d = (c1.real ** 2 + c1.imag ** 2).sum(axis=1)
+        b = (mc[..., 0] * c1).sum(axis=1)
         m, q = 0.5 * (a + d), np.hypot(0.5 * (a - d), np.abs(b))
         lo, hi = m - q, m + q
     else:
+        # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than
+        # a batched matmul or einsum of tiny matrices)
+        gram = mc[:, 0, :, None] * columns[:, 0, None, :]
+        for p in range(1, columns.shape[1]):
+            gram += mc[:, p, :, None] * columns[:, p, None, :]
         eig = np.linalg.eigvalsh(gram)  # ascending, (F, K)
         lo, hi = eig[:, 0], eig[:, -1]
     with np.errstate(divide="ignore", invalid="ignore"):
         cond = np.where(lo > 1e-14 * hi, np.sqrt(hi / lo), np.inf)
     masked = ~(cond <= max_condition)
-    if gram.shape[-1] == 2:
+    if columns.shape[-1] == 2:
         det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
         sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
                         a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1)
@@ -314,6 +317,8 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
     rhs = [c.T]
     if window is not None:
+        from scipy import signal as _sig  # seconds to import; only a windowed fit needs it
+
         w = _sig.get_window(window, n)
         w = w / np.sqrt(np.mean(w * w))
         rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
@@ -324,14 +329,19 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
         k1 = (None, None) if wavenumbers is None else wavenumbers
         f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
-        _, _, kh_r, k_r = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
+        if k1[1] == k1[0]:  # the reflected wave travels with the same wavenumbers
+            kh_r, k_r = kh, k
+        else:
+            _, _, kh_r, k_r = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
     else:
         if wavenumbers is not None:
             raise ValueError("wavenumbers applies to a regular record (regular=True)")
         k = k_r = wavenumber(2 * np.pi * f, depth, g)
 
     phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
-    columns = np.stack([phase, np.exp(1j * k_r[:, None] * x[None, :])], axis=-1)  # (F, P, 2)
+    # reflected column e^(+ik_r x): the conjugate when k_r is k (half the complex exponentials)
+    phase_r = np.conj(phase) if k_r is k else np.exp(1j * k_r[:, None] * x[None, :])
+    columns = np.stack([phase, phase_r], axis=-1)  # (F, P, 2)
     rows = np.stack(rhs, axis=-1)
     if gauge_weights is not None:
         w = np.asarray(gauge_weights, dtype=float)
@@ -547,11 +557,60 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
     A fit at the exact harmonic frequencies, unlike FFT bins, is unbiased for a record holding a
     non-whole number of periods. Returns z (rows, n_harmonics) complex [m]: amplitude |z_n| and
     phase arg z_n relative to the first sample t0.
+
+    The basis is cos, sin of n ω1 (t - t0), n = 1..nh, and a constant. Its Gram matrix needs no
+    product of basis rows (O(nh² N)): with S(k) = Σ_j e^(i k ω1 (t_j - t0)), the product rules
+    cos a cos b = (cos(a-b) + cos(a+b))/2 etc. give every entry from S(m ± n), so the fit costs
+    the 2 nh sums S(k) and the nh right-hand sides, O(nh N).
     """
     nh = n_harmonics
+    n = t.size
     e1 = np.exp(2j * np.pi * f1 * (t - t[0]))
-    e = np.cumprod(np.broadcast_to(e1[:, None], (t.size, nh)), axis=1)  # e^(i n ω1 t), (N, nh)
-    basis = np.empty((2 * nh + 1, t.size))  # rows: cos, sin, constant
-    basis[:nh], basis[nh:2 * nh], basis[-1] = e.real.T, e.imag.T, 1.0
-    coef = np.linalg.solve(basis @ basis.T, basis @ series.T)  # (2 nh + 1, rows)
+    data = np.column_stack([series.T, np.ones(n)])  # (N, rows + 1)
+    # one product gives the right-hand sides Σ_j v_j e^(i n ω1 t_j) (powers up to nh) and,
+    # against the column of ones, the sums S(k); in blocks of samples so that the powers
+    # e^(i k ω1 t) (2 nh per sample) stay in cache instead of streaming tens of MB
+    prod = np.zeros((2 * nh, data.shape[1]), complex)  # (2 nh, rows + 1)
+    for start in range(0, n, _BLOCK):
+        stop = start + _BLOCK
+        prod += _harmonic_powers(e1[start:stop], 2 * nh) @ data[start:stop]
+    s = np.empty(2 * nh + 1, complex)  # S(0..2 nh)
+    s[0] = n
+    s[1:] = prod[:, -1]
+    m = np.arange(1, nh + 1)
+    s_sum = s[m[:, None] + m[None, :]]  # S(m + n)
+    d = m[:, None] - m[None, :]
+    s_diff = np.where(d >= 0, s[np.abs(d)], np.conj(s[np.abs(d)]))  # S(m - n) = S(n - m)*
+    gram = np.empty((2 * nh + 1, 2 * nh + 1))  # rows/columns: cos, sin, constant
+    gram[:nh, :nh] = 0.5 * (s_diff.real + s_sum.real)  # Σ cos_m cos_n
+    gram[nh:2 * nh, nh:2 * nh] = 0.5 * (s_diff.real - s_sum.real)  # Σ sin_m sin_n
+    gram[:nh, nh:2 * nh] = 0.5 * (s_sum.imag - s_diff.imag)  # Σ cos_m sin_n
+    gram[nh:2 * nh, :nh] = gram[:nh, nh:2 * nh].T
+    gram[:nh, -1] = gram[-1, :nh] = s[1:nh + 1].real
+    gram[nh:2 * nh, -1] = gram[-1, nh:2 * nh] = s[1:nh + 1].imag
+    gram[-1, -1] = n
+    proj = prod[:nh, :-1]  # (nh, rows)
+    rhs = np.concatenate([proj.real, proj.imag, series.sum(axis=1)[None, :]])
+    coef = np.linalg.solve(gram, rhs)  # (2 nh + 1, rows)
     return (coef[:nh] - 1j * coef[nh:2 * nh]).T
+
+
+#: samples per block of the harmonic fit's sums: 2 nh powers of 2048 samples (2.8 MB for 43
+#: harmonics) stay in a core's cache
+_BLOCK = 2048
+
+
+def _harmonic_powers(e1: np.ndarray, k_max: int) -> np.ndarray:
+    """Powers e1^k, k = 1..k_max, of unit phasors e1 (N,), as rows (k_max, N).
+
+    By doubling (e1^(k+j) = e1^j e1^k for the j ≤ k already known): log2(k_max) vectorised
+    products, and a round-off that grows with log k rather than with k as a running product's.
+    """
+    e = np.empty((k_max, e1.size), complex)
+    e[0] = e1
+    k = 1
+    while k < k_max:
+        step = min(k, k_max - k)
+        np.multiply(e[:step], e[k - 1], out=e[k:k + step])
+        k += step
+    return e
