@@ -252,6 +252,14 @@ def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
     Symp. Naval Hydrodynamics, 491-501 (2-D energy relations of a body radiating to both sides).
     Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
     channel. J. Fluid Mech. 701, 482-510 (Eq. 3.1).
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.campaign import load_campaign
+    >>> campaign = load_campaign("raw/default")  # doctest: +SKIP
+    >>> r, t = flap_scattering(np.array([0.5, 1.0]), campaign, 110.0)  # doctest: +SKIP
+    >>> np.abs(r).round(2).tolist()  # doctest: +SKIP
+    [0.33, 0.79]
     """
     f = np.asarray(frequency, dtype=float)
     if np.any(f <= 0) or not (np.isfinite(loss_damping) and loss_damping >= 0):

@@ -37,8 +37,9 @@ period of a steady random sea and its FFT grid is the components' grid.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, NamedTuple
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -115,6 +116,12 @@ def beach_reflection(frequency, beach: Beach, roll_off: float) -> np.ndarray:
     Battjes, J. A. (1974). Surf similarity. Proc. 14th Coastal Engineering Conference, 466-480.
     Seelig, W. N. & Ahrens, J. P. (1981). Estimation of wave reflection and energy dissipation
     coefficients for beaches, revetments and breakwaters. CERC Tech. Paper 81-1.
+
+    Examples
+    --------
+    >>> from flumekit.synth.waves import Beach
+    >>> beach_reflection([0.25, 0.6, 1.0], Beach(), 0.6).round(4).tolist()
+    [0.0777, 0.04, 0.0092]
     """
     f = np.asarray(frequency, dtype=float)
     return beach.reflection / (1.0 + (f / roll_off) ** 4)
@@ -139,12 +146,46 @@ def analysis_start(frequency, amplitude, *, depth: float, x_min: float, x_wavema
                    g: float = G) -> float:
     """First whole second at which every wave has developed at the flap and the probes [s].
 
+    Parameters
+    ----------
+    frequency, amplitude : array_like
+        The wavemaker's components f_n [Hz] and a_n [m].
+    depth : float
+        Water depth [m].
+    x_min : float
+        The probe farthest from the flap [m].
+    x_wavemaker, x_beach : float
+        Positions of the wavemaker and of the beach's reflection line [m].
+    ramp_time : float
+        Length of the wavemaker's linear ramp τ [s].
+    returning : callable
+        f -> (R, T² K_b e^{iψ_b - 2ik x_b}): the complex amplitudes of the flap's reflection
+        and of the beach's wave at x = 0 per unit incident amplitude.
+    developed : float
+        Share of each wave's variance that must have arrived [-].
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    float
+        t_s [s], a whole second.
+
+    Notes
+    -----
     Component n of a wave that travels a distance d arrives fully ramped at τ + d / c_g(f_n);
     a wave has developed when the components holding ``developed`` of its variance have
     arrived. Waves: the incident at x = 0 (d = -x_wm), the flap's reflection and the beach's
-    wave at the farthest probe ``x_min`` (d = -x_wm - x_min and 2 x_b - x_wm - x_min).
-    ``returning(f)`` gives the complex amplitudes (R, T² K_b) of the two returning waves per
-    unit incident one.
+    wave at the farthest probe (d = -x_wm - x_min and 2 x_b - x_wm - x_min).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = np.array([0.5, 1.0])
+    >>> analysis_start(f, np.ones(2), depth=0.825, x_min=-3.2, x_wavemaker=-32.7,
+    ...                x_beach=24.05, ramp_time=20.0, developed=0.999,
+    ...                returning=lambda f: (np.zeros(f.size), np.zeros(f.size)))
+    62.0
     """
     f = np.asarray(frequency, dtype=float)
     cg = group_velocity(1.0 / f, depth, g)
@@ -201,6 +242,25 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
     IrregularSea
         The field (``eta_incident``, ``eta_reflected``, ``eta_beach`` over ("x", "time")), the
         components at the wavemaker, R_eff(f), the analysed span's start and T_R.
+
+    Notes
+    -----
+    One FFT of the ramped wavemaker signal and one inverse FFT of all positions and waves
+    (module notes). The FFT spans the record, the lead-out, the ramp-down and the slowest
+    wave's travel from the wavemaker to the beach and back to the farthest position, so
+    nothing wraps round into the record. About 0.3 s for 5 positions and 420 s at 100 Hz.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.synth.waves import Beach
+    >>> def wall(f):  # a fixed, fully reflecting flap
+    ...     return np.ones(f.size, complex), np.zeros(f.size, complex)
+    >>> sea = irregular_sea(25.0, 300, [-3.0, 0.0], hm0=0.1, peak_period=2.0, gamma=3.3,
+    ...                     seed=1, depth=0.825, flap=wall, beach=Beach(),
+    ...                     x_wavemaker=-32.7)
+    >>> round(abs(complex(sea.reflection(np.array([0.5]))[0])), 6)
+    1.0
     """
     x = np.atleast_1d(np.asarray(x, dtype=float))
     if np.any(x > 0) or np.any(x <= x_wavemaker):
@@ -315,6 +375,24 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
         ``energy_flux`` J = ρ g Σ S_I c_g Δf [W m-1], ``energy_band_low``/``_high`` (the
         band holding the central 90 % of the incident variance) [Hz], ``analysis_start``,
         ``analysis_end`` [s].
+
+    Notes
+    -----
+    The periodogram of the span with a rectangular window: over a span of whole repeat
+    periods of the wavemaker's signal each component falls on one bin, so the spectrum holds
+    the components' exact amplitudes. Te = m-1/m0 and Tm01 = m0/m1 with m_j = Σ f^j S Δf
+    (IEC TS 62600-100, 2012); c_g of linear theory in finite depth.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.arange(2000) / 10.0
+    >>> eta = 0.05 * np.cos(2 * np.pi * 0.5 * t)
+    >>> s = sea_state_truth(t, eta, 0.2 * eta, (0.0, 200.0), depth=0.825,
+    ...                     reflection=lambda f: 0.2 + 0 * f, f_max=2.0)
+    >>> a = s.attrs
+    >>> round(a["hm0"], 4), a["peak_period"], round(a["reflection_coefficient"], 6)
+    (0.1414, 2.0, 0.2)
     """
     t = np.asarray(time, dtype=float)
     inside = (t >= span[0] - 1e-9) & (t < span[1] - 1e-9)
@@ -351,3 +429,4 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
                "analysis_start": float(span[0]), "analysis_end": float(span[1]),
                "frequency_resolution": df, "rho": rho})
     return conventions.annotate(ds)
+

@@ -22,7 +22,7 @@ import pytest
 import xarray as xr
 
 from flumekit.campaign import load_campaign
-from flumekit.synth.campaign import (Truth, plan_runs, write_virtual_base, write_virtual_run)
+from flumekit.synth.campaign import Truth, plan_runs, write_virtual_base, write_virtual_run
 from flumekit.synth.flap import flap_scattering, radiation_damping
 from flumekit.synth.waves import jonswap
 from flumekit.waves import separate
