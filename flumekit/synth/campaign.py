@@ -4,7 +4,9 @@ The campaign reproduces the design of Brito et al. (2020): water depth 0.825 m, 
 of §2.2, the periods and heights of Table 1 with probes at x12 = L/10 and x23 = L/4 of the local
 wavelength, regular waves ramped up from the wavemaker, reflection from the flap, second-order
 bound harmonics, probe gains/offsets and noise, encoder quantisation, pressure sensor noise and,
-for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams.
+for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams. Irregular
+runs (JONSWAP sea states, :mod:`flumekit.synth.irregular`) follow the regular and UVP runs,
+so that every regular run keeps its random stream.
 
 Layout written (raw/README.md): ``campaign.toml``, ``calibration/probes.csv``,
 ``runs/<run>/{run.toml, probes.csv, flap.csv, UP1.mfprof, ...}`` and the truth in ``truth/``

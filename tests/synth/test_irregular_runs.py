@@ -217,3 +217,40 @@ def test_flap_scattering_conserves_energy(tmp_path):
     assert abs(t[0]) == pytest.approx(1.0) and abs(r[0]) < 1e-12
     r, _ = flap_scattering(np.array([5.0]), c, 110.0)
     assert abs(r[0]) > 0.99
+
+
+def test_the_plan_reads_the_irregular_run(tmp_path):
+    """virtual_campaign (what a pipeline plans with before synthesis) reads the irregular
+    run's run.toml as load_campaign reads the written one."""
+    from flumekit.synth.campaign import virtual_campaign
+
+    run = virtual_campaign(tmp_path / "small", "small", 11).run(RUN)
+    assert run.irregular and run.sea_state.seed == 11 and run.sea_state.duration == 400.0
+    assert run.probe_x == dict(Truth().sea.probe_x)
+
+
+def test_the_sea_arrives_from_the_wavemaker_and_nothing_wraps_round():
+    """Before the fastest (shallow-water) wave could reach a position the field is calm (below
+    1e-4 Hm0 until 80 % of that time; the dispersive front rises just before it): the FFT
+    is long enough that the end of the record does not wrap round into its start."""
+    from flumekit.synth.irregular import SeaTruth, irregular_sea
+    from flumekit.synth.waves import Beach
+
+    def wall(f):
+        return np.ones(f.size, complex), np.zeros(f.size, complex)
+
+    x = np.array([-3.2, 0.0])
+    sea = irregular_sea(25.0, 300, x, hm0=0.1, peak_period=2.0, gamma=3.3, seed=3,
+                        depth=0.825, flap=wall, beach=Beach(), x_wavemaker=-32.7,
+                        sea=SeaTruth())
+    t = sea.field.time.values
+    c0 = np.sqrt(9.81 * 0.825)
+    for i, xi in enumerate(x):
+        calm = t < 0.8 * (xi + 32.7) / c0
+        assert np.abs(sea.field.eta_incident.values[i, calm]).max() < 1e-4 * 0.1
+        calm = t < 0.8 * (32.7 - xi) / c0
+        assert np.abs(sea.field.eta_reflected.values[i, calm]).max() < 1e-4 * 0.1
+    # a fixed wall reflects every component in phase at x = 0 once the sea has developed
+    late = t >= sea.analysis_start
+    assert np.allclose(sea.field.eta_reflected.values[1, late],
+                       sea.field.eta_incident.values[1, late], atol=2e-4 * 0.1)
