@@ -391,6 +391,18 @@ VARIABLES: dict[str, Variable] = {
                "sea_surface_wave_maximum_height"),
     "tz": _V("s", "mean zero-crossing period", "sea_surface_wave_mean_period"),
     # --- truth of the virtual flume ---
+    "spectrum_target": _V("m2 s", "target JONSWAP variance density of the incident wave"),
+    "incident_spectral_amplitude": _V("m", "amplitude of the incident wave's Fourier component "
+                                      "at the flap"),
+    "incident_spectral_phase": _V("rad", "phase of the incident wave's Fourier component at "
+                                  "the flap, eta = a cos(2 pi f (t - start) + phase)"),
+    "reflection_coefficient_spectrum": _V("1", "reflection coefficient Kr(f) of everything "
+                                          "returning to the wavemaker at the flap"),
+    "reflection_phase_spectrum": _V("rad", "phase of the returning wave over the incident wave "
+                                    "at the flap"),
+    "flap_reflection_coefficient_spectrum": _V("1", "reflection coefficient of the flap alone"),
+    "flap_transmission_coefficient_spectrum": _V("1", "transmission coefficient of the flap"),
+    "beach_reflection_coefficient_spectrum": _V("1", "reflection coefficient of the beach"),
 }
 
 

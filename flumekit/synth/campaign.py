@@ -4,7 +4,9 @@ The campaign reproduces the design of Brito et al. (2020): water depth 0.825 m, 
 of §2.2, the periods and heights of Table 1 with probes at x12 = L/10 and x23 = L/4 of the local
 wavelength, regular waves ramped up from the wavemaker, reflection from the flap, second-order
 bound harmonics, probe gains/offsets and noise, encoder quantisation, pressure sensor noise and,
-for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams.
+for the UVP runs (T = 3.5 s, H = 0.25 m), Met-Flow profile files of three beams. Irregular
+runs (JONSWAP sea states, :mod:`flumekit.synth.irregular`) follow the regular and UVP runs,
+so that every regular run keeps its random stream.
 
 Layout written (raw/README.md): ``campaign.toml``, ``calibration/probes.csv``,
 ``runs/<run>/{run.toml, probes.csv, flap.csv, UP1.mfprof, ...}`` and the truth in ``truth/``
@@ -32,6 +34,7 @@ from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.synth.flume import RepeatScatter
+from flumekit.synth.irregular import SeaTruth
 from flumekit.synth.waves import RAMP_WAVES, Beach
 from flumekit.waves.theory import group_velocity, wavelength
 
@@ -40,6 +43,10 @@ HEIGHTS = (0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3)  # Table 1 [m]
 UVP_CONDITION = (3.5, 0.25)  # §2.4 [s], [m]
 UVP_ELEVATIONS = tuple(np.round(np.arange(0.20, 0.7201, 0.02), 3))  # §2.3 [m]
 CALIBRATION_LEVELS = (-0.10, -0.05, 0.0, 0.05, 0.10)  # static submersions [m]
+#: irregular runs: the JONSWAP peak enhancement of every sea state [-] and the seed of the
+#: first sea state's phases (the next ones count on from it)
+SEA_GAMMA = 3.3
+SEA_SEED = 11
 
 
 @dataclass(frozen=True)
@@ -47,19 +54,30 @@ class Size:
     wave_runs: tuple[tuple[float, float], ...]
     uvp_elevations: tuple[float, ...]  # one UVP run per entry (repeats allowed)
     n_steady_waves: int = 55  # steady waves after the ramp (>= 50 are averaged)
+    sea_states: tuple[tuple[float, float], ...] = ()  # irregular runs: (Hm0 [m], Tp [s])
+    sea_duration: float = 600.0  # record length of the irregular runs [s]
 
 
 def _size(name: str) -> Size:
+    # sea states: steepness Hm0/Lp 0.013-0.029 (moderate), Hm0/h at most 0.15; the 400 s of
+    # the small run leave 294 s (147 peak periods) after the sea has developed
     if name == "small":
-        return Size(wave_runs=((2.0, 0.15), (3.5, 0.25)), uvp_elevations=(0.30, 0.50))
+        return Size(wave_runs=((2.0, 0.15), (3.5, 0.25)), uvp_elevations=(0.30, 0.50),
+                    sea_states=((0.10, 2.0),), sea_duration=400.0)
     if name == "default":
+        # a 2 x 2 power matrix (Hm0 x Te)
         return Size(wave_runs=tuple((t, h) for t in PERIODS for h in (0.15, 0.2, 0.25)),
-                    uvp_elevations=UVP_ELEVATIONS[::2])
+                    uvp_elevations=UVP_ELEVATIONS[::2],
+                    sea_states=tuple((h, t) for h in (0.08, 0.12) for t in (2.0, 2.8)))
     if name == "paper":
-        # 78 repeats cycling through the 27 elevations of §2.3 (most elevations 3 times)
+        # 78 repeats cycling through the 27 elevations of §2.3 (most elevations 3 times);
+        # a 3 x 4 power matrix
         return Size(wave_runs=tuple((t, h) for t in PERIODS for h in HEIGHTS),
                     uvp_elevations=tuple(UVP_ELEVATIONS[k % len(UVP_ELEVATIONS)]
-                                         for k in range(78)))
+                                         for k in range(78)),
+                    sea_states=tuple((h, t) for h in (0.06, 0.09, 0.12)
+                                     for t in (1.8, 2.2, 2.6, 3.0)),
+                    sea_duration=900.0)
     raise ValueError(f"unknown campaign size '{name}': small, default or paper")
 
 
@@ -82,6 +100,9 @@ class Truth:
     # probes through the flap twice: K_t = 0.9 from the energy the flap lets pass, K_t² ≈
     # 1 - Kr² - C_f b/B = 1 - 0.04 - 0.12 · 1.31/1.5 less its viscous losses; None: no beach
     beach: Beach | None = Beach(transmission=0.9)
+    # the irregular runs' flume: ramp, band, the flap's and the beach's reflection per
+    # frequency (their transmission replaces the beach's constant one), probe layout
+    sea: SeaTruth = SeaTruth()
 
 
 def probe_positions(period: float, depth: float, truth: Truth) -> dict[str, float]:
@@ -113,6 +134,7 @@ class RunSpec:
     repeat: int
     uvp_elevation: float | None
     key: tuple[int, int]  # with the seed, the run's random stream: (condition index, repeat)
+    sea: dict | None = None  # irregular runs: hm0, tp, gamma, seed, duration of run.toml
 
 
 def plan_runs(size: str) -> list[RunSpec]:
@@ -121,12 +143,22 @@ def plan_runs(size: str) -> list[RunSpec]:
     spec = _size(size)
     runs = [("waves", t, h, None) for t, h in spec.wave_runs]
     runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
+    runs += [("irregular", tp, hm0, None) for hm0, tp in spec.sea_states]
     seen: dict[str, int] = {}
     out = []
     for kind, period, height, z in runs:
-        base = f"T{period:.2f}_H{height:.3f}" if kind == "waves" else f"uvp_z{z:.3f}"
+        base = (f"T{period:.2f}_H{height:.3f}" if kind == "waves" else
+                f"uvp_z{z:.3f}" if kind == "uvp" else f"JS_Hm{height:.3f}_Tp{period:.2f}")
         repeat = seen.get(base, 0)
         seen[base] = repeat + 1
+        if kind == "irregular":
+            # a repeat plays the same wavemaker signal (the same seed)
+            sea = {"hm0": height, "tp": period, "gamma": SEA_GAMMA,
+                   "seed": SEA_SEED + spec.sea_states.index((height, period)),
+                   "duration": spec.sea_duration}
+            out.append(RunSpec(f"{base}_r{repeat}", kind, period, height, repeat, None,
+                               (len(seen), repeat), sea))
+            continue
         out.append(RunSpec(f"{base}_r{repeat}", kind, period, height, repeat, z,
                            (len(seen), repeat)))
     return out
@@ -153,6 +185,10 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
         for i, r in enumerate(runs):
             if progress is not None:
                 progress(i, len(runs), r.id)
+            if r.sea is not None:
+                _write_irregular_run(tmp, campaign, r.id, r.repeat, r.sea, a, b, truth,
+                                     np.random.default_rng([seed, *r.key]), flap_hydro)
+                continue
             _write_run(tmp, campaign, r.id, r.kind, r.period, r.height, r.repeat,
                        r.uvp_elevation, a, b, truth, np.random.default_rng([seed, *r.key]),
                        _size(size).n_steady_waves, flap_hydro=flap_hydro)
@@ -196,9 +232,14 @@ def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> 
     tmp = Path(tempfile.mkdtemp(prefix=f".{run_id}.", suffix=".partial", dir=root / "runs"))
     try:
         os.chmod(tmp, 0o777 & ~umask())
-        _write_run(tmp, campaign, run_id, spec.kind, spec.period, spec.height, spec.repeat,
-                   spec.uvp_elevation, a, b, truth, np.random.default_rng([seed, *spec.key]),
-                   _size(size).n_steady_waves, flap_hydro=_hydro(campaign))
+        rng = np.random.default_rng([seed, *spec.key])
+        if spec.sea is not None:
+            _write_irregular_run(tmp, campaign, run_id, spec.repeat, spec.sea, a, b, truth,
+                                 rng, _hydro(campaign))
+        else:
+            _write_run(tmp, campaign, run_id, spec.kind, spec.period, spec.height,
+                       spec.repeat, spec.uvp_elevation, a, b, truth, rng,
+                       _size(size).n_steady_waves, flap_hydro=_hydro(campaign))
         # truth first, the run folder last: a run appears only complete
         (root / "truth").mkdir(exist_ok=True)
         os.rename(tmp / "truth" / run_id, root / "truth" / run_id)
@@ -237,9 +278,10 @@ def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
         depth = load_campaign(tmp).flume.water_depth
         for r in plan_runs(size):
             (tmp / "runs" / r.id).mkdir(parents=True)
+            xp = (dict(truth.sea.probe_x) if r.sea is not None
+                  else probe_positions(r.period, depth, truth))
             (tmp / "runs" / r.id / "run.toml").write_text(run_toml(
-                r.kind, r.period, r.height, r.repeat, r.uvp_elevation,
-                probe_positions(r.period, depth, truth)))
+                r.kind, r.period, r.height, r.repeat, r.uvp_elevation, xp, sea=r.sea))
         planned = load_campaign(tmp)
 
         def moved(p: Path) -> Path:
@@ -325,10 +367,17 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
 
 
 def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
-             probe_x: dict[str, float]) -> str:
-    """The text of a virtual run's ``run.toml``."""
-    lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
-             f"repeat = {repeat}"]
+             probe_x: dict[str, float], sea: dict | None = None) -> str:
+    """The text of a virtual run's ``run.toml``; an irregular run's target sea state in
+    ``sea`` (hm0, tp, gamma, seed, duration) replaces the period and height."""
+    if sea is not None:
+        lines = ["[run]", f'kind = "{kind}"', f"hm0 = {sea['hm0']}  # [m]",
+                 f"tp = {sea['tp']}  # [s]", f"gamma = {sea['gamma']}",
+                 f"seed = {sea['seed']}", f"duration = {sea['duration']}  # [s]",
+                 f"repeat = {repeat}"]
+    else:
+        lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
+                 f"repeat = {repeat}"]
     if z is not None:
         lines.append(f"uvp_elevation = {z}")
     lines += ["", "[probes]  # x [m]"] + [f"{p} = {x}" for p, x in probe_x.items()]
@@ -418,3 +467,122 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
                           theta=np.interp(tu, t100, flap["theta"].values),
                           flap_thickness=campaign.flap.thickness, rng=rng)
         write_uvp_run(run_dir, beams)
+
+
+def _write_irregular_run(root, campaign: Campaign, run_id: str, repeat: int, sea: dict, a, b,
+                         truth: Truth, rng, flap_hydro=None) -> None:
+    """An irregular run (flumekit.synth.irregular): probes, flap and their truth."""
+    from flumekit.synth.flap import FlapTruth, flap_record, flap_scattering
+    from flumekit.synth.flume import repeat_conditions
+    from flumekit.synth.irregular import irregular_sea, sea_state_truth
+    from flumekit.synth.waves import jonswap
+
+    depth = campaign.flume.water_depth
+    flap_truth = FlapTruth()
+    # what the wavemaker generated (its gain and time base scatter as in the regular runs)
+    peak_period, hm0, losses = repeat_conditions(rng, sea["tp"], sea["hm0"], truth.scatter,
+                                                 flap_truth.losses)
+    flap_truth = dataclasses.replace(flap_truth, losses=losses)
+    run_dir = root / "runs" / run_id
+    run_dir.mkdir(parents=True)
+    xp = dict(truth.sea.probe_x)
+    names = campaign.probes.names
+    missing = [p for p in names if p not in xp]
+    if missing:
+        raise ValueError(f"the irregular runs' probe layout has no position for {missing}")
+    (run_dir / "run.toml").write_text(run_toml("irregular", sea["tp"], sea["hm0"], repeat, None,
+                                               {p: xp[p] for p in names}, sea=sea))
+
+    enc = campaign.encoder
+    rate_p, rate_f = campaign.probes.sampling_rate, enc.sampling_rate
+    step = int(round(rate_f / rate_p))
+    if abs(step * rate_p - rate_f) > 1e-9 * rate_f:
+        raise ValueError(f"the flap's rate {rate_f} Hz must be a multiple of the probes' "
+                         f"{rate_p} Hz")
+    duration = float(sea["duration"])
+    beach = truth.beach if truth.beach is not None else Beach(reflection=0.0)
+
+    def scattering(f):
+        return flap_scattering(f, campaign, truth.sea.loss_damping, flap_truth)
+
+    res = irregular_sea(rate_f, duration, [xp[p] for p in names] + [0.0], hm0=hm0,
+                        peak_period=peak_period, gamma=sea["gamma"], seed=sea["seed"],
+                        depth=depth, flap=scattering, beach=beach,
+                        x_wavemaker=truth.x_wavemaker, sea=truth.sea)
+    field = res.field
+    n_p, n_f = int(round(duration * rate_p)), int(round(duration * rate_f))
+    parts = [field[k].values for k in ("eta_incident", "eta_reflected", "eta_beach")]
+    at_probes = [p[:-1, : n_p * step : step] for p in parts]
+    t_p = np.arange(n_p) / rate_p
+    noisy = sum(at_probes) + truth.probe_noise * rng.standard_normal(at_probes[0].shape)
+    volts = a[:, None] + b[:, None] * noisy
+    write_table(run_dir / "probes.csv", [("time", "s")] + [(p, "V") for p in names],
+                np.column_stack([t_p, volts.T]), fmt=["%.2f"] + ["%.6f"] * len(names))
+
+    inc, ref, bea = (p[-1] for p in parts)  # at the flap, record and lead-out
+    t_f = np.arange(n_f) / rate_f
+    span = (res.analysis_start, duration)
+    flap = flap_record(t_f, inc[:n_f], period=peak_period, campaign=campaign, rng=rng,
+                       hydro=flap_hydro, truth=flap_truth, eta_lead_out=inc[n_f:],
+                       eta_front=inc + ref + bea, span=span)
+    write_table(run_dir / "flap.csv", [("time", "s"), ("encoder", "counts"), ("pressure", "bar")],
+                np.column_stack([t_f, flap["encoder_counts"].values,
+                                 flap["chamber_pressure"].values / 1e5]),
+                fmt=["%.2f", "%d", "%.6f"])
+
+    # the truth: the realised sea state at the flap over the analysed span, the target, the
+    # reflection per frequency, and the flap's mean absorbed power over the same span
+    fp = 1.0 / peak_period
+    state = sea_state_truth(t_f, inc[:n_f], ref[:n_f] + bea[:n_f], span, depth=depth,
+                            reflection=res.reflection,
+                            f_max=truth.sea.cut[1] * truth.sea.band[1] * fp,
+                            rho=campaign.flume.density)
+    f = state.frequency.values
+    r_flap, t_flap = scattering(f)
+    nominal_band = (truth.sea.band[0] / sea["tp"], truth.sea.band[1] / sea["tp"])
+    inside = t_f >= span[0]
+    power = float(np.mean(flap["power"].values[inside]))
+    width = campaign.flap.width
+    state = state.assign(
+        spectrum_target=("frequency", jonswap(f, sea["hm0"], sea["tp"], sea["gamma"],
+                                              band=nominal_band)),
+        flap_reflection_coefficient_spectrum=("frequency", np.abs(r_flap)),
+        flap_transmission_coefficient_spectrum=("frequency", np.abs(t_flap)),
+        beach_reflection_coefficient_spectrum=("frequency", res.beach(f)))
+    run_attrs = {
+        "kind": "irregular", "hm0_target": sea["hm0"], "peak_period_target": sea["tp"],
+        "gamma": sea["gamma"], "seed": sea["seed"], "duration": duration,
+        "hm0_generated": hm0, "peak_period_generated": peak_period,
+        "repeat_period": res.repeat_period, "n_components": int(res.frequency.size),
+        "band_low": float(res.frequency[0]), "band_high": float(res.frequency[-1]),
+        "ramp_time": truth.sea.ramp_peak_periods * peak_period,
+        "x_wavemaker": truth.x_wavemaker, "x_beach": beach.x, "depth": depth,
+        "flap_loss_damping": truth.sea.loss_damping,
+        "beach_reflection_long_waves": beach.reflection,
+        "beach_roll_off": truth.sea.beach_roll_off, "beach_phase": beach.phase,
+        "mean_power": power, "flap_width": width,
+        "capture_width": power / state.attrs["energy_flux"],
+        "capture_width_ratio": power / (state.attrs["energy_flux"] * width),
+        "reflection_definition": (
+            "returning wave at x = 0 (flap reflection + beach wave through the flap) over "
+            "the incident wave at x = 0: R_eff(f) = R(f) + T(f)^2 K_b(f) exp(i(psi_b - 2 k "
+            "x_b)); bulk Kr = sqrt(m0R/m0I) of the analysed span")}
+    truth_dir = root / "truth" / run_id
+    waves_truth = xr.Dataset(
+        {"eta_incident": (("probe", "time"), at_probes[0]),
+         "eta_reflected": (("probe", "time"), at_probes[1]),
+         "eta_beach": (("probe", "time"), at_probes[2]), **state.data_vars},
+        coords={"probe": list(names), "time": t_p, "x": ("probe", [xp[p] for p in names]),
+                "frequency": f},
+        attrs={**state.attrs, **run_attrs})
+    write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
+                  truth_dir / "waves.nc")
+    flap_ds = flap.assign(eta_incident=("time", inc[:n_f]), eta_reflected=("time", ref[:n_f]),
+                          eta_beach=("time", bea[:n_f]))
+    flap_ds.attrs.update({k: run_attrs[k] for k in ("mean_power", "capture_width",
+                                                    "capture_width_ratio", "flap_width")})
+    flap_ds.attrs.update({"analysis_start": span[0], "analysis_end": span[1],
+                          "energy_flux": state.attrs["energy_flux"],
+                          "hm0_target": sea["hm0"], "peak_period_target": sea["tp"]})
+    write_dataset(_finish(flap_ds, f"Virtual flume truth: flap of run {run_id}", "", 0),
+                  truth_dir / "flap.nc")

@@ -210,6 +210,70 @@ def radiation_damping(omega, depth: float, hinge_height: float, width: float,
     return x**2 / (2 * rho * g * cg * width)
 
 
+def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
+                    truth: FlapTruth = FlapTruth()) -> tuple[np.ndarray, np.ndarray]:
+    """Complex reflection R(f) and transmission T(f) of the flap in two dimensions [-].
+
+    The flap's linear one-degree-of-freedom model (module notes, model "linear": inertia
+    I + μ, stiffness C, 2-D radiation damping ν(ω) of the Haskind relation) with a linear loss
+    damping ν_L standing for the PTO and the flume's losses. A fixed thin flap reflects the
+    whole wave (R = 1, T = 0: the excitation X(ω) is that of a fully reflecting wall); its
+    motion radiates antisymmetric waves, −u to the sea and +u to the lee, so R = 1 − u, T = u.
+    The energy balance |R|² + |T|² = 1 − 2 ν ν_L / |Z|² (the share absorbed by ν_L) for every
+    inertia fixes the phase of u, and
+
+        u = ν / Z,  Z = ν + ν_L + i (ω (I + μ) − C/ω),
+
+    in the convention η = Re Σ c e^{+iωt} of numpy's FFT (R and T multiply the incident
+    wave's coefficient at x = 0). Without losses the free flap is transparent at resonance
+    (T = 1) and reflects like a wall at high frequency (R → 1); with ν_L = 110 N m s it
+    absorbs a quarter of the incident flux at T = 3.5 s (the flume's D = 0.25,
+    :mod:`flumekit.synth.flume`), reflects 15 % there, 33 % at 2 s and 80 % at 1 s.
+
+    Parameters
+    ----------
+    frequency : array_like
+        Frequencies [Hz], > 0.
+    campaign : Campaign
+        Depth, flap inertia, width, hinge height and stiffness C.
+    loss_damping : float
+        ν_L [N m s].
+    truth : FlapTruth
+        Added inertia μ [kg m2] and density [kg m-3].
+
+    Returns
+    -------
+    R, T : numpy.ndarray
+        Complex reflection and transmission coefficients [-].
+
+    References
+    ----------
+    Newman, J. N. (1976). The interaction of stationary vessels with regular waves. Proc. 11th
+    Symp. Naval Hydrodynamics, 491-501 (2-D energy relations of a body radiating to both sides).
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
+    channel. J. Fluid Mech. 701, 482-510 (Eq. 3.1).
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.campaign import load_campaign
+    >>> campaign = load_campaign("raw/default")  # doctest: +SKIP
+    >>> r, t = flap_scattering(np.array([0.5, 1.0]), campaign, 110.0)  # doctest: +SKIP
+    >>> np.abs(r).round(2).tolist()  # doctest: +SKIP
+    [0.33, 0.79]
+    """
+    f = np.asarray(frequency, dtype=float)
+    if np.any(f <= 0) or not (np.isfinite(loss_damping) and loss_damping >= 0):
+        raise ValueError("frequencies must be > 0 and the loss damping >= 0")
+    flap = campaign.flap
+    omega = 2 * np.pi * f
+    nu = radiation_damping(omega, campaign.flume.water_depth, flap.hinge_height, flap.width,
+                           truth.rho)
+    z = nu + loss_damping + 1j * (omega * (flap.inertia + truth.added_inertia)
+                                  - flap.buoyancy_stiffness / omega)
+    u = nu / z
+    return 1.0 - u, u
+
+
 def flap_motion(time, eta_incident_at_flap, *, campaign: Campaign, truth: FlapTruth = FlapTruth(),
                 upsample: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """θ, θ̇, θ̈ and the excitation torque of the linear 1-DOF model (module notes).
@@ -379,8 +443,10 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
                           float(sim.attrs.get("added_inertia_infinite_spread", np.nan))}}
 
 
-def _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period: float, pto) -> dict:
-    """Best Eq. (13) fit to the true chamber pressure over the true quasi-steady window.
+def _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period: float, pto,
+                    span: tuple[float, float] | None = None) -> dict:
+    """Best Eq. (13) fit to the true chamber pressure over the true quasi-steady window (or
+    over ``span`` [s], the analysed span of an irregular run).
 
     What a perfect flap stage can recover: with the flume's check valve the chamber pressure
     holds a term Eq. (13) cannot represent, so the true K_p, I_p are no longer the fit's
@@ -397,11 +463,14 @@ def _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period: float, pto)
     dt = (t[-1] - t[0]) / (t.size - 1)
     _, theta_dot, theta_ddot = smooth_derivatives(theta, 1.0 / dt, DEFAULT_CUTOFF)
 
-    try:
-        win = quasi_steady_window(theta, t, tolerance=0.02, min_period=0.5 * period)
-    except ValueError:
-        return {}
-    inside = (t >= win.start) & (t <= win.end)
+    if span is not None:
+        inside = (t >= span[0]) & (t <= span[1])
+    else:
+        try:
+            win = quasi_steady_window(theta, t, tolerance=0.02, min_period=0.5 * period)
+        except ValueError:
+            return {}
+        inside = (t >= win.start) & (t <= win.end)
     m0 = rod_kinematics(np.zeros(1), np.zeros(1), pto.bed_anchor, pto.flap_anchor).lever_arm[0]
     fit = fit_pressure_model(p_true[inside], theta_dot[inside], theta_ddot[inside],
                              atmospheric_pressure=pto.atmospheric_pressure,
@@ -424,7 +493,8 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
                 rng: np.random.Generator, truth: FlapTruth = FlapTruth(),
                 height: float | None = None,
                 hydro: FlumeHydrodynamics | xr.Dataset | None = None,
-                eta_lead_out=None, eta_front=None) -> xr.Dataset:
+                eta_lead_out=None, eta_front=None,
+                span: tuple[float, float] | None = None) -> xr.Dataset:
     """Raw flap channels and their truth for one run of the virtual flume.
 
     Parameters
@@ -432,7 +502,8 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
     time : Record times [s], uniform (100 Hz for the campaign's encoder and pressure sensor).
     eta_incident_at_flap : True incident surface elevation at the hinge line x = 0 [m], over
         the whole record (the flap starts from rest at its first sample).
-    period : Wave period of the run [s] (recorded; the models are frequency dependent).
+    period : Wave period of the run [s] (recorded; the models are frequency dependent); the
+        peak period of an irregular run.
     campaign : Campaign metadata (flap, PTO, encoder, flume).
     rng : Random generator for the pressure sensor noise.
     truth : Parameters of the virtual flap (:class:`FlapTruth`), among them ``model``.
@@ -451,6 +522,8 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
     eta_front : True local elevation in front of the flap (incident + reflected at x = 0)
         [m] over the record and the lead-out, for the flume's wetted length and overtopping
         (model "flume"); default the incident elevation.
+    span : (start, end) [s] over which the truth's best Eq. (13) fit is made (an irregular
+        run's analysed span); default the true quasi-steady window of θ.
 
     Returns
     -------
@@ -503,7 +576,7 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
     noise = truth.pressure_noise * truth.pressure_rated_output
     p_meas = p_true + rng.normal(0.0, noise, t.size) if noise > 0 else p_true.copy()
 
-    eq13 = _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period, pto)
+    eq13 = _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period, pto, span)
     omega_run = 2 * np.pi / period
     scalars = {k: (v(omega_run) if callable(v) else v) for k, v in mo["scalars"].items()}
     T = ("time",)

@@ -364,12 +364,52 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     return conventions.annotate(ds)
 
 
-def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3) -> np.ndarray:
+def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3,
+            band: tuple[float, float] | None = None) -> np.ndarray:
     """JONSWAP variance density S(f) [m2 s] scaled so that ∫S df = Hm0²/16 on the given grid.
 
+    The one JONSWAP of flumekit: the target spectrum of the virtual flume's irregular runs
+    (:func:`random_phase_components`) and of the synthetic records of the tests and benchmarks
+    (:func:`irregular_wave_field`).
+
+    Parameters
+    ----------
+    frequency : array_like
+        Uniform frequency grid [Hz] (f = 0 allowed: S(0) = 0).
+    hm0 : float
+        Spectral significant wave height Hm0 = 4 sqrt(m0) of the components [m].
+    peak_period : float
+        Peak period Tp = 1/fp [s].
+    gamma : float
+        Peak enhancement factor γ [-] (3.3: the mean JONSWAP spectrum).
+    band : tuple of float, optional
+        (f_min, f_max) [Hz]: S = 0 outside it (a wavemaker's band); Hm0 is then that of the
+        band. Default: every f > 0 of the grid.
+
+    Returns
+    -------
+    numpy.ndarray
+        S(f) [m2 s] on ``frequency``.
+
+    Notes
+    -----
     S ∝ f⁻⁵ exp(-5/4 (fp/f)⁴) γ^exp(-(f - fp)² / (2 σ² fp²)), σ = 0.07 (f ≤ fp), 0.09 (f > fp)
-    (Hasselmann et al. 1973). The scale is fixed numerically on the (uniform) ``frequency`` grid,
-    so that the discrete components hold exactly Hm0²/16 of variance.
+    (Hasselmann et al. 1973). The scale is fixed numerically on the (uniform) ``frequency``
+    grid, so that the discrete components hold exactly Hm0²/16 of variance (the usual closed-form
+    scale, e.g. Goda's, is within a few per cent of it for γ = 1-7).
+
+    References
+    ----------
+    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
+    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = np.arange(0, 2001) / 1000.0
+    >>> s = jonswap(f, 0.1, 2.0)
+    >>> round(4 * float(np.sqrt(s.sum() * 0.001)), 6)
+    0.1
     """
     f = np.asarray(frequency, dtype=float)
     fp = 1.0 / peak_period
@@ -377,9 +417,74 @@ def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3) -> np
     fs = np.where(f > 0, f, fp)  # S(0) = 0: evaluate the formula at f > 0 only
     shape = (fs ** -5.0 * np.exp(-1.25 * (fp / fs) ** 4)
              * gamma ** np.exp(-((fs - fp) ** 2) / (2 * sigma**2 * fp**2)))
-    shape = np.where(f > 0, shape, 0.0)
+    inside = f > 0
+    if band is not None:
+        # a bin on an edge is inside, however the grid was rounded
+        inside &= (f >= band[0] * (1 - 1e-9)) & (f <= band[1] * (1 + 1e-9))
+    shape = np.where(inside, shape, 0.0)
     df = f[1] - f[0]
     return shape * (hm0**2 / 16.0) / (shape.sum() * df)
+
+
+def random_phase_components(repeat_period: float, hm0: float, peak_period: float,
+                            gamma: float, seed: int, band: tuple[float, float]
+                            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The wavemaker's components of a JONSWAP sea by the random-phase method.
+
+    Parameters
+    ----------
+    repeat_period : float
+        Repeat period T_R of the wavemaker signal [s]: the components lie on f_n = n / T_R.
+    hm0 : float
+        Target spectral significant height Hm0 [m].
+    peak_period : float
+        Target peak period Tp [s].
+    gamma : float
+        JONSWAP peak enhancement factor [-].
+    seed : int
+        Seed of the phases (``numpy.random.default_rng(seed)``): the same seed, the same sea.
+    band : tuple of float
+        (f_min, f_max) generated band [Hz].
+
+    Returns
+    -------
+    f : numpy.ndarray
+        Component frequencies [Hz] (those of the grid in ``band``).
+    a : numpy.ndarray
+        Amplitudes a_n = sqrt(2 S(f_n) Δf) [m], S the :func:`jonswap` of the band, so that
+        Σ a_n²/2 = Hm0²/16 exactly.
+    psi : numpy.ndarray
+        Phases ψ_n, uniform in [0, 2π) [rad]: η = Σ a_n cos(2π f_n t + ψ_n).
+
+    Notes
+    -----
+    Deterministic amplitudes and random phases (the random-phase method, e.g. Tucker et al.
+    1984): the realised spectrum over one repeat period is the target exactly, and the sea is
+    Gaussian by the central limit theorem over the many components.
+
+    References
+    ----------
+    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
+    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
+    118-122.
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f, a, psi = random_phase_components(300.0, 0.1, 2.0, 3.3, seed=11, band=(0.3, 1.5))
+    >>> f.size, round(4 * float(np.sqrt(np.sum(a**2) / 2)), 9)
+    (361, 0.1)
+    """
+    _check_positive(repeat_period=repeat_period, hm0=hm0, peak_period=peak_period,
+                    gamma=gamma)
+    df = 1.0 / repeat_period
+    f = np.arange(int(np.floor(band[1] / df * (1 + 1e-9))) + 1) * df
+    s = jonswap(f, hm0, peak_period, gamma, band=band)
+    keep = s > 0
+    if keep.sum() < 8:
+        raise ValueError(f"fewer than 8 components in the band {band} Hz at a repeat period "
+                         f"of {repeat_period} s")
+    psi = np.random.default_rng(seed).uniform(0.0, 2 * np.pi, int(keep.sum()))
+    return f[keep], np.sqrt(2 * s[keep] * df), psi
 
 
 def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: float,

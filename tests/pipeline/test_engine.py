@@ -175,10 +175,11 @@ def test_no_heavy_imports_when_planning(tmp_path):
     raw = tmp_path / "raw"
     raw.mkdir()
     (raw / "campaign.toml").write_text(campaign_toml("small"))
-    for r in virtual_campaign(tmp_path / "unused", "small", 1).runs:  # waves and UVP runs
+    for r in virtual_campaign(tmp_path / "unused", "small", 1).runs:  # waves, UVP, irregular
         (raw / "runs" / r.id).mkdir(parents=True)
+        sea = None if r.sea_state is None else vars(r.sea_state)
         (raw / "runs" / r.id / "run.toml").write_text(
-            run_toml(r.kind, r.period, r.height, r.repeat, r.uvp_elevation, r.probe_x))
+            run_toml(r.kind, r.period, r.height, r.repeat, r.uvp_elevation, r.probe_x, sea=sea))
     (tmp_path / "p.toml").write_text('[pipeline]\nname = "p"\nraw = "raw"\n'
                                      'processed = "processed"\n')
     code = ("import sys; from flumekit import cli; from flumekit.pipeline.config import "
