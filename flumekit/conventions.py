@@ -259,8 +259,6 @@ VARIABLES: dict[str, Variable] = {
     "torque_valve": _V("N m", "torque of the PTO check valve's pressure"),
     "chamber_pressure_valve": _V("Pa", "pressure drop of the PTO check valve in the chamber"),
     # performance in irregular seas and the power matrix (performance/, flap/analysis.py)
-    "analysis_start": _V("s", "start of the analysed span of an irregular-wave record"),
-    "analysis_end": _V("s", "end of the analysed span of an irregular-wave record"),
     "capture_width": _V("m", "capture width (capture length) P / J"),
     "capture_width_ratio": _V("1", "capture width ratio P / (J w)"),
     "hm0_bin": _V("m", "centre of the significant wave height bin of the power matrix"),
