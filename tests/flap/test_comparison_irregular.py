@@ -13,7 +13,7 @@ from flumekit.waves.theory import G, group_velocity
 
 GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,
             "stiffness": 605.0, "inertia": 14.74, "thickness": 0.17}
-I, C = GEOMETRY["inertia"], GEOMETRY["stiffness"]
+INERTIA, C = GEOMETRY["inertia"], GEOMETRY["stiffness"]
 
 
 @pytest.fixture(scope="module")
@@ -34,8 +34,8 @@ def _spectrum(f, s):
 def test_single_frequency_spectrum_is_the_regular_wave_model(hydro, f0, a, nu):
     f = np.arange(1, 201) * 0.005
     s = np.where(np.isclose(f, f0), a**2 / 2 / 0.005, 0.0)  # one bin holding a^2 / 2
-    out = cmp.spectral_response(hydro, _spectrum(f, s), I, C, nu)
-    reg = response(cmp.coefficients_at(hydro, 1 / f0), a, I, C, nu).isel(period=0)
+    out = cmp.spectral_response(hydro, _spectrum(f, s), INERTIA, C, nu)
+    reg = response(cmp.coefficients_at(hydro, 1 / f0), a, INERTIA, C, nu).isel(period=0)
     assert out["mean_power"] == pytest.approx(float(reg.mean_power), rel=1e-12)
     # a sine's significant amplitude 2 sqrt(m0) is sqrt(2) times its amplitude
     assert out["theta_significant_amplitude"] == pytest.approx(
@@ -47,7 +47,7 @@ def test_single_frequency_spectrum_is_the_regular_wave_model(hydro, f0, a, nu):
 
 def test_frequencies_outside_the_coefficients_are_left_out_and_said(hydro):
     f = np.array([0.01, 0.3, 0.6])  # 0.01 Hz = 0.063 rad/s is below the grid's 0.4 rad/s
-    out = cmp.spectral_response(hydro, _spectrum(f, np.array([1.0, 1.0, 2.0]) * 1e-3), I, C,
+    out = cmp.spectral_response(hydro, _spectrum(f, np.array([1.0, 1.0, 2.0]) * 1e-3), INERTIA, C,
                                 100.0)
     # the bins reach halfway to their neighbours: widths 0.29, 0.295, 0.3 Hz
     assert out["variance_outside"] == pytest.approx(0.29 / (0.29 + 0.295 + 0.6), rel=1e-12)
@@ -63,7 +63,7 @@ def linear_flap(hydro):
     f = k / span
     a = 0.015 * np.exp(-(((f - 0.4) / 0.12) ** 2))  # component amplitudes [m]
     ph = rng.uniform(0, 2 * np.pi, k.size)
-    r = response(cmp.coefficients_at(hydro, 1 / f), 1.0, I, C, nu)
+    r = response(cmp.coefficients_at(hydro, 1 / f), 1.0, INERTIA, C, nu)
     theta_c = (r.theta_real.values + 1j * r.theta_imag.values) * a  # Θ_j, e^{-iωt} convention
     t = np.arange(0, start + span + 30.0, 0.04)
     w = 2 * np.pi * f[:, None]
@@ -97,7 +97,7 @@ def test_energy_equivalent_linear_model_recovers_a_linear_flap(hydro, linear_fla
     # mean(theta_dot^2) over the span of whole cycles is sum w^2 |Theta|^2 / 2: nu exactly
     # (to the sampling of the span's ends, 1e-4)
     assert cmp.span_equivalent_damping(flap) == pytest.approx(nu, rel=1e-3)
-    out, extra = cmp.linear_model_irregular(flap, waves, hydro, I, C)
+    out, extra = cmp.linear_model_irregular(flap, waves, hydro, INERTIA, C)
     # the spectral sum against the time-domain flap: within 0.2 % (measured 1e-5 on the power,
     # 3e-5 on the significant amplitude; the cubic interpolation of the coefficients)
     assert out["mean_power"] == pytest.approx(power, rel=2e-3)
@@ -110,11 +110,11 @@ def test_energy_equivalent_linear_model_recovers_a_linear_flap(hydro, linear_fla
 
 def test_optimal_damping_maximises_the_spectral_power(hydro, linear_flap):
     flap, waves, nu, _ = linear_flap
-    out, extra = cmp.linear_model_irregular(flap, waves, hydro, I, C, "optimal")
+    out, extra = cmp.linear_model_irregular(flap, waves, hydro, INERTIA, C, "optimal")
     best = float(extra.pto_damping)
     spec = waves.spectrum_incident
     for other in (0.8 * best, 1.25 * best, nu):
-        assert out["mean_power"] >= cmp.spectral_response(hydro, spec, I, C,
+        assert out["mean_power"] >= cmp.spectral_response(hydro, spec, INERTIA, C,
                                                           other)["mean_power"]
 
 
@@ -137,7 +137,7 @@ def test_mirrored_extension():
 
 def test_the_simulator_beside_the_models(hydro, linear_flap, campaign):
     flap, waves, _, _ = linear_flap
-    assert (campaign.flap.inertia, campaign.flap.width) == (I, 1.31)
+    assert (campaign.flap.inertia, campaign.flap.width) == (INERTIA, 1.31)
     ds = cmp.compare_irregular_run(flap, waves, hydro, flap_params=campaign.flap,
                                    pto=campaign.pto, spin_up=40.0)
     assert list(ds.source.values) == ["experiment", "analytical", "simulator"]
