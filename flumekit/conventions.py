@@ -273,6 +273,11 @@ VARIABLES: dict[str, Variable] = {
                             "runs of the cell"),
     "capture_width_ratio_std": _V("1", "standard deviation (ddof = 0) of the capture width "
                                   "ratio over the runs of the cell"),
+    "run_hm0": _V("m", "incident significant wave height Hm0 of the run at the flap"),
+    "run_te": _V("s", "incident energy period Te of the run at the flap"),
+    "run_mean_power": _V("W", "mean PTO power of the run over its analysed span"),
+    "run_capture_width": _V("m", "capture width P / J of the run"),
+    "run_capture_width_ratio": _V("1", "capture width ratio P / (J w) of the run"),
     "torque_compliance": _V("N m", "torque of the PTO chamber's compliance pressure"),
     "chamber_pressure_compliance": _V("Pa", "pressure lag of the PTO chamber's compliance"),
     "torque_cavity": _V("N m", "torque of the PTO chamber's vapour cavity pressure"),
