@@ -133,7 +133,7 @@ def _fitted_pressure(m: _Measured, inside: np.ndarray, pto: PTO):
 
 
 def _dataset(m: _Measured, fit, p_fit, cav, t_p_fit, *, pto: PTO, cutoff: float) -> xr.Dataset:
-    """The time series and the pressure fit of a run, as the product stores them."""
+    """Assemble the time series and the pressure fit of a run as the product stores them."""
     s = m.series
     order = ["encoder_counts", "wire_shortening", "domain_flag", "theta", "theta_dot",
              "theta_ddot", "rod_length", "rod_velocity", "beta", "lever_arm",

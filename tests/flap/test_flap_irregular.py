@@ -33,7 +33,8 @@ def irregular(campaign):
     counts = counts_from_wire(enc.L7 - wire_length(theta, enc.L5, enc.L7), enc.counts_per_metre)
     # rod extension per unit rotation dl/dtheta: the rod velocity at theta_dot = 1
     dl = rod_kinematics(theta, np.ones_like(theta), pto.bed_anchor, pto.flap_anchor).velocity
-    pressure = -B * theta_dot / (pto.bore_area * dl)  # P_int Q = P_int (-A dl theta_dot) = B theta_dot^2
+    # P_int Q = P_int (-A dl theta_dot) = B theta_dot^2
+    pressure = -B * theta_dot / (pto.bore_area * dl)
     truth = {"mean_power": float(np.sum(0.5 * B * omega**2 * amp**2)),
              "theta_significant_amplitude": 2 * np.sqrt(np.sum(amp**2) / 2),
              "pressure": pressure}
