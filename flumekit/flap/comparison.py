@@ -515,8 +515,10 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
     xarray.Dataset
         The :data:`IRREGULAR_SCALARS` over ``source`` (experiment, analytical, simulator), the
         linear model's ``pto_damping``, with the simulator ``theta_relative_rms_difference``
-        (over the span, relative to the measured θ's RMS), and the scalar coordinate
-        ``energy_flux`` (J of the waves product, the CWR's denominator for every source).
+        (over the span, relative to the measured θ's RMS), ``energy_flux`` (J of the waves
+        product, the CWR's denominator for every source), and the scalar coordinates of a
+        regular run's comparison: ``incident_power`` J w, ``incident_height`` and
+        ``measured_period`` NaN (no single height or period).
 
     References
     ----------
@@ -544,8 +546,14 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
                          "the RMS of the measured theta"})
     names = list(sources)
     data = {n: ("source", np.array([sources[s][n] for s in names])) for n in IRREGULAR_SCALARS}
-    ds = xr.Dataset(data, coords={"source": names,
-                                  "energy_flux": float(waves["energy_flux"])}).merge(extra)
+    flux = float(waves["energy_flux"])
+    # the scalar coordinates of a regular run's comparison, so that the campaign summary
+    # stacks both kinds: no single height or period, W_I = J w across the flap
+    ds = xr.Dataset(data, coords={"source": names, "incident_height": np.nan,
+                                  "measured_period": np.nan,
+                                  "incident_power": flux * flap_params.width}).merge(extra)
+    ds["energy_flux"] = ((), flux, {"long_name": "spectral energy flux of the incident wave per "
+                                    "unit crest width, rho g int S_I(f) c_g(f, h) df"})
     ds["mean_power"].attrs["long_name"] = "mean PTO power over the analysed span"
     ds.attrs["linear_pto_damping"] = linear_pto_damping
     return conventions.annotate(ds)

@@ -149,5 +149,8 @@ def test_the_simulator_beside_the_models(hydro, linear_flap, campaign):
     assert np.isfinite(float(ds.theta_relative_rms_difference))
     for name in cmp.IRREGULAR_SCALARS:
         assert "units" in ds[name].attrs
+    # the scalar coordinates of a regular run's comparison (the summary stacks both kinds)
+    assert float(ds.incident_power) == pytest.approx(float(ds.energy_flux) * 1.31, rel=1e-12)
+    assert np.isnan(float(ds.incident_height)) and np.isnan(float(ds.measured_period))
     # the experiment's row is the flap product's
     assert float(ds.mean_power.sel(source="experiment")) == float(flap.mean_power)
