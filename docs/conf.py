@@ -81,6 +81,7 @@ API_PACKAGES = {
     "flumekit.waves": "Waves",
     "flumekit.waves.calibration": "Probe calibration",
     "flumekit.flap": "The flap",
+    "flumekit.performance": "Performance in irregular seas",
     "flumekit.uvp": "UVP velocity fields",
     "flumekit.plot": "Figures for notebooks",
     "flumekit.report": "Campaign report",

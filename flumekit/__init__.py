@@ -31,7 +31,7 @@ _LAZY = {
     "load_campaign": "flumekit.campaign",
 }
 _SUBPACKAGES = ("ballscrew", "conventions", "flap", "hydro", "io", "plot", "signal", "synth",
-                "uvp", "waves")
+                "uvp", "waves", "performance")
 
 __all__ = ["FlumekitError", "InputError", "__version__", *sorted(_LAZY), *_SUBPACKAGES]
 

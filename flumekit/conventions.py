@@ -182,6 +182,26 @@ VARIABLES: dict[str, Variable] = {
     "torque_hydrodynamic_phase_ci95": _V("N m", "half-width of the 95 % confidence interval of the "
                                          "phase-averaged hydrodynamic torque"),
     "domain_flagged_fraction": _V("1", "fraction of encoder samples outside the domain of Eq. (1)"),
+    # statistics of the flap's motion and torque in irregular seas (performance/statistics.py)
+    "theta_mean": _V("rad", "mean flap rotation angle over the analysed span"),
+    "theta_rms": _V("rad", "standard deviation of the flap rotation angle about its mean"),
+    "theta_significant_amplitude": _V("rad", "significant amplitude of the flap rotation "
+                                      "2 sqrt(m0)"),
+    "theta_significant_amplitude_zero_crossing": _V(
+        "rad", "half the mean zero-crossing height of the highest third of the flap rotation"),
+    "theta_maximum_amplitude": _V("rad", "half the largest zero-crossing height of the flap "
+                                  "rotation"),
+    "theta_cycles": _V("1", "number of zero up-crossing cycles of the flap rotation"),
+    "torque_mean": _V("N m", "mean hydrodynamic torque over the analysed span"),
+    "torque_rms": _V("N m", "standard deviation of the hydrodynamic torque about its mean"),
+    "torque_significant_amplitude": _V("N m", "significant amplitude of the hydrodynamic "
+                                       "torque 2 sqrt(m0)"),
+    "torque_significant_amplitude_zero_crossing": _V(
+        "N m", "half the mean zero-crossing height of the highest third of the hydrodynamic "
+        "torque"),
+    "torque_maximum_amplitude": _V("N m", "half the largest zero-crossing height of the "
+                                   "hydrodynamic torque"),
+    "torque_cycles": _V("1", "number of zero up-crossing cycles of the hydrodynamic torque"),
     # --- uvp ---
     "distance": _V("m", "distance from the transducer face along the beam"),
     "beam_velocity": _V("m s-1", "velocity along the beam"),
@@ -248,6 +268,26 @@ VARIABLES: dict[str, Variable] = {
     "torque_bearing": _V("N m", "friction torque of the hinge bearings"),
     "torque_valve": _V("N m", "torque of the PTO check valve's pressure"),
     "chamber_pressure_valve": _V("Pa", "pressure drop of the PTO check valve in the chamber"),
+    # performance in irregular seas and the power matrix (performance/, flap/analysis.py)
+    "capture_width": _V("m", "capture width (capture length) P / J"),
+    "capture_width_ratio": _V("1", "capture width ratio P / (J w)"),
+    "hm0_bin": _V("m", "centre of the significant wave height bin of the power matrix"),
+    "te_bin": _V("s", "centre of the energy period bin of the power matrix"),
+    "hm0_bin_bounds": _V("m", "edges of the significant wave height bin of the power matrix"),
+    "te_bin_bounds": _V("s", "edges of the energy period bin of the power matrix"),
+    "run_count": _V("1", "number of runs in the cell of the power matrix"),
+    "runs_outside": _V("1", "number of runs outside the bins of the power matrix"),
+    "mean_power_std": _V("W", "standard deviation (ddof = 0) of the mean power over the runs "
+                         "of the cell"),
+    "capture_width_std": _V("m", "standard deviation (ddof = 0) of the capture width over the "
+                            "runs of the cell"),
+    "capture_width_ratio_std": _V("1", "standard deviation (ddof = 0) of the capture width "
+                                  "ratio over the runs of the cell"),
+    "run_hm0": _V("m", "incident significant wave height Hm0 of the run at the flap"),
+    "run_te": _V("s", "incident energy period Te of the run at the flap"),
+    "run_mean_power": _V("W", "mean PTO power of the run over its analysed span"),
+    "run_capture_width": _V("m", "capture width P / J of the run"),
+    "run_capture_width_ratio": _V("1", "capture width ratio P / (J w) of the run"),
     "torque_compliance": _V("N m", "torque of the PTO chamber's compliance pressure"),
     "chamber_pressure_compliance": _V("Pa", "pressure lag of the PTO chamber's compliance"),
     "torque_cavity": _V("N m", "torque of the PTO chamber's vapour cavity pressure"),

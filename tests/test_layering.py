@@ -21,7 +21,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors", "conventions", "units", "schema", "campaign", "signal"),
     ("io",),
     ("qc",),
-    ("waves", "hydro"),
+    ("waves", "hydro", "performance"),
     ("flap", "ballscrew", "uvp"),
     ("synth",),
     ("figures", "plot", "report"),

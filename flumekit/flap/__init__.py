@@ -5,7 +5,7 @@ z up from the hinge axis, θ > 0 leaning to the beach; T_h positive towards the 
 gravity and PTO torques of Eq. (11) as resisting torques.
 """
 
-from flumekit.flap.analysis import DEFAULT_CUTOFF, analyse_run
+from flumekit.flap.analysis import DEFAULT_CUTOFF, analyse_irregular_run, analyse_run
 from flumekit.flap.encoder import (
     WireAngle,
     angle_from_wire,
@@ -49,7 +49,7 @@ from flumekit.flap.torque import (
 )
 
 __all__ = [
-    "DEFAULT_CUTOFF", "analyse_run",
+    "DEFAULT_CUTOFF", "analyse_run", "analyse_irregular_run",
     "WireAngle", "angle_from_wire", "counts_from_wire", "wire_from_counts", "wire_length",
     "FrictionState", "LuGre", "film_steady_state", "friction_advance", "friction_force",
     "friction_series",

@@ -1,9 +1,15 @@
 """Per-run flap analysis: encoder and chamber pressure -> motion, PTO forces, torques and power.
 
-One pure function, :func:`analyse_run`, that the pipeline's flap stage calls for each run.
+Two pure functions that the pipeline's flap stage calls for each run, sharing the measured
+chain (encoder → θ and its derivatives, rod kinematics, pressure and LuGre friction forces,
+torques, T_h, flow and power): :func:`analyse_run` for a regular-wave run (quasi-steady window,
+phase averages, capture factor) and :func:`analyse_irregular_run` for an irregular sea state
+(mean power over the analysed span, motion statistics, capture width and its ratio).
 """
 
 from __future__ import annotations
+
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -15,7 +21,7 @@ from flumekit.errors import InputError
 from flumekit.flap.encoder import angle_from_wire, wire_from_counts
 from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
-from flumekit.flap.power import flow_rate, pto_power
+from flumekit.flap.power import flow_rate, pto_power, window_mean
 from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model, pressure_force
 from flumekit.flap.summary import steady_window, summary
 from flumekit.flap.torque import (
@@ -25,6 +31,7 @@ from flumekit.flap.torque import (
     inertia_torque,
     pressure_torque,
 )
+from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
 
 #: default cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
 #: differentiation [Hz]. It passes the first 8 harmonics of the shortest period (2 s) with at
@@ -51,6 +58,115 @@ def _fill_flagged(theta: np.ndarray, flag: np.ndarray, time: np.ndarray,
     out = theta.copy()
     out[flag] = np.interp(time[flag], time[good], theta[good])
     return out
+
+
+class _Measured(NamedTuple):
+    """The measured chain of a run over its whole record (one home for both run kinds)."""
+
+    time: np.ndarray
+    sampling_rate: float
+    series: dict  # name -> time series, in the order the product stores them
+    compression: int  # sign of θ̇ that compresses the chamber (Eq. 13)
+
+
+def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
+              encoder: Encoder, cutoff: float, zero_count: float,
+              max_flagged_fraction: float) -> _Measured:
+    t = np.asarray(time, dtype=float)
+    fs = 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)
+    counts = np.asarray(encoder_counts)
+    p = np.asarray(chamber_pressure, dtype=float)
+    if counts.shape != t.shape or p.shape != t.shape:
+        raise ValueError(f"flap analysis: time {t.shape}, encoder counts {counts.shape} and "
+                         f"chamber pressure {p.shape} must have the same length")
+    if not np.all(np.isfinite(p)):
+        raise InputError(None, f"{int((~np.isfinite(p)).sum())} chamber pressure samples are "
+                         "not finite")
+    # Eq. (1): encoder -> wire -> angle
+    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
+    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
+    theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
+    theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
+
+    # PTO kinematics and forces
+    rod = rod_kinematics(theta, theta_dot, pto.bed_anchor, pto.flap_anchor)
+    compression = -1 if np.median(rod.lever_arm) > 0 else 1  # θ̇ > 0 shortens the rod if m < 0
+    f_p = pressure_force(p, pto.bore_area)
+    if pto.friction is not None:
+        f_f, z_b, h_l = friction_series(rod.velocity, 1.0 / fs, LuGre.from_campaign(pto.friction))
+    else:
+        f_f = z_b = h_l = np.zeros_like(t)
+    t_p = pressure_torque(f_p, rod.lever_arm)
+    t_f = friction_torque(f_f, rod.lever_arm)
+    t_pto = t_p + t_f
+    t_h = hydrodynamic_torque(theta, theta_ddot, t_pto, inertia=flap.inertia,
+                              buoyancy_stiffness=flap.buoyancy_stiffness)
+    q = flow_rate(rod.velocity, pto.bore_area)
+    w_out = pto_power(p, q)
+    series = {
+        "encoder_counts": counts, "wire_shortening": wire,
+        "domain_flag": wa.out_of_domain.astype(np.int8),
+        "theta": theta, "theta_dot": theta_dot, "theta_ddot": theta_ddot,
+        "rod_length": rod.length, "rod_velocity": rod.velocity, "beta": rod.beta,
+        "lever_arm": rod.lever_arm, "chamber_pressure": p,
+        "force_pressure": f_p, "force_friction": f_f,
+        "bristle_deflection": z_b, "film_thickness_parameter": h_l,
+        "torque_pressure": t_p, "torque_friction": t_f, "torque_pto": t_pto,
+        "torque_gravity": gravity_torque(theta, flap.buoyancy_stiffness),
+        "torque_inertia": inertia_torque(theta_ddot, flap.inertia),
+        "torque_hydrodynamic": t_h, "flow_rate": q, "power": w_out}
+    return _Measured(t, fs, series, compression)
+
+
+def _fitted_pressure(m: _Measured, inside: np.ndarray, pto: PTO):
+    """Eq. (13-14) fitted over the samples ``inside``, and the fitted model over the record."""
+    s = m.series
+    kw = dict(atmospheric_pressure=pto.atmospheric_pressure, vapour_pressure=pto.vapour_pressure,
+              compression_sign=m.compression)
+    fit = fit_pressure_model(s["chamber_pressure"][inside], s["theta_dot"][inside],
+                             s["theta_ddot"][inside], **kw)
+    p_fit = chamber_pressure_model(s["theta_dot"], s["theta_ddot"],
+                                   fit.pressure_loss_coefficient, fit.fluid_inertia, **kw)
+    cav = p_fit <= pto.vapour_pressure - pto.atmospheric_pressure
+    t_p_fit = pressure_torque(pressure_force(p_fit, pto.bore_area), s["lever_arm"])
+    return fit, p_fit, cav, t_p_fit
+
+
+def _dataset(m: _Measured, fit, p_fit, cav, t_p_fit, *, pto: PTO, cutoff: float) -> xr.Dataset:
+    """Assemble the time series and the pressure fit of a run as the product stores them."""
+    s = m.series
+    order = ["encoder_counts", "wire_shortening", "domain_flag", "theta", "theta_dot",
+             "theta_ddot", "rod_length", "rod_velocity", "beta", "lever_arm",
+             "chamber_pressure", "chamber_pressure_fitted", "cavitating", "force_pressure",
+             "force_friction", "bristle_deflection", "film_thickness_parameter",
+             "torque_pressure", "torque_pressure_fitted", "torque_friction", "torque_pto",
+             "torque_gravity", "torque_inertia", "torque_hydrodynamic", "flow_rate", "power"]
+    fitted = {"chamber_pressure_fitted": p_fit, "cavitating": cav.astype(np.int8),
+              "torque_pressure_fitted": t_p_fit}
+    T = ("time",)
+    data = {n: (T, fitted[n] if n in fitted else s[n]) for n in order}
+    data.update({
+        "pressure_loss_coefficient": fit.pressure_loss_coefficient,
+        "fluid_inertia": fit.fluid_inertia, "pressure_fit_r2": fit.r2,
+        "domain_flagged_fraction": float(s["domain_flag"].astype(bool).mean())})
+    return xr.Dataset(
+        data, coords={"time": m.time},
+        attrs={"derivative_cutoff_hz": float(cutoff), "derivative_filter":
+               "zero-phase 4th-order Butterworth low-pass, central differences",
+               "friction_model": "modified LuGre (Appendix B)" if pto.friction is not None
+               else "none (no [pto.friction] in the campaign)",
+               "torque_sign_convention": "T_h positive towards the beach; T_g, T_PTO, T_p, T_f "
+               "resisting (positive when opposing theta > 0), Eq. (11)"},
+    )
+
+
+def _bounded(ds: xr.Dataset, fit) -> xr.Dataset:
+    if fit.bounded:  # said in the product: Eq. (13) misses part of this PTO's pressure
+        ds.attrs["pressure_fit_bounded"] = (
+            "a coefficient of the Eq. (13) fit is held at its bound 0: the free least-squares "
+            "fit gave a negative (unphysical) value, so the pressure lags the motion in a way "
+            "Eq. (13) cannot represent")
+    return ds
 
 
 def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
@@ -104,94 +220,123 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         the quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power,
         W_I, C_f and the window. Every name is in :mod:`flumekit.conventions`.
     """
-    t = np.asarray(time, dtype=float)
-    fs = 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)
-    counts = np.asarray(encoder_counts)
-    p = np.asarray(chamber_pressure, dtype=float)
-    if counts.shape != t.shape or p.shape != t.shape:
-        raise ValueError(f"flap analysis: time {t.shape}, encoder counts {counts.shape} and "
-                         f"chamber pressure {p.shape} must have the same length")
-    if not np.all(np.isfinite(p)):
-        raise InputError(None, f"{int((~np.isfinite(p)).sum())} chamber pressure samples are "
-                         "not finite")
+    m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
+                  cutoff=cutoff, zero_count=zero_count,
+                  max_flagged_fraction=max_flagged_fraction)
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
-    # Eq. (1): encoder -> wire -> angle
-    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
-    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
-    theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
-    theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
-
-    # PTO kinematics and forces
-    rod = rod_kinematics(theta, theta_dot, pto.bed_anchor, pto.flap_anchor)
-    compression = -1 if np.median(rod.lever_arm) > 0 else 1  # θ̇ > 0 shortens the rod if m < 0
-    f_p = pressure_force(p, pto.bore_area)
-    if pto.friction is not None:
-        f_f, z_b, h_l = friction_series(rod.velocity, 1.0 / fs, LuGre.from_campaign(pto.friction))
-    else:
-        f_f = z_b = h_l = np.zeros_like(t)
-    t_p = pressure_torque(f_p, rod.lever_arm)
-    t_f = friction_torque(f_f, rod.lever_arm)
-    t_pto = t_p + t_f
-    t_h = hydrodynamic_torque(theta, theta_ddot, t_pto, inertia=flap.inertia,
-                              buoyancy_stiffness=flap.buoyancy_stiffness)
-    q = flow_rate(rod.velocity, pto.bore_area)
-    w_out = pto_power(p, q)
+    t, s = m.time, m.series
 
     # quasi-steady window on θ (§2.5), pressure fit (Eqs. 13-14) inside it
-    win = steady_window(theta, t, period, tolerance)
+    win = steady_window(s["theta"], t, period, tolerance)
     inside = (t >= win.start) & (t <= win.end)
-    fit = fit_pressure_model(p[inside], theta_dot[inside], theta_ddot[inside],
-                             atmospheric_pressure=pto.atmospheric_pressure,
-                             vapour_pressure=pto.vapour_pressure, compression_sign=compression)
-    kw = dict(atmospheric_pressure=pto.atmospheric_pressure, vapour_pressure=pto.vapour_pressure,
-              compression_sign=compression)
-    p_fit = chamber_pressure_model(theta_dot, theta_ddot, fit.pressure_loss_coefficient,
-                                   fit.fluid_inertia, **kw)
-    cav = p_fit <= pto.vapour_pressure - pto.atmospheric_pressure
-    t_p_fit = pressure_torque(pressure_force(p_fit, pto.bore_area), rod.lever_arm)
+    fit, p_fit, cav, t_p_fit = _fitted_pressure(m, inside, pto)
 
     # phase averages, amplitudes, power capture over the window (§3.2, Eq. A2; Fig. 10)
-    summ = summary(t, {"theta": theta, "theta_dot": theta_dot, "power": w_out,
-                       "chamber_pressure": p, "torque_hydrodynamic": t_h}, win,
+    summ = summary(t, {n: s[n] for n in ("theta", "theta_dot", "power", "chamber_pressure",
+                                        "torque_hydrodynamic")}, win,
                    period=period, incident_height=incident_height, depth=depth,
                    flap_width=flap.width, n_phase=n_phase,
                    ci95=("theta", "torque_hydrodynamic"))
+    ds = _dataset(m, fit, p_fit, cav, t_p_fit, pto=pto, cutoff=cutoff)
+    return _bounded(conventions.annotate(ds.merge(summ)), fit)
 
-    T = ("time",)
-    ds = xr.Dataset(
-        {
-            "encoder_counts": (T, counts),
-            "wire_shortening": (T, wire),
-            "domain_flag": (T, wa.out_of_domain.astype(np.int8)),
-            "theta": (T, theta), "theta_dot": (T, theta_dot), "theta_ddot": (T, theta_ddot),
-            "rod_length": (T, rod.length), "rod_velocity": (T, rod.velocity),
-            "beta": (T, rod.beta), "lever_arm": (T, rod.lever_arm),
-            "chamber_pressure": (T, p), "chamber_pressure_fitted": (T, p_fit),
-            "cavitating": (T, cav.astype(np.int8)),
-            "force_pressure": (T, f_p), "force_friction": (T, f_f),
-            "bristle_deflection": (T, z_b), "film_thickness_parameter": (T, h_l),
-            "torque_pressure": (T, t_p), "torque_pressure_fitted": (T, t_p_fit),
-            "torque_friction": (T, t_f), "torque_pto": (T, t_pto),
-            "torque_gravity": (T, gravity_torque(theta, flap.buoyancy_stiffness)),
-            "torque_inertia": (T, inertia_torque(theta_ddot, flap.inertia)),
-            "torque_hydrodynamic": (T, t_h), "flow_rate": (T, q), "power": (T, w_out),
-            "pressure_loss_coefficient": fit.pressure_loss_coefficient,
-            "fluid_inertia": fit.fluid_inertia, "pressure_fit_r2": fit.r2,
-            "domain_flagged_fraction": float(wa.out_of_domain.mean()),
-        },
-        coords={"time": t},
-        attrs={"derivative_cutoff_hz": float(cutoff), "derivative_filter":
-               "zero-phase 4th-order Butterworth low-pass, central differences",
-               "friction_model": "modified LuGre (Appendix B)" if pto.friction is not None
-               else "none (no [pto.friction] in the campaign)",
-               "torque_sign_convention": "T_h positive towards the beach; T_g, T_PTO, T_p, T_f "
-               "resisting (positive when opposing theta > 0), Eq. (11)"},
-    )
-    ds = conventions.annotate(ds.merge(summ))
-    if fit.bounded:  # said in the product: Eq. (13) misses part of this PTO's pressure
-        ds.attrs["pressure_fit_bounded"] = (
-            "a coefficient of the Eq. (13) fit is held at its bound 0: the free least-squares "
-            "fit gave a negative (unphysical) value, so the pressure lags the motion in a way "
-            "Eq. (13) cannot represent")
-    return ds
+
+def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
+                          encoder: Encoder, analysis_start: float, analysis_end: float,
+                          energy_flux: float, cutoff: float = DEFAULT_CUTOFF,
+                          zero_count: float = 0.0,
+                          max_flagged_fraction: float = 0.0) -> xr.Dataset:
+    """Analyse one irregular-sea run's flap channels: mean power, motion statistics, capture.
+
+    The measured chain of :func:`analyse_run` (Brito et al. 2020, §2.3, §3.1-3.3: θ from the
+    encoder, its derivatives, the rod kinematics, the pressure and LuGre friction forces, the
+    torques, T_h, the flow and the power W_out = P_int Q) over the whole record; over the span
+    the wave separation analysed (after the wavemaker's ramp), the mean absorbed power P̄, the
+    statistics of θ and T_h (:func:`flumekit.performance.motion_statistics`), the capture
+    width P̄/J and the capture width ratio P̄/(J w). An irregular sea has no quasi-steady
+    window and no phase: there are no phase averages and no capture factor C_f. The pressure
+    model of Eq. (13) is fitted over the span (for the simulator; its R² says how well).
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s], uniform.
+    encoder_counts : array_like
+        Wire-encoder counts [-].
+    chamber_pressure : array_like
+        Measured gauge pressure in the cylinder chamber [Pa].
+    flap : Flap
+        The flap (inertia, buoyancy stiffness C, width w of the capture width ratio).
+    pto : PTO
+        The PTO (anchors, bore, pressures, LuGre friction or None).
+    encoder : Encoder
+        The wire encoder of Eq. (1).
+    analysis_start, analysis_end : float
+        The analysed span of the waves stage [s] (the same span gives J).
+    energy_flux : float
+        Spectral energy flux J = ρ g ∫ S_I(f) c_g(f, h) df of the incident wave at the flap
+        over the span [W m-1] (the waves product's ``energy_flux``).
+    cutoff : float
+        Cut-off of the low-pass applied to θ before differentiation [Hz].
+    zero_count : float
+        Encoder count at θ = 0.
+    max_flagged_fraction : float
+        Largest fraction of encoder samples outside the domain of Eq. (1) that may be
+        interpolated.
+
+    Returns
+    -------
+    xarray.Dataset
+        The time series of :func:`analyse_run` (dim ``time``), and the scalars
+        ``analysis_start``, ``analysis_end``, ``mean_power`` (over the span, trapezoidal rule),
+        ``energy_flux``, ``capture_width``, ``capture_width_ratio``, the ``theta_*`` and
+        ``torque_*`` statistics of :func:`flumekit.performance.motion_statistics` (T_h under
+        the ``torque`` prefix), and the Eq. (13) fit K_p, I_p, R².
+
+    Raises
+    ------
+    ValueError
+        A span outside the record, a non-positive flux, a motion with fewer than three
+        zero-crossing cycles in the span.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
+    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    Babarit, A. (2015). A database of capture width ratio of wave energy converters. Renewable
+    Energy 80, 610-628.
+    IEC TS 62600-103:2018, Guidelines for the early stage development of wave energy
+    converters.
+
+    Examples
+    --------
+    >>> from flumekit.campaign import load_campaign  # doctest: +SKIP
+    >>> c = load_campaign("raw/default")  # doctest: +SKIP
+    >>> ds = analyse_irregular_run(t, counts, pressure, flap=c.flap, pto=c.pto,  # doctest: +SKIP
+    ...                            encoder=c.encoder, analysis_start=40.0, analysis_end=640.0,
+    ...                            energy_flux=24.5)
+    >>> float(ds.capture_width_ratio)  # doctest: +SKIP
+    """
+    m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
+                  cutoff=cutoff, zero_count=zero_count,
+                  max_flagged_fraction=max_flagged_fraction)
+    t, s = m.time, m.series
+    start, end = float(analysis_start), float(analysis_end)
+    mean_w = window_mean(s["power"], t, start, end)  # ValueError for a span outside the record
+    inside = (t >= start) & (t <= end)
+    fit, p_fit, cav, t_p_fit = _fitted_pressure(m, inside, pto)
+    stats = xr.merge([motion_statistics(s["theta"][inside], time=t[inside], name="theta"),
+                      motion_statistics(s["torque_hydrodynamic"][inside], time=t[inside],
+                                        name="torque")])
+    ds = _dataset(m, fit, p_fit, cav, t_p_fit, pto=pto, cutoff=cutoff).merge(stats)
+    ds["analysis_start"] = start
+    ds["analysis_end"] = end
+    ds["mean_power"] = ((), mean_w, {"long_name": "mean PTO power over the analysed span"})
+    ds["energy_flux"] = ((), float(energy_flux), {
+        "long_name": "spectral energy flux of the incident wave per unit crest width, "
+                     "rho g int S_I(f) c_g(f, h) df"})
+    ds["capture_width"] = float(capture_width(mean_w, energy_flux))
+    ds["capture_width_ratio"] = float(capture_width_ratio(mean_w, energy_flux, flap.width))
+    ds.attrs["flap_width"] = float(flap.width)
+    return _bounded(conventions.annotate(ds), fit)

@@ -78,9 +78,13 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
         fig("fig07", "flap:figure_7",
             {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
         every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs
-                 if not r.irregular}  # regular-wave amplitudes against period
+                 if not r.irregular}  # Figs. 8-9: regular waves (amplitudes, C_f)
         fig("fig08", "flap:figure_8", every)
         fig("fig09", "flap:figure_9", every)
+    if "flap" in ctx.campaign.instruments and any(r.irregular for r in ctx.campaign.runs):
+        matrix = {"matrix": ctx.out("power_matrix.nc")}
+        fig("power_matrix", "performance:figure_power_matrix", matrix)
+        fig("capture_width_ratio", "performance:figure_capture_width_ratio", matrix)
     for r in ctx.campaign.runs:
         # the QC products and the raw files they were made from (the values as read)
         qc, reading = qc_stage.figure_inputs(ctx, r)

@@ -1,4 +1,9 @@
-"""Stage: flap angle, PTO forces, torque-balance inversion and power per run, and their summary."""
+"""Stage: flap angle, PTO forces, torque-balance inversion and power per run, and their summary.
+
+A regular-wave run is analysed over its quasi-steady window (:func:`flumekit.flap.analyse_run`),
+an irregular one (``kind = "irregular"``) over the span its waves stage analysed, with the
+spectral energy flux J of that stage (:func:`flumekit.flap.analyse_irregular_run`).
+"""
 
 from __future__ import annotations
 
@@ -39,21 +44,35 @@ def build(inputs, outputs, params) -> None:
 
     from flumekit.campaign import load_campaign
     from flumekit.errors import InputError
-    from flumekit.flap import analyse_run
+    from flumekit.flap import analyse_irregular_run, analyse_run
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
+    irregular = params.get("kind") == "irregular"
+    missing = [k for k in ("analysis_start", "analysis_end", "energy_flux") if k not in waves]
+    if irregular and missing:
+        raise InputError(inputs["waves"], f"the waves product of irregular run {params['run']} "
+                         f"lacks {', '.join(missing)}")
     try:
-        ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
-                         raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,
-                         encoder=campaign.encoder, depth=campaign.flume.water_depth,
-                         period=params["period"],
-                         incident_height=float(waves["incident_height"]),
-                         cutoff=params["cutoff"], tolerance=params["tolerance"],
-                         n_phase=params["n_phase"],
-                         max_flagged_fraction=params["max_flagged_fraction"])
+        if irregular:  # over the span the waves stage analysed, with its spectral flux J
+            ds = analyse_irregular_run(
+                raw["time"].values, raw["encoder_counts"].values,
+                raw["chamber_pressure"].values, flap=campaign.flap, pto=campaign.pto,
+                encoder=campaign.encoder, analysis_start=float(waves["analysis_start"]),
+                analysis_end=float(waves["analysis_end"]),
+                energy_flux=float(waves["energy_flux"]), cutoff=params["cutoff"],
+                max_flagged_fraction=params["max_flagged_fraction"])
+        else:
+            ds = analyse_run(raw["time"].values, raw["encoder_counts"].values,
+                             raw["chamber_pressure"].values, flap=campaign.flap,
+                             pto=campaign.pto, encoder=campaign.encoder,
+                             depth=campaign.flume.water_depth, period=params["period"],
+                             incident_height=float(waves["incident_height"]),
+                             cutoff=params["cutoff"], tolerance=params["tolerance"],
+                             n_phase=params["n_phase"],
+                             max_flagged_fraction=params["max_flagged_fraction"])
     except ValueError as e:  # a stuck encoder, a record too short: name the file
         raise InputError(raw.attrs.get("source_file", inputs["flap"]),
                          f"encoder and pressure record: {e}") from None

@@ -7,7 +7,9 @@ simulator: the Renzi–Dias thin plate in the flume's channel (default,
 ``[stages.models] coefficients = "bem"`` and Capytaine installed, the real thick flap on its
 foundation by BEM (:func:`flumekit.flap.comparison.bem_container`).
 ``comparison/<run>``: the experiment, the linear model (Eq. A1) and the simulator side by side
-along a ``source`` dimension (:func:`flumekit.flap.comparison.compare_run`).
+along a ``source`` dimension (:func:`flumekit.flap.comparison.compare_run`); for an irregular
+run the spectral sum of the linear model and the simulator driven by the measured incident wave
+over the analysed span (:func:`flumekit.flap.comparison.compare_irregular_run`).
 """
 
 from __future__ import annotations
@@ -121,6 +123,21 @@ def compare(inputs, outputs, params) -> None:
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
+    if params.get("kind") == "irregular":
+        from flumekit.flap.comparison import compare_irregular_run
+
+        waves = read_dataset(inputs["waves"])
+        # the simulator's spin-up: as many energy periods as a regular run's wave periods
+        ds = compare_irregular_run(read_dataset(inputs["flap"]), waves,
+                                   read_dataset(inputs["hydro"]), flap_params=campaign.flap,
+                                   pto=campaign.pto, dt=params["dt"],
+                                   simulator=params["simulator"], friction=params["friction"],
+                                   spin_up=params["spin_up_periods"] * float(waves["te"]),
+                                   linear_pto_damping=params["linear_pto_damping"])
+        write_run(ds, outputs, params, "Experiment, linear model and simulator in irregular "
+                  "seas", f"flumekit comparison stage from {inputs['flap']} and "
+                  f"{inputs['waves']}")
+        return
     ds = compare_run(read_dataset(inputs["flap"]), read_dataset(inputs["waves"]),
                      read_dataset(inputs["hydro"]), flap_params=campaign.flap, pto=campaign.pto,
                      depth=campaign.flume.water_depth, dt=params["dt"],

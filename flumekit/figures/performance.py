@@ -1,0 +1,123 @@
+"""Performance figures of the irregular runs: the power matrix and the capture width ratio
+against the energy period, from the power-matrix product (:mod:`flumekit.stages.performance`,
+:func:`flumekit.performance.power_matrix`)."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from flumekit.figures.simulator import MARKERS, SOURCE_LINES, height_colours
+from flumekit.figures.style import (
+    COLOURS,
+    TWO_COLUMNS,
+    label,
+    legend,
+    new_figure,
+    title,
+    value_label,
+)
+
+_HM0 = label(text="Significant wave height $H_{m0}$", units="m")
+_TE = label(text="Energy period $T_e$", units="s")
+_CWR = label(text="Capture width ratio", units="1")
+
+
+def _require(ds: xr.Dataset, *names: str) -> None:
+    missing = [n for n in names if n not in ds.variables]
+    if missing:
+        raise ValueError(f"the power-matrix dataset lacks {missing}: pass the output of the "
+                         "power_matrix stage (flumekit.performance.power_matrix)")
+
+
+def _edges(bounds: xr.DataArray) -> np.ndarray:
+    b = bounds.values
+    return np.concatenate([b[:, 0], b[-1:, 1]])
+
+
+def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
+    """The power matrix: cells coloured by the mean of ``quantity`` over their runs, the count
+    and the mean written in each cell, one panel per source (experiment and models).
+
+    Parameters
+    ----------
+    ds : Power-matrix dataset (``run_count``, ``<quantity>`` over ``hm0_bin``, ``te_bin`` and
+        ``source``, the bins' bounds).
+    quantity : ``capture_width_ratio`` (default), ``mean_power`` or ``capture_width``.
+    """
+    from flumekit.conventions import VARIABLES
+
+    _require(ds, "run_count", quantity, "hm0_bin_bounds", "te_bin_bounds")
+    sources = [str(s) for s in ds["source"].values] if "source" in ds.dims else [None]
+    he, te = _edges(ds.hm0_bin_bounds), _edges(ds.te_bin_bounds)
+    values = ds[quantity]
+    finite = values.values[np.isfinite(values.values)]
+    vmax = float(finite.max()) if finite.size else 1.0
+    fig, axes = new_figure(1, len(sources), width=TWO_COLUMNS, height=2.9, sharey=True)
+    count = ds.run_count.values
+    for ax, src in zip(axes[0], sources):
+        v = values.sel(source=src).values if src is not None else values.values
+        mesh = ax.pcolormesh(te, he, np.ma.masked_invalid(v), cmap="viridis", vmin=0.0,
+                             vmax=vmax, edgecolors="w", linewidth=0.5)
+        for i, h in enumerate(ds.hm0_bin.values):
+            for j, t in enumerate(ds.te_bin.values):
+                if count[i, j] == 0:
+                    continue
+                bright = v[i, j] > 0.6 * vmax  # dark text on the light end of viridis
+                ax.text(t, h, f"{v[i, j]:.2g}\nn = {count[i, j]}", ha="center", va="center",
+                        fontsize=8, color="k" if bright else "w")
+        ax.set_xlabel(_TE)
+        ax.set_title(value_label(src) if src is not None else "")
+    axes[0, 0].set_ylabel(_HM0)
+    units = VARIABLES[quantity].units if quantity in VARIABLES else "1"
+    text = {"capture_width_ratio": "Capture width ratio", "mean_power": "Mean power",
+            "capture_width": "Capture width"}.get(quantity, quantity)
+    fig.colorbar(mesh, ax=axes[0].tolist(), label=label(text=f"Cell mean {text.lower()}",
+                                                        units=units))
+    n = int(count.sum())
+    title(fig, f"Power matrix: {n} irregular run{'s' if n != 1 else ''}, cell mean "
+               f"{text.lower()} and number of runs n")
+    return fig
+
+
+def figure_capture_width_ratio(ds: xr.Dataset):
+    """Capture width ratio of each irregular run against its energy period Te, one colour per
+    Hm0 bin: the experiment as markers, the models as lines (per Hm0 bin, in order of Te).
+
+    Parameters
+    ----------
+    ds : Power-matrix dataset with the per-run ``run_hm0``, ``run_te`` and
+        ``run_capture_width_ratio`` (over ``run`` and ``source``).
+    """
+    _require(ds, "run_hm0", "run_te", "run_capture_width_ratio", "hm0_bin_bounds")
+    he = _edges(ds.hm0_bin_bounds)
+    hm0 = ds.run_hm0.values
+    row = np.clip(np.searchsorted(he, hm0, side="right") - 1, 0, he.size - 2)
+    centres = ds.hm0_bin.values
+    colours = height_colours(list(centres))
+    fig, axes = new_figure(1, 1, width=TWO_COLUMNS, height=3.2)
+    ax = axes[0, 0]
+    te = ds.run_te.values
+    for k, c in enumerate(centres):
+        sel = row == k
+        if not sel.any():
+            continue
+        order = np.argsort(te[sel])
+        for src in ds["source"].values:
+            y = ds.run_capture_width_ratio.sel(source=src).values[sel][order]
+            x = te[sel][order]
+            name = f"$H_{{m0}}$ ≈ {c:.3g} m ({value_label(src)})"
+            if str(src) == "experiment":
+                ax.plot(x, y, MARKERS[k % len(MARKERS)], color=colours[c], mec=COLOURS[
+                    "experiment"], label=name)
+            else:
+                ax.plot(x, y, SOURCE_LINES.get(str(src), "-."), marker=".", color=colours[c],
+                        label=name)
+    ax.set_xlabel(_TE)
+    ax.set_ylabel(_CWR)
+    ax.set_ylim(bottom=0)
+    legend(fig, ncols=2)
+    n = ds.sizes["run"]
+    title(fig, f"Capture width ratio against the energy period: {n} irregular "
+               f"run{'s' if n != 1 else ''}, experiment (markers) and models (lines)")
+    return fig
