@@ -191,7 +191,7 @@ INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
 RUN_KINDS = ("waves", "uvp", "irregular")
 #: the keys of a run.toml's [run] that only a regular, or only an irregular run has
 REGULAR_KEYS = ("period", "height")
-SEA_STATE_KEYS = ("hm0", "tp", "te", "gamma", "seed", "duration")
+SEA_STATE_KEYS = ("hm0", "tp", "te", "gamma", "seed", "duration", "transient")
 
 RUN: dict[str, Key] = {
     "run": Key("table", "the wave condition", table={
@@ -212,6 +212,11 @@ RUN: dict[str, Key] = {
                     required=False),
         "duration": _num("irregular runs: nominal duration of the wavemaker signal", "s",
                          positive=True, required=False),
+        "transient": _num("irregular runs: start of the analysed span, once the sea state is "
+                          "stationary at the probes (the wavemaker's ramp and the first "
+                          "reflections, from the device and the beach, arrived); default "
+                          "detected from the records (the ramp and the device's reflection "
+                          "only)", "s", nonnegative=True, required=False),
         "repeat": Key("integer", "repeat number of the condition", required=False, default=0),
         "uvp_elevation": _num("UVP runs: elevation of the horizontal transducer", "m",
                               required=False),
@@ -254,6 +259,7 @@ class SeaState:
     gamma: float | None = None  # peak enhancement [-], None when not declared
     seed: int | None = None
     duration: float | None = None  # [s]
+    transient: float | None = None  # start of the analysed span [s], None: detected
 
 
 @dataclass(frozen=True)
@@ -481,7 +487,7 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
         sea = SeaState(float(r["hm0"]), *(float(r[k]) if k in r else None
                                           for k in ("tp", "te", "gamma")),
                        int(r["seed"]) if "seed" in r else None,
-                       float(r["duration"]) if "duration" in r else None)
+                       *(float(r[k]) if k in r else None for k in ("duration", "transient")))
     return Run(id=path.parent.name, path=path.parent, kind=kind,
                period=float(r["period"]) if "period" in r else None,
                height=float(r["height"]) if "height" in r else None, sea_state=sea,

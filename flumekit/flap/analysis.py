@@ -33,6 +33,10 @@ from flumekit.flap.torque import (
 )
 from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
 
+#: how far the waves' analysed span may end past the flap's record, which it then ends with
+#: [s]: one step of a probe record sampled at 10 Hz or faster
+SPAN_OVERHANG = 0.1
+
 #: default cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
 #: differentiation [Hz]. It passes the first 8 harmonics of the shortest period (2 s) with at
 #: most 0.4 % loss (forward-backward |H|² = 1/(1 + (f/fc)^8)), while the quantisation noise of
@@ -323,6 +327,10 @@ def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap,
                   max_flagged_fraction=max_flagged_fraction)
     t, s = m.time, m.series
     start, end = float(analysis_start), float(analysis_end)
+    # the probes' last sample may lie up to one of their steps past the flap's last one
+    # (records of one duration sampled at 25 and 100 Hz): the span ends with the record
+    if 0 < end - t[-1] <= SPAN_OVERHANG:
+        end = float(t[-1])
     mean_w = window_mean(s["power"], t, start, end)  # ValueError for a span outside the record
     inside = (t >= start) & (t <= end)
     fit, p_fit, cav, t_p_fit = _fitted_pressure(m, inside, pto)

@@ -31,7 +31,7 @@ DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None, "clock_tolerance": 0.1}
+            "velocity_range": None, "clock_tolerance": 0.1, "dropout_irregular": 12.0}
 DOCS = {
     "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
                      "x_n - (x_(n-1) + x_(n+1))/2 [-]",
@@ -55,6 +55,10 @@ DOCS = {
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
+    "dropout_irregular": "dropout test of an irregular run's probe and flap records: robust "
+                         "standard deviations about the median [-]; an irregular sea's "
+                         "largest waves, and the pressure peaks of a single-acting PTO in "
+                         "them, lie 7 or more of them out",
     "clock_tolerance": "probe-to-flap lag departing from the lag expected for the run's wave "
                        "condition (its other runs, else the neighbouring conditions) by more "
                        "than this is reported as a possible clock offset [s]",
@@ -149,6 +153,16 @@ def figure_data(inputs: dict, params: dict) -> dict:
     return data
 
 
+def _thresholds(params: dict):
+    """The QARTOD thresholds of a run's probe or flap rule: an irregular run's dropout level
+    is ``dropout_irregular`` (a random sea is no sinusoid: its extremes lie further out)."""
+    from flumekit.qc.record import Thresholds
+
+    if params.get("kind") == "irregular":
+        params = {**params, "dropout": params["dropout_irregular"]}
+    return Thresholds.from_params(params)
+
+
 def _span(value):
     return None if value is None else (float(value[0]), float(value[1]))
 
@@ -185,7 +199,7 @@ def probes(inputs, outputs, params) -> None:
 
     from flumekit.qc import checks
     from flumekit.qc.flags import FAIL
-    from flumekit.qc.record import Thresholds, qc_dataset
+    from flumekit.qc.record import qc_dataset
     from flumekit.waves.records import REGULAR_FRACTION, harmonic_energy_fraction
 
     path = Path(inputs["probes"])
@@ -193,7 +207,7 @@ def probes(inputs, outputs, params) -> None:
     raw = read_raw("probes", path, params)
     # volts to calibrate, or elevations of calibrated probes [m]
     name = "probe_voltage" if "probe_voltage" in raw else "probe_elevation"
-    th = Thresholds.from_params(params)
+    th = _thresholds(params)
     ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
     flat = ds[f"{name}_qc"].attrs["flagged_by_flat_line"] / raw.sizes["time"]
@@ -228,11 +242,11 @@ def flap(inputs, outputs, params) -> None:
     import xarray as xr
 
     from flumekit.qc import checks
-    from flumekit.qc.record import Thresholds, qc_dataset
+    from flumekit.qc.record import qc_dataset
 
     path = Path(inputs["flap"])
     raw = read_raw("flap", path, params)  # qc_dataset works the integer counts as floats
-    th = Thresholds.from_params(params)
+    th = _thresholds(params)
     parts = []
     for name, rng, unit in (("encoder_counts", "encoder_range", " counts"),
                             ("chamber_pressure", "pressure_range", " Pa")):

@@ -6,7 +6,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "4"
+VERSION = "5"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
             "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
             "noise_factor": 4.0, "height_tolerance": 0.25, "height_warning": 0.1,
@@ -133,7 +133,7 @@ def _irregular(eta, params):
         eta, params["depth"], params["x_ref"], method=params["irregular_method"],
         peak_period=target,
         separation_probes=params["separation_probes"], gauge_weights=params["gauge_weights"],
-        span=params["span"], n_bins=params["n_bins"],
+        span=params["span"] or (sea.get("transient"), None), n_bins=params["n_bins"],
         low_frequency_warning=params["low_frequency_warning"], rho=params["density"])
 
 

@@ -175,9 +175,11 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
         a seiche's; default the peak of the probes' mean spectrum (smoothed over 0.01 Hz).
         The reported Tp is measured either way.
     span : tuple of float, optional
-        (start, end) of the analysed span [s]; default detected by :func:`active_span` (after
-        the wavemaker's ramp and the time the reflection from ``x_ref`` takes to reach the
-        farthest probe at the group velocity of 1.5 fp).
+        (start, end) of the analysed span [s], either of them None to detect it; default
+        both detected by :func:`active_span` (after the wavemaker's ramp and the time the
+        reflection from ``x_ref`` takes to reach the farthest probe at the group velocity of
+        1.5 fp; a wave returning from further away, from a beach, is not seen: declare the
+        start then).
     band : tuple of float, optional
         Analysis band (f_min, f_max) [Hz]; default :data:`BAND` times the peak frequency,
         below the Nyquist frequency.
@@ -266,11 +268,13 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
     else:
         fp = 1.0 / float(peak_period)
     xsep = sep["x"].values.astype(float)
-    detected = span is None
+    given = (None, None) if span is None else tuple(span)
+    detected = None in given
     if detected:
         cg = float(group_velocity(1.0 / (1.5 * fp), depth, g))
-        span = active_span(vs, t, fp, travel_time=float(np.max(np.abs(xsep - x_ref))) / cg)
-    start, end = float(span[0]), float(span[1])
+        found = active_span(vs, t, fp, travel_time=float(np.max(np.abs(xsep - x_ref))) / cg)
+        given = tuple(f if v is None else v for v, f in zip(given, found))
+    start, end = float(given[0]), float(given[1])
     inside = (t >= start) & (t < end)
     if inside.sum() * dt < 20.0 / fp:
         raise ValueError(f"the analysed span {start:.1f}-{end:.1f} s holds fewer than 20 peak "
@@ -330,14 +334,16 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
     ref = np.full(t.size, np.nan)
     inc[i0:i1] = s["eta_incident"].values
     ref[i0:i1] = s["eta_reflected"].values
-    fill = {"comment": "NaN outside the analysed span [analysis_start, analysis_end)"}
+    fill = {"comment": "NaN outside the analysed span [analysis_start, analysis_end]"}
     smooth_attrs = {"degrees_of_freedom": dof,
                     "smoothing": f"periodogram of the analysed span averaged over bands of "
                                  f"{n_bins} bins ({n_bins * df:.4g} Hz; masked bins left out)"}
     data = {
         "eta": (("probe", "time"), v),
         "eta_incident": ("time", inc, fill), "eta_reflected": ("time", ref, fill),
-        "analysis_start": ((), float(t[i0])), "analysis_end": ((), float(t[i1 - 1] + dt)),
+        # the times of the first and last samples analysed: inside any other instrument's
+        # record that spans the probes' (an end one step later would not be)
+        "analysis_start": ((), float(t[i0])), "analysis_end": ((), float(t[i1 - 1])),
         "spectrum_incident": ("frequency", si, smooth_attrs),
         "spectrum_reflected": ("frequency", sr, smooth_attrs),
         "reflection_coefficient_spectrum": ("frequency", kr_f, smooth_attrs),
@@ -356,5 +362,8 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
                     attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
                            "separation_probes": s.attrs["probes"], "band": s.attrs["band"],
                            "max_condition": max_condition, "peak_frequency_estimate": fp,
-                           "span": "detected" if detected else "given"})
+                           "span": ", ".join(f"{name} {'detected' if v is None else 'given'}"
+                                             for name, v in zip(("start", "end"),
+                                                                (None, None) if span is None
+                                                                else span))})
     return conventions.annotate(ds)

@@ -72,8 +72,8 @@ def test_sea_state_and_reflection_against_the_truth(seed):
     assert held.sum() >= 5 and err.max() < 0.05
     # the ramp and the reflection's travel to the farthest probe are left out
     assert 30.0 < float(ds.analysis_start) < 60.0
-    assert float(ds.analysis_end) == pytest.approx(900.0, abs=0.1)
-    assert ds.attrs["span"] == "detected"
+    assert float(ds.analysis_end) == pytest.approx(900.0 - 1 / RATE)
+    assert ds.attrs["span"] == "start detected, end detected"
     assert float(ds.low_frequency_energy_fraction) < 0.01
 
 
@@ -110,10 +110,18 @@ def test_declared_span_and_gauge_weights():
     equal = analyse_irregular_run(noisy, DEPTH, span=(100.0, 800.0))
     weighted = analyse_irregular_run(noisy, DEPTH, span=(100.0, 800.0),
                                      gauge_weights=[1.0, 0.01, 1.0])
-    assert equal.attrs["span"] == "given"
+    assert equal.attrs["span"] == "start given, end given"
     assert float(weighted.analysis_start) == pytest.approx(100.0, abs=0.05)
     assert (abs(float(weighted.hm0) - truth["hm0"])
             < abs(float(equal.hm0) - truth["hm0"]))
+
+
+def test_declared_start_with_a_detected_end():
+    eta, _ = record(8)
+    ds = analyse_irregular_run(eta, DEPTH, span=(120.0, None))
+    assert float(ds.analysis_start) == pytest.approx(120.0)
+    assert float(ds.analysis_end) == pytest.approx(900.0 - 1 / RATE)
+    assert ds.attrs["span"] == "start given, end detected"
 
 
 def test_too_short_a_record_is_an_error():
