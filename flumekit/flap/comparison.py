@@ -27,6 +27,11 @@ would equal (1/0.63)² for a harmonic motion).
 The simulator uses the fitted hydraulic model (K_p, I_p) and the campaign's LuGre
 friction, driven by the separated incident wave at x = 0, and is summarised as the measured run
 is (:func:`flumekit.flap.summary.summary`).
+
+An irregular run (:func:`compare_irregular_run`) has no window or phase: the linear model is
+the spectral sum of Eq. (A1) over the incident spectrum (:func:`spectral_response`), the
+simulator is driven by the separated incident wave over the analysed span, and the three give
+the mean power, capture width and capture width ratio with the same J.
 """
 
 from __future__ import annotations
