@@ -6,9 +6,8 @@ those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflecte
 every wave run; ``power_matrix`` and ``capture_width_ratio`` those of the irregular runs
 (:mod:`flumekit.figures.performance`). Single-run figures use the run named by
 ``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m). Each
-figure is written in every format of
-``[stages.figures] formats`` (default PNG at 300 dpi and PDF), after passing the figure test
-(:mod:`flumekit.figures.check`).
+figure is written in every format of ``[stages.figures] formats`` (default PNG at 300 dpi and
+PDF), after passing the figure test (:mod:`flumekit.figures.check`).
 """
 
 from __future__ import annotations
