@@ -27,6 +27,11 @@ would equal (1/0.63)² for a harmonic motion).
 The simulator uses the fitted hydraulic model (K_p, I_p) and the campaign's LuGre
 friction, driven by the separated incident wave at x = 0, and is summarised as the measured run
 is (:func:`flumekit.flap.summary.summary`).
+
+An irregular run (:func:`compare_irregular_run`) has no window or phase: the linear model is
+the spectral sum of Eq. (A1) over the incident spectrum (:func:`spectral_response`), the
+simulator is driven by the separated incident wave over the analysed span, and the three give
+the mean power, capture width and capture width ratio with the same J.
 """
 
 from __future__ import annotations
@@ -330,7 +335,9 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     dict with ``mean_power`` [W], ``theta_significant_amplitude`` 2 sqrt(m0_θ) [rad],
     ``torque_significant_amplitude`` [N m] (of the wave torque on the moving flap, as
     :func:`flumekit.hydro.response.response`) and ``variance_outside`` (the fraction of the
-    incident variance at frequencies outside the coefficients' grid, left out).
+    incident variance at frequencies outside the coefficients' grid, left out) and
+    ``nan_bins`` (bins of the spectrum that are NaN, masked by the separation: counted as
+    empty, their number said).
     """
     from flumekit.hydro.response import response
 
@@ -344,7 +351,8 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     r = response(coefficients_at(hydro, 1.0 / f[inside]), 1.0, inertia, stiffness,
                  pto_damping)
     v = var[inside]
-    return {"mean_power": float(np.sum(2 * v * r["mean_power"].values)),
+    return {"nan_bins": int((~np.isfinite(spectrum.values)).sum()),
+            "mean_power": float(np.sum(2 * v * r["mean_power"].values)),
             "theta_significant_amplitude": float(
                 2 * np.sqrt(np.sum(v * r["theta_amplitude"].values ** 2))),
             "torque_significant_amplitude": float(
@@ -398,6 +406,7 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
             nu = float(res.x)
     out = spectral_response(hydro, spec, inertia, stiffness, nu)
     outside = out.pop("variance_outside")
+    nan_bins = out.pop("nan_bins")
     _capture(out, float(waves["energy_flux"]), float(hydro.attrs["flap_width"]))
     return out, xr.Dataset({"pto_damping": ((), nu, {
         "method": pto_damping,
@@ -405,7 +414,8 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
                     "energy equivalence over the analysed span: mean power / "
                     "mean(theta_dot^2)", "optimal": "the linear-model PTO damping that "
                     "maximises the spectral mean power of the sea state"}[pto_damping],
-        "incident_variance_outside_coefficients": outside})})
+        "incident_variance_outside_coefficients": outside,
+        "incident_spectrum_nan_bins": nan_bins})})
 
 
 def _capture(values: dict, flux: float, width: float) -> None:

@@ -3,10 +3,11 @@ and flap files, which the QC products do not repeat), one rule per figure.
 
 ``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
 those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflected separation of
-every wave run. Single-run figures use the run named by ``[stages.figures] run`` (default: the
-paper's UVP condition T = 3.5 s, H = 0.25 m). Each figure is written in every format of
-``[stages.figures] formats`` (default PNG at 300 dpi and PDF), after passing the figure test
-(:mod:`flumekit.figures.check`).
+every wave run; ``power_matrix`` and ``capture_width_ratio`` those of the irregular runs
+(:mod:`flumekit.figures.performance`). Single-run figures use the run named by
+``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m). Each
+figure is written in every format of ``[stages.figures] formats`` (default PNG at 300 dpi and
+PDF), after passing the figure test (:mod:`flumekit.figures.check`).
 """
 
 from __future__ import annotations

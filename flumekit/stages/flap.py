@@ -55,6 +55,9 @@ def build(inputs, outputs, params) -> None:
     if irregular and missing:
         raise InputError(inputs["waves"], f"the waves product of irregular run {params['run']} "
                          f"lacks {', '.join(missing)}")
+    if irregular and not float(waves["energy_flux"]) > 0:  # no incident wave: no capture width
+        raise InputError(inputs["waves"], f"energy_flux = {float(waves['energy_flux'])} W m-1: "
+                         "the incident spectrum of the separation holds no energy")
     try:
         if irregular:  # over the span the waves stage analysed, with its spectral flux J
             ds = analyse_irregular_run(

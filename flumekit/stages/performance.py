@@ -117,6 +117,16 @@ def build(inputs, outputs, params) -> None:
                           **{f"run_{n}": (("run", "source"), values[n]) for n in names}},
                          coords={"run": runs, "source": sources})
     ds = conventions.annotate(ds.merge(per_run))
+    he, tb = np.asarray(he, dtype=float), np.asarray(tb, dtype=float)
+    out = [f"{r} (Hm0 {h:.3g} m, Te {t:.3g} s)" for r, h, t in zip(runs, hm0, te)
+           if not (he[0] <= h < he[-1] and tb[0] <= t < tb[-1])]
+    if out:  # said in the product and the build's output, never dropped silently
+        import warnings
+
+        ds.attrs["runs_outside_the_bins"] = "; ".join(out)
+        warnings.warn(f"power matrix: {len(out)} run(s) outside the bins, in no cell: "
+                      f"{'; '.join(out)} (widen [stages.performance] hm0_edges or te_edges)",
+                      UserWarning, stacklevel=2)
     ds.attrs["hm0_edges"] = "given" if params["hm0_edges"] else "from the targets"
     ds.attrs["te_edges"] = "given" if params["te_edges"] else "from the targets"
     write_product(ds, outputs["dataset"], "Power matrix of the irregular runs",

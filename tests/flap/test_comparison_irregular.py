@@ -51,6 +51,11 @@ def test_frequencies_outside_the_coefficients_are_left_out_and_said(hydro):
                                 100.0)
     # the bins reach halfway to their neighbours: widths 0.29, 0.295, 0.3 Hz
     assert out["variance_outside"] == pytest.approx(0.29 / (0.29 + 0.295 + 0.6), rel=1e-12)
+    assert out["nan_bins"] == 0
+    # a bin masked by the separation (NaN) is empty, and counted
+    masked = cmp.spectral_response(hydro, _spectrum(f, np.array([1.0, np.nan, 2.0]) * 1e-3),
+                                   INERTIA, C, 100.0)
+    assert masked["nan_bins"] == 1 and masked["mean_power"] < out["mean_power"]
 
 
 @pytest.fixture(scope="module")

@@ -87,3 +87,25 @@ def test_no_rule_without_irregular_runs():
         campaign = Campaign()
 
     assert stage.rules(Ctx(), stage.DEFAULTS) == []
+
+
+def test_runs_outside_the_given_edges_are_said(tmp_path):
+    runs = ["a", "b"]
+    inputs = {}
+    for r, h in zip(runs, (0.05, 0.3)):
+        _write(tmp_path / f"waves/{r}.nc", xr.Dataset({"hm0": h, "te": 2.0}))
+        _write(tmp_path / f"flap/{r}.nc", xr.Dataset({"mean_power": 1.0, "capture_width": 0.1,
+                                                      "capture_width_ratio": 0.1}))
+        _write(tmp_path / f"comparison/{r}.nc", xr.Dataset(
+            {n: ("source", [1.0, 1.0]) for n in ("mean_power", "capture_width",
+                                                  "capture_width_ratio")},
+            coords={"source": ["experiment", "analytical"]}))
+        for k in ("waves", "flap", "comparison"):
+            inputs[f"{k}:{r}"] = tmp_path / f"{k}/{r}.nc"
+    out = tmp_path / "power_matrix.nc"
+    with pytest.warns(UserWarning, match=r"1 run\(s\) outside the bins.*b \(Hm0 0.3 m"):
+        stage.build(inputs, {"dataset": out}, {"hm0_edges": [0.0, 0.1, 0.2],
+                                              "te_edges": [1.0, 3.0], "targets": [],
+                                              "runs": runs})
+    ds = read_dataset(out)
+    assert int(ds.runs_outside) == 1 and "b (Hm0 0.3 m" in ds.attrs["runs_outside_the_bins"]
