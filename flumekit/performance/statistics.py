@@ -14,6 +14,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit import signal as sig
+from flumekit.waves.statistics import wave_statistics
 
 #: the statistics of :func:`motion_statistics`, suffixes of ``<name>_``
 STATISTICS = ("mean", "rms", "significant_amplitude", "significant_amplitude_zero_crossing",
@@ -96,18 +97,20 @@ def motion_statistics(series, sampling_rate: float | None = None, *, time=None,
     mean = float(np.mean(x))
     dev = x - mean
     m0 = float(np.mean(dev**2))
-    cyc = sig.cycles(dev, t)
-    if cyc.height.size < 3:
-        raise ValueError(f"{name} statistics: {cyc.height.size} zero up-crossing cycles about "
-                         "the mean, at least 3 needed")
-    heights = np.sort(cyc.height)[::-1]
-    third = heights[: max(1, heights.size // 3)]
+    try:
+        waves = wave_statistics(xr.DataArray(dev, dims="time", coords={"time": t}))
+    except ValueError:
+        waves = None
+    n = 0 if waves is None else int(waves["number_of_waves"])
+    if n < 3:
+        raise ValueError(f"{name} statistics: {n} zero up-crossing cycles about the mean, at "
+                         "least 3 needed")
     out = xr.Dataset({
         f"{name}_mean": mean,
         f"{name}_rms": np.sqrt(m0),
         f"{name}_significant_amplitude": 2.0 * np.sqrt(m0),
-        f"{name}_significant_amplitude_zero_crossing": 0.5 * float(third.mean()),
-        f"{name}_maximum_amplitude": 0.5 * float(heights[0]),
-        f"{name}_cycles": heights.size,
+        f"{name}_significant_amplitude_zero_crossing": 0.5 * float(waves["h1_3"]),
+        f"{name}_maximum_amplitude": 0.5 * float(waves["hmax"]),
+        f"{name}_cycles": n,
     })
     return conventions.annotate(out)
