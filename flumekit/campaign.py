@@ -72,6 +72,28 @@ def _delimiter_check(v: str) -> str | None:
         f"a delimiter is one character (',', ';', '\\t') or 'whitespace', got {v!r}"
 
 
+def _encoding_check(v: str) -> str | None:
+    import codecs
+
+    try:
+        codecs.lookup(v)
+    except LookupError:
+        return f"unknown encoding {v!r}; e.g. 'utf-8', 'cp1252', 'latin-1'"
+    return None
+
+
+def _timezone_check(v: str) -> str | None:
+    import zoneinfo
+
+    if not v:
+        return None
+    try:
+        zoneinfo.ZoneInfo(v)
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        return f"unknown time zone {v!r}; an IANA name such as 'Europe/Lisbon'"
+    return None
+
+
 #: how an instrument's file is written (io.dialects reads it): one schema for every instrument
 DIALECT: dict[str, Key] = {
     "file": Key("text", "file name in each run folder (calibration: relative to the campaign "
@@ -101,6 +123,13 @@ DIALECT: dict[str, Key] = {
                 default="time", kinds=("integer",)),
     "group": Key("text", "tdms, hdf5, netcdf: the group holding the channels", required=False,
                  default=""),
+    "encoding": Key("text", "csv: text encoding ('utf-8', with or without byte-order mark; "
+                    "'cp1252', 'latin-1', ...)", required=False, default="utf-8",
+                    check=_encoding_check),
+    "timezone": Key("text", "csv: IANA time zone of date-time stamps written without a UTC "
+                    "offset (local time, e.g. 'Europe/Lisbon'): they are put on UTC, across a "
+                    "daylight-saving change", required=False, default="",
+                    check=_timezone_check),
 }
 
 FRICTION = {k: _num(d, u, nonnegative=True) for k, d, u in (
