@@ -236,7 +236,12 @@ RUN: dict[str, Key] = {
                         for k in ("probes", "flap", "uvp")}),
     "files": Key("table", "this run's instrument files, relative to the run folder, when not "
                  "named as in [files] of campaign.toml", required=False,
-                 table={k: Key("text", f"{k} record", required=False) for k in ("probes", "flap")}),
+                 table={**{k: Key("text", f"{k} record", required=False)
+                           for k in ("probes", "flap")},
+                        "shared": Key("names", "instruments whose file lies outside the run "
+                                      "folder on purpose (one record several runs share); any "
+                                      "other file outside its run folder is an error",
+                                      required=False)}),
 }
 
 
@@ -437,12 +442,28 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
         if k in ("flap", "uvp") and k not in campaign.instruments:
             found.append(Problem(path, f"clock.{k}", f"the campaign declares no {k} instrument"))
     files = {}
+    shared = _table(data, "files").get("shared")
+    shared = shared if isinstance(shared, list) else []
+    for k in shared:
+        if k not in ("probes", "flap"):
+            found.append(Problem(path, "files.shared", f"unknown instrument {k!r}; the run's "
+                                 "files are 'probes' and 'flap'" + suggest(str(k),
+                                                                         ["probes", "flap"])))
     for inst in ("probes", "flap"):
         given = _table(data, "files").get(inst)
         default = campaign.files.get(inst, {}).get("file", INSTRUMENT_FILES[inst])
         # normalised, not resolved: "../../record.csv" reads as the file it names
         files[inst] = Path(os.path.normpath(path.parent / (given if isinstance(given, str)
                                                            else default)))
+        if inst in campaign.instruments and inst not in shared and not files[inst].is_relative_to(
+                Path(os.path.normpath(path.parent))):
+            # another run's record read as this run's gives a confident wrong result
+            where = (f"files.{inst}", "") if isinstance(given, str) else (
+                f"files.{inst}", f" ([files.{inst}] file of campaign.toml)")
+            found.append(Problem(path, where[0], f"{files[inst]} lies outside the run folder "
+                                 f"{path.parent}{where[1]}: another run's record? If several "
+                                 f"runs share it on purpose, declare [files] shared = "
+                                 f'["{inst}"] in run.toml'))
     if found:
         problems += found
         return None

@@ -45,6 +45,22 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
                          "[stages.qc] period_tolerance)", field="run.period")
 
 
+def check_record_period(declared: float, periods: dict[str, float], tolerance: float,
+                        record: Path, run_file: Path) -> None:
+    """Error naming ``record`` when the dominant period of any of its channels (``periods``:
+    channel -> period [s], :func:`dominant_period`) differs from the run's declared period by
+    more than ``tolerance`` (relative), as :func:`check_period` does for the probes: a record
+    of another run (a copied file, a [files] entry pointing into another run folder) would be
+    analysed as this run's (a 3.5 s flap record in a 2.0 s run: capture factor 0.43 instead of
+    0.22)."""
+    off = {k: p for k, p in periods.items() if not abs(p / declared - 1.0) <= tolerance}
+    if off:
+        raise InputError(record, "dominant period " + ", ".join(
+            f"{p:.3f} s ({k})" for k, p in off.items()) + f", but {run_file} declares period "
+            f"{declared:g} s, as the probes' records must (tolerance {tolerance:.0%}, "
+            "[stages.qc] period_tolerance): a record of another run?")
+
+
 def check_height(declared: float, measured: float, tolerance: float, warning: float,
                  run_file: Path, what: str) -> str | None:
     """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the

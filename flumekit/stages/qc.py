@@ -23,7 +23,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "4"
+VERSION = "5"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -108,7 +108,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                         version=VERSION, run=run.id))
         if "flap" in c.instruments:
             out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
-                            inputs={"flap": run.file("flap")},
+                            inputs={"flap": run.file("flap"), "run": run.path / "run.toml"},
                             outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
                             params={**rp, **reading["flap"]}, version=VERSION, run=run.id))
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
@@ -217,9 +217,11 @@ def probes(inputs, outputs, params) -> None:
 def flap(inputs, outputs, params) -> None:
     from pathlib import Path
 
+    import numpy as np
     import xarray as xr
 
     from flumekit.qc import checks
+    from flumekit.qc.flags import FAIL
     from flumekit.qc.record import Thresholds, qc_dataset
 
     path = Path(inputs["flap"])
@@ -234,6 +236,15 @@ def flap(inputs, outputs, params) -> None:
                            params["max_flat_fraction"], unit)
         _stuck(ds, name, path, params["max_gap"])
         parts.append(ds)
+    if params.get("period") is not None:  # an irregular run declares no period
+        # the samples that passed, as for the probes' period
+        checks.check_record_period(params["period"], {
+            n.replace("_", " "): checks.dominant_period(
+                np.where(p[f"{n}_qc"].values != FAIL, p[n].values, np.nan),
+                params["sampling_rate"])
+            for p, n in zip(parts, ("encoder_counts", "chamber_pressure"), strict=True)},
+            params["period_tolerance"], path,
+            inputs.get("run") or f"run.toml of run {params['run']}")
     # on the same time axis, with attributes of their own names: no merge (its alignment
     # costs more than one channel's tests)
     ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},
