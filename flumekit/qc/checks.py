@@ -93,9 +93,11 @@ def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,
 
 
 def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray | None = None,
-                max_flat_fraction: float = 0.5, unit: str = "") -> None:
-    """Error naming the file and channel(s) that are dead (constant over the whole record) or
-    stuck (flat lines over more than ``max_flat_fraction`` of the record)."""
+                max_flat_fraction: float = 0.5, unit: str = "",
+                noise_fraction: np.ndarray | None = None) -> None:
+    """Error naming the file and channel(s) that are dead (constant over the whole record),
+    stuck (flat lines over more than ``max_flat_fraction`` of the record) or noise (failing
+    the noise test, :func:`flumekit.qc.qartod.noise_test`, over more than that fraction)."""
     x = np.atleast_2d(np.asarray(x, dtype=float))
     problems = []
     for i, name in enumerate(channels):
@@ -108,5 +110,13 @@ def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray |
         elif flat_fraction is not None and flat_fraction[i] > max_flat_fraction:
             problems.append(f"channel '{name}' is stuck: flat lines over "
                             f"{flat_fraction[i]:.0%} of the record")
+        elif noise_fraction is not None and noise_fraction[i] > max_flat_fraction:
+            v = v - v.mean()
+            r1 = float(np.dot(v[1:], v[:-1]) / np.dot(v, v))
+            problems.append(f"channel '{name}' is noise, not a signal: {noise_fraction[i]:.0%}"
+                            f" of the record fails the noise test (lag-one autocorrelation "
+                            f"{r1:.2f} over the record; a wave record sampled far above its "
+                            "band has nearly 1): a broken or disconnected sensor, or "
+                            "interference?")
     if problems:
         raise InputError(path, "; ".join(problems))

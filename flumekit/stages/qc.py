@@ -31,7 +31,8 @@ DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None, "clock_tolerance": 0.1}
+            "velocity_range": None, "clock_tolerance": 0.1, "noise_autocorrelation": 0.5,
+            "noise_share": 0.1}
 DOCS = {
     "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
                      "x_n - (x_(n-1) + x_(n+1))/2 [-]",
@@ -48,13 +49,19 @@ DOCS = {
     "max_gap": "longest run of failed samples interpolated [s]",
     "period_tolerance": "declared period vs the probes' dominant period: relative difference "
                         "beyond which the run is refused [-]",
-    "max_flat_fraction": "fraction of a record flat-lined beyond which the channel is dead or "
-                         "stuck (an error naming file and channel) [-]",
+    "max_flat_fraction": "fraction of a record flat-lined (or failing the noise test) beyond "
+                         "which the channel is dead, stuck (or noise): an error naming file "
+                         "and channel [-]",
     "despike_iterations": "Goring-Nikora despiking iterations at most (UVP) [-]",
     "probe_range": "[min, max] gross range of the probe records [V or m]; none: not tested",
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
+    "noise_autocorrelation": "noise test: a block (of `block` seconds) whose lag-one "
+                             "autocorrelation is below this [-] ...",
+    "noise_share": "... and whose high-frequency energy (half the mean square first "
+                   "difference) exceeds this share of the channel's variance fails: noise or "
+                   "alternating spikes, not a signal sampled far above its band [-]",
     "clock_tolerance": "probe-to-flap lag departing from the lag expected for the run's wave "
                        "condition (its other runs, else the neighbouring conditions) by more "
                        "than this is reported as a possible clock offset [s]",
@@ -174,7 +181,7 @@ def _stuck(ds, name, path, max_gap):
     if gaps:
         raise InputError(path, f"channel '{name}': failed quality control over "
                          + ", ".join(gaps[:5]) + (" ..." if len(gaps) > 5 else "")
-                         + f" (flat line, dropout or spikes longer than [stages.qc] max_gap = "
+                         + f" (flat line, dropout, spikes or noise longer than [stages.qc] max_gap = "
                          f"{max_gap:g} s, which is what may be interpolated)")
 
 
@@ -196,9 +203,10 @@ def probes(inputs, outputs, params) -> None:
     ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
     flat = ds[f"{name}_qc"].attrs["flagged_by_flat_line"] / raw.sizes["time"]
+    noise = ds[f"{name}_qc"].attrs["flagged_by_noise"] / raw.sizes["time"]
     checks.check_alive(raw[name].transpose("probe", "time").values,
                        raw["probe"].values, path, flat, params["max_flat_fraction"],
-                       " V" if name == "probe_voltage" else " m")
+                       " V" if name == "probe_voltage" else " m", noise)
     v = ds[name].transpose("probe", "time").values
     ok = ds[f"{name}_qc"].transpose("probe", "time").values != FAIL
     period = checks.dominant_period(np.where(ok, v, np.nan), params["sampling_rate"])
@@ -232,8 +240,9 @@ def flap(inputs, outputs, params) -> None:
                             ("chamber_pressure", "pressure_range", " Pa")):
         ds = qc_dataset(raw, name, th, gross_range=_span(params[rng]))
         flat = float(ds[f"{name}_qc"].attrs["flagged_by_flat_line"]) / raw.sizes["time"]
+        noise = float(ds[f"{name}_qc"].attrs["flagged_by_noise"]) / raw.sizes["time"]
         checks.check_alive(raw[name].values, [name], path, [flat],
-                           params["max_flat_fraction"], unit)
+                           params["max_flat_fraction"], unit, [noise])
         _stuck(ds, name, path, params["max_gap"])
         parts.append(ds)
     if params.get("period") is not None:  # an irregular run declares no period
