@@ -243,8 +243,11 @@ def cmd_make(args) -> int:
                           keep_going=args.keep_going, events=_events(args))
         if not report.failed and not report.blocked:
             cache.record_up_to_date(stamp, request, pipe.state_file, graph, targets)
-    _results(graph, report)
+        # read while the lock is held: a `flumekit clean` waiting on it may remove them
+        _results(graph, report)
+        warned = _warnings(graph, report)
     _summary(args, pipe, graph, report)
+    _say_warnings(warned)
     return 1 if report.failed else 0
 
 
@@ -303,6 +306,36 @@ def _summary(args, pipe, graph, report) -> None:
     else:
         nxt = f"`flumekit list{pipe_opt}` for every target and scene"
     print(f"next: {nxt}", file=sys.stderr)
+
+
+def _warnings(graph, report) -> list[str]:
+    """The warnings of the datasets built now (their ``flumekit_warnings`` attribute), each
+    once and naming its run."""
+    from flumekit.stages.runs import WARNINGS, run_warnings
+
+    found: list[str] = []
+    for t, *_ in report.ran:
+        rule = graph.rules[t]
+        for p in rule.outputs.values():
+            if str(p).endswith(".nc"):
+                import netCDF4
+
+                try:
+                    with netCDF4.Dataset(p) as nc:
+                        text = str(getattr(nc, WARNINGS, ""))
+                except OSError:
+                    continue
+                found += run_warnings(rule.run, text)
+    return list(dict.fromkeys(found))
+
+
+def _say_warnings(warned: list[str], first: int = 5) -> None:
+    if warned:
+        print(f"warnings: {len(warned)}" + (f" (the first {first})" if len(warned) > first
+                                            else "") + "; all of them in the summaries' "
+              "flumekit_warnings and in `flumekit report`:", file=sys.stderr)
+        for w in warned[:first]:
+            print(f"  {w}", file=sys.stderr)
 
 
 def _results(graph, report) -> None:

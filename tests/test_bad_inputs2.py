@@ -91,3 +91,31 @@ def test_a_files_entry_outside_the_run_folder(campaign, tmp_path, capsys):
     toml.write_text(text + '\n[files]\nshared = ["flapp"]\n')
     code, err = make(tmp_path, f"qc/flap/{RUN}", capsys=capsys)
     assert code == 1 and "unknown instrument 'flapp'" in err and "did you mean" in err
+
+
+def test_warnings_reach_the_make_summary_the_summaries_and_the_report(campaign, tmp_path,
+                                                                      capsys):
+    """A declared height 12 % off the measured one (a warning beyond 10 %, an error beyond
+    25 %): before, only in each dataset's attribute; now printed, gathered, reported."""
+    import xarray as xr
+
+    root = copy(campaign, tmp_path)
+    toml = root / "runs" / RUN / "run.toml"
+    toml.write_text(toml.read_text().replace("height = 0.15", "height = 0.168"))
+    code, err = make(tmp_path, "waves_summary", "flap_summary", capsys=capsys)
+    assert code == 0
+    lines = err.splitlines()
+    k = next(i for i, line in enumerate(lines) if line.startswith("warnings: "))
+    assert "flumekit report" in lines[k]
+    shown = lines[k + 1:k + 6]
+    height = [w for w in shown if "run.height" in w]
+    assert len(height) == 1 and f"runs/{RUN}/run.toml" in height[0] and RUN in height[0]
+    assert "declared height 0.168 m" in height[0]
+    processed = tmp_path / "processed"
+    with xr.open_dataset(processed / "waves_summary.nc") as s:
+        warned = s.attrs["flumekit_warnings"].splitlines()
+    assert any("declared height 0.168 m" in w and RUN in w for w in warned)
+    assert not any(OTHER in w and "run.height" in w for w in warned)
+    assert main(["report", "--pipeline", str(tmp_path / "pipeline.toml")]) == 0
+    page = (processed / "report.html").read_text()
+    assert 'id="warnings"' in page and "declared height 0.168 m" in page
