@@ -211,6 +211,9 @@ CAMPAIGN: dict[str, Key] = {
                            table=DIALECT)}),
 }
 
+#: deepest still water a campaign may declare [m]: the deepest wave basins hold tens of metres
+MAX_WATER_DEPTH = 1000.0
+
 INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
                     "calibration": "calibration/probes.csv"}
 
@@ -547,6 +550,11 @@ def load_campaign(root: str | Path) -> Campaign:
     _check_channels(path, files, {"probes": list(names), "flap": ["encoder", "pressure"],
                                   "calibration": ["level", *names]}, problems)
     fl, f, p = _table(data, "flume"), _table(data, "flap"), _table(data, "pto")
+    if not problems and fl["water_depth"] > MAX_WATER_DEPTH:
+        # the wave models overflow (cosh k h) long before; no flume or basin is this deep
+        problems.append(Problem(path, "flume.water_depth", f"{fl['water_depth']:g} m is no "
+                                f"flume's depth (at most {MAX_WATER_DEPTH:g} m): the depth is in "
+                                "metres"))
     if not problems and f:
         if "width" not in fl:
             problems.append(Problem(path, "flume.width", "missing key [m]: the flap's models "

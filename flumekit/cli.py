@@ -654,6 +654,25 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def os_problem(e: OSError) -> str:
+    """One line for an operating-system error: the file, what failed, what to do."""
+    import errno
+
+    where = f"{e.filename}: " if e.filename else ""
+    what = e.strerror or str(e)
+    hint = {errno.ENOSPC: "free some space on that disk, or point `processed` of the "
+                          "pipeline file at another one; an interrupted build leaves no partial "
+                          "output and resumes where it stopped",
+            errno.EDQUOT: "the disk quota is exhausted: free some space",
+            errno.EROFS: "the folder is on a read-only file system: point `processed` of the "
+                         "pipeline file at a writable folder",
+            errno.EACCES: "no permission to write there: point `processed` of the pipeline "
+                          "file at a writable folder",
+            errno.EPERM: "no permission to write there: point `processed` of the pipeline "
+                         "file at a writable folder"}.get(e.errno)
+    return f"{where}{what}" + (f" ({hint})" if hint else "")
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
@@ -662,6 +681,11 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         print(f"flumekit: error: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # the machine's, not the program's: a full disk, a read-only folder
+        if args.debug:
+            raise
+        print(f"flumekit: error: {os_problem(e)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         from flumekit.pipeline.executors import INTERRUPTED

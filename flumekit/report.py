@@ -132,8 +132,10 @@ def _flag_counts(datasets: dict[str, xr.Dataset]) -> str:
 
 
 def _warnings(datasets: dict[str, xr.Dataset]) -> str:
-    """Every warning of the campaign datasets (their ``flumekit_warnings`` attribute: each run's
-    warnings gathered by the summaries), once each, with the datasets that carry it."""
+    """List the warnings of the campaign datasets, once each, with the datasets carrying them.
+
+    Their ``flumekit_warnings`` attribute: each run's warnings gathered by the summaries.
+    """
     where: dict[str, list[str]] = {}
     for name, ds in datasets.items():
         for w in str(ds.attrs.get("flumekit_warnings", "")).splitlines():

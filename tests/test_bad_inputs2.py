@@ -4,8 +4,10 @@ Each case is a clear error naming the run's file and the problem, or the right r
 raw files are hashed before and after."""
 
 import hashlib
+import os
 import re
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -13,9 +15,9 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent / "io"))
-from virtual_run import RUN  # noqa: E402
+from virtual_run import RUN
 
-from flumekit.cli import main  # noqa: E402
+from flumekit.cli import main
 
 OTHER = "T3.50_H0.150_r0"
 
@@ -23,9 +25,10 @@ OTHER = "T3.50_H0.150_r0"
 @pytest.fixture(scope="module")
 def campaign(tmp_path_factory):
     """The raw campaign: the run of tests/io/virtual_run.py and a 3.5 s run."""
+    from virtual_run import write_one_run
+
     from flumekit.campaign import load_campaign
     from flumekit.synth.campaign import Truth, _probe_gains, _write_run
-    from virtual_run import write_one_run
 
     root = tmp_path_factory.mktemp("corpus") / "original"
     write_one_run(root)
@@ -119,3 +122,181 @@ def test_warnings_reach_the_make_summary_the_summaries_and_the_report(campaign, 
     assert main(["report", "--pipeline", str(tmp_path / "pipeline.toml")]) == 0
     page = (processed / "report.html").read_text()
     assert 'id="warnings"' in page and "declared height 0.168 m" in page
+
+
+# ---- no traceback text: the user's mistakes and a failing machine in one line each ---------
+
+def _cli(*args, cwd) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "flumekit.cli", *args], cwd=cwd,
+                          capture_output=True, text=True, timeout=600)
+
+
+@pytest.mark.parametrize("fault", ["empty_runs", "run_toml_folder", "deep_water"])
+def test_campaign_mistakes_are_clear_input_errors(campaign, tmp_path, capsys, fault):
+    """Before: "must supply at least one object to concatenate", a raw IsADirectoryError, a
+    FloatingPointError with a 60-number array from models/hydro."""
+    root = copy(campaign, tmp_path)
+    if fault == "empty_runs":
+        for d in (root / "runs").iterdir():
+            shutil.rmtree(d)
+        expect = f"{root / 'runs'}: no run: each run is a folder runs/<run>/"
+    elif fault == "run_toml_folder":
+        (root / "runs" / RUN / "run.toml").unlink()
+        (root / "runs" / RUN / "run.toml").mkdir()
+        expect = f"{root / 'runs' / RUN / 'run.toml'}: is a folder, not a file"
+    else:
+        text = (root / "campaign.toml").read_text()
+        (root / "campaign.toml").write_text(re.sub(r"water_depth = [0-9.]+",
+                                                   "water_depth = 1e300", text))
+        expect = (f"{root / 'campaign.toml'}, field 'flume.water_depth': 1e+300 m is no "
+                  "flume's depth")
+    before = _hashes(root)
+    code, err = make(tmp_path, capsys=capsys)
+    assert code == 1
+    assert f"flumekit: error: {expect}" in err, err
+    assert "Traceback" not in err and len(err.strip().splitlines()) == 1
+    assert _hashes(root) == before
+
+
+def test_a_domain_error_escaping_a_rule_names_the_rule_run_and_inputs(tmp_path, monkeypatch):
+    """A numpy message with an array in it: one line, at most 200 characters of it."""
+    from flumekit.errors import FlumekitError
+    from flumekit.pipeline.engine import Graph
+    from flumekit.pipeline.engine import make as build
+    from flumekit.pipeline.executors import SerialExecutor
+    from flumekit.pipeline.rules import Rule
+    from flumekit.pipeline.state import State
+
+    mods = tmp_path / "mods"
+    mods.mkdir()
+    (mods / "flumekit_corpus_actions.py").write_text(
+        "import numpy as np\n"
+        "def hydro(inputs, outputs, params):\n"
+        "    raise FloatingPointError(f'singular at T = {np.linspace(0.25, 15.7, 60)} s')\n")
+    monkeypatch.syspath_prepend(str(mods))
+    (tmp_path / "campaign.toml").write_text("")
+    g = Graph([Rule("models/hydro", "flumekit_corpus_actions:hydro",
+                    {"campaign": tmp_path / "campaign.toml"},
+                    {"dataset": tmp_path / "out" / "hydro.nc"}, run="T2.00")])
+    with pytest.raises(FlumekitError) as e:
+        build(g, ["models/hydro"], State(tmp_path / "state.json"), SerialExecutor())
+    msg = str(e.value)
+    assert "\n" not in msg
+    assert msg.startswith("rule 'models/hydro' (run T2.00) failed on its inputs "
+                          "(campaign = campaign.toml) and parameters: FloatingPointError: "
+                          "singular at T = [ 0.25")
+    assert msg.endswith(" ...") and len(msg) < 360
+
+
+def test_make_reads_its_outputs_before_releasing_the_lock(campaign, tmp_path, monkeypatch):
+    """A `flumekit clean` waiting on the lock may remove the outputs as soon as it is free:
+    the results and warnings are read while make holds it."""
+    import fcntl
+
+    from flumekit import cli
+
+    copy(campaign, tmp_path)
+    held = []
+    real = cli._results
+
+    def results(graph, report):
+        fd = os.open(tmp_path / "processed" / ".flumekit.lock", os.O_RDWR)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            held.append(False)
+        except BlockingIOError:
+            held.append(True)
+        finally:
+            os.close(fd)
+        real(graph, report)
+
+    monkeypatch.setattr(cli, "_results", results)
+    assert make(tmp_path, f"waves/{RUN}")[0] == 0
+    assert held == [True]
+
+
+def _mount(folder: Path, options: str) -> bool:
+    folder.mkdir(parents=True, exist_ok=True)
+    if os.geteuid() != 0:
+        return False
+    r = subprocess.run(["mount", "-t", "tmpfs", "-o", options, "tmpfs", str(folder)],
+                       capture_output=True)
+    return r.returncode == 0
+
+
+def test_a_full_disk_and_a_read_only_processed_folder_are_one_line_each(campaign, tmp_path):
+    """On a 256 kB tmpfs, then the same remounted read-only (root only)."""
+    disk = tmp_path / "disk"
+    if not _mount(disk, "size=256k"):
+        pytest.skip("needs root to mount a small tmpfs")
+    try:
+        copy(campaign, tmp_path)
+        (tmp_path / "pipeline.toml").write_text(
+            '[pipeline]\nname = "corpus"\nraw = "raw"\nprocessed = "disk/processed"\n')
+        r = _cli("make", "--pipeline", "pipeline.toml", cwd=tmp_path)
+        assert r.returncode == 1
+        assert "Traceback" not in r.stderr, r.stderr
+        last = r.stderr.strip().splitlines()[-1]
+        assert last.startswith("flumekit: error: ") and "No space left on device" in last
+        assert "no space left on the disk of" in r.stderr  # the netCDF library's "HDF error"
+        subprocess.run(["umount", str(disk)], check=True)
+        assert _mount(disk, "size=64m")
+        assert _cli("make", "--pipeline", "pipeline.toml", f"qc/probes/{RUN}",
+                    cwd=tmp_path).returncode == 0
+        subprocess.run(["mount", "-o", "remount,ro", str(disk)], check=True)
+        r = _cli("make", "--pipeline", "pipeline.toml", f"qc/probes/{RUN}", cwd=tmp_path)
+        assert r.returncode == 1 and "Traceback" not in r.stderr
+        assert r.stderr.strip() == (
+            f"flumekit: error: {disk / 'processed' / '.flumekit.lock'}: Read-only file system "
+            "(the folder is on a read-only file system: point `processed` of the pipeline "
+            "file at a writable folder)")
+    finally:
+        subprocess.run(["umount", str(disk)], capture_output=True)
+
+
+CLUSTER = """
+import sys
+from distributed import LocalCluster
+with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp://",
+                  dashboard_address=None) as cluster:
+    print(cluster.scheduler_address, flush=True)
+    sys.stdin.readline()
+"""
+
+
+def test_a_lost_dask_scheduler_is_one_line(tmp_path):
+    """The scheduler's process killed while a rule runs: before, a traceback of
+    FuturesCancelledError and the client's logged reconnection tracebacks."""
+    import time
+
+    pytest.importorskip("distributed")
+    root = Path(__file__).resolve().parents[1]
+    shutil.copytree(root / "pipelines", tmp_path / "pipelines")
+    cluster = subprocess.Popen([sys.executable, "-c", CLUSTER], stdin=subprocess.PIPE,
+                               stdout=subprocess.PIPE, text=True)
+    log_path = tmp_path / "make.log"
+    build = None
+    try:
+        address = cluster.stdout.readline().strip()
+        with open(log_path, "w") as log:
+            build = subprocess.Popen(
+                [sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
+                 "pipelines/small.toml", "--scheduler", address, "--dask-timeout", "3",
+                 "ballscrew/thermal_fem"], cwd=tmp_path, stdout=log, stderr=log)
+        deadline = time.monotonic() + 300
+        while (time.monotonic() < deadline and build.poll() is None
+               and "[1/" not in log_path.read_text()):
+            time.sleep(0.05)
+        assert build.poll() is None, log_path.read_text()
+        cluster.kill()
+        build.wait(timeout=120)
+    finally:
+        if build is not None and build.poll() is None:
+            build.kill()
+        if cluster.poll() is None:
+            cluster.kill()
+    err = log_path.read_text()
+    assert build.returncode == 1, err
+    assert "Traceback" not in err and " ERROR " not in err, err
+    assert err.strip().splitlines()[-1].startswith(
+        f"flumekit: error: lost the Dask scheduler at {address}")

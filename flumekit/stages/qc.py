@@ -181,8 +181,8 @@ def _stuck(ds, name, path, max_gap):
     if gaps:
         raise InputError(path, f"channel '{name}': failed quality control over "
                          + ", ".join(gaps[:5]) + (" ..." if len(gaps) > 5 else "")
-                         + f" (flat line, dropout, spikes or noise longer than [stages.qc] max_gap = "
-                         f"{max_gap:g} s, which is what may be interpolated)")
+                         + " (flat line, dropout, spikes or noise longer than [stages.qc] "
+                         f"max_gap = {max_gap:g} s, which is what may be interpolated)")
 
 
 def probes(inputs, outputs, params) -> None:
