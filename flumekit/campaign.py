@@ -72,6 +72,28 @@ def _delimiter_check(v: str) -> str | None:
         f"a delimiter is one character (',', ';', '\\t') or 'whitespace', got {v!r}"
 
 
+def _encoding_check(v: str) -> str | None:
+    import codecs
+
+    try:
+        codecs.lookup(v)
+    except LookupError:
+        return f"unknown encoding {v!r}; e.g. 'utf-8', 'cp1252', 'latin-1'"
+    return None
+
+
+def _timezone_check(v: str) -> str | None:
+    import zoneinfo
+
+    if not v:
+        return None
+    try:
+        zoneinfo.ZoneInfo(v)
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        return f"unknown time zone {v!r}; an IANA name such as 'Europe/Lisbon'"
+    return None
+
+
 #: how an instrument's file is written (io.dialects reads it): one schema for every instrument
 DIALECT: dict[str, Key] = {
     "file": Key("text", "file name in each run folder (calibration: relative to the campaign "
@@ -101,6 +123,13 @@ DIALECT: dict[str, Key] = {
                 default="time", kinds=("integer",)),
     "group": Key("text", "tdms, hdf5, netcdf: the group holding the channels", required=False,
                  default=""),
+    "encoding": Key("text", "csv: text encoding ('utf-8', with or without byte-order mark; "
+                    "'cp1252', 'latin-1', ...)", required=False, default="utf-8",
+                    check=_encoding_check),
+    "timezone": Key("text", "csv: IANA time zone of date-time stamps written without a UTC "
+                    "offset (local time, e.g. 'Europe/Lisbon'): they are put on UTC, across a "
+                    "daylight-saving change", required=False, default="",
+                    check=_timezone_check),
 }
 
 FRICTION = {k: _num(d, u, nonnegative=True) for k, d, u in (
@@ -184,6 +213,9 @@ CAMPAIGN: dict[str, Key] = {
                            table=DIALECT)}),
 }
 
+#: deepest still water a campaign may declare [m]: the deepest wave basins hold tens of metres
+MAX_WATER_DEPTH = 1000.0
+
 INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
                     "calibration": "calibration/probes.csv"}
 
@@ -233,7 +265,12 @@ RUN: dict[str, Key] = {
                         for k in ("probes", "flap", "uvp")}),
     "files": Key("table", "this run's instrument files, relative to the run folder, when not "
                  "named as in [files] of campaign.toml", required=False,
-                 table={k: Key("text", f"{k} record", required=False) for k in ("probes", "flap")}),
+                 table={**{k: Key("text", f"{k} record", required=False)
+                           for k in ("probes", "flap")},
+                        "shared": Key("names", "instruments whose file lies outside the run "
+                                      "folder on purpose (one record several runs share); any "
+                                      "other file outside its run folder is an error",
+                                      required=False)}),
 }
 
 
@@ -472,12 +509,28 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
         if k in ("flap", "uvp") and k not in campaign.instruments:
             found.append(Problem(path, f"clock.{k}", f"the campaign declares no {k} instrument"))
     files = {}
+    shared = _table(data, "files").get("shared")
+    shared = shared if isinstance(shared, list) else []
+    for k in shared:
+        if k not in ("probes", "flap"):
+            found.append(Problem(path, "files.shared", f"unknown instrument {k!r}; the run's "
+                                 "files are 'probes' and 'flap'" + suggest(str(k),
+                                                                         ["probes", "flap"])))
     for inst in ("probes", "flap"):
         given = _table(data, "files").get(inst)
         default = campaign.files.get(inst, {}).get("file", INSTRUMENT_FILES[inst])
         # normalised, not resolved: "../../record.csv" reads as the file it names
         files[inst] = Path(os.path.normpath(path.parent / (given if isinstance(given, str)
                                                            else default)))
+        if inst in campaign.instruments and inst not in shared and not files[inst].is_relative_to(
+                Path(os.path.normpath(path.parent))):
+            # another run's record read as this run's gives a confident wrong result
+            where = (f"files.{inst}", "") if isinstance(given, str) else (
+                f"files.{inst}", f" ([files.{inst}] file of campaign.toml)")
+            found.append(Problem(path, where[0], f"{files[inst]} lies outside the run folder "
+                                 f"{path.parent}{where[1]}: another run's record? If several "
+                                 f"runs share it on purpose, declare [files] shared = "
+                                 f'["{inst}"] in run.toml'))
     if found:
         problems += found
         return None
@@ -568,6 +621,11 @@ def load_campaign(root: str | Path) -> Campaign:
     _check_channels(path, files, {"probes": list(names), "flap": ["encoder", "pressure"],
                                   "calibration": ["level", *names]}, problems)
     fl, f, p = _table(data, "flume"), _table(data, "flap"), _table(data, "pto")
+    if not problems and fl["water_depth"] > MAX_WATER_DEPTH:
+        # the wave models overflow (cosh k h) long before; no flume or basin is this deep
+        problems.append(Problem(path, "flume.water_depth", f"{fl['water_depth']:g} m is no "
+                                f"flume's depth (at most {MAX_WATER_DEPTH:g} m): the depth is in "
+                                "metres"))
     if not problems and f:
         if "width" not in fl:
             problems.append(Problem(path, "flume.width", "missing key [m]: the flap's models "

@@ -243,8 +243,11 @@ def cmd_make(args) -> int:
                           keep_going=args.keep_going, events=_events(args))
         if not report.failed and not report.blocked:
             cache.record_up_to_date(stamp, request, pipe.state_file, graph, targets)
-    _results(graph, report)
+        # read while the lock is held: a `flumekit clean` waiting on it may remove them
+        _results(graph, report)
+        warned = _warnings(graph, report)
     _summary(args, pipe, graph, report)
+    _say_warnings(warned)
     return 1 if report.failed else 0
 
 
@@ -303,6 +306,36 @@ def _summary(args, pipe, graph, report) -> None:
     else:
         nxt = f"`flumekit list{pipe_opt}` for every target and scene"
     print(f"next: {nxt}", file=sys.stderr)
+
+
+def _warnings(graph, report) -> list[str]:
+    """The warnings of the datasets built now (their ``flumekit_warnings`` attribute), each
+    once and naming its run."""
+    from flumekit.stages.runs import WARNINGS, run_warnings
+
+    found: list[str] = []
+    for t, *_ in report.ran:
+        rule = graph.rules[t]
+        for p in rule.outputs.values():
+            if str(p).endswith(".nc"):
+                import netCDF4
+
+                try:
+                    with netCDF4.Dataset(p) as nc:
+                        text = str(getattr(nc, WARNINGS, ""))
+                except OSError:
+                    continue
+                found += run_warnings(rule.run, text)
+    return list(dict.fromkeys(found))
+
+
+def _say_warnings(warned: list[str], first: int = 5) -> None:
+    if warned:
+        print(f"warnings: {len(warned)}" + (f" (the first {first})" if len(warned) > first
+                                            else "") + "; all of them in the summaries' "
+              "flumekit_warnings and in `flumekit report`:", file=sys.stderr)
+        for w in warned[:first]:
+            print(f"  {w}", file=sys.stderr)
 
 
 def _results(graph, report) -> None:
@@ -621,6 +654,25 @@ def parser() -> argparse.ArgumentParser:
     return p
 
 
+def os_problem(e: OSError) -> str:
+    """One line for an operating-system error: the file, what failed, what to do."""
+    import errno
+
+    where = f"{e.filename}: " if e.filename else ""
+    what = e.strerror or str(e)
+    hint = {errno.ENOSPC: "free some space on that disk, or point `processed` of the "
+                          "pipeline file at another one; an interrupted build leaves no partial "
+                          "output and resumes where it stopped",
+            errno.EDQUOT: "the disk quota is exhausted: free some space",
+            errno.EROFS: "the folder is on a read-only file system: point `processed` of the "
+                         "pipeline file at a writable folder",
+            errno.EACCES: "no permission to write there: point `processed` of the pipeline "
+                          "file at a writable folder",
+            errno.EPERM: "no permission to write there: point `processed` of the pipeline "
+                         "file at a writable folder"}.get(e.errno)
+    return f"{where}{what}" + (f" ({hint})" if hint else "")
+
+
 def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
@@ -629,6 +681,11 @@ def main(argv: list[str] | None = None) -> int:
         if args.debug:
             raise
         print(f"flumekit: error: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # the machine's, not the program's: a full disk, a read-only folder
+        if args.debug:
+            raise
+        print(f"flumekit: error: {os_problem(e)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         from flumekit.pipeline.executors import INTERRUPTED

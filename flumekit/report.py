@@ -3,7 +3,8 @@
 The page lives in the processed folder (``processed/<pipeline>/report.html``) and links the
 figures and datasets beside it by relative paths, so it opens from disk or any copy of the
 folder, with no server, script or network. It shows the run conditions (one row per run), the
-summary statistics of every campaign dataset, the counts of every quality-control flag (any
+summary statistics of every campaign dataset, the warnings the campaign datasets carry
+(``flumekit_warnings``), the counts of every quality-control flag (any
 variable with CF ``flag_values`` and ``flag_meanings`` in a campaign dataset or under ``qc/``),
 every figure, and a link to every dataset. Same processed folder, same bytes: nothing depends
 on the clock or absolute paths.
@@ -130,6 +131,23 @@ def _flag_counts(datasets: dict[str, xr.Dataset]) -> str:
     return _table(["dataset", "variable", "flag", "count"], rows, left=3)
 
 
+def _warnings(datasets: dict[str, xr.Dataset]) -> str:
+    """List the warnings of the campaign datasets, once each, with the datasets carrying them.
+
+    Their ``flumekit_warnings`` attribute: each run's warnings gathered by the summaries.
+    """
+    where: dict[str, list[str]] = {}
+    for name, ds in datasets.items():
+        for w in str(ds.attrs.get("flumekit_warnings", "")).splitlines():
+            if w.strip():
+                where.setdefault(w.strip(), []).append(name)
+    if not where:
+        return '<p class="muted">No warnings.</p>'
+    return (f"<p>{len(where)} warning(s): the analysis went on, but check these.</p>"
+            + _table(["warning", "datasets"],
+                     [[_esc(w), _esc(", ".join(d))] for w, d in where.items()]))
+
+
 def _figures(root: Path) -> str:
     images = sorted(p for p in root.rglob("*") if p.suffix.lower() in IMAGE_SUFFIXES)
     # one image per figure: the PNG where a figure is also written as SVG or PDF
@@ -207,6 +225,7 @@ def write_report(processed: str | Path, out: str | Path | None = None,
         ("conditions", "Run conditions", _conditions(summaries)),
         ("statistics", "Summary statistics over the runs", stats or
          '<p class="muted">No campaign summary datasets.</p>'),
+        ("warnings", "Warnings", _warnings({**summaries, **qc})),
         ("qc", "Quality control", _flag_counts({**summaries, **qc})),
         ("figures", "Figures", _figures(root)),
         ("datasets", "Datasets", _datasets(root)),

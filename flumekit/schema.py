@@ -31,6 +31,11 @@ def read_toml(path: Path) -> dict[str, Any]:
             return tomllib.load(f)
     except FileNotFoundError:
         raise InputError(path, "file not found") from None
+    except IsADirectoryError:
+        raise InputError(path, "is a folder, not a file") from None
+    except UnicodeDecodeError as e:
+        raise InputError(path, f"not UTF-8 text, as TOML must be ({e.reason} at byte "
+                         f"{e.start})") from None
     except tomllib.TOMLDecodeError as e:
         raise InputError(path, f"not valid TOML ({e})") from None
 

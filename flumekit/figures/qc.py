@@ -11,6 +11,37 @@ from flumekit.qc.flags import FAIL, MISSING, NOT_EVALUATED, SUSPECT
 #: marker colours of the QARTOD flags drawn (pass and not-evaluated samples are not marked)
 FLAG_STYLE = {SUSPECT: ("suspect", "tab:orange", "o"), FAIL: ("fail", "tab:red", "x"),
               MISSING: ("missing", "tab:purple", "|")}
+#: what each QC test of flumekit.qc.record.check_series flags, shortly (the panel of a channel
+#: says it of the tests that flagged its samples)
+TEST_MEANINGS = {
+    "gap": "time gap",
+    "gross_range": "out of range",
+    "spike": "spike",
+    "rate_of_change": "steep step",
+    "flat_line": "flat line",
+    "dropout": "dropout or held value",
+    # lag-one autocorrelation below [stages.qc] noise_autocorrelation, with high-frequency
+    # energy above noise_share of the channel's (flumekit.qc.qartod.noise_test)
+    "noise": "noise, not signal",
+}
+
+
+def flag_summary(flags, index: int | None = None) -> str:
+    """``<test> <count> (<what it flags>), ...`` of a flag variable of the qc stage (its
+    ``flagged_by_<test>`` attributes, :data:`TEST_MEANINGS`; ``index``: the channel of a
+    per-channel count), the tests that flagged nothing left out."""
+    parts = []
+    for key, v in flags.attrs.items():
+        if key.startswith("flagged_by_"):
+            n = int(np.atleast_1d(v)[0 if index is None else index])
+            test = key.removeprefix("flagged_by_")
+            if n:
+                parts.append(f"{test} {n}" + (f" ({TEST_MEANINGS[test]})"
+                                              if TEST_MEANINGS.get(test, test) != test
+                                              else ""))
+    return ", ".join(parts)
+
+
 #: line colours of the UVP beams
 BEAM_COLOURS = ("tab:blue", "tab:green", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
 
@@ -23,14 +54,16 @@ def _channels(probes, flap, probes_raw, flap_raw):
     for p in probes["probe"].values:
         sel = {"probe": p}
         raw = None if probes_raw is None else probes_raw[name].sel(sel).values
+        k = list(probes["probe"].values).index(p)
         out.append((str(p), probes["time"].values, raw, probes[name].sel(sel).values,
-                    probes[f"{name}_qc"].sel(sel).values, units))
+                    probes[f"{name}_qc"].sel(sel).values, units,
+                    flag_summary(probes[f"{name}_qc"], k)))
     if flap is not None:
         for name, label, units in (("encoder_counts", "encoder", "counts"),
                                    ("chamber_pressure", "pressure", "Pa")):
             raw = None if flap_raw is None else flap_raw[name].values.astype(float)
             out.append((label, flap["time"].values, raw, flap[name].values,
-                        flap[f"{name}_qc"].values, units))
+                        flap[f"{name}_qc"].values, units, flag_summary(flap[f"{name}_qc"])))
     return out
 
 
@@ -66,7 +99,8 @@ def _draw_uvp(ax_time, ax_bin, uvp) -> None:
 
 def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     """Raw (grey) and QC'd (black) records of every probe and flap channel of a run, with the
-    suspect, failed and missing samples marked at their raw values; with ``uvp``, two panels
+    suspect, failed and missing samples marked at their raw values and the tests that flagged
+    them (counts and what each flags in the channel's title); with ``uvp``, two panels
     more: the share of each beam's channels that failed per profile, over time, and the share
     of each channel's evaluated samples that failed.
 
@@ -91,7 +125,7 @@ def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
         ax.sharex(time_axes[0])
     for ax in time_axes[:-1]:
         ax.tick_params(labelbottom=False)
-    for ax, (label, t, raw, clean, flags, units) in zip(axes[:, 0], chans, strict=False):
+    for ax, (label, t, raw, clean, flags, units, by) in zip(axes[:, 0], chans, strict=False):
         shown = clean if raw is None else raw
         if raw is not None:
             ax.plot(t, raw, color="0.7", lw=0.6, label="as read")
@@ -105,7 +139,8 @@ def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
                 ax.plot(t[sel], y, ls="none", marker=marker, color=colour, ms=3, mew=0.8,
                         label=meaning)
         ax.set_ylabel(f"[{units_text(units)}]")
-        ax.set_title(f"{label}: " + ", ".join(counts), loc="left")
+        ax.set_title(f"{label}: " + ", ".join(counts) + (f"; flagged by {by}" if by else ""),
+                     loc="left")
     if uvp is not None:
         _draw_uvp(axes[len(chans), 0], axes[-1, 0], uvp)
     time_axes[-1].set_xlabel("Time [s]")

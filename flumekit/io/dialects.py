@@ -35,6 +35,8 @@ class Dialect:
     time: str | int = "time"  # time column / channel / variable, or "rate"
     group: str = ""  # tdms, hdf5, netcdf: group of the channels
     file: str = ""  # file name in the run folder (used by the campaign, not here)
+    encoding: str = "utf-8"  # csv: text encoding (a UTF-8 byte-order mark is always accepted)
+    timezone: str = ""  # csv, date-time stamps without an offset: IANA zone they are in
 
     @classmethod
     def from_dict(cls, d: dict | None) -> Dialect:
@@ -82,6 +84,10 @@ class Record:
     # the instant of time 0 as ISO 8601 (ending in Z when the file gives the time zone, in UTC;
     # without a zone it is the recording computer's clock), None when the file does not say
     start: str | None = None
+    # the sample interval the file itself records beside the channels [s] (TDMS
+    # wf_increment), and where it says so; None when it does not
+    step: float | None = None
+    step_label: str = ""
 
 
 #: file or group attributes that give the start of a record (HDF5, netCDF; ISO 8601)
@@ -99,21 +105,46 @@ def read_channels(path: str | Path, dialect: Dialect, channels: list[Channel],
     path = Path(path)
     if not path.exists():
         raise InputError(path, "file not found")
+    if path.is_dir():
+        raise InputError(path, "is a folder, not a file")
     reader = {"csv": _read_csv, "tdms": _read_tdms, "hdf5": _read_hdf5,
               "netcdf": _read_netcdf}.get(dialect.format)
     if reader is None:
         raise InputError(path, f"unknown format {dialect.format!r}; known: csv, tdms, hdf5, "
                          "netcdf")
+    real = sniff_format(path)
+    if real is not None and real != dialect.format and {real, dialect.format} != {"hdf5",
+                                                                                 "netcdf"}:
+        raise InputError(path, f"this is a{'n' if real[0] in 'h' else ''} {FORMAT_NAMES[real]} "
+                         f"file, but its dialect declares format = {dialect.format!r}: declare "
+                         f'format = "{real}" in [files.<instrument>] of campaign.toml')
     if strict and dialect.format == "csv" and not dialect.declares_columns and dialect.header:
         from flumekit.io.tables import header_labels
 
         labels = header_labels(path, delimiter=dialect.delimiter, comment=dialect.comment,
-                               skip_lines=dialect.skip_lines)
+                               skip_lines=dialect.skip_lines, encoding=dialect.encoding)
         names = [c.name for c in channels]
         unknown = [x for x in labels if x not in names and x != dialect.time]
         if unknown:
             raise InputError(path, f"unknown {strict} column(s) {unknown}; expected {names}")
     return reader(path, dialect, channels)
+
+
+#: the first bytes of each binary format (an HDF5 signature is also a netCDF-4 file's)
+SIGNATURES = ((b"\x89HDF\r\n\x1a\n", "hdf5"), (b"TDSm", "tdms"), (b"TDSh", "tdms"),
+              (b"CDF\x01", "netcdf"), (b"CDF\x02", "netcdf"), (b"CDF\x05", "netcdf"))
+FORMAT_NAMES = {"hdf5": "HDF5 (or netCDF-4)", "tdms": "TDMS (LabVIEW)",
+                "netcdf": "netCDF (classic)", "csv": "text"}
+
+
+def sniff_format(path: Path) -> str | None:
+    """The format a file's first bytes prove (:data:`SIGNATURES`), or None."""
+    with open(path, "rb") as f:
+        head = f.read(8)
+    for sig, fmt in SIGNATURES:
+        if head.startswith(sig):
+            return fmt
+    return None
 
 
 def _si(path: Path, ch: Channel, label: str, declared: str | None, found: str | None,
@@ -161,14 +192,29 @@ def _instant(path: Path, text: str, what: str) -> tuple[np.datetime64, bool]:
 _SINCE = re.compile(r"^\s*(\S+)\s+since\s+(.+?)\s*$")
 
 
+#: an ISO 8601 date-time ending in a UTC offset or Z
+_OFFSET = re.compile(r"\d[T ]\d{2}:\d{2}(?::\d{2}(?:\.\d*)?)?\s*(?:Z|[+-]\d{2}:?\d{2})$")
+
+
 def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
              first_line: int | None = None, header_line: int | None = None,
-             utc: bool = True) -> tuple[np.ndarray, str | None]:
+             utc: bool = True, timezone: str = "", line_of=None) -> tuple[np.ndarray, str | None]:
     """Time in seconds, and the record's start (the instant of time 0, ISO 8601) when the
     column gives it: datetimes count from the first (which is the start; ``utc`` says whether
     datetime64 values are UTC), numbers in ``unit`` or in CF units ``<unit> since <instant>``
-    (then the start is that instant)."""
+    (then the start is that instant).
+
+    Text stamps with a UTC offset (ISO 8601, ``2024-03-31T01:59:59.96+01:00``) are read in
+    UTC, whatever offsets they mix (a daylight-saving change); stamps without one are the
+    logger's clock, or local time in the IANA zone ``timezone`` when one is declared (then
+    converted to UTC, a repeated hour resolved by the stamps' order). ``line_of(k)`` gives the
+    file line of row ``k`` (for messages; default ``first_line + k``).
+    """
     import pandas as pd
+
+    if line_of is None:
+        def line_of(k):
+            return None if first_line is None else first_line + k
 
     if values.dtype.kind == "M":
         t = values.astype("datetime64[ns]")
@@ -189,20 +235,57 @@ def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
     num = pd.to_numeric(s.str.replace(",", ".", regex=False), errors="coerce")
     if num.notna().all():
         return _seconds(path, num.to_numpy(np.float64), label, unit, first_line, header_line)
+    zoned = s.str.contains(_OFFSET)
+    if zoned.any() and not zoned.all():
+        k = int(np.flatnonzero(~zoned.to_numpy() if zoned.iloc[0] else zoned.to_numpy())[0])
+        raise InputError(path, f"time column '{label}': {s.iloc[k]!r} "
+                         + ("has no UTC offset, the stamps before it have one" if zoned.iloc[0]
+                            else "has a UTC offset, the stamps before it have none"),
+                         line=line_of(k))
+    if zoned.all() and timezone:
+        raise InputError(path, f"time column '{label}': the stamps give their UTC offset; "
+                         f"remove timezone = {timezone!r} from the file's dialect")
     try:
-        dt = pd.to_datetime(s, errors="raise", format="mixed")
+        dt = pd.to_datetime(s, errors="raise", format="mixed", utc=bool(zoned.all()))
     except (ValueError, TypeError):
-        bad = int(np.flatnonzero(num.isna())[0])
-        line = None if first_line is None else first_line + bad
+        dt = pd.to_datetime(s, errors="coerce", format="mixed", utc=bool(zoned.all()))
+        bad = int(np.flatnonzero(dt.isna().to_numpy())[0]) if dt.isna().any() else 0
         raise InputError(path, f"time column '{label}': {s.iloc[bad]!r} is neither a number nor"
-                         " a date and time", line=line) from None
+                         " a date and time", line=line_of(bad)) from None
+    if timezone:
+        dt = _localise(path, dt, label, timezone, s, line_of)
     # stamps with a UTC offset are read in UTC; without one, in the logger's own clock
-    return _seconds(path, dt.to_numpy(dtype="datetime64[ns]"), label, unit,
-                    utc=getattr(dt.dt, "tz", None) is not None)
+    return _seconds(path, dt.dt.tz_localize(None).to_numpy(dtype="datetime64[ns]")
+                    if dt.dt.tz is not None else dt.to_numpy(dtype="datetime64[ns]"),
+                    label, unit, utc=dt.dt.tz is not None)
+
+
+def _localise(path: Path, dt, label: str, timezone: str, s, line_of):
+    """Naive local stamps in the IANA zone ``timezone``, in UTC: an hour repeated when the
+    clocks go back is told apart by the stamps' order; a stamp in the hour skipped when they go
+    forward is an error naming its line."""
+    import zoneinfo
+
+    try:
+        zoneinfo.ZoneInfo(timezone)
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        raise InputError(path, f"unknown time zone {timezone!r}: an IANA name such as "
+                         "'Europe/Lisbon' or 'America/Montevideo'", field="timezone") from None
+    try:
+        local = dt.dt.tz_localize(timezone, ambiguous="infer", nonexistent="NaT")
+    except Exception as e:  # pytz/pandas raise their own types for an unresolvable hour
+        raise InputError(path, f"time column '{label}': local stamps in {timezone} cannot be "
+                         f"put on UTC ({e}); write them with their UTC offset") from None
+    if local.isna().any():
+        k = int(np.flatnonzero(local.isna().to_numpy())[0])
+        raise InputError(path, f"time column '{label}': {s.iloc[k]!r} does not exist in "
+                         f"{timezone} (the hour skipped when the clocks go forward)",
+                         line=line_of(k))
+    return local.dt.tz_convert("UTC")
 
 
 def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
-    from flumekit.io.tables import header_labels, read_text
+    from flumekit.io.tables import data_line, header_labels, read_text
 
     def index(spec: str | int, labels: list[str], what: str) -> int:
         if isinstance(spec, int) and not isinstance(spec, bool):
@@ -220,10 +303,10 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
 
     # the header first, to know which column is time (it may hold datetimes, read as text)
     head = header_labels(path, delimiter=d.delimiter, comment=d.comment,
-                         skip_lines=d.skip_lines, header=d.header)
+                         skip_lines=d.skip_lines, header=d.header, encoding=d.encoding)
     jt = None if d.time == "rate" else index(d.time, head, "time")
     kw = dict(delimiter=d.delimiter, decimal=d.decimal, comment=d.comment,
-              skip_lines=d.skip_lines, header=d.header)
+              skip_lines=d.skip_lines, header=d.header, encoding=d.encoding)
     t = None
     if jt is not None:
         # a time column of numbers (the usual case) is parsed by pandas' C parser with the
@@ -252,8 +335,12 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
         values.append(t.columns[j] * f)
     time = start = None
     if jt is not None:
+        def line_of(k):
+            return data_line(path, t.first_line, k, comment=d.comment, encoding=d.encoding)
+
         time, start = _seconds(path, t.columns[jt], labels[jt], d.unit("time") or t.units[jt],
-                               t.first_line, t.first_line - 1 if d.header else None)
+                               t.first_line, t.first_line - 1 if d.header else None,
+                               timezone=d.timezone, line_of=line_of)
     used = set(cols) | ({jt} if jt is not None else set())
     return Record(time, np.array(values), tuple(units), tuple(labels[j] for j in cols),
                   tuple(lab for j, lab in enumerate(labels) if j not in used), t.first_line,
@@ -276,6 +363,12 @@ def _split_spec(spec: str | int, group: str) -> tuple[str, str]:
 
 
 def _read_tdms(path: Path, d: Dialect, channels: list[Channel]) -> Record:
+    """LabVIEW TDMS. A waveform channel's own timing (``wf_increment`` [s], ``wf_start_time``
+    in UTC) is trusted and checked: the channels read must agree on both, the caller checks the
+    increment against the declared rate (:attr:`Record.step`), and where the dialect leaves the
+    time at its default and the group has no ``time`` channel, the increment gives the time."""
+    import dataclasses
+
     from nptdms import TdmsFile
 
     try:
@@ -283,9 +376,10 @@ def _read_tdms(path: Path, d: Dialect, channels: list[Channel]) -> Record:
     except Exception as e:  # npTDMS raises several types for a damaged file
         raise InputError(path, f"not a readable TDMS file ({type(e).__name__}: {e})") from None
     groups = [g.name for g in f.groups()]
+    default_group = d.group or (groups[0] if len(groups) == 1 else "")
 
     def get(spec):
-        g, name = _split_spec(spec, d.group or (groups[0] if len(groups) == 1 else ""))
+        g, name = _split_spec(spec, default_group)
         if g not in groups:
             raise InputError(path, f"no TDMS group '{g}' (groups: {groups}); declare group")
         names = [c.name for c in f[g].channels()]
@@ -294,16 +388,49 @@ def _read_tdms(path: Path, d: Dialect, channels: list[Channel]) -> Record:
         ch = f[g][name]
         return f"{g}/{name}", ch[:], ch.properties.get("unit_string")
 
+    def prop(label, key):
+        g, _, name = label.rpartition("/")
+        return f[g][name].properties.get(key)
+
     def first_sample(labels):
         # a waveform channel's start (LabVIEW writes it in UTC), the first that has one
         for label in labels:
-            g, _, name = label.rpartition("/")
-            t0 = f[g][name].properties.get("wf_start_time")
+            t0 = prop(label, "wf_start_time")
             if t0 is not None:
                 return np.datetime64(t0, "ns")
         return None
 
-    return _binary(path, d, channels, get, first_sample)
+    # the default time channel absent, the waveform channels' increment gives the time
+    wanted = [_split_spec(d.column(c.name, i), default_group) for i, c in enumerate(channels)]
+    own_time = False
+    if d.time == "time":
+        g, name = _split_spec("time", default_group)
+        has_time = g in groups and name in [c.name for c in f[g].channels()]
+        own_time = not has_time and all(
+            g in groups and n in [c.name for c in f[g].channels()]
+            and f[g][n].properties.get("wf_increment") is not None for g, n in wanted)
+    rec = _binary(path, dataclasses.replace(d, time="rate") if own_time else d, channels, get,
+                  first_sample)
+    steps = {label: prop(label, "wf_increment") for label in rec.labels}
+    given = {k: float(v) for k, v in steps.items() if v is not None}
+    if len(set(given.values())) > 1:
+        raise InputError(path, "the channels' wf_increment disagree: " + ", ".join(
+            f"{k} {v:g} s" for k, v in given.items()) + ": they are not one record")
+    starts = {label: prop(label, "wf_start_time") for label in rec.labels}
+    starts = {k: np.datetime64(v, "ns") for k, v in starts.items() if v is not None}
+    if len(set(starts.values())) > 1:
+        raise InputError(path, "the channels' wf_start_time disagree: " + ", ".join(
+            f"{k} {iso_instant(v, True)}" for k, v in starts.items())
+            + ": they are not one record")
+    if not given:
+        return rec
+    label, step = next(iter(given.items()))
+    if step <= 0 or not np.isfinite(step):
+        raise InputError(path, f"channel '{label}': wf_increment = {step!r} is not a sample "
+                         "interval")
+    if own_time:
+        rec = dataclasses.replace(rec, time=np.arange(rec.values.shape[1]) * step)
+    return dataclasses.replace(rec, step=step, step_label=f"{label} wf_increment")
 
 
 def _read_hdf5(path: Path, d: Dialect, channels: list[Channel]) -> Record:
@@ -358,6 +485,38 @@ def _start_attribute(path: Path, attrs: dict) -> np.datetime64 | None:
     return None
 
 
+def _samples(path: Path, label: str, data, ch: Channel, unit: str) -> np.ndarray:
+    """A binary file's channel as float64 samples, its shape and dtype checked: one dimension
+    ((n, 1) and (1, n) are squeezed), numbers; integers only for a channel in counts (a voltage
+    written as integers is a logger's raw ADC counts, which no declared unit converts)."""
+    data = np.asarray(data)
+    expected = (f"expected one dataset per channel of shape (n,) holding {ch.quantity}s "
+                f"[{unit}] as " + ("integers or floats" if ch.quantity == "count"
+                                   else "floating-point numbers"))
+    if data.dtype.kind == "V":
+        fields_ = list(data.dtype.names or ())
+        raise InputError(path, f"'{label}' is a compound dataset (fields {fields_}), dtype "
+                         f"{data.dtype}; {expected}", field=ch.name)
+    if data.dtype.kind in "SUOb":
+        raise InputError(path, f"'{label}' holds {'text' if data.dtype.kind != 'b' else 'booleans'}"
+                         f" (dtype {data.dtype}); {expected}", field=ch.name)
+    if data.ndim == 2 and 1 in data.shape:
+        data = data.reshape(-1)
+    if data.ndim != 1:
+        hint = (f" (it holds {data.shape[1]} columns: all channels in one dataset? write one "
+                "dataset per channel)" if data.ndim == 2 else "")
+        raise InputError(path, f"'{label}' has shape {data.shape}; {expected}{hint}",
+                         field=ch.name)
+    if data.dtype.kind in "iu" and ch.quantity != "count":
+        raise InputError(path, f"'{label}' holds integers (dtype {data.dtype}), but it is a "
+                         f"{ch.quantity} in [{unit}]: raw ADC counts? Convert them with the "
+                         f"logger's gain and write floating-point {ch.quantity}s; {expected}",
+                         field=ch.name)
+    if data.dtype.kind not in "fiu":
+        raise InputError(path, f"'{label}' has dtype {data.dtype}; {expected}", field=ch.name)
+    return data.astype(np.float64)
+
+
 def _binary(path: Path, d: Dialect, channels: list[Channel], get, first_sample=None) -> Record:
     """Channels through ``get(spec) -> (label, data, unit)``; ``first_sample(labels)`` gives the
     instant of the first sample that the file records beside the channels (datetime64, in
@@ -366,18 +525,32 @@ def _binary(path: Path, d: Dialect, channels: list[Channel], get, first_sample=N
     for i, c in enumerate(channels):
         label, data, found = get(d.column(c.name, i))
         u, f = _si(path, c, label, d.unit(c.name), found)
-        values.append(np.asarray(data, dtype=np.float64) * f)
+        values.append(_samples(path, label, data, c, u) * f)
         units.append(u)
         labels.append(label)
     n = {v.size for v in values}
     if len(n) > 1:
-        raise InputError(path, f"channels {labels} have different lengths {sorted(n)}")
+        longest = max(n)
+        short = [f"'{lab}' {v.size}" for lab, v in zip(labels, values) if v.size < longest]
+        raise InputError(path, f"channels of one record have different lengths: {short} "
+                         f"samples, the others {longest}: a record cut short (truncated "
+                         "file?) or channels of another record")
     values = np.array(values)
     _finite(path, values, labels)
     time = start = None
     if d.time != "rate":
         label, data, found = get(d.time)
-        time, start = _seconds(path, np.asarray(data), label, d.unit("time") or found)
+        data = np.asarray(data)
+        if data.ndim == 2 and 1 in data.shape:
+            data = data.reshape(-1)
+        if data.ndim != 1 or data.dtype.kind == "V":
+            raise InputError(path, f"time '{label}' has shape {data.shape} and dtype "
+                             f"{data.dtype}: expected shape ({values.shape[1]},), numbers or "
+                             "date-times")
+        if data.dtype.kind == "S" or (data.dtype.kind == "O" and data.size
+                                      and isinstance(data.flat[0], bytes)):
+            data = np.char.decode(data.astype("S"), "utf-8") if data.size else data
+        time, start = _seconds(path, data, label, d.unit("time") or found)
         labels_read = [*labels, label]
         if time.size != values.shape[1]:
             raise InputError(path, f"time '{label}' has {time.size} samples, the channels "

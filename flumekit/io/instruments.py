@@ -48,6 +48,13 @@ def _read(path: Path, dialect: Dialect, channels: list[Channel], what: str) -> R
 
 def _time(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> np.ndarray:
     n = rec.values.shape[1]
+    if rec.step is not None and abs(rec.step * sampling_rate - 1.0) > 0.01:
+        # the file's own sample interval is the truth about its samples: a declared rate that
+        # contradicts it would stretch the record's time axis
+        raise InputError(path, f"{rec.step_label} is {rec.step:g} s ({1 / rec.step:g} Hz), but "
+                         f"the campaign declares a sampling rate of {sampling_rate:g} Hz "
+                         f"({1 / sampling_rate:g} s): correct sampling_rate in campaign.toml or"
+                         " check that this is the right file")
     if rec.time is None:
         if n < 2:
             raise InputError(path, "fewer than two samples")

@@ -152,11 +152,50 @@ def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
     return None
 
 
+def _codec(path: Path, encoding: str) -> str:
+    """The Python codec of a declared encoding; UTF-8 with its byte-order mark tolerated."""
+    import codecs
+
+    try:
+        name = codecs.lookup(encoding).name
+    except LookupError:
+        raise InputError(path, f"unknown encoding {encoding!r} (utf-8, cp1252, latin-1, ...)",
+                         field="encoding") from None
+    return "utf-8-sig" if name == "utf-8" else name
+
+
+def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
+    """``data`` (a text file's bytes) decoded; an undecodable byte is an error naming its line
+    and the ``encoding`` key of the file's dialect."""
+    try:
+        return data.decode(_codec(path, encoding))
+    except UnicodeDecodeError as e:
+        line = data.count(b"\n", 0, e.start) + 1
+        byte = data[e.start:e.start + 1].hex()
+        hint = ("declare the file's encoding in its dialect ([files.<instrument>] of "
+                'campaign.toml), e.g. encoding = "cp1252" (Windows) or "latin-1"')
+        raise InputError(path, f"byte 0x{byte} is not {encoding} text (a binary file, or "
+                         f"another encoding?): {hint}", line=line) from None
+
+
+def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
+              encoding: str = "utf-8") -> int:
+    """File line of data row ``k`` (0-based) of a table whose first data row is on line
+    ``first_line``: blank and comment lines between rows are not rows (for messages only: it
+    reads the file again)."""
+    lines = pd.Series(decode(path, path.read_bytes(), encoding).split("\n")[first_line - 1:])
+    keep = lines.str.strip() != ""
+    if comment:
+        keep &= ~lines.str.lstrip().str.startswith(comment)
+    rows = np.flatnonzero(keep.to_numpy())
+    return first_line + int(rows[k] if k < rows.size else k)
+
+
 def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_lines: int = 0,
-                  header: bool = True) -> list[str]:
+                  header: bool = True, encoding: str = "utf-8") -> list[str]:
     """Column labels from the header line (names without ``[unit]``), or "1".."n" without one."""
     try:
-        text = path.read_bytes()[:1 << 16].decode("utf-8-sig", errors="replace")
+        text = path.read_bytes()[:1 << 16].decode(_codec(path, encoding), errors="replace")
     except FileNotFoundError:
         raise InputError(path, "file not found") from None
     if not text.strip():
@@ -186,15 +225,17 @@ def _label(cell: str) -> tuple[str, str | None]:
 
 def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", comment: str = "",
               skip_lines: int = 0, header: bool = True,
-              text_columns: tuple[int, ...] = ()) -> Text:
-    """Read a delimited table. ``text_columns`` (0-based) may hold non-numbers (datetimes)."""
+              text_columns: tuple[int, ...] = (), encoding: str = "utf-8") -> Text:
+    """Read a delimited table. ``text_columns`` (0-based) may hold non-numbers (datetimes).
+    ``encoding``: the file's text encoding (UTF-8: a lab PC's byte-order mark is accepted)."""
     path = Path(path)
     try:
-        text = path.read_bytes().decode("utf-8-sig")  # a lab PC's byte-order mark is accepted
+        data = path.read_bytes()
     except FileNotFoundError:
         raise InputError(path, "file not found") from None
-    except UnicodeDecodeError:
-        raise InputError(path, "not a text file (or not UTF-8)") from None
+    except IsADirectoryError:
+        raise InputError(path, "is a folder, not a file") from None
+    text = decode(path, data, encoding)
     if not text.strip():
         raise InputError(path, "file is empty")
     ended = text.endswith("\n")
@@ -225,21 +266,23 @@ def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", com
     if not header:
         labels, units = [str(j + 1) for j in range(ncol)], [None] * ncol
     multi = len(comment) > 1
+    rows_text = body
     if multi:  # pandas takes one comment character; longer markers are filtered here
-        body = "\n".join(x for x in body.split("\n") if not x.lstrip().startswith(comment))
+        rows_text = "\n".join(x for x in body.split("\n") if not x.lstrip().startswith(comment))
     dtype = {j: (object if j in text_columns else np.float64) for j in range(ncol)}
     try:
-        df = pd.read_csv(io.StringIO(body), header=None, dtype=dtype, engine="c",
+        df = pd.read_csv(io.StringIO(rows_text), header=None, dtype=dtype, engine="c",
                          sep=r"\s+" if delimiter == "whitespace" else delimiter,
                          decimal=decimal, comment=(comment or None) if not multi else None,
                          skip_blank_lines=bool(comment), names=range(ncol))
     except (ValueError, pd.errors.ParserError):
-        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns) \
-            from None
+        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns,
+                               comment) from None
     num = [j for j in range(ncol) if j not in text_columns]
     values = df[num].to_numpy(dtype=np.float64)
     if not np.all(np.isfinite(values)):
-        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns)
+        raise _locate_bad_cell(path, body, first, ncol, delimiter, decimal, text_columns,
+                               comment)
     if not ended and ncol - 1 in num:
         rows = body.split("\n")
         problem = _cut_last_cell(body, delimiter, decimal, comment, values[:, -1])
@@ -252,11 +295,15 @@ def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", com
 
 
 def _locate_bad_cell(path: Path, body: str, first: int, ncol: int, delimiter: str,
-                     decimal: str, text_columns: tuple[int, ...] = ()) -> InputError:
-    """Slow path, run only after the fast parser failed: find the first malformed line."""
+                     decimal: str, text_columns: tuple[int, ...] = (),
+                     comment: str = "") -> InputError:
+    """Slow path, run only after the fast parser failed: find the first malformed line (blank
+    and comment lines are no rows)."""
     lines = body.split("\n")
     for k, line in enumerate(lines):
         i = first + k + 1
+        if comment and (not line.strip() or line.lstrip().startswith(comment)):
+            continue
         cells = _split(line.rstrip("\r"), delimiter)
         if len(cells) != ncol:
             bad = _wrong_delimiter(path, line, i, delimiter)

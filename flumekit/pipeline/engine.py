@@ -284,6 +284,10 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
     def fail(t: str, e: BaseException) -> None:
         nonlocal first_error
         rule = graph.rules[t]
+        full = _full_disk(rule)
+        if full and not isinstance(e, FlumekitError):
+            # libraries report a full disk in their own words ("NetCDF: HDF error")
+            e = FlumekitError(f"{full} ({_short(e)})")
         f = Failure(t, rule.run, str(getattr(e, "path", "") or "") or None, _problem(e))
         report.failed.append(f)
         events.failed(f)
@@ -369,13 +373,59 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
     return report
 
 
+#: longest message of an unexpected exception shown to the user (an array in a numpy message
+#: runs to thousands of characters)
+MESSAGE_LENGTH = 200
+
+
+def _short(e: BaseException) -> str:
+    """``Type: message`` of an unexpected exception on one line, at most
+    :data:`MESSAGE_LENGTH` characters of its message."""
+    if isinstance(e, OSError) and e.strerror:
+        text = e.strerror + (f": {e.filename}" if e.filename else "")
+    else:
+        text = " ".join(str(e).split())
+    if len(text) > MESSAGE_LENGTH:
+        text = text[:MESSAGE_LENGTH].rstrip() + " ..."
+    return f"{type(e).__name__}: {text}"
+
+
 def _problem(e: BaseException) -> str:
     if isinstance(e, InputError):  # the file is reported on its own
         return e.problem + (f" (line {e.line})" if e.line else "") + (
             f" (field '{e.field}')" if e.field else "")
     if isinstance(e, FlumekitError):
         return str(e)
-    return f"{type(e).__name__}: {e}"
+    return _short(e)
+
+
+#: free space below which a failed write is put down to a full disk [bytes]
+FULL_DISK = 1 << 20
+
+
+def _full_disk(rule: Rule) -> str | None:
+    """What to say when the disk of ``rule``'s outputs is full (less than :data:`FULL_DISK`
+    free), else None."""
+    for p in rule.outputs.values():
+        folder = Path(p).parent
+        while not folder.exists() and folder != folder.parent:
+            folder = folder.parent
+        try:
+            st = os.statvfs(folder)
+        except OSError:
+            continue
+        free = st.f_bavail * st.f_frsize
+        if free < FULL_DISK:
+            return (f"no space left on the disk of {folder} ({free // 1024} kB free): free "
+                    "some space or point `processed` of the pipeline file at another disk")
+    return None
+
+
+def _inputs(rule: Rule, most: int = 3) -> str:
+    """The input files of ``rule`` by name, the first ``most`` of them."""
+    names = [f"{k} = {Path(p).name}" for k, p in rule.inputs.items()]
+    more = f" and {len(names) - most} more" if len(names) > most else ""
+    return ", ".join(names[:most]) + more
 
 
 def _wrap(rule: Rule, e: BaseException) -> BaseException:
@@ -385,6 +435,8 @@ def _wrap(rule: Rule, e: BaseException) -> BaseException:
         err.__dict__.update(e.__dict__)
         err.args = (f"{where}: {e}",)
         return err
-    err = FlumekitError(f"{where} failed: {type(e).__name__}: {e}")
+    # an error the rule's code did not expect: say what it computed from, on one line
+    err = FlumekitError(f"{where} failed on its inputs ({_inputs(rule) or 'none'}) and "
+                        f"parameters: {_short(e)}")
     err.__cause__ = e
     return err

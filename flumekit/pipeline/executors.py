@@ -15,6 +15,7 @@ import signal
 import sys
 import time
 from collections.abc import Callable
+from concurrent.futures import CancelledError
 from typing import Any
 
 from flumekit.errors import FlumekitError
@@ -187,6 +188,13 @@ class DaskExecutor(Executor):
             # "dask.distributed", and xarray/dask code later in the same process (tests, a
             # notebook) then fails with "no Client active" once this one is closed
             self.client = Client(address, timeout=timeout, set_as_default=False)
+            # a lost scheduler is reported once, in one line (wait_any); the client's own log
+            # would print a traceback for each attempt to reconnect
+            import logging
+
+            self._log = logging.getLogger("distributed.client")
+            self._level = self._log.level
+            self._log.setLevel(logging.CRITICAL)
         except (OSError, TimeoutError) as e:
             raise FlumekitError(f"cannot reach the Dask scheduler at {address} within "
                                 f"{timeout:g} s ({type(e).__name__}); check the address, or "
@@ -196,8 +204,16 @@ class DaskExecutor(Executor):
                                 f"{address} ({e}); give tcp://HOST:PORT, or unset "
                                 "DASK_SCHEDULER_ADDRESS to build locally") from None
 
+    def lost(self, e: BaseException) -> FlumekitError:
+        return FlumekitError(f"lost the Dask scheduler at {self.address} "
+                             f"({type(e).__name__}); the rules that had finished are kept: "
+                             "restart the scheduler and make again, or build locally (-j N)")
+
     def submit(self, fn, *args):
-        return self.client.submit(fn, *args, pure=False)
+        try:
+            return self.client.submit(fn, *args, pure=False)
+        except (OSError, CancelledError) as e:
+            raise self.lost(e) from None
 
     def wait_any(self, futures):
         from distributed import wait
@@ -210,13 +226,14 @@ class DaskExecutor(Executor):
                 return list(done)
             except TimeoutError:
                 pass
+            except (OSError, CancelledError) as e:  # the client lost its scheduler
+                raise self.lost(e) from None
             try:
                 workers = self.client.scheduler_info(n_workers=-1)["workers"]
             except TypeError:  # older distributed: no n_workers argument
                 workers = self.client.scheduler_info()["workers"]
-            except (OSError, TimeoutError) as e:
-                raise FlumekitError(f"lost the Dask scheduler at {self.address}: "
-                                    f"{type(e).__name__}: {e}") from None
+            except (OSError, TimeoutError, CancelledError) as e:
+                raise self.lost(e) from None
             if workers:
                 alone_since = None
                 continue
@@ -227,7 +244,12 @@ class DaskExecutor(Executor):
                                     "Start workers, or build locally (-j N)")
 
     def close(self, abort: bool = False):
-        self.client.close()
+        try:
+            self.client.close(timeout=self.timeout)
+        except (OSError, TimeoutError, CancelledError):
+            pass  # a scheduler already lost: reported by wait_any
+        finally:
+            self._log.setLevel(self._level)
 
 
 def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes",

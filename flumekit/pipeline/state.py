@@ -100,6 +100,11 @@ class State:
         live = {entry[2] for entry in self.files.values()}
         self.content = {h: d for h, d in self.content.items() if h in live}
         self.dirty = False
-        with atomic_path(self.path) as tmp:
-            tmp.write_text(json.dumps({"files": self.files, "targets": self.targets,
-                                       "content": self.content}))
+        try:
+            with atomic_path(self.path) as tmp:
+                tmp.write_text(json.dumps({"files": self.files, "targets": self.targets,
+                                           "content": self.content}))
+        except OSError as e:  # a full disk says no file name: the message needs one
+            if e.filename:
+                raise
+            raise OSError(e.errno, e.strerror, str(self.path)) from None

@@ -45,6 +45,22 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
                          "[stages.qc] period_tolerance)", field="run.period")
 
 
+def check_record_period(declared: float, periods: dict[str, float], tolerance: float,
+                        record: Path, run_file: Path) -> None:
+    """Error naming ``record`` when the dominant period of any of its channels (``periods``:
+    channel -> period [s], :func:`dominant_period`) differs from the run's declared period by
+    more than ``tolerance`` (relative), as :func:`check_period` does for the probes: a record
+    of another run (a copied file, a [files] entry pointing into another run folder) would be
+    analysed as this run's (a 3.5 s flap record in a 2.0 s run: capture factor 0.43 instead of
+    0.22)."""
+    off = {k: p for k, p in periods.items() if not abs(p / declared - 1.0) <= tolerance}
+    if off:
+        raise InputError(record, "dominant period " + ", ".join(
+            f"{p:.3f} s ({k})" for k, p in off.items()) + f", but {run_file} declares period "
+            f"{declared:g} s, as the probes' records must (tolerance {tolerance:.0%}, "
+            "[stages.qc] period_tolerance): a record of another run?")
+
+
 def check_height(declared: float, measured: float, tolerance: float, warning: float,
                  run_file: Path, what: str) -> str | None:
     """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the
@@ -148,9 +164,11 @@ def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,
 
 
 def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray | None = None,
-                max_flat_fraction: float = 0.5, unit: str = "") -> None:
-    """Error naming the file and channel(s) that are dead (constant over the whole record) or
-    stuck (flat lines over more than ``max_flat_fraction`` of the record)."""
+                max_flat_fraction: float = 0.5, unit: str = "",
+                noise_fraction: np.ndarray | None = None) -> None:
+    """Error naming the file and channel(s) that are dead (constant over the whole record),
+    stuck (flat lines over more than ``max_flat_fraction`` of the record) or noise (failing
+    the noise test, :func:`flumekit.qc.qartod.noise_test`, over more than that fraction)."""
     x = np.atleast_2d(np.asarray(x, dtype=float))
     problems = []
     for i, name in enumerate(channels):
@@ -163,5 +181,13 @@ def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray |
         elif flat_fraction is not None and flat_fraction[i] > max_flat_fraction:
             problems.append(f"channel '{name}' is stuck: flat lines over "
                             f"{flat_fraction[i]:.0%} of the record")
+        elif noise_fraction is not None and noise_fraction[i] > max_flat_fraction:
+            v = v - v.mean()
+            r1 = float(np.dot(v[1:], v[:-1]) / np.dot(v, v))
+            problems.append(f"channel '{name}' is noise, not a signal: {noise_fraction[i]:.0%}"
+                            f" of the record fails the noise test (lag-one autocorrelation "
+                            f"{r1:.2f} over the record; a wave record sampled far above its "
+                            "band has nearly 1): a broken or disconnected sensor, or "
+                            "interference?")
     if problems:
         raise InputError(path, "; ".join(problems))

@@ -327,3 +327,54 @@ def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> 
         late = np.diff(t) > (1.0 + tolerance) / sampling_rate
     f[1:][late & (f[1:] != MISSING)] = FAIL
     return f
+
+
+def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
+               min_share: float = 0.1) -> np.ndarray:
+    """Noise: blocks of a channel that hold more noise than signal (FAIL).
+
+    A physical signal sampled far above its band (waves of a period T at a rate fs with
+    T fs >> 1) changes little from one sample to the next: its lag-one autocorrelation is
+    cos(2 pi / (T fs)), 0.99 for a 2 s wave at 25 Hz, 0.81 for a 0.5 s one. White noise has
+    none (0), and spikes alternating in sign (a broken channel, electrical interference at
+    the Nyquist frequency) have -1, which the spike test cannot see: every sample is as far
+    from its neighbours as the next, so the robust local scale is the spikes'. A block of
+    ``block`` samples (the last block ends at the record's end) fails when
+
+    * its lag-one autocorrelation r1 is below ``max_autocorrelation``, and
+    * its high-frequency energy, half the mean square first difference (the variance for
+      white noise; the spectrum weighted by 2 sin²(pi f / fs), which is about
+      (2 pi f / fs)² / 2 for a slow signal), exceeds ``min_share`` of the channel's variance
+      over the record.
+
+    The second condition keeps the quiet still-water lead-in of a probe, which is noise but
+    tiny beside the waves, from failing. A channel that is noise from end to end fails
+    everywhere (its high-frequency energy is its variance).
+    """
+    x = np.asarray(x, dtype=float)
+    shape = x.shape
+    x2 = x.reshape(-1, shape[-1])
+    f = _empty_flags(x2)
+    n = x2.shape[-1]
+    if n < 4:
+        return f.reshape(shape)
+    size = min(max(int(block), 4), n)
+    starts = np.minimum(np.arange(0, n, size), n - size)  # the last block ends at the end
+    xb = x2[:, starts[:, None] + np.arange(size)]  # (channel, block, sample)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        d = np.nan_to_num(xb - _nanmean(xb))  # a missing sample adds nothing
+        var = np.mean(d * d, axis=-1)
+        r1 = np.mean(d[..., 1:] * d[..., :-1], axis=-1) / var
+        hf = 0.5 * np.mean(np.diff(d, axis=-1) ** 2, axis=-1)
+        total = np.nanvar(x2, axis=-1)[:, None]
+        noisy = (r1 < max_autocorrelation) & (hf > min_share * total)
+    k = np.minimum(np.arange(n) // size, starts.size - 1)
+    f[noisy[:, k] & (f != MISSING)] = FAIL
+    return f.reshape(shape)
+
+
+def _nanmean(xb: np.ndarray) -> np.ndarray:
+    """Mean over the last axis without the NaNs (0 for an all-NaN block)."""
+    ok = np.isfinite(xb)
+    return (np.where(ok, xb, 0.0).sum(axis=-1, keepdims=True)
+            / np.maximum(ok.sum(axis=-1, keepdims=True), 1))

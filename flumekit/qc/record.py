@@ -52,6 +52,8 @@ class Thresholds:
     gap_tolerance: float = 0.5  # a time step longer than (1 + this) / rate is a gap [-]
     max_gap: float = 0.2  # longest run of failed samples interpolated [s]
     despike_iterations: int = 1  # Goring-Nikora iterations at most [-]
+    noise_autocorrelation: float = 0.5  # noise test: lag-one autocorrelation below this [-]
+    noise_share: float = 0.1  # noise test: and high-frequency energy above this share [-]
 
     @classmethod
     def from_params(cls, params: dict) -> Thresholds:
@@ -64,7 +66,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
                  gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                  floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:
     """Per-test QARTOD flags of a (channel, time) block of probe or flap records (time along
-    the last axis): gap, gross range, spike, rate of change, flat line, dropout.
+    the last axis): gap, gross range, spike, rate of change, flat line, dropout, noise.
 
     ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
     Velocity records take :func:`check_beam` instead.
@@ -89,6 +91,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         out["flat_line"] = qartod.flat_line_test(held, sampling_rate, th.flat_line_suspect,
                                                  th.flat_line_fail, th.flat_line_tolerance)
     out["dropout"] = qartod.dropout_test(held, sampling_rate, th.dropout, th.hold)
+    out["noise"] = qartod.noise_test(x, block, th.noise_autocorrelation, th.noise_share)
     return out
 
 

@@ -28,6 +28,12 @@ STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "perform
 def build_rules(ctx: Context) -> list[Rule]:
     import importlib
 
+    if not ctx.campaign.runs:
+        from flumekit.errors import InputError
+
+        # every stage but the ball-screw study summarises runs: none is a user's mistake
+        raise InputError(ctx.campaign.root / "runs", "no run: each run is a folder "
+                         "runs/<run>/ holding its run.toml and instrument files (raw/README.md)")
     out: list[Rule] = []
     for name in STAGES:
         mod = importlib.import_module(f"flumekit.stages.{name}")

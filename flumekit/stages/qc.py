@@ -23,7 +23,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
-VERSION = "4"
+VERSION = "5"
 #: [stages.qc] parameters: the thresholds of flumekit.qc.record.Thresholds, the metadata checks
 #: and optional gross ranges [channel units: V, counts, Pa, m s-1] (unset: not evaluated)
 DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
@@ -31,7 +31,8 @@ DEFAULTS = {"spike_suspect": 6.0, "spike_fail": 8.0, "rate_of_change": 10.0,
             "dropout": 6.0, "hold": 0.2, "block": 10.0, "gap_tolerance": 0.5, "max_gap": 0.2,
             "period_tolerance": 0.1, "max_flat_fraction": 0.5, "despike_iterations": 1,
             "probe_range": None, "encoder_range": None, "pressure_range": None,
-            "velocity_range": None, "clock_tolerance": 0.1, "dropout_irregular": 12.0}
+            "velocity_range": None, "clock_tolerance": 0.1, "noise_autocorrelation": 0.5,
+            "noise_share": 0.1, "dropout_irregular": 12.0}
 DOCS = {
     "spike_suspect": "spike test: suspect beyond this many robust local standard deviations of "
                      "x_n - (x_(n-1) + x_(n+1))/2 [-]",
@@ -48,13 +49,19 @@ DOCS = {
     "max_gap": "longest run of failed samples interpolated [s]",
     "period_tolerance": "declared period vs the probes' dominant period: relative difference "
                         "beyond which the run is refused [-]",
-    "max_flat_fraction": "fraction of a record flat-lined beyond which the channel is dead or "
-                         "stuck (an error naming file and channel) [-]",
+    "max_flat_fraction": "fraction of a record flat-lined (or failing the noise test) beyond "
+                         "which the channel is dead, stuck (or noise): an error naming file "
+                         "and channel [-]",
     "despike_iterations": "Goring-Nikora despiking iterations at most (UVP) [-]",
     "probe_range": "[min, max] gross range of the probe records [V or m]; none: not tested",
     "encoder_range": "[min, max] gross range of the encoder counts; none: not tested",
     "pressure_range": "[min, max] gross range of the chamber pressure [Pa]; none: not tested",
     "velocity_range": "[min, max] gross range of the UVP velocities [m s-1]; none: not tested",
+    "noise_autocorrelation": "noise test: a block (of `block` seconds) whose lag-one "
+                             "autocorrelation is below this [-] ...",
+    "noise_share": "... and whose high-frequency energy (half the mean square first "
+                   "difference) exceeds this share of the channel's variance fails: noise or "
+                   "alternating spikes, not a signal sampled far above its band [-]",
     "dropout_irregular": "dropout test of an irregular run's probe and flap records: robust "
                          "standard deviations about the median [-]; an irregular sea's "
                          "largest waves, and the pressure peaks of a single-acting PTO in "
@@ -112,7 +119,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                         version=VERSION, run=run.id))
         if "flap" in c.instruments:
             out.append(Rule(f"qc/flap/{run.id}", "flumekit.stages.qc:flap",
-                            inputs={"flap": run.file("flap")},
+                            inputs={"flap": run.file("flap"), "run": run.path / "run.toml"},
                             outputs={"dataset": ctx.out("qc", "flap", f"{run.id}.nc")},
                             params={**rp, **reading["flap"]}, version=VERSION, run=run.id))
     inputs = {f"{kind}/{r.id}": ctx.out("qc", kind, f"{r.id}.nc")
@@ -188,8 +195,8 @@ def _stuck(ds, name, path, max_gap):
     if gaps:
         raise InputError(path, f"channel '{name}': failed quality control over "
                          + ", ".join(gaps[:5]) + (" ..." if len(gaps) > 5 else "")
-                         + f" (flat line, dropout or spikes longer than [stages.qc] max_gap = "
-                         f"{max_gap:g} s, which is what may be interpolated)")
+                         + " (flat line, dropout, spikes or noise longer than [stages.qc] "
+                         f"max_gap = {max_gap:g} s, which is what may be interpolated)")
 
 
 def probes(inputs, outputs, params) -> None:
@@ -211,9 +218,10 @@ def probes(inputs, outputs, params) -> None:
     ds = qc_dataset(raw, name, th, channel_dim="probe",
                     gross_range=_span(params["probe_range"]))
     flat = ds[f"{name}_qc"].attrs["flagged_by_flat_line"] / raw.sizes["time"]
+    noise = ds[f"{name}_qc"].attrs["flagged_by_noise"] / raw.sizes["time"]
     checks.check_alive(raw[name].transpose("probe", "time").values,
                        raw["probe"].values, path, flat, params["max_flat_fraction"],
-                       " V" if name == "probe_voltage" else " m")
+                       " V" if name == "probe_voltage" else " m", noise)
     v = ds[name].transpose("probe", "time").values
     ok = ds[f"{name}_qc"].transpose("probe", "time").values != FAIL
     good = np.where(ok, v, np.nan)
@@ -239,9 +247,11 @@ def probes(inputs, outputs, params) -> None:
 def flap(inputs, outputs, params) -> None:
     from pathlib import Path
 
+    import numpy as np
     import xarray as xr
 
     from flumekit.qc import checks
+    from flumekit.qc.flags import FAIL
     from flumekit.qc.record import qc_dataset
 
     path = Path(inputs["flap"])
@@ -252,10 +262,20 @@ def flap(inputs, outputs, params) -> None:
                             ("chamber_pressure", "pressure_range", " Pa")):
         ds = qc_dataset(raw, name, th, gross_range=_span(params[rng]))
         flat = float(ds[f"{name}_qc"].attrs["flagged_by_flat_line"]) / raw.sizes["time"]
+        noise = float(ds[f"{name}_qc"].attrs["flagged_by_noise"]) / raw.sizes["time"]
         checks.check_alive(raw[name].values, [name], path, [flat],
-                           params["max_flat_fraction"], unit)
+                           params["max_flat_fraction"], unit, [noise])
         _stuck(ds, name, path, params["max_gap"])
         parts.append(ds)
+    if params.get("period") is not None:  # an irregular run declares no period
+        # the samples that passed, as for the probes' period
+        checks.check_record_period(params["period"], {
+            n.replace("_", " "): checks.dominant_period(
+                np.where(p[f"{n}_qc"].values != FAIL, p[n].values, np.nan),
+                params["sampling_rate"])
+            for p, n in zip(parts, ("encoder_counts", "chamber_pressure"), strict=True)},
+            params["period_tolerance"], path,
+            inputs.get("run") or f"run.toml of run {params['run']}")
     # on the same time axis, with attributes of their own names: no merge (its alignment
     # costs more than one channel's tests)
     ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},

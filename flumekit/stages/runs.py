@@ -102,6 +102,19 @@ def summary_rule(ctx, stage: str, version: str, module: str | None = None):
                 outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
 
 
+#: dataset attribute: newline-separated warnings (flumekit.stages.qc.WARNINGS)
+WARNINGS = "flumekit_warnings"
+
+
+def run_warnings(run: str | None, text: str) -> list[str]:
+    """The lines of a ``flumekit_warnings`` attribute, each starting with ``run <run>: `` when
+    ``run`` is given and the line does not name it already."""
+    lines = [w for w in text.splitlines() if w.strip()]
+    if not run:
+        return lines
+    return [w if run in w else f"run {run}: {w}" for w in lines]
+
+
 def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> None:
     """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
 
@@ -112,12 +125,14 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
 
     from flumekit.io.netcdf import read_dataset, write_product
 
-    rows = []
+    rows, warned = [], []
     for name in sorted(inputs):
         ds = read_dataset(inputs[name]).drop_dims(list(drop_dims), errors="ignore")
+        warned += run_warnings(name, ds.attrs.get(WARNINGS, ""))
         names = keep(ds) if keep else [v for v in ds.data_vars if ds[v].ndim == 0]
         rows.append(ds[list(names)].expand_dims("run"))
     out = xr.concat(rows, dim="run", coords="all", compat="override")
-    out.attrs = {}
+    # every run's warnings kept where a campaign is read, each naming its run once
+    out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
     write_product(out, outputs["dataset"], title,
                   f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
