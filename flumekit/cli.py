@@ -538,7 +538,12 @@ def cmd_report(args) -> int:
 
     pipe = _pipeline(args)
     t0 = time.perf_counter()
-    out = write_report(pipe.processed, out=args.out)
+    title = None
+    if (pipe.raw / "campaign.toml").is_file():
+        from flumekit.campaign import load_campaign
+
+        title = load_campaign(pipe.raw).title
+    out = write_report(pipe.processed, out=args.out, title=title)
     print(f"wrote {out} in {time.perf_counter() - t0:.2f} s (open it in a browser; no server "
           "needed)")
     return 0

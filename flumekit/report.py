@@ -30,6 +30,12 @@ CONDITIONS = (("waves_summary", "wave_period"), ("waves_summary", "wave_height")
               ("waves_summary", "measured_period"), ("waves_summary", "incident_height"),
               ("waves_summary", "reflection_coefficient"), ("flap_summary", "theta_amplitude"),
               ("flap_summary", "mean_power"), ("flap_summary", "capture_factor"))
+#: the irregular runs' sea states and performance, in the order of their table
+SEA_STATES = (("waves_summary", "wave_hm0"), ("waves_summary", "wave_tp"),
+              ("waves_summary", "wave_te"), ("waves_summary", "hm0"), ("waves_summary", "tp"),
+              ("waves_summary", "te"), ("waves_summary", "reflection_coefficient"),
+              ("waves_summary", "low_frequency_energy_fraction"),
+              ("flap_summary", "mean_power"), ("flap_summary", "capture_width_ratio"))
 IMAGE_SUFFIXES = (".png", ".svg", ".jpg", ".jpeg")
 
 _CSS = """
@@ -40,7 +46,7 @@ table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 th,td{border:1px solid #ddd;padding:.25em .6em;text-align:right}
 th{background:#f3f3f3}td.l,th.l{text-align:left}
 figure{display:inline-block;margin:.5em;vertical-align:top;max-width:100%}
-figure img{max-width:46em;width:100%;border:1px solid #eee}
+figure img{width:100%;border:1px solid #eee}
 figcaption{font-size:.85em;color:#555}
 nav a{margin-right:1em}.muted{color:#777}
 """
@@ -75,11 +81,21 @@ def _open(path: Path) -> xr.Dataset:
         return ds.load()
 
 
-def _conditions(summaries: dict[str, xr.Dataset]) -> str:
-    cols = [(d, v) for d, v in CONDITIONS if d in summaries and v in summaries[d].variables]
+def _conditions(summaries: dict[str, xr.Dataset], table=CONDITIONS, irregular=False) -> str:
+    """One row per run of the conditions ``table``: the regular runs (a target period), or
+    the irregular ones (a target Hm0)."""
+    cols = [(d, v) for d, v in table if d in summaries and v in summaries[d].variables]
     if not cols:
-        return '<p class="muted">No run summary (waves_summary.nc) in this folder.</p>'
-    runs = summaries[cols[0][0]]["run"].values
+        return ("" if irregular else
+                '<p class="muted">No run summary (waves_summary.nc) in this folder.</p>')
+    first = summaries[cols[0][0]]
+    key = "wave_hm0" if irregular else "wave_period"
+    if key in first.coords and first[key].ndim == 1:
+        runs = first["run"].values[np.isfinite(first[key].values)]
+    else:
+        runs = np.array([]) if irregular else first["run"].values
+    if runs.size == 0:
+        return ""
     header = ["run"] + [_esc(_label(summaries[d][v])) for d, v in cols]
     rows = []
     for r in runs:
@@ -114,6 +130,65 @@ def _statistics(name: str, ds: xr.Dataset) -> str:
         return ""
     return (f"<h3>{_esc(name)}</h3>"
             + _table(["variable", "quantity", "n", "mean", "std", "min", "max"], rows, left=2))
+
+
+def _power_matrix(summaries: dict[str, xr.Dataset]) -> str:
+    """The power matrix (IEC TS 62600-100): per source, the cells' mean capture width ratio
+    and mean power with their number of runs, Hm0 bins down and Te bins across."""
+    ds = summaries.get("power_matrix")
+    if ds is None or "capture_width_ratio" not in ds:
+        return ""
+    hm0, te = (d for d in ds["capture_width_ratio"].dims if d != "source")
+    out = []
+    for src in ds["source"].values:
+        cell = ds.sel(source=src)
+        header = [f"H<sub>m0</sub> [m] \\ T<sub>e</sub> [s]"] + [
+            _esc(_bin(ds, te, j)) for j in range(ds.sizes[te])]
+        rows = []
+        for i in range(ds.sizes[hm0]):
+            row = [_esc(_bin(ds, hm0, i))]
+            for j in range(ds.sizes[te]):
+                c = cell.isel({hm0: i, te: j})
+                n = int(c["run_count"]) if "run_count" in c else 0
+                row.append("" if n == 0 else
+                           f"{_fmt(float(c['capture_width_ratio']))} "
+                           f"({_fmt(float(c['mean_power']))} W, n = {n})"
+                           if "mean_power" in c else f"{_fmt(float(c['capture_width_ratio']))}")
+            rows.append(row)
+        out.append(f"<h3>{_esc(_value(src))}</h3>" + _table(header, rows))
+    return ("<p>Cells: mean capture width ratio (mean absorbed power, number of runs); the "
+            "standard deviations (ddof = 0) are in power_matrix.nc.</p>" + "".join(out))
+
+
+def _bin(ds: xr.Dataset, dim: str, i: int) -> str:
+    """'lo-hi' of bin ``i`` of ``dim`` from its CF bounds, else its centre."""
+    bounds = ds[dim].attrs.get("bounds")
+    if bounds and bounds in ds:
+        lo, hi = (float(v) for v in ds[bounds].values[i])
+        return f"{lo:.3g}-{hi:.3g}"
+    return f"{float(ds[dim].values[i]):.3g}"
+
+
+def _value(v) -> str:
+    from flumekit.figures.style import value_label
+
+    return value_label(v)
+
+
+def _notes(root: Path) -> str:
+    """Notes the per-run products carry in their attributes (a fitted parameter held at its
+    bound: the flap's pressure model of Eq. 13), one line per note with its runs."""
+    import netCDF4
+
+    where: dict[str, list[str]] = {}
+    for p in sorted((root / "flap").glob("*.nc")):
+        with netCDF4.Dataset(p) as nc:
+            note = getattr(nc, "pressure_fit_bounded", None)
+        if note:
+            where.setdefault(f"flap pressure fit (I_p, K_p of Eq. 13): {note}", []).append(p.stem)
+    if not where:
+        return '<p class="muted">No fitted parameter at a bound.</p>'
+    return _table(["note", "runs"], [[_esc(n), _esc(", ".join(r))] for n, r in where.items()])
 
 
 def _flag_counts(datasets: dict[str, xr.Dataset]) -> str:
@@ -166,10 +241,85 @@ def _figures(root: Path) -> str:
                         if q != p and q.suffix.lower() in (".pdf", ".svg"))
         links = "".join(f' <a href="{_esc(o)}">{_esc(Path(o).suffix[1:].upper())}</a>'
                         for o in others)
-        out.append(f'<figure id="{_esc(p.stem)}"><a href="{_esc(rel)}"><img src="{_esc(rel)}" '
-                   f'alt="{_esc(p.stem)}" loading="eager"></a>'
-                   f"<figcaption>{_esc(p.stem)}{links}</figcaption></figure>")
+        meta = _png_text(p) if p.suffix.lower() == ".png" else {}
+        caption = " ".join(_esc(_plain(meta[k])) for k in ("Title", "Description")
+                           if meta.get(k))
+        width = _png_width(p) if p.suffix.lower() == ".png" else None
+        size = f' style="width:{width:.2f}in"' if width else ""
+        out.append(f'<figure id="{_esc(rel)}"{size}><a href="{_esc(rel)}">'
+                   f'<img src="{_esc(rel)}" alt="{_esc(meta.get("Title", p.stem))}" '
+                   f'loading="eager"></a><figcaption>{caption or _esc(p.stem)} '
+                   f'<span class="muted">({_esc(rel)}{links})</span></figcaption></figure>')
     return "\n".join(out)
+
+
+_GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "Delta": "Δ", "eta": "η",
+          "theta": "θ", "lambda": "λ", "mu": "μ", "nu": "ν", "pi": "π", "rho": "ρ",
+          "sigma": "σ", "tau": "τ", "phi": "φ", "omega": "ω", "approx": "≈", "times": "×",
+          "langle": "⟨", "rangle": "⟩", "dot": "", "ddot": "", "mathrm": "", ",": " "}
+
+
+def _plain(text: str) -> str:
+    """A figure title or docstring sentence as plain text: matplotlib's mathtext
+    (``$H_{m0}$``) and reStructuredText markup (``:func:`x```, ````x````) undone."""
+    import re
+
+    def math(m):
+        t = re.sub(r"\\([A-Za-z]+|,)", lambda g: _GREEK.get(g.group(1), g.group(1)), m.group(1))
+        return re.sub(r"[{}]", "", t.replace("_", "").replace("^", ""))
+
+    text = re.sub(r"\$([^$]*)\$", math, text)
+    text = re.sub(r":[a-z]+:`~?([^`]*)`", lambda m: m.group(1).split(".")[-1], text)
+    return text.replace("``", "")
+
+
+def _png_chunks(path: Path):
+    """(type, data) of each chunk of a PNG file, up to its image data."""
+    import struct
+
+    with open(path, "rb") as fh:
+        if fh.read(8) != b"\x89PNG\r\n\x1a\n":
+            return
+        while True:
+            head = fh.read(8)
+            if len(head) < 8:
+                return
+            length, kind = struct.unpack(">I4s", head)
+            if kind == b"IDAT":
+                return
+            yield kind, fh.read(length)
+            fh.read(4)  # CRC
+
+
+def _png_text(path: Path) -> dict[str, str]:
+    """The text chunks of a PNG (the title and description :func:`flumekit.figures.style.save`
+    writes)."""
+    out = {}
+    for kind, data in _png_chunks(path):
+        if kind == b"tEXt" and b"\0" in data:
+            key, _, value = data.partition(b"\0")
+            out[key.decode("latin-1")] = value.decode("latin-1")
+        elif kind == b"iTXt" and b"\0" in data:
+            key, _, rest = data.partition(b"\0")
+            # compression flag and method, language tag, translated keyword, then the text
+            parts = rest[2:].split(b"\0", 2)
+            if len(parts) == 3 and rest[0] == 0:
+                out[key.decode("latin-1")] = parts[2].decode("utf-8")
+    return out
+
+
+def _png_width(path: Path) -> float | None:
+    """The printed width of a PNG [in]: its pixels over its resolution (pHYs), so that a
+    column figure shows at a column's width and a page-width one at a page's."""
+    import struct
+
+    size = dpm = None
+    for kind, data in _png_chunks(path):
+        if kind == b"IHDR":
+            size = struct.unpack(">I", data[:4])[0]
+        elif kind == b"pHYs" and data[8] == 1:  # pixels per metre
+            dpm = struct.unpack(">I", data[:4])[0]
+    return size / dpm / 0.0254 if size and dpm else None
 
 
 def _datasets(root: Path) -> str:
@@ -221,10 +371,15 @@ def write_report(processed: str | Path, out: str | Path | None = None,
     summaries = {p.stem: _open(p) for p in sorted(root.glob("*.nc"))}
     stats = "".join(_statistics(n, ds) for n, ds in summaries.items() if "run" in ds.dims)
     qc = {f"qc/{p.stem}": _open(p) for p in sorted((root / "qc").glob("*.nc"))}
+    sea = _conditions(summaries, SEA_STATES, irregular=True)
+    matrix = _power_matrix(summaries)
     sections = [
         ("conditions", "Run conditions", _conditions(summaries)),
+        *([("sea-states", "Irregular runs: sea states and capture", sea)] if sea else []),
+        *([("power-matrix", "Power matrix", matrix)] if matrix else []),
         ("statistics", "Summary statistics over the runs", stats or
          '<p class="muted">No campaign summary datasets.</p>'),
+        ("notes", "Notes on fitted parameters", _notes(root)),
         ("warnings", "Warnings", _warnings({**summaries, **qc})),
         ("qc", "Quality control", _flag_counts({**summaries, **qc})),
         ("figures", "Figures", _figures(root)),

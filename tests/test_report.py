@@ -155,3 +155,52 @@ def test_report_renders_in_headless_chromium_with_every_image(processed):
     (processed / "figures" / "fig05a.png").write_bytes(b"not a png")
     verdict, _ = render(write_report(processed))
     assert verdict["broken"] == ["figures/fig05a.png"] and verdict["errors"]
+
+
+def test_captions_from_the_figures_and_their_printed_width(tmp_path):
+    """A figure saved by flumekit carries its title and what it shows; the report captions it
+    with them (mathtext and reST markup undone) and shows it at its printed width."""
+    from flumekit.figures.style import ONE_COLUMN, TWO_COLUMNS, new_figure, save, title
+
+    root = tmp_path / "p"
+    (root / "figures").mkdir(parents=True)
+    xr.Dataset({"a": ("run", [1.0])}, coords={"run": ["r"]}).to_netcdf(root / "s.nc")
+    for name, width in (("narrow", ONE_COLUMN), ("wide", TWO_COLUMNS)):
+        fig, axes = new_figure(width=width)
+        axes[0, 0].plot([0, 1], [0, 1])
+        title(fig, f"Spectra of run r: $H_{{m0}}$ = 0.1 m, {name}")
+        save(fig, root / "figures" / f"{name}.png",
+             description="What it shows, from :func:`flumekit.waves.separate` and ``x``.")
+    page = write_report(root, title="Lab campaign 2026").read_text(encoding="utf-8")
+    assert "<h1>Lab campaign 2026</h1>" in page
+    assert "Spectra of run r: Hm0 = 0.1 m, narrow What it shows, from separate and x." in page
+    assert 'style="width:3.50in"' in page and 'style="width:7.00in"' in page
+
+
+def test_irregular_runs_and_power_matrix_tables(tmp_path):
+    """A campaign with irregular runs: their sea-state table (regular runs left out of it,
+    and irregular ones out of the regular table) and the power matrix per source."""
+    from flumekit.performance import power_matrix
+
+    root = tmp_path / "p"
+    root.mkdir()
+    runs = ["T2.00_H0.150_r0", "JS_a", "JS_b"]
+    coords = {"run": runs, "wave_period": ("run", [2.0, np.nan, np.nan]),
+              "wave_hm0": ("run", [np.nan, 0.1, 0.12])}
+    xr.Dataset({"hm0": ("run", [np.nan, 0.101, 0.119], {"units": "m", "long_name": "Hm0"}),
+                "incident_height": ("run", [0.149, np.nan, np.nan], {"units": "m"})},
+               coords=coords).to_netcdf(root / "waves_summary.nc")
+    m = power_matrix(np.array([0.101, 0.119]), np.array([1.8, 1.9]),
+                     {"capture_width_ratio": np.array([[0.2], [0.3]]),
+                      "mean_power": np.array([[2.0], [3.0]])},
+                     hm0_edges=[0.09, 0.11, 0.13], te_edges=[1.5, 2.5],
+                     sources=["experiment"])
+    m.to_netcdf(root / "power_matrix.nc")
+    page = write_report(root).read_text(encoding="utf-8")
+    sea = page.split('id="sea-states"')[1].split("<h2")[0]
+    regular = page.split('id="conditions"')[1].split("<h2")[0]
+    assert "JS_a" in sea and "JS_b" in sea and "T2.00_H0.150_r0" not in sea
+    assert "T2.00_H0.150_r0" in regular and "JS_a" not in regular
+    matrix = page.split('id="power-matrix"')[1].split("<h2")[0]
+    assert "0.09-0.11" in matrix and "1.5-2.5" in matrix
+    assert "0.2 (2 W, n = 1)" in matrix and "0.3 (3 W, n = 1)" in matrix

@@ -244,20 +244,32 @@ def legend(fig, handles=None, labels=None, ncols: int | None = None, where: str 
         return fig.legend(handles, labels, loc=loc, ncols=ncols)
 
 
-def save(fig, *paths: str | Path) -> list[Path]:
+#: the metadata keys of a figure's title and description, per format
+TEXT_KEYS = {"png": ("Title", "Description"), "pdf": ("Title", "Subject"),
+             "svg": ("Title", "Description")}
+
+
+def save(fig, *paths: str | Path, description: str | None = None) -> list[Path]:
     """Write a figure to each path atomically, in the format of its suffix (png, pdf, svg).
 
     Saved under the package style (PNG at 300 dpi) with the metadata that would carry a
-    software version or a date removed, so the same figure gives the same bytes.
+    software version or a date removed, so the same figure gives the same bytes. The figure's
+    title (its suptitle) and ``description`` (what it shows, a sentence) are written into the
+    file's metadata (:data:`TEXT_KEYS`), where the campaign report reads its captions.
     """
     from flumekit.io.atomic import atomic_path
 
+    title = fig._suptitle.get_text().replace("\n", " ") if fig._suptitle is not None else ""
     out = []
     for path in map(Path, paths):
         fmt = path.suffix.lstrip(".").lower()
         if fmt not in FORMATS:
             raise ValueError(f"{path}: figure format '{fmt}' is not one of {sorted(FORMATS)}")
+        meta = dict(FORMATS[fmt])
+        for key, text in zip(TEXT_KEYS[fmt], (title, description)):
+            if text:
+                meta[key] = text.replace("\u00a0", " ")
         with style(), atomic_path(path) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=FORMATS[fmt])
+            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=meta)
         out.append(path)
     return out

@@ -114,6 +114,14 @@ def _function(draw: str):
     return getattr(mod, name)
 
 
+def _description(fn) -> str:
+    """What a figure shows: the first paragraph of its function's docstring, on one line."""
+    import inspect
+
+    doc = inspect.getdoc(fn) or ""
+    return " ".join(doc.split("\n\n", 1)[0].split())
+
+
 def draw(inputs, outputs, params) -> None:
     import numpy as np
 
@@ -152,4 +160,4 @@ def draw(inputs, outputs, params) -> None:
             (ds,) = data.values()
             fig = fn(ds)
     assert_passes(fig, f"figure {draw}")
-    save(fig, *outputs.values())
+    save(fig, *outputs.values(), description=_description(fn))
