@@ -22,7 +22,7 @@ wavenumber, so the ramp's front disperses as it should. In numpy's convention
 
 What the separation measures at the flap is therefore R_eff(f) = R(f) + T(f)² K_b(f)
 e^{iψ_b} e^{-2ik x_b}: everything travelling towards the wavemaker at x = 0 over the incident
-wave there. Its modulus oscillates about |R(f)| with the beach's delay (±4 % at 0.4 Hz, a
+wave there. Its modulus oscillates about |R(f)| with the beach's delay (±0.05 at 0.4 Hz, a
 period of about 0.045 Hz); a Kr(f) smoothed over bands wider than that follows
 sqrt(Σ S_R / Σ S_I) of the truth's spectra over the same bands. Waves re-reflected between the
 flap and the beach (order R K_b) and at the wavemaker (active absorption), and second-order
