@@ -22,7 +22,7 @@ wavenumber, so the ramp's front disperses as it should. In numpy's convention
 
 What the separation measures at the flap is therefore R_eff(f) = R(f) + T(f)² K_b(f)
 e^{iψ_b} e^{-2ik x_b}: everything travelling towards the wavemaker at x = 0 over the incident
-wave there. Its modulus oscillates about |R(f)| with the beach's delay (±4 % at 0.4 Hz, a
+wave there. Its modulus oscillates about |R(f)| with the beach's delay (±0.05 at 0.4 Hz, a
 period of about 0.045 Hz); a Kr(f) smoothed over bands wider than that follows
 sqrt(Σ S_R / Σ S_I) of the truth's spectra over the same bands. Waves re-reflected between the
 flap and the beach (order R K_b) and at the wavemaker (active absorption), and second-order
@@ -337,8 +337,8 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
 
 
 def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float], *,
-                    depth: float, reflection: Callable, f_max: float, rho: float = 1000.0,
-                    g: float = G) -> xr.Dataset:
+                    depth: float, f_max: float, reflection: Callable | None = None,
+                    rho: float = 1000.0, g: float = G) -> xr.Dataset:
     """The realised sea state of an analysed span at the flap: spectra and their parameters.
 
     Parameters
@@ -352,10 +352,12 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
         [start, end) [s] of the analysed span.
     depth : float
         Water depth [m].
-    reflection : callable
-        f -> R_eff(f), the returning wave's complex amplitude over the incident one at x = 0.
     f_max : float
         Highest frequency kept [Hz] (above it the sea holds no energy).
+    reflection : callable, optional
+        f -> R_eff(f), the returning wave's complex amplitude over the incident one at x = 0;
+        without it the dataset has no ``reflection_*_spectrum``. (To recompute the truth of a
+        virtual run over another span: the series at x = 0 are in ``truth/<run>/flap.nc``.)
     rho : float
         Water density [kg m-3].
     g : float
@@ -371,6 +373,7 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
         ``reflection_coefficient_spectrum`` |R_eff(f)| and ``reflection_phase_spectrum``.
         Attributes: ``hm0`` = 4 sqrt(m0), ``energy_period`` Te = Tm-1,0 = m-1/m0,
         ``peak_period`` Tp (the periodogram's largest bin), ``mean_period`` Tm01,
+        ``zero_crossing_period`` Tm02,
         ``reflection_coefficient`` (bulk, sqrt(m0R/m0I)), ``reflected_hm0``,
         ``energy_flux`` J = ρ g Σ S_I c_g Δf [W m-1], ``energy_band_low``/``_high`` (the
         band holding the central 90 % of the incident variance) [Hz], ``analysis_start``,
@@ -380,8 +383,8 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
     -----
     The periodogram of the span with a rectangular window: over a span of whole repeat
     periods of the wavemaker's signal each component falls on one bin, so the spectrum holds
-    the components' exact amplitudes. Te = m-1/m0 and Tm01 = m0/m1 with m_j = Σ f^j S Δf
-    (IEC TS 62600-100, 2012); c_g of linear theory in finite depth.
+    the components' exact amplitudes. Te = m-1/m0, Tm01 = m0/m1 and Tm02 = sqrt(m0/m2) with
+    m_j = Σ f^j S Δf (IEC TS 62600-100, 2012); c_g of linear theory in finite depth.
 
     Examples
     --------
@@ -409,17 +412,20 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
     m0, m0r = float(s_i.sum() * df), float(s_r.sum() * df)
     cum = np.cumsum(s_i) / s_i.sum()
     cg = group_velocity(1.0 / f, depth, g)
-    r_eff = reflection(f)
+    design = {}
+    if reflection is not None:
+        r_eff = reflection(f)
+        design = {"reflection_coefficient_spectrum": ("frequency", np.abs(r_eff)),
+                  "reflection_phase_spectrum": ("frequency", np.angle(r_eff))}
     ds = xr.Dataset(
         {"spectrum_incident": ("frequency", s_i), "spectrum_reflected": ("frequency", s_r),
          "incident_spectral_amplitude": ("frequency", a_i),
-         "incident_spectral_phase": ("frequency", np.angle(ci)),
-         "reflection_coefficient_spectrum": ("frequency", np.abs(r_eff)),
-         "reflection_phase_spectrum": ("frequency", np.angle(r_eff))},
+         "incident_spectral_phase": ("frequency", np.angle(ci)), **design},
         coords={"frequency": f},
         attrs={"hm0": float(4 * np.sqrt(m0)),
                "energy_period": float((s_i / f).sum() * df / m0),
                "mean_period": float(m0 / ((s_i * f).sum() * df)),
+               "zero_crossing_period": float(np.sqrt(m0 / ((s_i * f**2).sum() * df))),
                "peak_period": float(1.0 / f[np.argmax(s_i)]),
                "reflection_coefficient": float(np.sqrt(m0r / m0)),
                "reflected_hm0": float(4 * np.sqrt(m0r)),

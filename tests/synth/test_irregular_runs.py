@@ -24,6 +24,7 @@ import xarray as xr
 from flumekit.campaign import load_campaign
 from flumekit.synth.campaign import Truth, plan_runs, write_virtual_base, write_virtual_run
 from flumekit.synth.flap import flap_scattering, radiation_damping
+from flumekit.synth.irregular import sea_state_truth
 from flumekit.synth.waves import jonswap
 from flumekit.waves import separate
 from flumekit.waves.layout import check_layout
@@ -106,6 +107,14 @@ def test_realised_incident_sea_state_matches_the_target(campaign):
         assert hm0 == pytest.approx(0.10, rel=0.01)
         s = w.spectrum_incident.values
         assert 4 * np.sqrt(s.sum() * df) == pytest.approx(hm0, rel=1e-6)
+        # the truth of waves.nc is that of flap.nc's series at x = 0 over the span
+        again = sea_state_truth(t, fl.eta_incident.values,
+                                fl.eta_reflected.values + fl.eta_beach.values,
+                                (w.attrs["analysis_start"], w.attrs["analysis_end"]),
+                                depth=0.825, f_max=f[-1])
+        assert np.array_equal(again.spectrum_incident.values, s)
+        assert np.array_equal(again.spectrum_reflected.values, w.spectrum_reflected.values)
+        assert again.attrs["reflection_coefficient"] == w.attrs["reflection_coefficient"]
         te_target = (target / f).sum() / target.sum()
         assert w.attrs["energy_period"] == pytest.approx(te_target, rel=0.005)
         assert w.attrs["energy_period"] == pytest.approx((s / f).sum() / s.sum(), rel=1e-9)
