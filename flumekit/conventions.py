@@ -472,10 +472,3 @@ def content_digest(ds: xr.Dataset) -> str:
     h.update(json.dumps({str(k): str(v) for k, v in sorted(ds.attrs.items())
                          if k not in PROVENANCE_ATTRS}).encode())
     return h.hexdigest()
-
-
-def record_written(path, digest: str) -> None:
-    """Tell the rule being built the content digest of a file it wrote."""
-    prov = _PROVENANCE.get()
-    if prov is not None:
-        prov.setdefault("written", {})[str(path)] = digest

@@ -23,8 +23,9 @@ Integrator: fixed-step exponential Runge-Kutta ETDRK4 (Cox & Matthews 2002): cla
 (θ, θ̇) and the exact exponential propagation of the radiation modes, so fast radiation poles
 set no step limit (module notes of :mod:`flumekit.flap.simulator` for the PTO's own stiff
 states). The Runge-Kutta step is written once; each radiation model is its own memory
-integrator (:mod:`flumekit.hydro.memory`) that gives the memory torque at the four stages. The loop over steps is plain Python on floats (numpy calls per step cost more than
-the step); everything else is vectorised per chunk of steps.
+integrator (:mod:`flumekit.hydro.memory`) that gives the memory torque at the four stages. The
+loop over steps is plain Python on floats (numpy calls per step cost more than the step);
+everything else is vectorised per chunk of steps.
 
 Energy balance. With the stored energy E = ½ (I + A∞) θ̇² + V(θ) (V = ½ C θ², or
 C (1 − cos θ) for the sine law) the equation of motion gives

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
+
 
 def run_params(run) -> dict:
     """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses),
@@ -22,14 +24,15 @@ def run_coords(params: dict) -> dict:
 
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
-              compress: bool = True, coords: bool = True) -> None:
+              compress: bool = True, coords: bool = True) -> Written:
     """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
     and the start of its time axis: the one its record carries (from the raw file, through
     every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
     domain function made it from plain numbers), else the one run.toml declares (``start``).
     ``compress``: as :func:`flumekit.io.netcdf.write_dataset`. ``coords=False``: no run
     coordinates (a product that no summary stacks along ``run``; each variable costs 0.5-1 ms
-    to write, and its title and parameters name the run)."""
+    to write, and its title and parameters name the run). Returns the written file
+    (:class:`~flumekit.io.atomic.Written`), for the action to return to its rule."""
     from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
@@ -43,8 +46,8 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
     declared = params.get("start")
     if declared and "time" in ds.coords:
         ds = _declared_start(ds, declared, params["run"])
-    write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params,
-                  compress=compress)
+    return write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source,
+                         params, compress=compress)
 
 
 def _declared_start(ds, declared: str, run: str):
@@ -82,7 +85,7 @@ def summary_rule(ctx, stage: str, version: str, module: str | None = None):
                 outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
 
 
-def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> None:
+def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:
     """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
 
     ``keep(ds)`` names the variables to keep (default: every scalar); ``drop_dims`` are dropped
@@ -99,5 +102,5 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
         rows.append(ds[list(names)].expand_dims("run"))
     out = xr.concat(rows, dim="run", coords="all", compat="override")
     out.attrs = {}
-    write_product(out, outputs["dataset"], title,
-                  f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
+    return write_product(out, outputs["dataset"], title,
+                         f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})

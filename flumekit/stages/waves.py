@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
@@ -48,7 +49,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> Written:
     import warnings
 
     from flumekit.errors import InputError
@@ -86,8 +87,8 @@ def build(inputs, outputs, params) -> None:
     warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), warned) if w]
     if warnings_:
         ds.attrs[WARNINGS] = "\n".join(warnings_)
-    write_run(ds, outputs, params, "Incident and reflected waves",
-              f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
+    return write_run(ds, outputs, params, "Incident and reflected waves",
+                     f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
 
 
 def report(path) -> str:
@@ -102,5 +103,5 @@ def report(path) -> str:
             f"{int(ds.steady_cycles)} steady cycles ({crit} criterion)")
 
 
-def summary(inputs, outputs, params) -> None:
-    stack_runs(inputs, outputs, "Wave statistics of every run")
+def summary(inputs, outputs, params) -> Written:
+    return stack_runs(inputs, outputs, "Wave statistics of every run")
