@@ -31,6 +31,7 @@ from flumekit.errors import InputError
 from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
+from flumekit.synth import DEFAULT_SEED, MARKER
 from flumekit.synth.flume import RepeatScatter
 from flumekit.synth.waves import RAMP_WAVES, Beach
 from flumekit.waves.theory import group_velocity, wavelength
@@ -99,9 +100,6 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-#: marker of a campaign folder the virtual flume wrote: its size, seed and planned runs. Only a
-#: folder holding it is ever completed run by run (:func:`write_virtual_run`).
-MARKER = ".flumekit-virtual.json"
 
 
 @dataclass(frozen=True)
@@ -132,7 +130,7 @@ def plan_runs(size: str) -> list[RunSpec]:
     return out
 
 
-def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
+def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SEED,
                    truth: Truth = Truth(), progress=None) -> Campaign:
     """Write a virtual-flume campaign to ``root`` and return it.
 
