@@ -42,76 +42,10 @@ def _pipeline(args):
     return load_pipeline(path, processed=getattr(args, "processed", None))
 
 
-def _graph_key(pipe) -> tuple[str | None, tuple | None]:
-    """The key of the pipeline's graph (:func:`flumekit.pipeline.cache.graph_key`: every file
-    its rules are made of, the pipeline, the code), and how the virtual flume is to synthesise
-    the campaign (None: the campaign is there). A campaign the virtual flume is to write
-    (``[synth]`` in the pipeline, and its raw folder absent, empty or partly synthesised) is
-    planned from the virtual flume's design."""
-    import json
-    import os
-
-    from flumekit.pipeline.cache import graph_key
-    from flumekit.stages import virtual
-
-    raw = pipe.raw
-    marker = raw / virtual.MARKER
-    lazy = None
-    if (raw / "campaign.toml").exists():
-        if marker.is_file():
-            info = json.loads(marker.read_text())
-            if not all((raw / "runs" / r / "run.toml").exists() for r in info["runs"]):
-                lazy = info["size"], int(info["seed"])
-    else:
-        # The virtual flume is written only into an absent or empty folder: a raw path one
-        # folder off or a renamed campaign.toml must never cost a laboratory its files.
-        empty = not raw.exists() or (raw.is_dir() and not any(raw.iterdir()))
-        if not (pipe.synth and empty):
-            why = ("" if empty else "; the folder holds other files, so no virtual campaign is "
-                   "written there (nothing was changed)")
-            raise FlumekitError(f"{raw / 'campaign.toml'}: campaign file not found{why}. "
-                                f"Check 'raw' in {pipe.path}")
-        lazy = pipe.synth.get("size", "default"), int(pipe.synth.get("seed", 0))
-    # every file the rules are made of (load_campaign reads runs/*/run.toml); strings, not
-    # Paths, for the 141 runs of the paper campaign
-    runs = os.path.join(raw, "runs")
-    try:
-        names = sorted(os.listdir(runs))
-    except (FileNotFoundError, NotADirectoryError):
-        names = []
-    files = [raw / "campaign.toml", marker, *(os.path.join(runs, r, "run.toml") for r in names)]
-    try:
-        key = graph_key(files, [str(raw), str(pipe.processed), pipe.stages, pipe.synth, lazy])
-    except OSError:  # a run.toml that is a folder, an unreadable file: load_campaign says so
-        key = None
-    return key, lazy
-
-
 def _graph(pipe, key_lazy: tuple | None = None):
-    """The pipeline's graph, from its cache while nothing it is made of changed; with rules
-    that synthesise only the raw files a requested target reads when the virtual flume is to
-    write the campaign. Planning writes nothing but the cache."""
-    from flumekit.pipeline.cache import cached_graph
+    from flumekit.stages.plan import pipeline_graph
 
-    key, lazy = key_lazy or _graph_key(pipe)
-    return cached_graph(pipe.processed / ".flumekit-graph.pickle", key,
-                        lambda: _build_rules(pipe, lazy))
-
-
-def _build_rules(pipe, lazy):
-    from flumekit.campaign import load_campaign
-    from flumekit.stages import build_rules, check_stage_params, virtual
-    from flumekit.stages.context import Context
-
-    check_stage_params(pipe.stages, pipe.path)
-    if lazy is None:
-        return build_rules(Context(campaign=load_campaign(pipe.raw), processed=pipe.processed,
-                                   params=pipe.stages))
-    from flumekit.synth.campaign import virtual_campaign
-
-    campaign = virtual_campaign(pipe.raw, *lazy)
-    rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages))
-    return rules + virtual.rules(rules, pipe.raw, *lazy, [r.id for r in campaign.runs])
+    return pipeline_graph(pipe, key_lazy)
 
 
 def _targets(pipe, graph, names: list[str]) -> list[str]:
@@ -134,10 +68,7 @@ def _events(args):
         return Events(lambda s: None)
     if sys.stderr.isatty():
         return _BarEvents(verbose=level >= 2)
-    ev = Events()
-    if level < 2:
-        ev.finished = lambda target, seconds: None
-    return ev
+    return Events(finished=level >= 2)
 
 
 class _BarEvents:
@@ -214,7 +145,7 @@ def cmd_make(args) -> int:
         orphans = remove_orphans(pipe.processed)
         if orphans:
             _say(args, 2, f"removed {len(orphans)} temporary file(s) of an interrupted build")
-        key, lazy = _graph_key(pipe)
+        key, lazy = cache.pipeline_key(pipe)
         # what was asked: a make asked the same, with nothing changed since, has nothing to do
         stamp = pipe.processed / ".flumekit-up-to-date.json"
         request = (None if key is None or args.force or args.forceall
@@ -375,20 +306,11 @@ def cmd_list(args) -> int:
 
 def cmd_graph(args) -> int:
     """The dependency graph of the targets (default: every scene) as DOT or Mermaid."""
+    from flumekit.pipeline.render import render
+
     pipe = _pipeline(args)
     graph = _graph(pipe)
-    nodes = graph.closure(_targets(pipe, graph, args.targets))
-    ids = {t: f"n{i}" for i, t in enumerate(nodes)}
-    if args.format == "dot":
-        lines = ["digraph flumekit {", "  rankdir=LR;", "  node [shape=box];"]
-        lines += [f'  {ids[t]} [label="{t}"];' for t in nodes]
-        lines += [f"  {ids[d]} -> {ids[t]};" for t in nodes for d in graph.deps(t)]
-        lines.append("}")
-    else:
-        lines = ["flowchart LR"]
-        lines += [f'  {ids[t]}["{t}"]' for t in nodes]
-        lines += [f"  {ids[d]} --> {ids[t]}" for t in nodes for d in graph.deps(t)]
-    print("\n".join(lines))
+    print(render(graph, graph.closure(_targets(pipe, graph, args.targets)), args.format))
     return 0
 
 
@@ -398,33 +320,26 @@ def cmd_clean(args) -> int:
     Only files the pipeline declares as outputs under the processed folder are removed; raw
     data (and the virtual flume's synthesised campaign) is never touched.
     """
+    from flumekit.pipeline.engine import remove_outputs
     from flumekit.pipeline.lock import build_lock
     from flumekit.pipeline.state import State
 
     pipe = _pipeline(args)
     graph = _graph(pipe)
     targets = _targets(pipe, graph, args.targets) if args.targets else list(graph.rules)
-    removed = 0
     with build_lock(pipe.processed, say=lambda s: _say(args, 0, s)):
         state = State(pipe.state_file)
-        for t in targets:
-            rule = graph.rules[t]
-            if rule.source:
-                continue
-            for p in rule.outputs.values():
-                p = Path(p)
-                if p.is_file() and p.resolve().is_relative_to(pipe.processed.resolve()):
-                    if args.dry_run:
-                        print(f"would remove {p}")
-                    else:
-                        p.unlink()
-                    removed += 1
-            if not args.dry_run:
-                state.targets.pop(t, None)
+        removed = remove_outputs(graph, state, targets, within=pipe.processed,
+                                 dry_run=args.dry_run)
         if not args.dry_run:
             state.save()
+    files = [p for t in targets for p in removed.get(t, [])]
+    if args.dry_run:
+        for p in files:
+            print(f"would remove {p}")
     verb = "would remove" if args.dry_run else "removed"
-    _say(args, 0, f"{verb} {removed} file(s) of {len(targets)} target(s) under {pipe.processed}")
+    _say(args, 0, f"{verb} {len(files)} file(s) of {len(targets)} target(s) under "
+                  f"{pipe.processed}")
     return 0
 
 
@@ -483,7 +398,7 @@ def cmd_params(args) -> int:
 def cmd_clock(args) -> int:
     """Estimate (never apply) an instrument's clock offset from a signal two instruments share."""
     from flumekit.campaign import load_campaign
-    from flumekit.io.instruments import read_flap, read_probes
+    from flumekit.io.instruments import FLAP_VARIABLES, read_flap, read_probes
     from flumekit.signal import estimate_time_offset
 
     pipe = _pipeline(args)
@@ -500,11 +415,11 @@ def cmd_clock(args) -> int:
                              c.dialect("probes"), units=c.probes.units)
             v = next(iter(ds.data_vars.values())).sel(probe=name)
             return v.values, ds["time"].values
-        if inst == "flap" and c.encoder and name in ("encoder", "pressure"):
+        if inst == "flap" and c.encoder and name in FLAP_VARIABLES:
             ds = read_flap(run.file("flap"), c.encoder.sampling_rate, c.dialect("flap"))
-            v = ds["encoder_counts" if name == "encoder" else "chamber_pressure"]
-            return v.values.astype(float), ds["time"].values
-        raise FlumekitError(f"unknown channel {spec!r}: probes:<probe> or flap:encoder|pressure")
+            return ds[FLAP_VARIABLES[name]].values.astype(float), ds["time"].values
+        raise FlumekitError(f"unknown channel {spec!r}: probes:<probe> or "
+                            f"flap:{'|'.join(FLAP_VARIABLES)}")
 
     (a, ta), (b, tb) = channel(args.reference), channel(args.other)
     offset = estimate_time_offset(a, ta, b, tb)
@@ -520,16 +435,11 @@ def cmd_clock(args) -> int:
 def cmd_bench(args) -> int:
     import importlib
 
-    try:
-        mod = importlib.import_module(f"flumekit.bench.{args.area}")
-    except ModuleNotFoundError:
-        import pkgutil
+    from flumekit.bench import areas
 
-        import flumekit.bench as b
-
-        areas = [m.name for m in pkgutil.iter_modules(b.__path__)]
-        raise FlumekitError(f"no benchmark '{args.area}'; available: {', '.join(areas)}") from None
-    print(mod.run(quick=args.quick))
+    if args.area not in areas():
+        raise FlumekitError(f"no benchmark '{args.area}'; available: {', '.join(areas())}")
+    print(importlib.import_module(f"flumekit.bench.{args.area}").run(quick=args.quick))
     return 0
 
 
@@ -569,6 +479,9 @@ def _global_options(sub: bool) -> argparse.ArgumentParser:
 
 
 def parser() -> argparse.ArgumentParser:
+    from flumekit.bench import areas as bench_areas
+    from flumekit.synth import DEFAULT_SEED
+
     p = argparse.ArgumentParser(prog="flumekit", description=__doc__,
                                 parents=[_global_options(sub=False)])
     p.add_argument("--version", action="version", version=f"flumekit {_version()}")
@@ -623,7 +536,8 @@ def parser() -> argparse.ArgumentParser:
     s = sub.add_parser("synth", help="write a virtual-flume raw campaign and its truth",
                        parents=common)
     s.add_argument("--size", choices=("small", "default", "paper"), default="small")
-    s.add_argument("--seed", type=int, default=2020)
+    s.add_argument("--seed", type=int, default=DEFAULT_SEED,
+                   help=f"random seed (default {DEFAULT_SEED}, as the shipped pipelines)")
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
@@ -653,8 +567,8 @@ def parser() -> argparse.ArgumentParser:
     r.set_defaults(func=cmd_report)
 
     b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks", parents=common)
-    b.add_argument("area", help="waves, flap, uvp, renzi_dias, simulator, ballscrew, pipeline")
-    b.add_argument("--quick", action="store_true")
+    b.add_argument("area", help=", ".join(bench_areas()))
+    b.add_argument("--quick", action="store_true", help="shorter runs, fewer cases")
     b.set_defaults(func=cmd_bench)
     return p
 

@@ -131,8 +131,9 @@ VARIABLES: dict[str, Variable] = {
     "steady_cycles": _V("1", "number of wave cycles in the quasi-steady window"),
     "analysis_start": _V("s", "start of the analysed span of an irregular run"),
     "analysis_end": _V("s", "end of the analysed span of an irregular run"),
-    "reflection_coefficient_spectrum": _V("1", "reflection coefficient per frequency band "
-                                          "Kr(f) = sqrt(S_R / S_I)"),
+    "reflection_coefficient_spectrum": _V("1", "reflection coefficient per frequency Kr(f): "
+                                          "the returning wave over the incident one "
+                                          "(sqrt(S_R / S_I) over a band)"),
     "low_frequency_energy_fraction": _V("1", "share of the records' variance below half the "
                                         "peak frequency"),
     "reflected_hm0": _V("m", "spectral significant height Hm0 of the reflected wave"),
@@ -436,8 +437,6 @@ VARIABLES: dict[str, Variable] = {
                                       "at the flap"),
     "incident_spectral_phase": _V("rad", "phase of the incident wave's Fourier component at "
                                   "the flap, eta = a cos(2 pi f (t - start) + phase)"),
-    "reflection_coefficient_spectrum": _V("1", "reflection coefficient Kr(f) of everything "
-                                          "returning to the wavemaker at the flap"),
     "reflection_phase_spectrum": _V("rad", "phase of the returning wave over the incident wave "
                                     "at the flap"),
     "flap_reflection_coefficient_spectrum": _V("1", "reflection coefficient of the flap alone"),
@@ -583,10 +582,3 @@ def content_digest(ds: xr.Dataset) -> str:
     h.update(json.dumps({str(k): str(v) for k, v in sorted(ds.attrs.items())
                          if k not in PROVENANCE_ATTRS}).encode())
     return h.hexdigest()
-
-
-def record_written(path, digest: str) -> None:
-    """Tell the rule being built the content digest of a file it wrote."""
-    prov = _PROVENANCE.get()
-    if prov is not None:
-        prov.setdefault("written", {})[str(path)] = digest

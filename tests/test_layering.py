@@ -219,3 +219,122 @@ def test_violations_are_named(source, module, expected):
 ])
 def test_allowed_imports_pass(source, module):
     assert violations(source, module, NAMES) == []
+
+
+def imported_modules(source: str, module: str, modules: set[str],
+                     is_package: bool = False) -> dict[str, int]:
+    """The ``flumekit`` modules one module's source imports, at module level or inside a
+    function: module name -> first line. ``from pkg import sub`` names the submodule ``sub``;
+    ``from pkg import name`` names ``pkg``."""
+    out: dict[str, int] = {}
+
+    def add(target: str, line: int) -> None:
+        if (target == "flumekit" or target.startswith("flumekit.")) and target != module:
+            out.setdefault(target, line)
+
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                add(a.name, node.lineno)
+        elif isinstance(node, ast.ImportFrom):
+            target = _resolve(node, module, is_package)
+            for a in node.names:
+                full = f"{target}.{a.name}"
+                add(full if full in modules else target, node.lineno)
+    return out
+
+
+def import_cycles(graph: dict[str, dict[str, int]]) -> list[list[str]]:
+    """One cycle (a list of modules, the first repeated at the end) in every strongly connected
+    component of more than one module of the import ``graph`` (Tarjan 1972, iterative)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    components: list[list[str]] = []
+    for root in sorted(graph):
+        if root in index:
+            continue
+        work = [(root, iter(sorted(graph.get(root, ()))))]
+        index[root] = low[root] = len(index)
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, children = work[-1]
+            for child in children:
+                if child not in graph:
+                    continue
+                if child not in index:
+                    index[child] = low[child] = len(index)
+                    stack.append(child)
+                    on_stack.add(child)
+                    work.append((child, iter(sorted(graph[child]))))
+                    break
+                if child in on_stack:
+                    low[node] = min(low[node], index[child])
+            else:
+                work.pop()
+                if work:
+                    low[work[-1][0]] = min(low[work[-1][0]], low[node])
+                if low[node] == index[node]:
+                    comp = []
+                    while True:
+                        m = stack.pop()
+                        on_stack.discard(m)
+                        comp.append(m)
+                        if m == node:
+                            break
+                    if len(comp) > 1:
+                        components.append(sorted(comp))
+    cycles = []
+    for comp in components:
+        members, start = set(comp), comp[0]
+        # shortest path back to the start within the component (breadth first)
+        previous = {start: None}
+        queue, end = [start], None
+        while queue and end is None:
+            node = queue.pop(0)
+            for child in sorted(graph[node]):
+                if child == start:
+                    end = node
+                    break
+                if child in members and child not in previous:
+                    previous[child] = node
+                    queue.append(child)
+        path = [start]
+        while end is not None:
+            path.insert(1, end)
+            end = previous[end]
+        cycles.append(path[:1] + path[2:] + [start] if len(path) > 1 else path)
+    return cycles
+
+
+def _cycle_text(cycle: list[str], graph: dict[str, dict[str, int]]) -> str:
+    return " -> ".join(f"{a} (line {graph[a][b]})" for a, b in zip(cycle, cycle[1:])) + \
+        f" -> {cycle[-1]}"
+
+
+def test_no_import_cycles():
+    modules = all_modules()
+    names = set(modules)
+    graph = {name: imported_modules(path.read_text(encoding="utf-8"), name, names,
+                                    is_package=path.name == "__init__.py")
+             for name, path in modules.items()}
+    cycles = import_cycles(graph)
+    assert not cycles, "import cycles between flumekit modules (move the shared names to a " \
+        "module both sides can import):\n" + "\n".join(_cycle_text(c, graph) for c in cycles)
+
+
+def test_cycles_are_named():
+    names = {"flumekit.a", "flumekit.b", "flumekit.c", "flumekit.d"}
+    sources = {"flumekit.a": "from flumekit.b import x",
+               "flumekit.b": "def f():\n    from flumekit import c",
+               "flumekit.c": "import flumekit.a\nfrom flumekit.d import y",
+               "flumekit.d": "import numpy"}
+    graph = {m: imported_modules(s, m, names) for m, s in sources.items()}
+    cycles = import_cycles(graph)
+    assert cycles == [["flumekit.a", "flumekit.b", "flumekit.c", "flumekit.a"]]
+    assert _cycle_text(cycles[0], graph) == ("flumekit.a (line 1) -> flumekit.b (line 2) -> "
+                                             "flumekit.c (line 1) -> flumekit.a")
+    del graph["flumekit.c"]["flumekit.a"]
+    assert import_cycles(graph) == []

@@ -24,52 +24,13 @@ import numpy as np
 import xarray as xr
 
 from flumekit.errors import InputError
+from flumekit.hydro.bem_layout import (
+    excitation_of,
+    frequency_dim,
+    merge_complex_dim,
+    select_direction,
+)
 from flumekit.hydro.rigid_body import DOFS, rigid_body_dataset
-
-_FREQ_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
-
-
-def merge_complex_dim(ds: xr.Dataset) -> xr.Dataset:
-    """Join variables split along a ``complex`` ("re", "im") dimension into complex values."""
-    if "complex" not in ds.dims:
-        return ds
-    ds = ds.copy()
-    for name in [n for n in ds.data_vars if "complex" in ds[n].dims]:
-        ds[name] = ds[name].sel(complex="re") + 1j * ds[name].sel(complex="im")
-    return ds.drop_dims("complex", errors="ignore").drop_vars("complex", errors="ignore")
-
-
-def frequency_dim(ds: xr.Dataset) -> str:
-    """Capytaine's frequency dimension, which must carry an ``omega`` coordinate."""
-    fdim = next((d for d in _FREQ_DIMS if d in ds.dims), None)
-    if fdim is None:
-        raise ValueError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one "
-                         f"of {list(_FREQ_DIMS)}")
-    if "omega" not in ds.coords:
-        raise ValueError(f"the dataset has frequency dim '{fdim}' but no 'omega' coordinate")
-    return fdim
-
-
-def select_direction(da: xr.DataArray, wave_direction: float) -> xr.DataArray:
-    """``da`` at the incident direction ``wave_direction`` [rad] (modulo 2π), if it has one."""
-    if "wave_direction" not in da.dims:
-        return da
-    dirs = da["wave_direction"].values.astype(float)
-    gap = np.abs(np.angle(np.exp(1j * (dirs - wave_direction))))
-    if gap.min() > 1e-6:
-        raise ValueError(f"wave direction {wave_direction} rad not computed; "
-                         f"available: {dirs.tolist()}")
-    return da.isel(wave_direction=int(np.argmin(gap)))
-
-
-def excitation_of(ds: xr.Dataset) -> xr.DataArray:
-    """``excitation_force``, or ``diffraction_force`` + ``Froude_Krylov_force``."""
-    if "excitation_force" in ds:
-        return ds["excitation_force"]
-    if "diffraction_force" in ds and "Froude_Krylov_force" in ds:
-        return ds["diffraction_force"] + ds["Froude_Krylov_force"]
-    raise ValueError("the Capytaine dataset has neither 'excitation_force' nor "
-                     "'diffraction_force' + 'Froude_Krylov_force'")
 
 
 def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,

@@ -249,7 +249,7 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     :func:`flumekit.hydro.capytaine.read_capytaine` and
     :func:`flumekit.hydro.rigid_body.about_hinge` instead.
     """
-    from flumekit.hydro.capytaine import (
+    from flumekit.hydro.bem_layout import (
         excitation_of,
         frequency_dim,
         merge_complex_dim,

@@ -22,8 +22,10 @@ T_exc over ``time``.
 Integrator: fixed-step exponential Runge-Kutta ETDRK4 (Cox & Matthews 2002): classical RK4 for
 (θ, θ̇) and the exact exponential propagation of the radiation modes, so fast radiation poles
 set no step limit (module notes of :mod:`flumekit.flap.simulator` for the PTO's own stiff
-states). The loop over steps is plain Python on floats (numpy calls per step cost more than
-the step); everything else is vectorised per chunk of steps.
+states). The Runge-Kutta step is written once; each radiation model is its own memory
+integrator (:mod:`flumekit.hydro.memory`) that gives the memory torque at the four stages. The
+loop over steps is plain Python on floats (numpy calls per step cost more than the step);
+everything else is vectorised per chunk of steps.
 
 Energy balance. With the stored energy E = ½ (I + A∞) θ̇² + V(θ) (V = ½ C θ², or
 C (1 − cos θ) for the sine law) the equation of motion gives
@@ -58,7 +60,6 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from operator import mul
 from typing import NamedTuple, Protocol
 
 import numpy as np
@@ -69,9 +70,8 @@ from flumekit import conventions
 from flumekit.errors import FlumekitError
 from flumekit.hydro.coefficients import check_passive
 from flumekit.hydro.excitation import excitation_torque, transfer_function
+from flumekit.hydro.memory import memory_integrator
 from flumekit.hydro.radiation import StateSpace
-
-DIM = "angular_frequency"
 
 
 class SimulationError(FlumekitError, RuntimeError):
@@ -324,58 +324,6 @@ def excitation_series(excitation: xr.DataArray):
 
 # --- the integrator --------------------------------------------------------------------------
 
-def _phi(z: np.ndarray, k: int) -> np.ndarray:
-    """φ_k(z) = Σ_j z^j/(j+k)!  (φ1 = (e^z − 1)/z, ...), series for |z| < 1."""
-    z = np.asarray(z, dtype=complex)
-    out = np.empty_like(z)
-    small = np.abs(z) < 1.0
-    zs = z[small]
-    acc = np.zeros_like(zs)
-    term = np.full_like(zs, 1.0 / math.factorial(k))
-    for j in range(30):
-        acc += term
-        term = term * zs / (j + k + 1)
-    out[small] = acc
-    zl = z[~small]
-    e = np.exp(zl)
-    poly = sum(zl**j / math.factorial(j) for j in range(k))
-    out[~small] = (e - poly) / zl**k
-    return out
-
-
-def _modal(ss: StateSpace, h: float) -> dict:
-    """Exponential-update weights of the radiation modes for step h (Cox & Matthews 2002)."""
-    lam, c = np.asarray(ss.poles, complex), np.asarray(ss.residues, complex)
-    z, zh = lam * h, lam * h / 2
-    p1, p2, p3 = _phi(z, 1), _phi(z, 2), _phi(z, 3)
-    q1 = _phi(zh, 1)
-    e, eh = np.exp(z), np.exp(zh)
-    # x(h) = e^z x + h[(φ1 − 3φ2 + 4φ3) u0 + (4φ2 − 8φ3) um + (4φ3 − φ2) u1]: exact for the
-    # quadratic θ̇ through u0, um = (θ̇_a + θ̇_b)/2, u1 = θ̇_c (the final step of ETDRK4);
-    # the stages x_a = e^{z/2} x + (h/2) φ1(z/2) θ̇_n, x_b likewise with θ̇_a,
-    # x_c = e^{z/2} x_a + (h/2) φ1(z/2)(2 θ̇_b − θ̇_n), so the memory torque Re Σ c x at the
-    # stages is Re Σ c e^{z/2} x (or c e^z x) plus scalar multiples of the stage velocities.
-    # The modal states are scaled, y_k = c_k x_k (μ = Re Σ y_k), so the weights carry c_k.
-    return {"e0": e.tolist(), "eh": eh.tolist(),
-            "qa": (c * h * (p1 - 3 * p2 + 4 * p3)).tolist(),
-            "qm": (c * h * (4 * p2 - 8 * p3)).tolist(), "qb": (c * h * (4 * p3 - p2)).tolist(),
-            "g2": float(np.real(np.sum(c * h / 2 * q1))),
-            "g4a": float(np.real(np.sum(c * eh * h / 2 * q1))), "n": int(lam.size)}
-
-
-def _convolution(irf: xr.DataArray, h: float, n_steps: int) -> dict:
-    """Kernel samples for the trapezoidal memory integral on the step grid."""
-    lag = irf["lag"].values
-    m = math.floor(float(lag[-1]) / h + 1e-9)
-    kk = np.interp(0.5 * h * np.arange(2 * m + 4), lag, irf.values, right=0.0)
-    return {"M": m, "K0": float(kk[0]), "Khalf": float(kk[1]),
-            "kint": kk[0::2].tolist(),  # K(m h), m = 0..M+1
-            "khalf": kk[1::2].tolist(),  # K((m + 1/2) h)
-            "K1r": kk[2::2][: m + 1][::-1].copy(),  # K((m + 1) h), reversed
-            "Khr": kk[1::2][: m + 1][::-1].copy(),  # K((m + 1/2) h), reversed
-            "hist": np.zeros(n_steps + 1)}
-
-
 def stable_step(body: BodyDynamics, damping: float = 0.0) -> float:
     """Largest step [s] of classical RK4 for the body's linear part without radiation memory.
 
@@ -410,9 +358,12 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
                                 "positive integer")
     j0 = body.inertia + body.added_inertia_infinite
     kern = (pto if pto is not None else LinearPTO(0.0)).kernel(j0, dt)
-    stepper = _stepper(body, radiation, kern, dt, n_steps, extra_torque)
+    try:
+        memory = memory_integrator(radiation, dt, n_steps)
+    except TypeError as e:
+        raise BadParameterError(str(e)) from None
     guard = _Guard(body, dt, getattr(pto, "damping", 0.0), energy_growth)
-    state = stepper.start(theta0, theta_dot0)
+    state = _BodyState(theta0, theta_dot0)
     keep: dict[str, list] = {}
     carry = None
     for first in range(0, n_steps + 1, chunk):
@@ -426,11 +377,12 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
         if not np.all(np.isfinite(exc)):
             raise BadParameterError("bad parameter: the excitation torque is not finite")
         try:
-            raw, state = stepper.run(first, last, exc.tolist(), state, final)
+            raw = _run_chunk(first, last, exc.tolist(), state, memory, final, body, kern, dt,
+                             extra_torque)
         except _StepFailure as e:
             guard.check_angle(e.theta[: e.step - first], first, t0)  # the earlier symptom
             raise guard.diverged(e.step, t0 + e.step * dt, e.what) from None
-        guard.check_angle(raw["theta"], first, t0)
+        guard.check_angle(raw.theta, first, t0)
         arrays = _post(raw, t, exc[::2][: last - first], body, pto)
         carry = _energies(arrays, dt, carry)
         guard.check_energy(arrays, first, t0)
@@ -494,9 +446,10 @@ class _Guard:
                                 f"{supplied:.4g} J supplied")
 
 
-def _post(raw: dict, t, exc, body: BodyDynamics, pto) -> dict:
+def _post(raw: _Record, t, exc, body: BodyDynamics, pto) -> dict:
     """Torques and powers of a chunk (vectorised)."""
-    th, om, acc, mu = (np.asarray(raw[k]) for k in ("theta", "theta_dot", "theta_ddot", "memory"))
+    th, om, acc, mu = (np.asarray(v) for v in (raw.theta, raw.theta_dot, raw.theta_ddot,
+                                                raw.memory))
     sine = body.restoring == "sine"
     a = {"theta": th, "theta_dot": om, "theta_ddot": acc,
          "torque_excitation": exc,
@@ -505,11 +458,11 @@ def _post(raw: dict, t, exc, body: BodyDynamics, pto) -> dict:
          "torque_gravity": body.hydrostatic_stiffness * (np.sin(th) if sine else th),
          "torque_inertia": body.inertia * acc}
     a["torque_hydrodynamic"] = exc + a["torque_radiation"] + a["torque_drag"]
-    xt = np.asarray(raw["extra"])
+    xt = np.asarray(raw.extra)
     a["torque_extra"] = xt
     p = (pto if pto is not None else LinearPTO(0.0)).outputs(
-        t, th, om, acc, np.asarray(raw["out0"]), np.asarray(raw["out1"]), np.asarray(raw["s0"]),
-        np.asarray(raw["s1"]))
+        t, th, om, acc, np.asarray(raw.out0), np.asarray(raw.out1), np.asarray(raw.s0),
+        np.asarray(raw.s1))
     a.update(p)
     c = body.hydrostatic_stiffness
     a["energy_stored"] = (0.5 * (body.inertia + body.added_inertia_infinite) * om**2
@@ -549,121 +502,99 @@ def _energies(a: dict, dt: float, carry):
     return new
 
 
-class _Stepper(NamedTuple):
-    start: Callable
-    run: Callable
+@dataclass
+class _BodyState:
+    """State of the body and the PTO at the start of the next step to integrate."""
+
+    theta: float
+    theta_dot: float
+    pto0: float = 0.0
+    pto1: float = 0.0
 
 
-def _stepper(body: BodyDynamics, radiation, kern: PTOKernel, h: float, n_steps: int,
-             extra: Callable | None = None) -> _Stepper:
-    """The time-stepping loop (module notes) as a restartable closure over chunks of steps."""
-    C = body.hydrostatic_stiffness
+@dataclass
+class _Record:
+    """Values at every step of a chunk, for :func:`_post` (lists of floats)."""
+
+    theta: list
+    theta_dot: list
+    theta_ddot: list
+    memory: list
+    out0: list
+    out1: list
+    s0: list
+    s1: list
+    extra: list
+
+    @classmethod
+    def empty(cls, n: int) -> _Record:
+        return cls(*([0.0] * n for _ in range(9)))
+
+
+def _run_chunk(first: int, last: int, exc: list, state: _BodyState, memory, final: bool,
+               body: BodyDynamics, kern: PTOKernel, h: float,
+               extra: Callable | None) -> _Record:
+    """Steps ``first`` to ``last`` of the run (module notes): classical RK4 for (θ, θ̇) with the
+    memory torque of ``memory`` (:mod:`flumekit.hydro.memory`) at the four stages; ``state``
+    and ``memory`` are advanced in place."""
+    C, cd = body.hydrostatic_stiffness, body.drag_coefficient
     sine = body.restoring == "sine"
-    cd = body.drag_coefficient
-    ss = isinstance(radiation, StateSpace)
-    conv = isinstance(radiation, xr.DataArray)
-    if radiation is not None and not (ss or conv):
-        raise BadParameterError("radiation must be a StateSpace, an impulse response over "
-                                "'lag', or None")
-    mc = _modal(radiation, h) if ss else None
-    cv = _convolution(radiation, h, n_steps) if conv else None
     pto_accel, predict, advance = kern
+    begin, finish = memory.begin, memory.finish
+    w21, w22, w32, w33, w41, w43, w44 = memory.weights.astuple()
     sin, isfinite = math.sin, math.isfinite
-
-    def start(theta0, omega0):
-        y = [0j] * mc["n"] if ss else None
-        return {"th": theta0, "om": omega0, "y": y, "s0": 0.0, "s1": 0.0, "S1prev": 0.0}
-
-    def run(first, last, exc, st, final):
-        th, om, y, z, hl, S1prev = st["th"], st["om"], st["y"], st["s0"], st["s1"], st["S1prev"]
-        if ss:
-            e0, eh, qa, qm, qb = mc["e0"], mc["eh"], mc["qa"], mc["qm"], mc["qb"]
-            g2, g4a = mc["g2"], mc["g4a"]
-        if conv:
-            M, K0, Khalf, kint, khalf = cv["M"], cv["K0"], cv["Khalf"], cv["kint"], cv["khalf"]
-            K1r, Khr, hist = cv["K1r"], cv["Khr"], cv["hist"]
-        n1 = last - first
-        o_th, o_om, o_acc, o_mu, o_0, o_1, o_z, o_h, o_x = ([0.0] * n1 for _ in range(9))
-        xt = 0.0
-        hh, h6, hq = 0.5 * h, h / 6.0, 0.25 * h
-        mu_h = mu_f = ph = pf = 0.0
-        ey = y
-        n = first
-        try:
-            for n in range(first, last):
-                k = n - first
-                t = n * h
-                # memory torque now, and the parts of the later stages known at the step start
-                if ss:
-                    mu1 = sum(y).real
-                    ph = sum(map(mul, eh, y)).real
-                    ey = list(map(mul, e0, y))
-                    pf = sum(ey).real
-                elif conv:
-                    # trapezoidal rule on the step grid
-                    hist[n] = om
-                    w0 = hist[0]
-                    mu1 = h * (S1prev - (0.5 * kint[n] * w0 if n <= M + 1 else 0.0) + 0.5 * K0 * om)
-                    lo = n - M if n > M else 0
-                    win = hist[lo:n + 1]
-                    Sh = float(np.dot(Khr[M - (n - lo):], win))
-                    S1 = float(np.dot(K1r[M - (n - lo):], win))
-                    mu_h = h * (Sh - (0.5 * khalf[n] * w0 if n <= M else 0.0) - 0.5 * Khalf * om) \
-                        + hq * Khalf * om
-                    mu_f = h * (S1 - (0.5 * kint[n + 1] * w0 if n + 1 <= M + 1 else 0.0))
-                else:
-                    mu1 = 0.0
-                if extra is not None:  # frozen over the step (operator splitting)
-                    xt = extra(2 * n, th, om)
-                rest = exc[2 * k] - mu1 - (C * sin(th) if sine else C * th) - cd * om * abs(om)
-                a1, p1, f1 = pto_accel(t, th, om, rest + xt, z, hl)
-                o_th[k], o_om[k], o_acc[k], o_mu[k], o_0[k], o_1[k] = th, om, a1, mu1, p1, f1
-                o_z[k], o_h[k], o_x[k] = z, hl, xt
-                if not (isfinite(th) and isfinite(om) and isfinite(a1)):
-                    raise _StepFailure(n, "the state became non-finite", o_th)
-                if final and k == n1 - 1:
-                    break
-                te_h, te_f = exc[2 * k + 1], exc[2 * k + 2]
-                if predict is not None:
-                    zm, hm, ze, he = predict(z, hl, th, om, a1)
-                else:
-                    zm = hm = ze = he = 0.0
-                # stage 2 (t + h/2)
-                om2 = om + hh * a1
-                th2 = th + hh * om
-                mu2 = ph + g2 * om if ss else (mu_h + hq * K0 * om2 if conv else 0.0)
-                a2 = pto_accel(t + hh, th2, om2, te_h - mu2 - (C * sin(th2) if sine else C * th2)
-                               - cd * om2 * abs(om2) + xt, zm, hm)[0]
-                # stage 3 (t + h/2)
-                om3 = om + hh * a2
-                th3 = th + hh * om2
-                mu3 = ph + g2 * om2 if ss else (mu_h + hq * K0 * om3 if conv else 0.0)
-                a3 = pto_accel(t + hh, th3, om3, te_h - mu3 - (C * sin(th3) if sine else C * th3)
-                               - cd * om3 * abs(om3) + xt, zm, hm)[0]
-                # stage 4 (t + h)
-                om4 = om + h * a3
-                th4 = th + h * om3
-                mu4 = pf + g4a * om + g2 * (2.0 * om3 - om) if ss else \
-                    (mu_f + hh * K0 * om4 if conv else 0.0)
-                a4 = pto_accel(t + h, th4, om4, te_f - mu4 - (C * sin(th4) if sine else C * th4)
-                               - cd * om4 * abs(om4) + xt, ze, he)[0]
-                if ss:  # exponential update with Simpson's quadratic θ̇ over the step
-                    um = 0.5 * (om2 + om3)
-                    y = [e + a_ * om + b_ * um + c_ * om4 for e, a_, b_, c_ in zip(ey, qa, qm, qb)]
-                elif conv:
-                    S1prev = S1
-                th_new = th + h6 * (om + 2.0 * (om2 + om3) + om4)
-                om_new = om + h6 * (a1 + 2.0 * (a2 + a3) + a4)
-                if advance is not None:
-                    z, hl = advance(z, hl, th, om, th_new, om_new)
-                th, om = th_new, om_new
-        except SimulationError as e:  # a PTO leaving its range: say at which step
-            raise _StepFailure(n, str(e), o_th) from None
-        raw = {"theta": o_th, "theta_dot": o_om, "theta_ddot": o_acc, "memory": o_mu,
-               "out0": o_0, "out1": o_1, "s0": o_z, "s1": o_h, "extra": o_x}
-        return raw, {"th": th, "om": om, "y": y, "s0": z, "s1": hl, "S1prev": S1prev}
-
-    return _Stepper(start, run)
+    th, om, z, hl = state.theta, state.theta_dot, state.pto0, state.pto1
+    n1 = last - first
+    rec = _Record.empty(n1)
+    o_th, o_om, o_acc, o_mu = rec.theta, rec.theta_dot, rec.theta_ddot, rec.memory
+    o_0, o_1, o_z, o_h, o_x = rec.out0, rec.out1, rec.s0, rec.s1, rec.extra
+    xt = 0.0
+    hh, h6 = 0.5 * h, h / 6.0
+    n = first
+    try:
+        for n in range(first, last):
+            k = n - first
+            t = n * h
+            # memory torque now, and the parts of the later stages' known at the step start
+            mu1, p_half, p_full = begin(n, om)
+            if extra is not None:  # frozen over the step (operator splitting)
+                xt = extra(2 * n, th, om)
+            rest = exc[2 * k] - mu1 - (C * sin(th) if sine else C * th) - cd * om * abs(om)
+            a1, p1, f1 = pto_accel(t, th, om, rest + xt, z, hl)
+            o_th[k], o_om[k], o_acc[k], o_mu[k], o_0[k], o_1[k] = th, om, a1, mu1, p1, f1
+            o_z[k], o_h[k], o_x[k] = z, hl, xt
+            if not (isfinite(th) and isfinite(om) and isfinite(a1)):
+                raise _StepFailure(n, "the state became non-finite", o_th)
+            if final and k == n1 - 1:
+                break
+            te_h, te_f = exc[2 * k + 1] + xt, exc[2 * k + 2] + xt
+            if predict is not None:
+                zm, hm, ze, he = predict(z, hl, th, om, a1)
+            else:
+                zm = hm = ze = he = 0.0
+            # stages 2 and 3 at t + h/2, 4 at t + h
+            om2 = om + hh * a1
+            th2 = th + hh * om
+            a2 = pto_accel(t + hh, th2, om2, te_h - (p_half + w21 * om + w22 * om2)
+                           - (C * sin(th2) if sine else C * th2) - cd * om2 * abs(om2), zm, hm)[0]
+            om3 = om + hh * a2
+            th3 = th + hh * om2
+            a3 = pto_accel(t + hh, th3, om3, te_h - (p_half + w32 * om2 + w33 * om3)
+                           - (C * sin(th3) if sine else C * th3) - cd * om3 * abs(om3), zm, hm)[0]
+            om4 = om + h * a3
+            th4 = th + h * om3
+            a4 = pto_accel(t + h, th4, om4, te_f - (p_full + w41 * om + w43 * om3 + w44 * om4)
+                           - (C * sin(th4) if sine else C * th4) - cd * om4 * abs(om4), ze, he)[0]
+            finish(om, om2, om3, om4)
+            th_new = th + h6 * (om + 2.0 * (om2 + om3) + om4)
+            om_new = om + h6 * (a1 + 2.0 * (a2 + a3) + a4)
+            if advance is not None:
+                z, hl = advance(z, hl, th, om, th_new, om_new)
+            th, om = th_new, om_new
+    except SimulationError as e:  # a PTO leaving its range: say at which step
+        raise _StepFailure(n, str(e), o_th) from None
+    state.theta, state.theta_dot, state.pto0, state.pto1 = th, om, z, hl
+    return rec
 
 
 _ATTRS = {

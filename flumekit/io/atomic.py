@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 
 #: every temporary name :func:`atomic_path` makes contains this, so that a build can find the
@@ -12,6 +13,37 @@ from pathlib import Path
 TMP_MARK = ".flumekit-tmp"
 #: temporaries being written in this process, for :func:`remove_active` on a fatal signal
 _ACTIVE: set[str] = set()
+
+
+@dataclass(frozen=True)
+class Written:
+    """A file a writer wrote, with the content digest of what it holds.
+
+    Returned by :func:`flumekit.io.netcdf.write_dataset` to its caller, which hands it on to
+    the pipeline's rule (an action returns what it wrote): the engine stops a rebuild's cascade
+    where a dataset's content is unchanged although its bytes (provenance) differ. A
+    path-like object: it opens as its ``path``.
+
+    Parameters
+    ----------
+    path : Path
+        The file written.
+    digest : str
+        SHA-256 (hex) of its content without the provenance attributes
+        (:func:`flumekit.conventions.content_digest`).
+
+    Examples
+    --------
+    >>> import os
+    >>> os.fspath(Written(Path("a.nc"), "0" * 64))
+    'a.nc'
+    """
+
+    path: Path
+    digest: str
+
+    def __fspath__(self) -> str:
+        return os.fspath(self.path)
 
 
 def umask() -> int:

@@ -36,6 +36,8 @@ def _probe_channels(probes: tuple[str, ...], units: str) -> list[Channel]:
 CHANNELS = {
     "flap": [Channel("encoder", "count", "counts"), Channel("pressure", "pressure")],
 }
+#: the flap record's channels -> the variables of :func:`read_flap`'s dataset
+FLAP_VARIABLES = {"encoder": "encoder_counts", "pressure": "chamber_pressure"}
 
 
 def _dialect(dialect: Dialect | dict | None) -> Dialect:
@@ -141,6 +143,6 @@ def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | 
     counts = rec.values[0]
     if np.any(counts != np.round(counts)):
         raise InputError(path, "encoder counts must be integers", field="encoder")
-    return _dataset({"encoder_counts": ("time", counts.astype(np.int64)),
-                     "chamber_pressure": ("time", rec.values[1])},
+    return _dataset({FLAP_VARIABLES["encoder"]: ("time", counts.astype(np.int64)),
+                     FLAP_VARIABLES["pressure"]: ("time", rec.values[1])},
                     {"time": time}, path, rec, sampling_rate, time_offset)

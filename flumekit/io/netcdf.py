@@ -14,7 +14,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.io.atomic import atomic_path
+from flumekit.io.atomic import Written, atomic_path
 
 
 def _encoding(ds: xr.Dataset, compress: bool = True) -> dict[str, dict]:
@@ -95,8 +95,12 @@ def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
-def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) -> Path:
+def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) -> Written:
     """Check CF attributes and write ``ds`` to ``path`` atomically (temporary file, then rename).
+
+    Returns the :class:`~flumekit.io.atomic.Written` file: its path and the content digest of
+    the dataset (:func:`flumekit.conventions.content_digest`), for the caller to hand on to the
+    pipeline (a stage's action returns it).
 
     A failure at any point leaves no file at ``path`` (nor a temporary one behind).
     ``compress``: float arrays of more than 4096 values are deflated (zlib level 1); False
@@ -113,15 +117,15 @@ def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) ->
     ds = _cf_time(_signed_bytes(ds))
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds, compress))
-    conventions.record_written(path, conventions.content_digest(ds))
-    return path
+    return Written(path, conventions.content_digest(ds))
 
 
 def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
-                  parameters: dict | None = None, *, compress: bool = True) -> Path:
+                  parameters: dict | None = None, *, compress: bool = True) -> Written:
     """Write a product of flumekit: the global attributes of
     :func:`flumekit.conventions.global_attrs` (title, source, history with the parameters) set
-    on ``ds``, then :func:`write_dataset`."""
+    on ``ds``, then :func:`write_dataset` (whose :class:`~flumekit.io.atomic.Written` it
+    returns)."""
     ds.attrs.update(conventions.global_attrs(title, source, parameters))
     return write_dataset(ds, path, compress=compress)
 

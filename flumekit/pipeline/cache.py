@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # imported when used: the make that is up to date needs neither
     from flumekit.pipeline.engine import Graph
+    from flumekit.pipeline.raw import Synthesis
     from flumekit.pipeline.rules import Rule
 
 #: bumped when the layout of the cached rows changes
@@ -71,6 +72,23 @@ def graph_key(files: Iterable[str | Path], extra: object) -> str:
     h.update(json.dumps([_FORMAT, extra, code_signature()], sort_keys=True,
                         default=str).encode())
     return h.hexdigest()
+
+
+def pipeline_key(pipe) -> tuple[str | None, Synthesis | None]:
+    """The key of a pipeline's graph (:func:`graph_key`: every campaign file its rules are made
+    of, the pipeline, the code) and what the virtual flume is to synthesise
+    (:func:`flumekit.pipeline.raw.synthesis_plan`; None: the campaign is there). Raises on a
+    raw folder that may not be used (nothing is written)."""
+    from flumekit.pipeline.raw import campaign_files, synthesis_plan
+
+    lazy = synthesis_plan(pipe.raw, pipe.synth, pipe.path)
+    plan = None if lazy is None else [lazy.size, lazy.seed]
+    try:
+        key = graph_key(campaign_files(pipe.raw),
+                        [str(pipe.raw), str(pipe.processed), pipe.stages, pipe.synth, plan])
+    except OSError:  # a run.toml that is a folder, an unreadable file: load_campaign says so
+        key = None
+    return key, lazy
 
 
 def _plain(rule: Rule) -> Rule:

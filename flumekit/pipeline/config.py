@@ -9,6 +9,7 @@ from typing import Any
 
 from flumekit.errors import InputError
 from flumekit.schema import Key, Problem, raise_problems, read_toml, validate
+from flumekit.synth import DEFAULT_SEED
 
 #: a pipeline file; each file of an ``extends`` chain is checked on its own (so that a problem
 #: names its file), the required keys once merged
@@ -24,7 +25,7 @@ PIPELINE = {
                  required=False, table={
         "size": Key("text", "campaign size", required=False, default="default",
                     choices=("small", "default", "paper")),
-        "seed": Key("integer", "random seed", required=False, default=0)}),
+        "seed": Key("integer", "random seed", required=False, default=DEFAULT_SEED)}),
     "stages": Key("table", "stage parameters, [stages.<stage>] (`flumekit params`)",
                   required=False, table={}, items=Key("table", "one stage's parameters",
                                                       items=Key("any"))),

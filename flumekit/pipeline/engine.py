@@ -195,8 +195,11 @@ class Report:
 class Events:
     """What a build tells its user; the command line gives a progress bar or plain lines."""
 
-    def __init__(self, log: Callable[[str], None] = lambda s: print(s, file=sys.stderr)):
+    def __init__(self, log: Callable[[str], None] = lambda s: print(s, file=sys.stderr), *,
+                 finished: bool = True):
+        """``log`` prints a line; ``finished``: also a line when a target is done."""
         self.log = log
+        self.say_finished = finished
 
     def start(self, n_total: int) -> None:
         pass
@@ -205,7 +208,8 @@ class Events:
         self.log(f"[{i}/{n}] {target}: {reason}")
 
     def finished(self, target: str, seconds: float) -> None:
-        self.log(f"    {target} done in {seconds:.2f} s")
+        if self.say_finished:
+            self.log(f"    {target} done in {seconds:.2f} s")
 
     def skipped(self, target: str) -> None:
         pass
@@ -232,24 +236,41 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
     return out
 
 
-def invalidate(graph: Graph, state: State, target: str) -> list[str]:
-    """Remove the outputs of ``target`` and of everything downstream of it, and forget their
-    build signatures; returns the targets whose outputs were removed. Rules that create raw
-    data are never touched."""
-    removed = []
-    for t in [target, *graph.downstream(target)]:
+def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
+                   within: Path | None = None, dry_run: bool = False) -> dict[str, list[Path]]:
+    """Remove the outputs of ``targets`` and forget their build signatures.
+
+    Rules that create raw data (``source``) are never touched. ``within``: only files under
+    this folder are removed (symbolic links resolved). ``dry_run``: nothing is removed or
+    forgotten; the result says what would be.
+
+    Returns
+    -------
+    dict
+        Target -> the files removed (only targets that had some).
+    """
+    inside = None if within is None else Path(within).resolve()
+    removed: dict[str, list[Path]] = {}
+    for t in targets:
         rule = graph.rules[t]
         if rule.source:
             continue
-        state.targets.pop(t, None)
-        gone = False
-        for p in rule.outputs.values():
-            if Path(p).exists():
-                Path(p).unlink()
-                gone = True
-        if gone:
-            removed.append(t)
+        if not dry_run:
+            state.targets.pop(t, None)
+        for p in map(Path, rule.outputs.values()):
+            if not p.is_file() or (inside is not None and not p.resolve().is_relative_to(inside)):
+                continue
+            if not dry_run:
+                p.unlink()
+            removed.setdefault(t, []).append(p)
     return removed
+
+
+def invalidate(graph: Graph, state: State, target: str) -> list[str]:
+    """Remove the outputs of ``target`` and of everything downstream of it, and forget their
+    build signatures (:func:`remove_outputs`); returns the targets whose outputs were
+    removed."""
+    return list(remove_outputs(graph, state, [target, *graph.downstream(target)]))
 
 
 def make(graph: Graph, targets: list[str], state: State, executor: Executor, force: bool = False,

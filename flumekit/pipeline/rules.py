@@ -3,7 +3,9 @@
 A rule's action is named as ``"module:function"`` and imported only when the rule runs, so that
 planning a build (and the no-op ``flumekit make``) never imports numpy, xarray or matplotlib.
 The action is called as ``action(inputs, outputs, params)`` with dicts of paths and parameters;
-it must write every output atomically.
+it must write every output atomically, and returns what its writers returned
+(:class:`flumekit.io.atomic.Written`, one or an iterable of them, or None): the content digests
+of the datasets it wrote.
 """
 
 from __future__ import annotations
@@ -76,8 +78,10 @@ def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str
     token = conventions.set_provenance(None if rule.source else prov)
     t0 = time.perf_counter()
     try:
-        rule.resolve()({k: Path(v) for k, v in rule.inputs.items()},
-                       {k: Path(v) for k, v in rule.outputs.items()}, dict(rule.params))
+        result = rule.resolve()({k: Path(v) for k, v in rule.inputs.items()},
+                                {k: Path(v) for k, v in rule.outputs.items()},
+                                dict(rule.params))
+        written = written_digests(result)
         missing = [str(p) for p in rule.outputs.values() if not Path(p).exists()]
         if missing:
             raise RuntimeError(f"action did not write its outputs {missing}")
@@ -89,4 +93,23 @@ def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str
         raise
     finally:
         conventions.reset_provenance(token)
-    return time.perf_counter() - t0, prov.get("written", {})
+    return time.perf_counter() - t0, written
+
+
+def written_digests(result) -> dict[str, str]:
+    """Path -> content digest of what an action returned: a written file (anything with a
+    ``path`` and a ``digest``, :class:`flumekit.io.atomic.Written`), a list of them, or None
+    (no digest: the engine identifies the outputs by their bytes); anything else is a
+    TypeError."""
+    if result is None:
+        return {}
+    if hasattr(result, "digest"):
+        items = [result]
+    elif isinstance(result, (list, tuple)):
+        items = list(result)
+    else:
+        items = [result]
+    bad = [r for r in items if not (hasattr(r, "path") and hasattr(r, "digest"))]
+    if bad:
+        raise TypeError(f"an action returns the files it wrote (Written) or None, not {bad[0]!r}")
+    return {str(r.path): r.digest for r in items}

@@ -21,6 +21,12 @@ MISSING = 9
 FLAG_VALUES = np.array([GOOD, NOT_EVALUATED, SUSPECT, FAIL, MISSING], dtype=np.int8)
 FLAG_MEANINGS = "pass not_evaluated suspect fail missing_data"
 
+#: ratio of the standard deviation to the median absolute deviation of a normal distribution
+#: (1/Φ⁻¹(3/4)): the robust scale against which the tests set their flags, here where both the
+#: numpy tests (:mod:`flumekit.qc.qartod`) and their compiled kernels (:mod:`flumekit.qc.kernels`)
+#: read it
+MAD_TO_STD = 1.4826
+
 
 def flag_attrs(variable: str, long_name: str | None = None) -> dict:
     """CF attributes of the flag variable of ``variable`` (QARTOD values and meanings)."""

@@ -20,8 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED
-from flumekit.qc.qartod import MAD_TO_STD
+from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED
 
 #: bins of the histogram median of whole-number records (values spanning more are sorted)
 HIST_BINS = 1 << 14

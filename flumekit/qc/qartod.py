@@ -27,10 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.qc.fill import runs
-from flumekit.qc.flags import FAIL, GOOD, MISSING, NOT_EVALUATED, SUSPECT, choose
-
-#: ratio of the standard deviation to the median absolute deviation of a normal distribution
-MAD_TO_STD = 1.4826
+from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SUSPECT, choose
 
 
 def resolution(x: np.ndarray) -> np.ndarray:

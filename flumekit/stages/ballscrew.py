@@ -6,6 +6,7 @@ asking only for the efficiency never runs the thermal finite-element model.
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
@@ -83,10 +84,10 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     return out
 
 
-def _write(ds, outputs, title, params):
+def _write(ds, outputs, title, params) -> Written:
     from flumekit.io.netcdf import write_product
 
-    write_product(ds, outputs["dataset"], title,
+    return write_product(ds, outputs["dataset"], title,
                   "flumekit ballscrew stage (Senatore & De Simone 2022 models)", params)
 
 
@@ -96,13 +97,13 @@ def _previous(inputs):
     return read_dataset(inputs["previous"])
 
 
-def kinematics(inputs, outputs, params) -> None:
+def kinematics(inputs, outputs, params) -> Written:
     from flumekit.ballscrew import buoy
 
     motion = buoy.reference_motion(params["amplitude"], params["period"],
                                    samples_per_period=params["samples_per_period"])
-    _write(buoy.kinematics(motion, lead=params["lead"]), outputs,
-           "Ball-screw WEC: buoy motion and linkage kinematics", params)
+    return _write(buoy.kinematics(motion, lead=params["lead"]), outputs,
+                  "Ball-screw WEC: buoy motion and linkage kinematics", params)
 
 
 def _knobs(params, part: str) -> dict:
@@ -110,31 +111,31 @@ def _knobs(params, part: str) -> dict:
     return {k[len(part) + 1:]: v for k, v in params.items() if k.startswith(part + "_")}
 
 
-def efficiency(inputs, outputs, params) -> None:
+def efficiency(inputs, outputs, params) -> Written:
     from flumekit.ballscrew import screw as ballscrew
 
     kin = _previous(inputs)
-    _write(ballscrew.efficiency(
+    eff = ballscrew.efficiency(
         kin, screw=ballscrew.BallScrew(lead=float(kin.attrs["lead"]), **_knobs(params, "screw")),
         lubricant=ballscrew.Lubricant(**_knobs(params, "lubricant")),
-        pto=ballscrew.PTOCoefficients(**_knobs(params, "pto"))),
-        outputs, "Ball-screw WEC: PTO force, lubrication and efficiency", params)
+        pto=ballscrew.PTOCoefficients(**_knobs(params, "pto")))
+    return _write(eff, outputs, "Ball-screw WEC: PTO force, lubrication and efficiency", params)
 
 
-def thermal_lumped(inputs, outputs, params) -> None:
+def thermal_lumped(inputs, outputs, params) -> Written:
     from flumekit.ballscrew.thermal.lumped import LumpedThermal
     from flumekit.ballscrew.thermal.lumped import thermal_lumped as run
 
-    _write(run(_previous(inputs), LumpedThermal(**_knobs(params, "thermal")),
-               cycle_duration=params["cycle_duration"],
-               total_duration=params["total_duration"], time_step=params["lumped_time_step"]),
-           outputs, "Ball-screw WEC: lumped thermal model", params)
+    ds = run(_previous(inputs), LumpedThermal(**_knobs(params, "thermal")),
+             cycle_duration=params["cycle_duration"], total_duration=params["total_duration"],
+             time_step=params["lumped_time_step"])
+    return _write(ds, outputs, "Ball-screw WEC: lumped thermal model", params)
 
 
-def thermal_fem(inputs, outputs, params) -> None:
+def thermal_fem(inputs, outputs, params) -> Written:
     from flumekit.ballscrew.thermal.fem import thermal_fem as run
 
-    _write(run(_previous(inputs), time_step=params["fem_time_step"],
-               radial_cell_size=params["radial_cell_size"],
-               axial_cell_size=params["axial_cell_size"], order=params["fem_order"]),
-           outputs, "Ball-screw WEC: axisymmetric finite-element thermal model", params)
+    return _write(run(_previous(inputs), time_step=params["fem_time_step"],
+                      radial_cell_size=params["radial_cell_size"],
+                      axial_cell_size=params["axial_cell_size"], order=params["fem_order"]),
+                  outputs, "Ball-screw WEC: axisymmetric finite-element thermal model", params)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
@@ -24,7 +25,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                  outputs={"dataset": ctx.out("calibration.nc")}, params=params, version=VERSION)]
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> Written:
     import warnings
 
     from flumekit.io.instruments import read_calibration
@@ -48,6 +49,6 @@ def build(inputs, outputs, params) -> None:
     ds = ds.merge(raw[["calibration_voltage"]])
     if warned:
         ds.attrs[WARNINGS] = "\n".join(warned)
-    write_product(ds, outputs["dataset"],
-                  "Wave probe calibration (static submersions, least squares)",
-                  f"flumekit calibration stage from {inputs['calibration']}", params)
+    return write_product(ds, outputs["dataset"],
+                         "Wave probe calibration (static submersions, least squares)",
+                         f"flumekit calibration stage from {inputs['calibration']}", params)

@@ -9,6 +9,7 @@ levels already refer to still water, and ``"mean"`` for lengths) and recorded in
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
@@ -37,7 +38,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> Written:
     import numpy as np
 
     from flumekit.errors import InputError
@@ -75,5 +76,5 @@ def build(inputs, outputs, params) -> None:
     warnings = [w for w in warnings if w]
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
-    write_run(ds, outputs, params, "Surface elevation per probe",
-              f"flumekit eta stage from {source}")
+    return write_run(ds, outputs, params, "Surface elevation per probe",
+                     f"flumekit eta stage from {source}")

@@ -7,6 +7,7 @@ spectral energy flux J of that stage (:func:`flumekit.flap.analyse_irregular_run
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
@@ -39,7 +40,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
@@ -79,9 +80,9 @@ def build(inputs, outputs, params) -> None:
     except ValueError as e:  # a stuck encoder, a record too short: name the file
         raise InputError(raw.attrs.get("source_file", inputs["flap"]),
                          f"encoder and pressure record: {e}") from None
-    write_run(ds, outputs, params, "Flap dynamics, PTO and power",
-              f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw)
+    return write_run(ds, outputs, params, "Flap dynamics, PTO and power",
+                     f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw)
 
 
-def summary(inputs, outputs, params) -> None:
-    stack_runs(inputs, outputs, "Flap amplitudes, torques and power of every run")
+def summary(inputs, outputs, params) -> Written:
+    return stack_runs(inputs, outputs, "Flap amplitudes, torques and power of every run")

@@ -14,6 +14,7 @@ over the analysed span (:func:`flumekit.flap.comparison.compare_irregular_run`).
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
@@ -90,7 +91,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     return out
 
 
-def hydro(inputs, outputs, params) -> None:
+def hydro(inputs, outputs, params) -> Written:
     from flumekit.flap.comparison import stored_container
     from flumekit.io.netcdf import write_product
 
@@ -112,10 +113,10 @@ def hydro(inputs, outputs, params) -> None:
         title = "Renzi-Dias coefficients of the thin flap in the flume's channel (RD12)"
     ds = stored_container(ds, params["irf_duration"])
     ds.attrs.update(depth=params["depth"], flap_width=params["flap_width"], rho=1000.0, g=9.81)
-    write_product(ds, outputs["dataset"], title, "flumekit models/hydro stage", params)
+    return write_product(ds, outputs["dataset"], title, "flumekit models/hydro stage", params)
 
 
-def compare(inputs, outputs, params) -> None:
+def compare(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
@@ -144,10 +145,10 @@ def compare(inputs, outputs, params) -> None:
                      simulator=params["simulator"], friction=params["friction"],
                      spin_up_periods=params["spin_up_periods"],
                      linear_pto_damping=params["linear_pto_damping"])
-    write_run(ds, outputs, params, "Experiment, linear model and simulator",
-              f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}")
+    return write_run(ds, outputs, params, "Experiment, linear model and simulator",
+                     f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}")
 
 
-def summary(inputs, outputs, params) -> None:
-    stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
-               keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))
+def summary(inputs, outputs, params) -> Written:
+    return stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
+                      keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))

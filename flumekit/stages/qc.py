@@ -19,6 +19,7 @@ quasi-steady part of the run only when the beams are not clean there
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
@@ -174,7 +175,7 @@ def _span(value):
     return None if value is None else (float(value[0]), float(value[1]))
 
 
-def _write(ds, outputs, params, title, source, warnings=(), compress=True):
+def _write(ds, outputs, params, title, source, warnings=(), compress=True) -> Written:
     from flumekit.stages.runs import write_run
 
     if warnings:
@@ -182,7 +183,7 @@ def _write(ds, outputs, params, title, source, warnings=(), compress=True):
     ds.attrs["max_gap"] = float(params["max_gap"])
     # no run coordinates: qc_summary stacks its own counts, and the rule's title and
     # parameters name the run (3 ms a product: a tenth of a probe or flap QC rule)
-    write_run(ds, outputs, params, title, source, compress=compress, coords=False)
+    return write_run(ds, outputs, params, title, source, compress=compress, coords=False)
 
 
 def _stuck(ds, name, path, max_gap):
@@ -199,7 +200,7 @@ def _stuck(ds, name, path, max_gap):
                          f"max_gap = {max_gap:g} s, which is what may be interpolated)")
 
 
-def probes(inputs, outputs, params) -> None:
+def probes(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     import numpy as np
@@ -240,11 +241,11 @@ def probes(inputs, outputs, params) -> None:
     warnings = [f"{path}: {name}: masked and not interpolated: {g}"
                 for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
     ds.attrs["source_file"] = str(path)
-    _write(ds, outputs, params, "Quality-controlled wave probe voltages",
-           f"flumekit qc stage from {path}", warnings, compress=COMPRESS["probes"])
+    return _write(ds, outputs, params, "Quality-controlled wave probe voltages",
+                  f"flumekit qc stage from {path}", warnings, compress=COMPRESS["probes"])
 
 
-def flap(inputs, outputs, params) -> None:
+def flap(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     import numpy as np
@@ -281,28 +282,30 @@ def flap(inputs, outputs, params) -> None:
     ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},
                     coords=parts[0].coords, attrs={k: v for p in parts for k, v in p.attrs.items()})
     ds.attrs["source_file"] = str(path)
-    _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
-           f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
+    return _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
+                  f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 
 
 def check_beams(beams: dict, span: tuple[float, float], params: dict, path, sources):
     """Quality control of a run's UVP beams, called by its uvp rule on the beams it has read:
     the flags of :func:`flumekit.qc.record.beam_flags` over ``span`` [s] with the [stages.qc]
     parameters ``params["qc"]`` (:data:`UVP_PARAMS`), written to ``path``
-    (``qc/uvp/<run>.nc``); returns them, with attribute ``max_gap`` [s]."""
+    (``qc/uvp/<run>.nc``); returns them, with attribute ``max_gap`` [s], and the written file
+    (:class:`~flumekit.io.atomic.Written`)."""
     from flumekit.qc.record import Thresholds, beam_flags
 
     qc = params["qc"]
     ds = beam_flags(beams, span, Thresholds.from_params(qc),
                     time_offset=float(params.get("time_offset", 0.0)),
                     gross_range=_span(qc["velocity_range"]))
-    _write(ds, {"dataset": path}, {**params, "max_gap": qc["max_gap"]},
-           "Quality-control flags of the UVP beam velocities",
-           "flumekit qc stage from " + ", ".join(map(str, sources)), compress=COMPRESS["uvp"])
-    return ds
+    written = _write(ds, {"dataset": path}, {**params, "max_gap": qc["max_gap"]},
+                     "Quality-control flags of the UVP beam velocities",
+                     "flumekit qc stage from " + ", ".join(map(str, sources)),
+                     compress=COMPRESS["uvp"])
+    return ds, written
 
 
-def summary(inputs, outputs, params) -> None:
+def summary(inputs, outputs, params) -> Written:
     """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
     its departure from the lag expected for its wave condition (:mod:`flumekit.qc.clock`; a
     clock offset beyond ``clock_tolerance`` is a warning naming the run, the reference of each
@@ -382,5 +385,5 @@ def summary(inputs, outputs, params) -> None:
     out.attrs = {WARNINGS: "\n".join(warn)} if warn else {}
     if reference:
         out.attrs["clock_reference"] = reference
-    write_product(out, outputs["dataset"], "Quality-control counts of every run",
-                  f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})
+    return write_product(out, outputs["dataset"], "Quality-control counts of every run",
+                         f"flumekit qc summary of {len(runs)} runs", {"runs": runs, **params})

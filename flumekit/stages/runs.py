@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
+
 
 def run_params(run, campaign=None) -> dict:
     """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses),
@@ -42,14 +44,15 @@ def run_coords(params: dict) -> dict:
 
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
-              compress: bool = True, coords: bool = True) -> None:
+              compress: bool = True, coords: bool = True) -> Written:
     """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
     and the start of its time axis: the one its record carries (from the raw file, through
     every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
     domain function made it from plain numbers), else the one run.toml declares (``start``).
     ``compress``: as :func:`flumekit.io.netcdf.write_dataset`. ``coords=False``: no run
     coordinates (a product that no summary stacks along ``run``; each variable costs 0.5-1 ms
-    to write, and its title and parameters name the run)."""
+    to write, and its title and parameters name the run). Returns the written file
+    (:class:`~flumekit.io.atomic.Written`), for the action to return to its rule."""
     from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
@@ -63,8 +66,8 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
     declared = params.get("start")
     if declared and "time" in ds.coords:
         ds = _declared_start(ds, declared, params["run"])
-    write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source, params,
-                  compress=compress)
+    return write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source,
+                         params, compress=compress)
 
 
 def _declared_start(ds, declared: str, run: str):
@@ -115,7 +118,7 @@ def run_warnings(run: str | None, text: str) -> list[str]:
     return [w if run in w else f"run {run}: {w}" for w in lines]
 
 
-def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> None:
+def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:
     """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
 
     ``keep(ds)`` names the variables to keep (default: every scalar); ``drop_dims`` are dropped
@@ -134,5 +137,5 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     out = xr.concat(rows, dim="run", coords="all", compat="override")
     # every run's warnings kept where a campaign is read, each naming its run once
     out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
-    write_product(out, outputs["dataset"], title,
-                  f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
+    return write_product(out, outputs["dataset"], title,
+                         f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})

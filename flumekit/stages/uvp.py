@@ -9,6 +9,7 @@ are taken to share one clock (the virtual flume's do; a real campaign declares o
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
@@ -175,7 +176,7 @@ def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
     return start, period
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> list[Written]:
     """The run's beams read once, quality-controlled (:func:`flumekit.stages.qc.check_beams`,
     which writes their flags), cleaned and phase-averaged."""
     from pathlib import Path
@@ -208,12 +209,12 @@ def build(inputs, outputs, params) -> None:
     start, period = averaging_window(waves, None, theta, files, params, pad, span)
     end = start + params["n_cycles"] * period
     offset = float(params["time_offset"])
-    qc = check_beams(raw, window_span(raw, start, end, pad), params, outputs["qc"],
-                     list(files.values()))
+    qc, qc_file = check_beams(raw, window_span(raw, start, end, pad), params, outputs["qc"],
+                              list(files.values()))
     if blocking(beam_records(qc, names, offset), start - pad, end + pad,
                 float(params["qc"]["max_gap"]))[0]:
-        qc = check_beams(raw, qc_span(span, period, params["cutoff"]), params, outputs["qc"],
-                         list(files.values()))
+        qc, qc_file = check_beams(raw, qc_span(span, period, params["cutoff"]), params,
+                                  outputs["qc"], list(files.values()))
         start, period = averaging_window(waves, qc, theta, files, params, pad, span)
     beams = {n: clean_beam(raw[n], qc, n, copy=False) for n in names}  # read for this rule
     if offset:  # the run file's declared clock offset of the UVP [s]
@@ -223,11 +224,12 @@ def build(inputs, outputs, params) -> None:
                              cutoff=params["cutoff"], order=params["order"], theta=theta,
                              flap_thickness=campaign.flap.thickness, margin=params["margin"],
                              min_amplitude=params["min_amplitude"])
-    write_run(ds, outputs, params, "Phase-averaged UVP beam velocities",
-              "flumekit uvp stage from " + ", ".join(str(inputs[n]) for n in names))
+    return [qc_file, write_run(ds, outputs, params, "Phase-averaged UVP beam velocities",
+                               "flumekit uvp stage from " + ", ".join(str(inputs[n])
+                                                                      for n in names))]
 
 
-def field(inputs, outputs, params) -> None:
+def field(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
@@ -239,5 +241,6 @@ def field(inputs, outputs, params) -> None:
     ds = velocity_field(runs, campaign.uvp, height=params["height"], period=params["period"],
                         method=params["method"], dx=params["dx"],
                         water_depth=campaign.flume.water_depth)
-    write_product(ds, outputs["dataset"], "Phase-averaged velocity field in front of the flap",
-                  f"flumekit uvp_field stage from {len(runs)} UVP runs", params)
+    return write_product(ds, outputs["dataset"],
+                         "Phase-averaged velocity field in front of the flap",
+                         f"flumekit uvp_field stage from {len(runs)} UVP runs", params)

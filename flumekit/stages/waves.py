@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
@@ -69,34 +70,25 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     return out
 
 
-def build(inputs, outputs, params) -> None:
+def build(inputs, outputs, params) -> Written:
     import warnings
 
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.checks import check_declared, check_height
     from flumekit.stages.qc import WARNINGS
-    from flumekit.waves import analyse_run
 
     eta_ds = read_dataset(inputs["eta"])
     eta = eta_ds["eta"]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            ds = (_irregular(eta, params) if params["kind"] == "irregular" else analyse_run(eta, params["depth"], params["period"], params["x_ref"],
-                             method=params["method"],
-                             separation_probes=params["separation_probes"],
-                             n_harmonics=params["n_harmonics"],
-                             bound_harmonics=params["bound_harmonics"],
-                             amplitude_dispersion=params["amplitude_dispersion"],
-                             tolerance=params["tolerance"], min_cycles=params["min_cycles"],
-                             noise_factor=params["noise_factor"]))
+            ds = (_irregular if params["kind"] == "irregular" else _regular)(eta, params)
         except ValueError as e:  # a dead probe, a record too short: the message names the probe
             raise InputError(inputs["probes"], str(e)) from None
+    # kept in the dataset, where the make summary, the summaries and the report find them
     recorded = [f"{inputs['probes']}: {w.message}" for w in caught
                 if issubclass(w.category, UserWarning)]
-    for w in recorded:
-        print(f"warning: run {params['run']}: {w}")
     # the declared height (sea state) only labels the run (the analysis uses the measured
     # one), so a moderate disagreement is a warning and a gross one an error; an undeclared
     # one is not checked
@@ -118,8 +110,21 @@ def build(inputs, outputs, params) -> None:
     warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), *recorded, *warned) if w]
     if warnings_:
         ds.attrs[WARNINGS] = "\n".join(warnings_)
-    write_run(ds, outputs, params, "Incident and reflected waves",
-              f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
+    return write_run(ds, outputs, params, "Incident and reflected waves",
+                     f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
+
+
+def _regular(eta, params):
+    """The analysis of a regular run (:func:`flumekit.waves.analyse_run`)."""
+    from flumekit.waves import analyse_run
+
+    return analyse_run(eta, params["depth"], params["period"], params["x_ref"],
+                       method=params["method"], separation_probes=params["separation_probes"],
+                       n_harmonics=params["n_harmonics"],
+                       bound_harmonics=params["bound_harmonics"],
+                       amplitude_dispersion=params["amplitude_dispersion"],
+                       tolerance=params["tolerance"], min_cycles=params["min_cycles"],
+                       noise_factor=params["noise_factor"])
 
 
 def _irregular(eta, params):
@@ -153,5 +158,5 @@ def report(path) -> str:
             f"{int(ds.steady_cycles)} steady cycles ({crit} criterion)")
 
 
-def summary(inputs, outputs, params) -> None:
-    stack_runs(inputs, outputs, "Wave statistics of every run")
+def summary(inputs, outputs, params) -> Written:
+    return stack_runs(inputs, outputs, "Wave statistics of every run")

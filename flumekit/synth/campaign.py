@@ -33,6 +33,7 @@ from flumekit.errors import InputError
 from flumekit.io.atomic import umask
 from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
+from flumekit.synth import DEFAULT_SEED, MARKER
 from flumekit.synth.flume import RepeatScatter
 from flumekit.synth.irregular import SeaTruth
 from flumekit.synth.waves import RAMP_WAVES, Beach
@@ -120,9 +121,6 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
     return a, b
 
 
-#: marker of a campaign folder the virtual flume wrote: its size, seed and planned runs. Only a
-#: folder holding it is ever completed run by run (:func:`write_virtual_run`).
-MARKER = ".flumekit-virtual.json"
 
 
 @dataclass(frozen=True)
@@ -164,7 +162,7 @@ def plan_runs(size: str) -> list[RunSpec]:
     return out
 
 
-def write_campaign(root: str | Path, size: str = "small", seed: int = 2020,
+def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SEED,
                    truth: Truth = Truth(), progress=None) -> Campaign:
     """Write a virtual-flume campaign to ``root`` and return it.
 

@@ -10,6 +10,7 @@ import pytest
 from flumekit import cli
 from flumekit.pipeline import cache
 from flumekit.pipeline.config import load_pipeline
+from flumekit.stages import plan
 
 ROOT = Path(__file__).resolve().parents[2]
 RUNS = ("T3.50_H0.250_r0", "T4.00_H0.250_r0")
@@ -38,18 +39,18 @@ def project(tmp_path, monkeypatch):
 def builds(monkeypatch):
     """How many times the rules were built rather than read from the cache."""
     calls = []
-    real = cli._build_rules
+    real = plan.pipeline_rules
 
     def counted(pipe, lazy):
         calls.append(1)
         return real(pipe, lazy)
 
-    monkeypatch.setattr(cli, "_build_rules", counted)
+    monkeypatch.setattr(plan, "pipeline_rules", counted)
     return calls
 
 
 def graph(pipeline="pipelines/small.toml"):
-    return cli._graph(load_pipeline(pipeline))
+    return plan.pipeline_graph(load_pipeline(pipeline))
 
 
 def test_an_unchanged_campaign_reads_the_cache_and_gets_the_same_rules(project, builds):
