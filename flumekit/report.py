@@ -82,8 +82,10 @@ def _open(path: Path) -> xr.Dataset:
 
 
 def _conditions(summaries: dict[str, xr.Dataset], table=CONDITIONS, irregular=False) -> str:
-    """One row per run of the conditions ``table``: the regular runs (a target period), or
-    the irregular ones (a target Hm0)."""
+    """Tabulate the conditions ``table``, one row per run.
+
+    The regular runs (a target period), or the irregular ones (a target Hm0).
+    """
     cols = [(d, v) for d, v in table if d in summaries and v in summaries[d].variables]
     if not cols:
         return ("" if irregular else
@@ -133,8 +135,11 @@ def _statistics(name: str, ds: xr.Dataset) -> str:
 
 
 def _power_matrix(summaries: dict[str, xr.Dataset]) -> str:
-    """The power matrix (IEC TS 62600-100): per source, the cells' mean capture width ratio
-    and mean power with their number of runs, Hm0 bins down and Te bins across."""
+    """Tabulate the power matrix (IEC TS 62600-100), one table per source.
+
+    The cells' mean capture width ratio and mean power with their number of runs, Hm0 bins
+    down and Te bins across.
+    """
     ds = summaries.get("power_matrix")
     if ds is None or "capture_width_ratio" not in ds:
         return ""
@@ -142,7 +147,7 @@ def _power_matrix(summaries: dict[str, xr.Dataset]) -> str:
     out = []
     for src in ds["source"].values:
         cell = ds.sel(source=src)
-        header = [f"H<sub>m0</sub> [m] \\ T<sub>e</sub> [s]"] + [
+        header = ["H<sub>m0</sub> [m] \\ T<sub>e</sub> [s]"] + [
             _esc(_bin(ds, te, j)) for j in range(ds.sizes[te])]
         rows = []
         for i in range(ds.sizes[hm0]):
@@ -161,7 +166,7 @@ def _power_matrix(summaries: dict[str, xr.Dataset]) -> str:
 
 
 def _bin(ds: xr.Dataset, dim: str, i: int) -> str:
-    """'lo-hi' of bin ``i`` of ``dim`` from its CF bounds, else its centre."""
+    """Label bin ``i`` of ``dim``: 'lo-hi' from its CF bounds, else its centre."""
     bounds = ds[dim].attrs.get("bounds")
     if bounds and bounds in ds:
         lo, hi = (float(v) for v in ds[bounds].values[i])
@@ -176,8 +181,10 @@ def _value(v) -> str:
 
 
 def _notes(root: Path) -> str:
-    """Notes the per-run products carry in their attributes (a fitted parameter held at its
-    bound: the flap's pressure model of Eq. 13), one line per note with its runs."""
+    """List the notes the per-run products carry in their attributes, with their runs.
+
+    A fitted parameter held at its bound: the flap's pressure model of Eq. 13.
+    """
     import netCDF4
 
     where: dict[str, list[str]] = {}
@@ -260,8 +267,11 @@ _GREEK = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "Delta": "�
 
 
 def _plain(text: str) -> str:
-    """A figure title or docstring sentence as plain text: matplotlib's mathtext
-    (``$H_{m0}$``) and reStructuredText markup (``:func:`x```, ````x````) undone."""
+    """Turn a figure title or docstring sentence into plain text.
+
+    Matplotlib's mathtext (``$H_{m0}$``) and reStructuredText markup (``:func:`x```,
+    ````x````) undone.
+    """
     import re
 
     def math(m):
@@ -274,7 +284,7 @@ def _plain(text: str) -> str:
 
 
 def _png_chunks(path: Path):
-    """(type, data) of each chunk of a PNG file, up to its image data."""
+    """Yield (type, data) of each chunk of a PNG file, up to its image data."""
     import struct
 
     with open(path, "rb") as fh:
@@ -292,8 +302,10 @@ def _png_chunks(path: Path):
 
 
 def _png_text(path: Path) -> dict[str, str]:
-    """The text chunks of a PNG (the title and description :func:`flumekit.figures.style.save`
-    writes)."""
+    """Read the text chunks of a PNG.
+
+    The title and description :func:`flumekit.figures.style.save` writes.
+    """
     out = {}
     for kind, data in _png_chunks(path):
         if kind == b"tEXt" and b"\0" in data:
@@ -309,8 +321,10 @@ def _png_text(path: Path) -> dict[str, str]:
 
 
 def _png_width(path: Path) -> float | None:
-    """The printed width of a PNG [in]: its pixels over its resolution (pHYs), so that a
-    column figure shows at a column's width and a page-width one at a page's."""
+    """Give the printed width of a PNG [in]: its pixels over its resolution (pHYs).
+
+    A column figure then shows at a column's width and a page-width one at a page's.
+    """
     import struct
 
     size = dpm = None

@@ -103,7 +103,8 @@ def separation(waves: xr.Dataset, n_waves: int = 12):
         ax_k.set_ylabel(label("reflection_coefficient_spectrum", "$K_r(f)$", text=" "))
         ax_k.grid(False)
 
-        h = np.sort(waves["individual_wave_height"].values[np.isfinite(waves["individual_wave_height"].values)])[::-1]
+        h = waves["individual_wave_height"].values
+        h = np.sort(h[np.isfinite(h)])[::-1]
         exceed = np.arange(1, h.size + 1) / (h.size + 1)
         ax_h.semilogy(h / hm0, exceed, ".", ms=2.5, color=COLOURS["incident"],
                       label="incident waves")

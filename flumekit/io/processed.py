@@ -80,10 +80,13 @@ def open_processed(processed: str | Path, name: str | None = None) -> xr.Dataset
 
 
 def _read_variables(path: Path) -> tuple[dict, dict, dict, set]:
-    """Every variable of a flumekit netCDF file: (name -> (dims, values, attrs)), the global
-    attributes, the dimension sizes and the names its variables list as coordinates. Floats
-    with a ``_FillValue`` are NaN there, as xarray decodes them; nothing else needs decoding in
-    what flumekit writes (times stay seconds, as :func:`read_dataset` keeps them)."""
+    """Read every variable of a flumekit netCDF file.
+
+    Returns (name -> (dims, values, attrs)), the global attributes, the dimension sizes and
+    the names its variables list as coordinates. Floats with a ``_FillValue`` are NaN there,
+    as xarray decodes them; nothing else needs decoding in what flumekit writes (times stay
+    seconds, as :func:`read_dataset` keeps them).
+    """
     import netCDF4
     import numpy as np
 
@@ -106,7 +109,7 @@ def _read_variables(path: Path) -> tuple[dict, dict, dict, set]:
 
 
 def _common_attrs(dicts: list[dict]) -> dict:
-    """The attributes every dict has with equal values (xarray's ``drop_conflicts``)."""
+    """Keep the attributes every dict has with equal values (xarray's ``drop_conflicts``)."""
     import numpy as np
 
     first, out = dicts[0], {}

@@ -36,7 +36,7 @@ class LowFrequencyWarning(UserWarning):
 def active_span(values: np.ndarray, time: np.ndarray, peak_frequency: float,
                 travel_time: float = 0.0, threshold: float = 0.25, periods: float = 20.0
                 ) -> tuple[float, float]:
-    """The span of a record where the sea state is established.
+    """Find the span of a record where the sea state is established.
 
     The variance over a running window of ``periods`` peak periods is compared with its
     median over the record: the span begins where the window, wholly inside the record,
