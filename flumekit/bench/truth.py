@@ -16,8 +16,14 @@ import numpy as np
 #: :data:`INCLUSIVE`: the relative checks, pytest.approx and assert_allclose's own)
 TOLERANCE = {"gain": 1e-3, "offset": 1e-3, "reflection": 5e-3, "incident_height": 5e-3,
              "theta_rms_deg": 0.05, "capture_factor": 0.02, "uvp_rms": 0.02,
-             "uvp_coverage": 0.3}
-INCLUSIVE = {"gain", "offset", "incident_height", "capture_factor"}
+             "uvp_coverage": 0.3,
+             # irregular runs (the irregular-seas acceptance): relative Hm0, Te, Tp, mean
+             # power and capture width ratio; absolute bulk Kr and Kr(f) over the bands
+             # holding 90 % of the incident energy
+             "hm0": 0.02, "te": 0.02, "tp": 0.05, "bulk_kr": 0.02, "kr_spectrum": 0.05,
+             "mean_power": 0.05, "capture_width_ratio": 0.05}
+INCLUSIVE = {"gain", "offset", "incident_height", "capture_factor", "hm0", "te", "tp",
+             "bulk_kr", "kr_spectrum", "mean_power", "capture_width_ratio"}
 
 
 def within(name: str, error: float) -> bool:
@@ -26,9 +32,14 @@ def within(name: str, error: float) -> bool:
     return error <= tol if name in INCLUSIVE else error < tol
 
 
-def runs(truth: Path) -> list[str]:
-    """The runs the truth folder describes."""
-    return sorted(p.name for p in Path(truth).iterdir() if p.is_dir())
+def runs(truth: Path, irregular: bool = False) -> list[str]:
+    """The regular runs the truth folder describes (the irregular ones with ``irregular``)."""
+    out = []
+    for p in sorted(q for q in Path(truth).iterdir() if q.is_dir()):
+        with _open(p / "waves.nc") as t:
+            if (t.attrs.get("kind") == "irregular") == irregular:
+                out.append(p.name)
+    return out
 
 
 def _open(path: Path):
@@ -76,6 +87,58 @@ def flap_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
         c_true = float(np.mean(t.power.values[win])) / float(w_i)
         return {"theta_rms_deg": float(theta),
                 "capture_factor": abs(float(f.capture_factor) / c_true - 1)}
+
+
+def irregular_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
+    """Errors of an irregular run against the truth of the span it analysed.
+
+    The truth's sea state is recomputed over the waves stage's span from the series the
+    virtual flume keeps at x = 0 (:func:`flumekit.synth.irregular.sea_state_truth`), and the
+    true mean power is that of the flap model over the same span: relative errors of Hm0, Te,
+    Tp, the mean absorbed power and the capture width ratio [-], absolute errors of the bulk
+    Kr and, over the bands holding the central 90 % of the incident energy, the largest of
+    Kr(f) against sqrt(sum S_R / sum S_I) of the truth's spectra over each band [-].
+    """
+    from flumekit.synth.irregular import sea_state_truth
+
+    with _open(Path(processed) / "waves" / f"{run}.nc") as w, \
+            _open(Path(processed) / "flap" / f"{run}.nc") as f, \
+            _open(Path(truth) / run / "flap.nc") as t, \
+            _open(Path(truth) / run / "waves.nc") as tw:
+        start, end = float(w.analysis_start), float(w.analysis_end)
+        time = t.time.values
+        step = time[1] - time[0]
+        true = sea_state_truth(time, t.eta_incident.values,
+                               t.eta_reflected.values + t.eta_beach.values,
+                               (start, end + float(w.time[1] - w.time[0])),
+                               depth=float(tw.attrs["depth"]),
+                               f_max=float(tw.attrs["band_high"]) * 1.5)
+        # the measured Kr(f) bands against the truth's spectra summed over the same bands
+        fb = w.frequency.values
+        half = 0.5 * (fb[1] - fb[0])
+        ft = true.frequency.values
+        band = np.searchsorted(fb - half, ft, side="right") - 1
+        ok = (band >= 0) & (band < fb.size) & (np.abs(ft - fb[np.clip(band, 0, fb.size - 1)])
+                                                 <= half)
+        s_i = np.bincount(band[ok], true.spectrum_incident.values[ok], minlength=fb.size)
+        s_r = np.bincount(band[ok], true.spectrum_reflected.values[ok], minlength=fb.size)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            kr_true = np.sqrt(s_r / s_i)
+        energy = np.cumsum(s_i) / s_i.sum()
+        held = (energy > 0.05) & (energy < 0.95) & np.isfinite(w.reflection_coefficient_spectrum)
+        inside = (time >= start) & (time <= f.analysis_end.values + 0.5 * step)
+        power = float(np.mean(t.power.values[inside]))
+        flux = true.attrs["energy_flux"]
+        cwr = power / (flux * float(tw.attrs["flap_width"]))
+        return {"hm0": abs(float(w.hm0) / true.attrs["hm0"] - 1),
+                "te": abs(float(w.te) / true.attrs["energy_period"] - 1),
+                "tp": abs(float(w.tp) / true.attrs["peak_period"] - 1),
+                "bulk_kr": abs(float(w.reflection_coefficient)
+                               - true.attrs["reflection_coefficient"]),
+                "kr_spectrum": float(np.max(np.abs(w.reflection_coefficient_spectrum.values[held]
+                                                   - kr_true[held]))),
+                "mean_power": abs(float(f.mean_power) / power - 1),
+                "capture_width_ratio": abs(float(f.capture_width_ratio) / cwr - 1)}
 
 
 def uvp_field_errors(processed: Path, truth: Path) -> dict[str, dict[str, float]]:

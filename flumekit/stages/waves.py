@@ -7,7 +7,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "5"
+VERSION = "6"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
             "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
             "noise_factor": 4.0, "height_tolerance": 0.25, "height_warning": 0.1,

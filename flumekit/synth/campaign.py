@@ -278,8 +278,10 @@ def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
             (tmp / "runs" / r.id).mkdir(parents=True)
             xp = (dict(truth.sea.probe_x) if r.sea is not None
                   else probe_positions(r.period, depth, truth))
+            sea = None if r.sea is None else {**r.sea, "transient": transient(r.sea, depth,
+                                                                              xp, truth)}
             (tmp / "runs" / r.id / "run.toml").write_text(run_toml(
-                r.kind, r.period, r.height, r.repeat, r.uvp_elevation, xp, sea=r.sea))
+                r.kind, r.period, r.height, r.repeat, r.uvp_elevation, xp, sea=sea))
         planned = load_campaign(tmp)
 
         def moved(p: Path) -> Path:
@@ -364,6 +366,30 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
                   root / "truth" / "calibration.nc")
 
 
+def transient(sea: dict, depth: float, probe_x: dict[str, float], truth: Truth) -> float:
+    """The start of an irregular run's analysed span, as a laboratory declares it in run.toml
+    from its flume: the wavemaker's ramp, then the time the incident wave, the flap's
+    reflection and the beach's wave take to reach the flap and the farthest probe
+    (:func:`flumekit.synth.irregular.analysis_start`; the flap's reflection weighted as the
+    incident spectrum, the beach's by its measured roll-off), in whole seconds [s].""" 
+    from flumekit.synth.irregular import analysis_start, beach_reflection
+    from flumekit.synth.waves import random_phase_components
+
+    sea_cfg = truth.sea
+    fp = 1.0 / sea["tp"]
+    f, a, _ = random_phase_components(sea["duration"], sea["hm0"], sea["tp"], sea["gamma"],
+                                      sea["seed"], (sea_cfg.band[0] * fp, sea_cfg.band[1] * fp))
+    beach = truth.beach if truth.beach is not None else Beach(reflection=0.0)
+
+    def returning(f):  # the flap's reflection unknown (1), the beach's as the lab measured it
+        return np.ones(f.size), beach_reflection(f, beach, sea_cfg.beach_roll_off)
+
+    return analysis_start(f, a, depth=depth, x_min=min(probe_x.values()),
+                          x_wavemaker=truth.x_wavemaker, x_beach=beach.x,
+                          ramp_time=sea_cfg.ramp_peak_periods * sea["tp"],
+                          returning=returning, developed=sea_cfg.developed)
+
+
 def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
              probe_x: dict[str, float], sea: dict | None = None) -> str:
     """The text of a virtual run's ``run.toml``; an irregular run's target sea state in
@@ -372,6 +398,8 @@ def run_toml(kind: str, period: float, height: float, repeat: int, z: float | No
         lines = ["[run]", f'kind = "{kind}"', f"hm0 = {sea['hm0']}  # [m]",
                  f"tp = {sea['tp']}  # [s]", f"gamma = {sea['gamma']}",
                  f"seed = {sea['seed']}", f"duration = {sea['duration']}  # [s]",
+                 *([f"transient = {sea['transient']:g}  # [s], the analysed span's start"]
+                   if sea.get("transient") is not None else []),
                  f"repeat = {repeat}"]
     else:
         lines = ["[run]", f'kind = "{kind}"', f"period = {period}", f"height = {height}",
@@ -488,8 +516,9 @@ def _write_irregular_run(root, campaign: Campaign, run_id: str, repeat: int, sea
     missing = [p for p in names if p not in xp]
     if missing:
         raise ValueError(f"the irregular runs' probe layout has no position for {missing}")
+    declared = {**sea, "transient": transient(sea, depth, xp, truth)}
     (run_dir / "run.toml").write_text(run_toml("irregular", sea["tp"], sea["hm0"], repeat, None,
-                                               {p: xp[p] for p in names}, sea=sea))
+                                               {p: xp[p] for p in names}, sea=declared))
 
     enc = campaign.encoder
     rate_p, rate_f = campaign.probes.sampling_rate, enc.sampling_rate

@@ -185,7 +185,11 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
         below the Nyquist frequency.
     n_bins : int, optional
         Periodogram bins averaged into one band of the smoothed spectra and Kr(f) [-];
-        default the number spanning fp/16 (at least 4: 8 degrees of freedom).
+        default the number spanning fp/8 (at least 8: 16 degrees of freedom). Kr(f) is a
+        ratio of two such estimates: on the virtual flume's 280 s span (fp = 0.5 Hz, 0.5 mm
+        probe noise) its largest error over the bands holding 90 % of the energy is 0.07 with
+        bands of fp/16 and 0.009 with fp/8. The peak period is found on finer bands of fp/16
+        (at least 4 bins) whatever ``n_bins`` is.
     max_condition : float
         Bins whose least-squares system has a larger condition number are masked [-].
     low_frequency_warning : float
@@ -294,10 +298,12 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
     f = s["frequency"].values
     df = 1.0 / ((i1 - i0) * dt)
     if n_bins is None:
-        n_bins = max(int(round(fp / 16 / df)), 4)
+        n_bins = max(int(round(fp / 8 / df)), 8)
     valid = s["masked"].values == 0
     fb, si, sr = band_average(f, s["spectrum_incident"].values, s["spectrum_reflected"].values,
                               n_bins=n_bins, valid=valid)
+    f_peak, s_peak = band_average(f, s["spectrum_incident"].values, valid=valid,
+                                  n_bins=max(int(round(fp / 16 / df)), 4))
     with np.errstate(invalid="ignore", divide="ignore"):
         kr_f = np.sqrt(sr / si)
     dof = 2 * n_bins
@@ -306,8 +312,8 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
                          dims="frequency", coords={"frequency": f})
     # Te is the name every wave-energy standard uses for Tm-1,0 (IEC TS 62600-100)
     params = spectral_parameters(raw_i).rename(tm_10="te")
-    smoothed = spectral_parameters(xr.DataArray(np.nan_to_num(si), dims="frequency",
-                                                coords={"frequency": fb}))
+    smoothed = spectral_parameters(xr.DataArray(np.nan_to_num(s_peak), dims="frequency",
+                                                coords={"frequency": f_peak}))
     # the peak of the smoothed spectrum: the raw periodogram's is one random bin
     for name in ("tp", "tp_smoothed"):
         params[name] = smoothed[name]
