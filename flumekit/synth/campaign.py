@@ -371,7 +371,7 @@ def transient(sea: dict, depth: float, probe_x: dict[str, float], truth: Truth) 
     from its flume: the wavemaker's ramp, then the time the incident wave, the flap's
     reflection and the beach's wave take to reach the flap and the farthest probe
     (:func:`flumekit.synth.irregular.analysis_start`; the flap's reflection weighted as the
-    incident spectrum, the beach's by its measured roll-off), in whole seconds [s].""" 
+    incident spectrum, the beach's by its measured roll-off), in whole seconds [s]."""
     from flumekit.synth.irregular import analysis_start, beach_reflection
     from flumekit.synth.waves import random_phase_components
 
