@@ -555,7 +555,7 @@ def _run_chunk(first: int, last: int, exc: list, state: _BodyState, memory, fina
         for n in range(first, last):
             k = n - first
             t = n * h
-            # memory torque now, and the parts of the later stages' known at the step start
+            # memory torque now, and the parts of the later stages' memory known at the start
             mu1, p_half, p_full = begin(n, om)
             if extra is not None:  # frozen over the step (operator splitting)
                 xt = extra(2 * n, th, om)

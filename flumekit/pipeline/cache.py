@@ -100,6 +100,7 @@ def _plain(rule: Rule) -> Rule:
     rule = replace(rule, inputs={k: os.fspath(v) for k, v in rule.inputs.items()},
                    outputs={k: os.fspath(v) for k, v in rule.outputs.items()})
     rule.params_hash()
+    rule.code_hash()
     return rule
 
 

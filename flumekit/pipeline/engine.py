@@ -120,7 +120,8 @@ def signature(rule: Rule, state: State) -> dict:
             inputs[name] = state.identity(p)
         except FileNotFoundError:
             raise InputError(p, f"input '{name}' of target '{rule.target}' is missing") from None
-    return {"version": rule.version, "params": rule.params_hash(), "inputs": inputs}
+    return {"version": rule.version, "code": rule.code_hash(), "params": rule.params_hash(),
+            "inputs": inputs}
 
 
 def provenance(rule: Rule, state: State, root: Path | None) -> dict:
@@ -166,6 +167,8 @@ def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) 
     new = signature(rule, state)  # an input missing here is an error naming it
     if old.get("version") != new["version"]:
         return f"rule version {old.get('version')} -> {new['version']}"
+    if old.get("code") != new["code"]:
+        return f"code of {rule.action.partition(':')[0]} (or a module it imports) changed"
     if old.get("params") != new["params"]:
         return "parameters changed"
     for name, h in new["inputs"].items():

@@ -1,4 +1,4 @@
-"""Rules: what a target is built from, by which action, with which parameters and code version.
+"""Rules: what a target is built from, by which action, with which parameters and code.
 
 A rule's action is named as ``"module:function"`` and imported only when the rule runs, so that
 planning a build (and the no-op ``flumekit make``) never imports numpy, xarray or matplotlib.
@@ -28,7 +28,8 @@ class Rule:
     inputs: dict[str, Path | str]
     outputs: dict[str, Path | str]
     params: dict[str, Any] = field(default_factory=dict)
-    version: str = "1"  # bump when the action's results change
+    # an extra that changes the key on its own: the action's code is tracked (code_hash)
+    version: str = "1"
     run: str | None = None  # run identifier, for messages
     # True for a rule that creates raw data (the virtual flume): it runs only where its outputs
     # are all absent, is never forced, and its outputs are never removed by the engine
@@ -39,6 +40,17 @@ class Rule:
         if h is None:
             h = digest(json.dumps(self.params, sort_keys=True, default=str).encode())
             object.__setattr__(self, "_params_hash", h)  # frozen: set past the dataclass
+        return h
+
+    def code_hash(self) -> str:
+        """Hash of the source the action runs (:func:`flumekit.pipeline.code.code_hash`): a
+        change of that code rebuilds the target. Memoised, and kept in the cached graph."""
+        h = self.__dict__.get("_code_hash")
+        if h is None:
+            from flumekit.pipeline.code import code_hash
+
+            h = code_hash(self.action)
+            object.__setattr__(self, "_code_hash", h)
         return h
 
     def resolve(self) -> Callable[[dict, dict, dict], None]:

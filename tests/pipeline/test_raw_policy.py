@@ -78,7 +78,7 @@ def test_runs_never_written_are_still_synthesised(tmp_path):
     # renamed: the old name missing, the new one not planned
     (["T2.00_H0.150_r0_old", *PLANNED[1:]], None,
      ["renamed): T2.00_H0.150_r0;", "renamed): 'T2.00_H0.150_r0_old'"]),
-    # added, with an odd name (unicode, leading dot with run.toml, '..' inside, '*')
+    # added, with a name the build would accept in a lab campaign (unicode, '..' inside)
     ([*PLANNED, "extra_ä_波"], None, ["'extra_ä_波'", "not planned"]),
     ([*PLANNED, "run..1"], None, ["'run..1'"]),
 ])
