@@ -13,7 +13,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from flumekit.pipeline.raw import record_written, start_record
 from flumekit.pipeline.rules import Rule
 
 
@@ -47,11 +46,9 @@ def base(inputs, outputs, params) -> None:
     from flumekit.synth.campaign import write_virtual_base
 
     write_virtual_base(params["root"], params["size"], int(params["seed"]))
-    start_record(Path(params["root"]))
 
 
 def run(inputs, outputs, params) -> None:
     from flumekit.synth.campaign import write_virtual_run
 
     write_virtual_run(params["root"], params["run"])
-    record_written(Path(params["root"]), params["run"])

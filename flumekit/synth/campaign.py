@@ -200,8 +200,11 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
 def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Truth()) -> None:
     """Write the campaign-wide files of a virtual campaign (``campaign.toml``, the probe
     calibration, its truth and :data:`MARKER`) into ``root``, absent or empty; no run yet."""
+    from flumekit.synth.marker import start_record
+
     root = Path(root)
     _into_new_folder(root, lambda tmp: _write_base(tmp, root.name, size, seed, truth))
+    start_record(root)  # written run by run: write_virtual_run records each
 
 
 def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> None:
@@ -210,6 +213,8 @@ def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> 
     :func:`write_campaign`. Refused where ``root`` is not such a campaign or the run's folder
     exists (nothing there is touched)."""
     import json
+
+    from flumekit.synth.marker import record_written
 
     root = Path(root)
     marker = root / MARKER
@@ -244,6 +249,7 @@ def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> 
         if spec.kind == "uvp" and not (root / "truth" / "uvp_field.nc").exists():
             _write_uvp_truth(root, campaign, truth, size, seed)
         os.rename(tmp / "runs" / run_id, root / "runs" / run_id)
+        record_written(root, run_id)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)  # only the folder this call created
 
