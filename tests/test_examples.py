@@ -66,10 +66,11 @@ def goda_suzuki(eta: np.ndarray, fs: float, period: float, x: np.ndarray, depth:
 def test_kr_is_printed_and_physically_consistent(built):
     out, code, printed = built
     assert code == 0
-    assert "waves/regular: first-harmonic Kr = 0.026" in printed
     assert (out / "figures" / "separation" / "regular.png").stat().st_size > 10_000
     with xr.open_dataset(out / "waves" / "regular.nc") as ds:
         kr = float(ds.reflection_coefficient)
+        assert f"waves/regular: first-harmonic Kr = {kr:.3f}" in printed
+        assert int(ds.steady_cycles) >= 120  # of the ~135 periods after the ramp
         t0, t1 = float(ds.steady_start), float(ds.steady_end)
         period = float(ds.measured_period)
         eta = ds["eta"].values
@@ -80,8 +81,9 @@ def test_kr_is_printed_and_physically_consistent(built):
     i0, n = int(round(t0 * fs)), int(round(np.floor((t1 - t0) / period) * period * fs))
     pairs = goda_suzuki(eta[:, i0:i0 + n], fs, period, np.array([0.0, 0.6, 0.9]), 0.25)
     assert set(pairs) == {(0, 1), (1, 2)}  # (0, 2): dx/L = 0.48, near the 0.5 singularity
-    # measured: Mansard-Funke 0.026 (0.027 with the linear wavenumber, 0.2 % shorter than the
-    # stream-function one of this 25 mm wave); Goda-Suzuki 0.038 (G1-G2), 0.027 (G2-G3)
+    # measured: Mansard-Funke 0.028 over 130 steady cycles (0.026 over the shorter window of a
+    # 3-sigma crest criterion without the five-cycle median); Goda-Suzuki 0.038 (G1-G2), 0.027
+    # (G2-G3)
     assert min(pairs.values()) - 0.005 <= kr <= max(pairs.values()) + 0.005
     assert 0.0 < kr < 0.1  # a dissipative flume beach reflects little of short, low waves
 

@@ -69,7 +69,8 @@ def test_quantised_encoder_passes():
 
 
 def _params(name: str, period: float = 2.0) -> dict:
-    return {**qc_stage.DEFAULTS, "run": name, "period": period, "height": 0.15, "repeat": 0,
+    return {**qc_stage.DEFAULTS, "run": name, "kind": "waves", "period": period, "height": 0.15,
+            "repeat": 0,
             "uvp_elevation": None, "probes": PROBES, "sampling_rate": FS,
             "probe_x": {p: -float(k) for k, p in enumerate(PROBES)}}
 
