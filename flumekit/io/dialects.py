@@ -112,6 +112,12 @@ def read_channels(path: str | Path, dialect: Dialect, channels: list[Channel],
     if reader is None:
         raise InputError(path, f"unknown format {dialect.format!r}; known: csv, tdms, hdf5, "
                          "netcdf")
+    with open(path, "rb") as f:
+        head = f.read(8)
+    for sig, what in FOREIGN:
+        if head.startswith(sig):
+            raise InputError(path, f"this is {what}, which no dialect reads: export the record "
+                             "as CSV text (or TDMS, HDF5, netCDF)")
     real = sniff_format(path)
     if real is not None and real != dialect.format and {real, dialect.format} != {"hdf5",
                                                                                  "netcdf"}:
@@ -135,6 +141,10 @@ SIGNATURES = ((b"\x89HDF\r\n\x1a\n", "hdf5"), (b"TDSm", "tdms"), (b"TDSh", "tdms
               (b"CDF\x01", "netcdf"), (b"CDF\x02", "netcdf"), (b"CDF\x05", "netcdf"))
 FORMAT_NAMES = {"hdf5": "HDF5 (or netCDF-4)", "tdms": "TDMS (LabVIEW)",
                 "netcdf": "netCDF (classic)", "csv": "text"}
+#: first bytes of files no dialect reads, and what they are
+FOREIGN = ((b"PK\x03\x04", "a ZIP archive (an Excel .xlsx workbook?)"),
+           (b"\xd0\xcf\x11\xe0", "an Office document (an Excel .xls workbook?)"),
+           (b"\x1f\x8b", "a gzip-compressed file"))
 
 
 def sniff_format(path: Path) -> str | None:

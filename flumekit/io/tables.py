@@ -332,16 +332,24 @@ def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
     if time.size < 2:
         raise InputError(path, "fewer than two samples")
     dt = np.diff(time)
+
+    def clocks(step: float) -> str:
+        # local date-times without an offset jump by an hour when the clocks change
+        return ("; an hour's jump: local date-times across a daylight-saving change? Declare "
+                "timezone in the file's dialect, or write the stamps with their UTC offset"
+                if abs(abs(step) - 3600.0) < 60.0 else "")
+
     bad = np.flatnonzero(dt <= 0)
     if bad.size:
         raise InputError(path, f"time is not increasing ({time[bad[0]]} s then "
-                         f"{time[bad[0] + 1]} s)", line=int(bad[0]) + first_line + 1)
+                         f"{time[bad[0] + 1]} s){clocks(dt[bad[0]])}",
+                         line=int(bad[0]) + first_line + 1)
     if sampling_rate is not None:
         expected = 1.0 / sampling_rate
         off = np.flatnonzero(np.abs(dt - expected) > 0.01 * expected)
         if off.size:
             raise InputError(path, f"sampling interval {dt[off[0]]:.6g} s does not match the "
-                             f"declared sampling rate {sampling_rate:g} Hz",
+                             f"declared sampling rate {sampling_rate:g} Hz{clocks(dt[off[0]])}",
                              line=int(off[0]) + first_line + 1)
 
 

@@ -61,6 +61,23 @@ def check_record_period(declared: float, periods: dict[str, float], tolerance: f
             "[stages.qc] period_tolerance): a record of another run?")
 
 
+def check_durations(durations: dict[str, float], files: dict[str, object], tolerance: float
+                    ) -> None:
+    """Error naming the shorter record when a run's records (``durations``: instrument ->
+    duration [s], ``files``: instrument -> its file, for the message) differ in duration by more
+    than ``tolerance`` of the longer one: one run's instruments record the same waves, so a
+    record much shorter than the others was cut (a TDMS file truncated at a segment boundary
+    reads without complaint) or is another run's."""
+    longest = max(durations.values())
+    short = {k: d for k, d in durations.items() if d < (1.0 - tolerance) * longest}
+    if short:
+        k, d = min(short.items(), key=lambda kv: kv[1])
+        other = ", ".join(f"{n} {v:.1f} s" for n, v in durations.items() if n != k)
+        raise InputError(files[k], f"the {k} record lasts {d:.1f} s, the run's other records "
+                         f"{other}: more than {tolerance:.0%} shorter (a file cut short, or "
+                         "another run's record?)")
+
+
 def check_height(declared: float, measured: float, tolerance: float, warning: float,
                  run_file: Path, what: str) -> str | None:
     """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the

@@ -14,7 +14,8 @@ from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "4"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
-DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0}
+DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0,
+            "record_length_tolerance": 0.2}
 DOCS = {
     "cutoff": "cut-off of the zero-phase 4th-order Butterworth low-pass applied to theta before "
               "differentiation [Hz]",
@@ -22,6 +23,9 @@ DOCS = {
     "n_phase": "phase points per cycle of the phase averages [-]",
     "max_flagged_fraction": "largest fraction of encoder samples outside the domain of Eq. (1) "
                             "that is interpolated over instead of refused [-]",
+    "record_length_tolerance": "the flap and probe records of a run may differ in duration by "
+                               "this share of the longer one; beyond it the shorter is refused "
+                               "(cut short, or another run's) [-]",
 }
 
 
@@ -33,11 +37,21 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
         out.append(Rule(f"flap/{run.id}", "flumekit.stages.flap:build",
                         inputs={"flap": ctx.out("qc", "flap", f"{run.id}.nc"),
                                 "campaign": ctx.campaign_file,
-                                "waves": ctx.out("waves", f"{run.id}.nc")},
+                                "waves": ctx.out("waves", f"{run.id}.nc"),
+                                # named, not read: the probe record the waves come from
+                                "probes": run.file("probes")},
                         outputs={"dataset": ctx.out("flap", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
     out.append(summary_rule(ctx, "flap", VERSION))
     return out
+
+
+def _span(t) -> float:
+    """Duration of a time axis [s] (seconds, or datetimes as decoded from CF units)."""
+    import numpy as np
+
+    d = t[-1] - t[0]
+    return float(d / np.timedelta64(1, "s")) if np.asarray(t).dtype.kind == "M" else float(d)
 
 
 def build(inputs, outputs, params) -> Written:
@@ -47,10 +61,16 @@ def build(inputs, outputs, params) -> Written:
     from flumekit.errors import InputError
     from flumekit.flap import analyse_irregular_run, analyse_run
     from flumekit.io.netcdf import read_dataset
+    from flumekit.qc import checks
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
     raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
+    checks.check_durations(
+        {"flap": _span(raw["time"].values), "probe": _span(waves["time"].values)},
+        {"flap": raw.attrs.get("source_file", inputs["flap"]),
+         "probe": inputs.get("probes", inputs["waves"])},
+        params["record_length_tolerance"])
     irregular = params.get("kind") == "irregular"
     missing = [k for k in ("analysis_start", "analysis_end", "energy_flux") if k not in waves]
     if irregular and missing:

@@ -201,6 +201,17 @@ def test_real_format_from_the_first_bytes(tmp_path, real, declared, name):
     assert f'declare format = "{real}"' in str(e.value)
 
 
+def test_a_workbook_declared_as_csv(tmp_path):
+    import zipfile
+
+    path = tmp_path / "probes.csv"
+    with zipfile.ZipFile(path, "w") as z:  # what Excel's "save" writes
+        z.writestr("xl/workbook.xml", "<workbook/>")
+    with pytest.raises(InputError, match=r"probes.csv: this is a ZIP archive \(an Excel .xlsx "
+                                         r"workbook\?\), which no dialect reads"):
+        read_probes(path, PROBES, FS)
+
+
 # ---- text: encodings, time zones, decimal commas -------------------------------------------
 
 def _csv(path: Path, rows: list[str], encoding: str = "utf-8") -> Path:
@@ -250,7 +261,8 @@ def test_stamps_with_utc_offsets_across_a_dst_change(tmp_path):
     naive = [s.strftime("%Y-%m-%d %H:%M:%S.%f")[:-3] for s in local]
     path = _csv(tmp_path / "n.csv", ["stamp;" + ";".join(f"{p} [V]" for p in PROBES)]
                 + _rows(naive, x))
-    with pytest.raises(InputError, match="sampling interval 3600.04 s"):
+    with pytest.raises(InputError, match="sampling interval 3600.04 s.*daylight-saving change"
+                                         r"\? Declare timezone"):
         read_probes(path, PROBES, FS, {"delimiter": ";", "time": "stamp"})
     ds = read_probes(path, PROBES, FS, {"delimiter": ";", "time": "stamp",
                                         "timezone": "Europe/Berlin"})

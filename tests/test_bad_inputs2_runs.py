@@ -300,3 +300,28 @@ def test_a_lost_dask_scheduler_is_one_line(tmp_path):
     assert "Traceback" not in err and " ERROR " not in err, err
     assert err.strip().splitlines()[-1].startswith(
         f"flumekit: error: lost the Dask scheduler at {address}")
+
+
+def test_a_tdms_probe_file_cut_at_a_segment_boundary_is_refused(campaign, tmp_path, capsys):
+    """The probes in TDMS, written in 10 segments, the last four lost: before, read without
+    complaint (12 steady cycles instead of 66, Kr 0.180 instead of 0.192)."""
+    from nptdms import ChannelObject, TdmsWriter
+
+    root = copy(campaign, tmp_path)
+    with open(root / "campaign.toml", "a") as f:
+        f.write('\n[files.probes]\nfile = "probes.tdms"\nformat = "tdms"\n'
+                'group = "Wave probes"\n')
+    for run in (RUN, OTHER):
+        p = np.loadtxt(root / "runs" / run / "probes.csv", delimiter=",", skiprows=1)
+        keep = (6 if run == RUN else 10) * (p.shape[0] // 10)
+        with TdmsWriter(root / "runs" / run / "probes.tdms") as w:
+            for seg in np.array_split(np.arange(keep), 6 if run == RUN else 10):
+                w.write_segment([ChannelObject("Wave probes", n, p[seg, j + 1],
+                                               {"unit_string": "V", "wf_increment": 0.04})
+                                 for j, n in enumerate(["WP1", "WP2", "WP3", "WP4"])])
+    code, err = make(tmp_path, f"flap/{OTHER}", capsys=capsys)
+    assert code == 0, err  # the whole record, its time from wf_increment
+    code, err = make(tmp_path, f"flap/{RUN}", capsys=capsys)
+    assert code == 1
+    assert re.search(rf"runs/{RUN}/probes.tdms: the probe record lasts 130\.8 s, the run's "
+                     r"other records flap 218\.0 s: more than 20% shorter", err), err
