@@ -26,6 +26,7 @@ def _drawn(ax) -> bool:
 
 
 def _inside(box, page, tol: float = 1.0) -> bool:
+    """Whether ``box`` lies within ``page`` up to ``tol`` pixels."""
     return (box.x0 >= page.x0 - tol and box.y0 >= page.y0 - tol and box.x1 <= page.x1 + tol
             and box.y1 <= page.y1 + tol)
 
@@ -58,11 +59,31 @@ def _labelled(ax, which: str) -> str:
 def problems(fig) -> list[str]:
     """Everything that fails the figure test, as readable sentences (empty when it passes)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from flumekit.figures.style import STYLE
+
+    dpi = fig.get_dpi()
+    canvas = fig.canvas
+    drawn = (isinstance(canvas, FigureCanvasAgg) and not fig.stale
+             and dpi == STYLE["savefig.dpi"] and canvas.get_renderer().dpi == dpi)
+    if drawn:  # drawn as it is saved (flumekit.figures.style.save): checked on that drawing
+        return _problems(fig, canvas)
+    # at the saved resolution: the layout and the text extents checked are the PNG's
+    fig.set_dpi(STYLE["savefig.dpi"])
+    try:
+        canvas = FigureCanvasAgg(fig)  # a figure built without pyplot has no renderer of its own
+        # lays the figure out and fills in the tick labels, without painting a pixel
+        fig.draw_without_rendering()
+        return _problems(fig, canvas)
+    finally:
+        fig.set_dpi(dpi)
+
+
+def _problems(fig, canvas) -> list[str]:
+    """:func:`problems` of a figure laid out on ``canvas``."""
     from matplotlib.text import Text
 
     out: list[str] = []
-    canvas = FigureCanvasAgg(fig)  # a figure built without pyplot has no renderer of its own
-    canvas.draw()  # lays the figure out and fills in the tick labels
     width, height = fig.get_size_inches()
     if not any(abs(width - w) < 0.01 for w in (ONE_COLUMN, TWO_COLUMNS)):
         out.append(f"width {width:.2f} in is neither one column ({ONE_COLUMN} in) nor two "
@@ -84,7 +105,7 @@ def problems(fig) -> list[str]:
               for t in _undrawn_tick_labels(axis)}
     cut = sorted({f"'{t.get_text()[:30]}'" for t in fig.findobj(Text)
                   if t.get_visible() and t.get_text().strip() and id(t) not in hidden
-                  and not _inside(t.get_window_extent(renderer), page)})
+                  and not _inside(t.get_window_extent(renderer), page, fig.dpi / 100)})
     if cut:
         out.append("text cut at the figure's edge: " + ", ".join(cut[:5]))
     boxes = []

@@ -33,6 +33,7 @@ from flumekit.figures.style import (
     run_title,
     runs_title,
     style,
+    thin,
     title,
     value_label,
 )
@@ -87,7 +88,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
         ax = axes[0, 0]
     fig = ax.figure
     with style():
-        ax.plot(flap.time.values / period, flap.theta.values / scale,
+        ax.plot(*thin(flap.time.values / period, flap.theta.values / scale, fig.get_figwidth()),
                 color=COLOURS["experiment"], lw=0.5, label="measured")
         _crest_trough(ax, _levels(flap.theta_phase_mean.values, scale))
         ax.axvline(float(flap.steady_start) / period, color="tab:red", lw=0.9,

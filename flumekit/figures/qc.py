@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.figures.style import TWO_COLUMNS, new_figure, units_text
+from flumekit.figures.style import TWO_COLUMNS, new_figure, thin, units_text
 from flumekit.qc.flags import FAIL, MISSING, NOT_EVALUATED, SUSPECT
 
 #: marker colours of the QARTOD flags drawn (pass and not-evaluated samples are not marked)
@@ -128,8 +128,8 @@ def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     for ax, (label, t, raw, clean, flags, units, by) in zip(axes[:, 0], chans, strict=False):
         shown = clean if raw is None else raw
         if raw is not None:
-            ax.plot(t, raw, color="0.7", lw=0.6, label="as read")
-        ax.plot(t, clean, color="k", lw=0.5, label="after QC")
+            ax.plot(*thin(t, raw, fig.get_figwidth()), color="0.7", lw=0.6, label="as read")
+        ax.plot(*thin(t, clean, fig.get_figwidth()), color="k", lw=0.5, label="after QC")
         counts = []
         for value, (meaning, colour, marker) in FLAG_STYLE.items():
             sel = flags == value

@@ -99,6 +99,56 @@ def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
     return fig, axes[0, 0]
 
 
+def thin(x, y, width: float = TWO_COLUMNS) -> tuple:
+    """For drawing only: the samples of a dense line that a ``width``-inch axes can show.
+
+    At the PNG's resolution an axes at most ``width`` inches wide has ``width`` x 300 pixel
+    columns; a line through more samples than four per column is drawn the same from, in each
+    column, its first, lowest, highest and last samples (the M4 reduction: the line's vertical
+    extent in every column and its joins to the neighbouring columns are kept), plus the
+    samples around every gap (NaN), so the gaps stay. A sparser line is returned unchanged.
+
+    Parameters
+    ----------
+    x : Increasing coordinates of the samples (time) [any units].
+    y : Values, NaN where missing.
+    width : Widest the axes can be [in].
+
+    Returns
+    -------
+    (x, y) : The samples kept, in order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t = np.linspace(0, 600, 60001)
+    >>> x, y = thin(t, np.sin(t))
+    >>> x.size <= 4 * 2100
+    True
+    """
+    import numpy as np
+
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    columns = int(np.ceil(width * STYLE["savefig.dpi"]))
+    n = x.size
+    if n <= 4 * columns or not x[-1] > x[0]:
+        return x, y
+    col = np.minimum(((x - x[0]) * (columns / (x[-1] - x[0]))).astype(np.int64), columns - 1)
+    first = np.flatnonzero(np.r_[True, col[1:] != col[:-1]])
+    last = np.r_[first[1:] - 1, n - 1]
+    finite = np.isfinite(y)
+    # the lowest and highest finite sample of each column: the first of its column in the
+    # order (column, value); the columns keep their sizes, so their starts are ``first``
+    lowest = np.lexsort((np.where(finite, y, np.inf), col))[first]
+    highest = np.lexsort((np.where(finite, -y, np.inf), col))[first]
+    gap_first = np.flatnonzero(~finite & np.r_[True, finite[:-1]])
+    gap_last = np.flatnonzero(~finite & np.r_[finite[1:], True])
+    keep = np.unique(np.concatenate([first, last, lowest, highest, gap_first, gap_first - 1,
+                                     gap_last + 1]))
+    keep = keep[(keep >= 0) & (keep < n)]
+    return x[keep], y[keep]
+
+
 # --- human labels -------------------------------------------------------------------------
 
 #: labels of categorical coordinate values (sources of a comparison, regions and control points
@@ -249,27 +299,158 @@ TEXT_KEYS = {"png": ("Title", "Description"), "pdf": ("Title", "Subject"),
              "svg": ("Title", "Description")}
 
 
-def save(fig, *paths: str | Path, description: str | None = None) -> list[Path]:
+def save(fig, *paths: str | Path, check=None, description: str | None = None) -> list[Path]:
     """Write a figure to each path atomically, in the format of its suffix (png, pdf, svg).
 
     Saved under the package style (PNG at 300 dpi) with the metadata that would carry a
     software version or a date removed, so the same figure gives the same bytes. The figure's
-    title (its suptitle) and ``description`` (what it shows, a sentence) are written into the
-    file's metadata (:data:`TEXT_KEYS`), where the campaign report reads its captions.
+    title (its suptitle) and ``description`` are written into the file's metadata
+    (:data:`TEXT_KEYS`), where the campaign report reads its captions.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    *paths : Files to write, one per format.
+    check : callable, optional
+        Called with the figure once it is drawn at the PNG's resolution, before any file is
+        written (e.g. :func:`flumekit.figures.check.assert_passes`); it sees the drawn figure,
+        so the check and the PNG share one drawing.
+    description : str, optional
+        What the figure shows, a sentence.
     """
     from flumekit.io.atomic import atomic_path
 
     title = fig._suptitle.get_text().replace("\n", " ") if fig._suptitle is not None else ""
-    out = []
-    for path in map(Path, paths):
-        fmt = path.suffix.lstrip(".").lower()
-        if fmt not in FORMATS:
-            raise ValueError(f"{path}: figure format '{fmt}' is not one of {sorted(FORMATS)}")
+
+    def metadata(fmt: str) -> dict:
         meta = dict(FORMATS[fmt])
         for key, text in zip(TEXT_KEYS[fmt], (title, description)):
             if text:
                 meta[key] = text.replace("\u00a0", " ")
-        with style(), atomic_path(path) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"], metadata=meta)
-        out.append(path)
-    return out
+        return meta
+
+    paths = [Path(p) for p in paths]
+    for path in paths:
+        fmt = path.suffix.lstrip(".").lower()
+        if fmt not in FORMATS:
+            raise ValueError(f"{path}: figure format '{fmt}' is not one of {sorted(FORMATS)}")
+    with style(), _layout_once(fig), _font_subsets_cached():
+        png = _drawn_png(fig, check, metadata("png")) if check is not None or any(
+            p.suffix.lower() == ".png" for p in paths) else None
+        for path in paths:
+            fmt = path.suffix.lstrip(".").lower()
+            with atomic_path(path) as tmp:
+                if fmt == "png":
+                    Path(tmp).write_bytes(png)
+                else:
+                    fig.savefig(tmp, format=fmt, dpi=STYLE["savefig.dpi"],
+                                metadata=metadata(fmt))
+    return paths
+
+
+def _drawn_png(fig, check=None, metadata=None) -> bytes:
+    """The figure drawn once at the PNG's resolution on an Agg canvas, ``check``-ed on that
+    drawing, and encoded as ``savefig`` would write it (same pixels, same metadata)."""
+    from io import BytesIO
+
+    import matplotlib.image
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    dpi = fig.get_dpi()
+    canvas = FigureCanvasAgg(fig)
+    try:
+        fig.set_dpi(STYLE["savefig.dpi"])
+        canvas.draw()
+        if check is not None:
+            check(fig)
+        out = BytesIO()
+        matplotlib.image.imsave(out, canvas.buffer_rgba(), format="png", origin="upper",
+                                dpi=fig.get_dpi(), metadata=metadata or FORMATS["png"])
+    finally:
+        fig.set_dpi(dpi)
+    return out.getvalue()
+
+
+@contextmanager
+def laid_out(fig):
+    """Context in which ``fig`` keeps one layout: its layout engine runs once (at the PNG's
+    resolution) on entry and not again in each draw (the figure check, every format saved),
+    where it is the costliest part of a small figure. The engine is restored on exit.
+
+    Examples
+    --------
+    >>> from flumekit.figures.style import laid_out, new_figure, save
+    >>> fig, axes = new_figure()
+    >>> with laid_out(fig):                        # doctest: +SKIP
+    ...     save(fig, "a.png", "a.pdf")
+    """
+    with _layout_once(fig):
+        yield fig
+
+
+@contextmanager
+def _layout_once(fig):
+    """See :func:`laid_out`; nothing to do for a figure without a layout engine, or one whose
+    layout is already fixed."""
+    engine = fig.get_layout_engine()
+    if engine is None or not hasattr(engine, "execute") or type(engine).__name__ == \
+            "PlaceHolderLayoutEngine":
+        yield
+        return
+    dpi = fig.get_dpi()
+    fig.set_dpi(STYLE["savefig.dpi"])
+    try:
+        with style():
+            engine.execute(fig)
+    finally:
+        fig.set_dpi(dpi)
+    fig.set_layout_engine("none")
+    try:
+        yield
+    finally:
+        fig.set_layout_engine(engine)
+
+
+#: font subsets embedded in PDFs, by (font file, face, glyphs): the same labels in figure after
+#: figure need the same subset, and subsetting a TrueType font (fontTools: parsing its layout
+#: tables) costs more than drawing most figures
+_SUBSETS: dict = {}
+
+
+@contextmanager
+def _font_subsets_cached():
+    """Within: matplotlib's TrueType subsetting for PDF (``pdf.fonttype`` 42) remembered per
+    font and glyph set for the life of the process.
+
+    Every subset, computed or remembered, is embedded from its saved bytes, re-read: the PDF
+    has the same bytes whichever figure came first. Where matplotlib's private subsetting
+    helper is not the one expected (another matplotlib version), nothing is changed."""
+    try:
+        from io import BytesIO
+
+        from fontTools.ttLib import TTFont
+        from matplotlib.backends import _backend_pdf_ps as pdf_ps
+
+        original = pdf_ps.get_glyphs_subset
+        results = pdf_ps.SubsetResults
+        results._as_cm  # noqa: B018 - the context manager this version returns
+    except (ImportError, AttributeError):
+        yield
+        return
+
+    def subset(fontfile, glyphs):
+        key = (str(fontfile), getattr(fontfile, "face_index", 0), frozenset(glyphs))
+        if key not in _SUBSETS:
+            with original(fontfile, glyphs) as done:
+                _SUBSETS[key] = (pdf_ps.font_as_file(done.font).getvalue(),
+                                 dict(done.glyph_index_map))
+        data, index = _SUBSETS[key]
+        # re-read as it was written: no new time stamp or bounds (the subsetter sets neither)
+        font = TTFont(BytesIO(data), recalcBBoxes=False, recalcTimestamp=False)
+        return results(font, dict(index))._as_cm()
+
+    pdf_ps.get_glyphs_subset = subset
+    try:
+        yield
+    finally:
+        pdf_ps.get_glyphs_subset = original

@@ -18,6 +18,7 @@ from flumekit.figures.style import (
     new_figure,
     run_title,
     style,
+    thin,
     title,
 )
 
@@ -65,7 +66,8 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     p, tt, eta, period = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
     with style():
-        ax.plot(tt, eta, color=COLOURS["experiment"], lw=0.5, label=f"measured, {p}")
+        ax.plot(*thin(tt, eta, fig.get_figwidth()), color=COLOURS["experiment"], lw=0.5,
+                label=f"measured, {p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
         ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9,
                    label="start of the quasi-steady window")

@@ -10,7 +10,9 @@ must equal, written with numpy, are in tests/qc/test_qartod.py.
 
 Imported only by the UVP tests, so that the probe and flap QC and the other stages do not load
 numba: a process pays 0.4-0.5 s once for it (import, and the first use, which loads the
-kernels from their cache). ``cache=True``: compiled once per installation (17 s), into this
+kernels from their cache). ``cache=True``: compiled once per installation (5-8 s on a loaded
+2-core machine; no generic ``np.median`` or ``np.sort``, whose compilation alone took seconds:
+:func:`_middle` selects instead), into this
 package's ``__pycache__`` (numba falls back to a user cache directory when that is not
 writable).
 """
@@ -48,6 +50,44 @@ def _ranked(hist, span, n):
         if cum > r2:
             return a, k
     return a, span - 1
+
+
+@njit(cache=True)
+def _middle(x):
+    """(a, b): the values of ranks (n - 1) // 2 and n // 2 (0-based) of ``x``, reordered in
+    place; their mean is the median. Quickselect (Hoare partition about the middle element,
+    which keeps sorted and constant records linear), then the least value above rank
+    (n - 1) // 2. Written out rather than ``np.median`` or ``np.sort``, whose generic
+    implementations take seconds of each fresh installation's first run to compile."""
+    n = x.size
+    k = (n - 1) // 2
+    lo, hi = 0, n - 1
+    while lo < hi:
+        pivot = x[(lo + hi) // 2]
+        i, j = lo, hi
+        while i <= j:
+            while x[i] < pivot:
+                i += 1
+            while x[j] > pivot:
+                j -= 1
+            if i <= j:
+                x[i], x[j] = x[j], x[i]
+                i += 1
+                j -= 1
+        # x[lo:j + 1] <= pivot <= x[i:hi + 1], and x[j + 1:i] == pivot
+        if k <= j:
+            hi = j
+        elif k >= i:
+            lo = i
+        else:
+            break
+    a = x[k]
+    if n % 2:
+        return a, a
+    b = x[k + 1]
+    for i in range(k + 2, n):  # every value above rank k is at least x[k]
+        b = min(b, x[i])
+    return a, b
 
 
 # -- Goring-Nikora phase-space despiking (flumekit.qc.despike) ---------------------------------
@@ -214,7 +254,8 @@ def _outside(w, lam2, fl, work, out):
         for i in range(n):
             w[i] = np.floor(w[i] + 0.5)
     Df[:] = w  # a copy to select in
-    med = np.median(Df)
+    a, b = _middle(Df)
+    med = a if n % 2 else (a + b) / 2  # as np.median
     for i in range(n):
         Cf[i] = 2.0 * (w[i] - med)
     _differences(Cf, Df, Ef)
@@ -333,13 +374,13 @@ def level_fail_rows(x, threshold):
     the floor of twice the bound.
 
     The median and the MAD are read from the row's histogram (the deviations' histogram from
-    the values'), O(n); a row spanning more values than ``HIST_BINS`` is sorted instead."""
+    the values'), O(n); a row spanning more values than ``HIST_BINS`` by selection instead
+    (:func:`_middle`)."""
     m, n = x.shape
     fail = np.empty((m, n), dtype=np.bool_)
     row = np.empty(n, dtype=np.int64)
     hist = np.empty(HIST_BINS, dtype=np.int64)
     dhist = np.empty(2 * HIST_BINS + 1, dtype=np.int64)
-    r1, r2 = (n - 1) // 2, n // 2
     for r in range(m):
         for i in range(n):  # the row copied once (a transposed view is strided)
             row[i] = x[r, i]
@@ -366,10 +407,9 @@ def level_fail_rows(x, threshold):
                 dhist[abs(2 * (lo + k) - twice)] += hist[k]
             a, b = _ranked(dhist, dspan, n)
         else:
-            srt = np.sort(row)
-            twice = srt[r1] + srt[r2]
-            dev = np.sort(np.abs(2 * row - twice))
-            a, b = dev[r1], dev[r2]
+            a, b = _middle(row.copy())
+            twice = a + b
+            a, b = _middle(np.abs(2 * row - twice))
         scale = max(MAD_TO_STD * 0.5 * (0.5 * (a + b)), float(res))
         # |2x - 2M| > bound for an integer: beyond its floor, compared in integers
         bound = np.int64(min(np.floor(2.0 * threshold * scale), 2.0 ** 62))

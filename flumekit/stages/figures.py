@@ -126,7 +126,7 @@ def draw(inputs, outputs, params) -> None:
     import numpy as np
 
     from flumekit.figures.check import assert_passes
-    from flumekit.figures.style import save, style
+    from flumekit.figures.style import laid_out, save, style
     from flumekit.io.netcdf import read_dataset
 
     draw = params["draw"]
@@ -159,5 +159,6 @@ def draw(inputs, outputs, params) -> None:
         else:
             (ds,) = data.values()
             fig = fn(ds)
-    assert_passes(fig, f"figure {draw}")
-    save(fig, *outputs.values(), description=_description(fn))
+    with laid_out(fig):  # one layout, and one drawing for the check and the PNG
+        save(fig, *outputs.values(), check=lambda f: assert_passes(f, f"figure {draw}"),
+             description=_description(fn))
