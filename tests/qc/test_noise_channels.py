@@ -106,9 +106,10 @@ def test_partial_noise_is_flagged_and_counted_for_the_figure(tmp_path):
     (tmp_path / "run.toml").write_text("[run]\nperiod = 2.0\n")
     qc_stage.probes({"probes": tmp_path / "probes.csv", "run": tmp_path / "run.toml"},
                     {"dataset": tmp_path / "out.nc"}, _params("r"))
-    import xarray as xr
+    from flumekit.io.netcdf import read_dataset
 
-    with xr.open_dataset(tmp_path / "out.nc") as ds:
+    # read as the pipeline reads its products: times in seconds, not decoded to datetimes
+    with read_dataset(tmp_path / "out.nc") as ds:
         by = ds["probe_voltage_qc"].attrs["flagged_by_noise"]
         assert list(by) == [0, 0, 250, 0]
         assert "WP3 120.000-129.960 s" in ds.attrs["flumekit_warnings"]
