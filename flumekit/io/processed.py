@@ -109,14 +109,29 @@ def _read_variables(path: Path) -> tuple[dict, dict, dict, set]:
 
 
 def _common_attrs(dicts: list[dict]) -> dict:
-    """Keep the attributes every dict has with equal values (xarray's ``drop_conflicts``)."""
+    """Keep the attributes whose values agree wherever set (xarray's ``drop_conflicts``)."""
     import numpy as np
 
-    first, out = dicts[0], {}
-    for k, v in first.items():
-        if all(k in d and np.array_equal(np.asarray(d[k]), np.asarray(v)) for d in dicts[1:]):
-            out[k] = v
+    out, dropped = {}, set()
+    for d in dicts:
+        for k, v in d.items():
+            if k in dropped:
+                continue
+            if k not in out:
+                out[k] = v
+            elif not np.array_equal(np.asarray(out[k]), np.asarray(v)):
+                del out[k]
+                dropped.add(k)
     return out
+
+
+def _equal(a, b) -> bool:
+    """Tell whether two arrays have the same shape and values, NaN equal to NaN."""
+    import numpy as np
+
+    if a.shape != b.shape:
+        return False
+    return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc" and b.dtype.kind in "fc"))
 
 
 def stack_files(files) -> xr.Dataset:
@@ -158,8 +173,7 @@ def stack_files(files) -> xr.Dataset:
     for name in names:
         if dims[name] == (name,):
             values = [p[0][name][1] for p in parts if name in p[0]]
-            if all(v.shape == values[0].shape and np.array_equal(v, values[0])
-                   for v in values[1:]):
+            if all(_equal(v, values[0]) for v in values[1:]):
                 index[name] = (values[0], None)
             else:
                 union = np.unique(np.concatenate(values))
@@ -175,8 +189,7 @@ def stack_files(files) -> xr.Dataset:
         d = dims[name]
         sample = next(v[1] for v in present if v is not None)
         if (all(v is not None for v in present) and name in coord_names
-                and all(v[1].shape == sample.shape and np.array_equal(v[1], sample)
-                        for v in present[1:])):
+                and all(_equal(v[1], sample) for v in present[1:])):
             coords[name] = xr.Variable(d, sample, attrs)  # equal in every run: not stacked
             continue
         shape = tuple(index[k][0].size if k in index else sample.shape[i]
