@@ -265,7 +265,10 @@ RUN: dict[str, Key] = {
                         for k in ("probes", "flap", "uvp")}),
     "files": Key("table", "this run's instrument files, relative to the run folder, when not "
                  "named as in [files] of campaign.toml", required=False,
-                 table={**{k: Key("text", f"{k} record", required=False)
+                 table={**{k: Key("text", f"{k} record: its file name, or a table of the "
+                                  f"keys of [files.{k}] in campaign.toml for this run's own "
+                                  "file (another format, delimiter, columns...)",
+                                  required=False, kinds=("table",), table=DIALECT)
                            for k in ("probes", "flap")},
                         "shared": Key("names", "instruments whose file lies outside the run "
                                       "folder on purpose (one record several runs share); any "
@@ -415,6 +418,8 @@ class Run:
     still_water: Any = None  # the run's still-water rule (None: the campaign's)
     start: str | None = None  # declared start of the records, ISO 8601 (Z: UTC), see _iso
     sea_state: SeaState | None = None  # the target sea state of an irregular run
+    # instrument -> this run's own [files.<instrument>] dialect keys (Campaign.dialect)
+    dialects: dict[str, dict] = field(default_factory=dict, hash=False)
 
     @property
     def irregular(self) -> bool:
@@ -451,9 +456,16 @@ class Campaign:
         then 'uvp'."""
         return ("probes",) + (("flap",) if self.flap else ()) + (("uvp",) if self.uvp else ())
 
-    def dialect(self, instrument: str) -> dict:
-        """How ``instrument``'s files are written (a dict for ``io.dialects.Dialect``)."""
-        return dict(self.files.get(instrument, {}))
+    def dialect(self, instrument: str, run: Run | None = None) -> dict:
+        """How ``instrument``'s files are written (a dict for ``io.dialects.Dialect``): the
+        campaign's ``[files.<instrument>]``, with a run's own keys over it; a run declaring
+        another ``format`` than the campaign's has its own dialect alone (a delimiter means
+        nothing to an HDF5 file)."""
+        base = dict(self.files.get(instrument, {}))
+        own = {} if run is None else dict(run.dialects.get(instrument, {}))
+        if "format" in own and own["format"] != base.get("format", "csv"):
+            return own
+        return {**base, **own}
 
     def run(self, run_id: str) -> Run:
         for r in self.runs:
@@ -516,9 +528,15 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
             found.append(Problem(path, "files.shared", f"unknown instrument {k!r}; the run's "
                                  "files are 'probes' and 'flap'" + suggest(str(k),
                                                                          ["probes", "flap"])))
+    dialects = {}
     for inst in ("probes", "flap"):
         given = _table(data, "files").get(inst)
         default = campaign.files.get(inst, {}).get("file", INSTRUMENT_FILES[inst])
+        if isinstance(given, dict):  # this run's own dialect
+            dialects[inst] = dict(given)
+            _check_channels(path, {inst: given}, {"probes": list(names),
+                                                  "flap": ["encoder", "pressure"]}, found)
+            given = given.get("file", default)
         # normalised, not resolved: "../../record.csv" reads as the file it names
         files[inst] = Path(os.path.normpath(path.parent / (given if isinstance(given, str)
                                                            else default)))
@@ -546,7 +564,8 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
                height=float(r["height"]) if "height" in r else None, sea_state=sea,
                repeat=int(r.get("repeat", 0)), probe_x={n: float(px[n]) for n in names},
                uvp_elevation=float(r["uvp_elevation"]) if kind == "uvp" else None,
-               files=files, clock={k: float(clock.get(k, 0.0)) for k in ("probes", "flap", "uvp")},
+               files=files, dialects=dialects,
+               clock={k: float(clock.get(k, 0.0)) for k in ("probes", "flap", "uvp")},
                still_water=sw, start=_iso(r["start"]) if "start" in r else None)
 
 

@@ -412,11 +412,12 @@ def cmd_clock(args) -> int:
         inst, _, name = spec.partition(":")
         if inst == "probes" and name in c.probes.names:
             ds = read_probes(run.file("probes"), c.probes.names, c.probes.sampling_rate,
-                             c.dialect("probes"), units=c.probes.units)
+                             c.dialect("probes", run), units=c.probes.units)
             v = next(iter(ds.data_vars.values())).sel(probe=name)
             return v.values, ds["time"].values
         if inst == "flap" and c.encoder and name in FLAP_VARIABLES:
-            ds = read_flap(run.file("flap"), c.encoder.sampling_rate, c.dialect("flap"))
+            ds = read_flap(run.file("flap"), c.encoder.sampling_rate,
+                           c.dialect("flap", run))
             return ds[FLAP_VARIABLES[name]].values.astype(float), ds["time"].values
         raise FlumekitError(f"unknown channel {spec!r}: probes:<probe> or "
                             f"flap:{'|'.join(FLAP_VARIABLES)}")

@@ -86,10 +86,11 @@ def _reading(ctx: Context, run) -> dict:
     campaign declares them ([files.<instrument>], dialect, units, clocks)."""
     c = ctx.campaign
     out = {"probes": {"probes": list(c.probes.names), "sampling_rate": c.probes.sampling_rate,
-                      "dialect": c.dialect("probes"), "units": c.probes.units,
+                      "dialect": c.dialect("probes", run), "units": c.probes.units,
                       "time_offset": run.clock.get("probes", 0.0)}}
     if "flap" in c.instruments:
-        out["flap"] = {"sampling_rate": c.encoder.sampling_rate, "dialect": c.dialect("flap"),
+        out["flap"] = {"sampling_rate": c.encoder.sampling_rate,
+                       "dialect": c.dialect("flap", run),
                        "time_offset": run.clock.get("flap", 0.0)}
     return out
 
