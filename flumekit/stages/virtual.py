@@ -4,16 +4,15 @@
 ``synth/<run>`` one run; each is declared to produce exactly the raw files the stage rules read,
 so `make ballscrew` synthesises nothing and `make fig10` the base and one run. These are
 ``source`` rules: they run only where all their files are absent, are never forced, and the
-engine never removes what they wrote (raw data is sacred). Each run written is recorded in the
-campaign's marker, so that a run missing later is known to have been removed by hand and is
-never synthesised again (:mod:`flumekit.pipeline.raw`).
+engine never removes what they wrote (raw data is sacred). The synthesis records each run it writes
+in the campaign's marker (:mod:`flumekit.synth.marker`), so that a run missing later is known
+to have been removed by hand and is never synthesised again (:mod:`flumekit.pipeline.raw`).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from flumekit.pipeline.raw import record_written, start_record
 from flumekit.pipeline.rules import Rule
 
 
@@ -47,11 +46,10 @@ def base(inputs, outputs, params) -> None:
     from flumekit.synth.campaign import write_virtual_base
 
     write_virtual_base(params["root"], params["size"], int(params["seed"]))
-    start_record(Path(params["root"]))
 
 
 def run(inputs, outputs, params) -> None:
     from flumekit.synth.campaign import write_virtual_run
 
     write_virtual_run(params["root"], params["run"])
-    record_written(Path(params["root"]), params["run"])
+

@@ -33,6 +33,7 @@ from flumekit.io.netcdf import write_dataset
 from flumekit.io.tables import write_table
 from flumekit.synth import DEFAULT_SEED, MARKER
 from flumekit.synth.flume import RepeatScatter
+from flumekit.synth.marker import record_written, start_record
 from flumekit.synth.waves import RAMP_WAVES, Beach
 from flumekit.waves.theory import group_velocity, wavelength
 
@@ -165,7 +166,12 @@ def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Tr
     """Write the campaign-wide files of a virtual campaign (``campaign.toml``, the probe
     calibration, its truth and :data:`MARKER`) into ``root``, absent or empty; no run yet."""
     root = Path(root)
-    _into_new_folder(root, lambda tmp: _write_base(tmp, root.name, size, seed, truth))
+
+    def fill(tmp: Path) -> None:
+        _write_base(tmp, root.name, size, seed, truth)
+        start_record(tmp)
+
+    _into_new_folder(root, fill)
 
 
 def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> None:
@@ -203,6 +209,7 @@ def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> 
         if spec.kind == "uvp" and not (root / "truth" / "uvp_field.nc").exists():
             _write_uvp_truth(root, campaign, truth, size, seed)
         os.rename(tmp / "runs" / run_id, root / "runs" / run_id)
+        record_written(root, run_id)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)  # only the folder this call created
 
