@@ -27,7 +27,6 @@ from pathlib import Path
 
 from flumekit.errors import FlumekitError, InputError
 from flumekit.synth import DEFAULT_SEED, MARKER
-from flumekit.synth.marker import record_written, start_record
 
 #: characters a run folder's name may not hold: a path separator on some system (``\\`` is one
 #: for the netCDF library, which would write outside the processed folder), and the wildcards
@@ -228,4 +227,4 @@ def campaign_files(raw: Path) -> list[str | Path]:
 
 __all__ = ["FORBIDDEN_IN_RUN_NAMES", "Synthesis", "campaign_files",
            "check_run_names", "check_virtual_campaign", "is_synthesis_temporary", "read_marker",
-           "record_written", "run_folders", "start_record", "synthesis_plan"]
+           "run_folders", "synthesis_plan"]

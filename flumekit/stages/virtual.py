@@ -4,9 +4,9 @@
 ``synth/<run>`` one run; each is declared to produce exactly the raw files the stage rules read,
 so `make ballscrew` synthesises nothing and `make fig10` the base and one run. These are
 ``source`` rules: they run only where all their files are absent, are never forced, and the
-engine never removes what they wrote (raw data is sacred). Each run written is recorded in the
-campaign's marker, so that a run missing later is known to have been removed by hand and is
-never synthesised again (:mod:`flumekit.pipeline.raw`).
+engine never removes what they wrote (raw data is sacred). The synthesis records each run it writes
+in the campaign's marker (:mod:`flumekit.synth.marker`), so that a run missing later is known
+to have been removed by hand and is never synthesised again (:mod:`flumekit.pipeline.raw`).
 """
 
 from __future__ import annotations
@@ -52,3 +52,4 @@ def run(inputs, outputs, params) -> None:
     from flumekit.synth.campaign import write_virtual_run
 
     write_virtual_run(params["root"], params["run"])
+

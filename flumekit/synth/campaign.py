@@ -36,6 +36,7 @@ from flumekit.io.tables import write_table
 from flumekit.synth import DEFAULT_SEED, MARKER
 from flumekit.synth.flume import RepeatScatter
 from flumekit.synth.irregular import SeaTruth
+from flumekit.synth.marker import record_written, start_record
 from flumekit.synth.waves import RAMP_WAVES, Beach
 from flumekit.waves.theory import group_velocity, wavelength
 
@@ -200,11 +201,13 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
 def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Truth()) -> None:
     """Write the campaign-wide files of a virtual campaign (``campaign.toml``, the probe
     calibration, its truth and :data:`MARKER`) into ``root``, absent or empty; no run yet."""
-    from flumekit.synth.marker import start_record
-
     root = Path(root)
-    _into_new_folder(root, lambda tmp: _write_base(tmp, root.name, size, seed, truth))
-    start_record(root)  # written run by run: write_virtual_run records each
+
+    def fill(tmp: Path) -> None:
+        _write_base(tmp, root.name, size, seed, truth)
+        start_record(tmp)
+
+    _into_new_folder(root, fill)
 
 
 def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> None:
@@ -213,8 +216,6 @@ def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> 
     :func:`write_campaign`. Refused where ``root`` is not such a campaign or the run's folder
     exists (nothing there is touched)."""
     import json
-
-    from flumekit.synth.marker import record_written
 
     root = Path(root)
     marker = root / MARKER

@@ -1,10 +1,10 @@
-"""The marker of a virtual-flume campaign: which runs it plans and which it has written.
+"""The record of the runs a virtual campaign holds, in its marker (:data:`flumekit.synth.MARKER`).
 
-The virtual flume writes its marker with the campaign's base files and records each run it
-writes afterwards (lazy synthesis, one run at a time), so that a run missing later is known to
-have been removed by hand, not never written (:mod:`flumekit.pipeline.raw`). The marker is a
-file of the virtual flume's own, not raw data: only the synthesis that created the campaign
-replaces it.
+A campaign written run by run (``flumekit make`` synthesises only the runs a target reads) lists
+in its marker the runs written so far, so that a run missing later is known to have been removed
+by hand, never to be synthesised again (:mod:`flumekit.pipeline.raw`). A campaign written whole
+(:func:`flumekit.synth.campaign.write_campaign`) lists none: all its planned runs are there.
+No numpy here: the marker is small JSON.
 """
 
 from __future__ import annotations
@@ -15,15 +15,14 @@ from pathlib import Path
 
 from flumekit.synth import MARKER
 
-__all__ = ["record_written", "start_record"]
-
 
 def record_written(raw: Path, run: str) -> None:
     """Add ``run`` to the runs the marker of the virtual campaign ``raw`` lists as written.
 
-    Called by the synthesis right after it wrote the run, so that a run missing later is known
-    to have been removed by hand, not never written. The marker is replaced atomically, under
-    an exclusive lock on the campaign folder (runs synthesised in parallel processes).
+    Called by :func:`flumekit.synth.campaign.write_virtual_run` right after it wrote the run,
+    so that a run missing later is known to have been removed by hand rather than never
+    written. The marker is replaced atomically, under an exclusive lock on the campaign folder
+    (runs synthesised in parallel processes).
 
     Parameters
     ----------
@@ -36,6 +35,7 @@ def record_written(raw: Path, run: str) -> None:
 
     from flumekit.io.atomic import atomic_path
 
+    raw = Path(raw)
     fd = os.open(raw, os.O_RDONLY)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)
@@ -52,13 +52,16 @@ def record_written(raw: Path, run: str) -> None:
 
 
 def start_record(raw: Path) -> None:
-    """Mark the virtual campaign ``raw``, just written without runs, as synthesised run by run:
+    """Mark the virtual campaign ``raw``, being written without runs, as synthesised run by run:
     an empty list of written runs (:func:`record_written` adds each)."""
     from flumekit.io.atomic import atomic_path
 
-    marker = raw / MARKER
+    marker = Path(raw) / MARKER
     info = json.loads(marker.read_text(encoding="utf-8"))
     if "written" not in info:
         info["written"] = []
         with atomic_path(marker) as tmp:
             tmp.write_text(json.dumps(info) + "\n", encoding="utf-8")
+
+
+__all__ = ["record_written", "start_record"]

@@ -21,12 +21,11 @@ from flumekit.pipeline.raw import (
     Synthesis,
     check_run_names,
     read_marker,
-    record_written,
     run_folders,
-    start_record,
     synthesis_plan,
 )
 from flumekit.synth import DEFAULT_SEED, MARKER
+from flumekit.synth.marker import record_written, start_record
 
 ROOT = Path(__file__).resolve().parents[2]
 PLANNED = ["T2.00_H0.150_r0", "T3.50_H0.250_r0", "uvp_z0.300_r0"]
