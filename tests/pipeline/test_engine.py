@@ -269,6 +269,8 @@ def test_atomic_writes_honour_the_umask(tmp_path):
 
 
 HOLD = textwrap.dedent('''
+    import os
+    import signal
     import threading
     import time
 
@@ -282,6 +284,8 @@ HOLD = textwrap.dedent('''
         with atomic_path(outputs["out"]) as tmp:
             tmp.write_text("partial")
             LOCK.acquire()
+            # Ctrl-C once the lock is held, however long the imports and planning took
+            threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT)).start()
             try:
                 time.sleep(60)
             finally:
@@ -290,7 +294,7 @@ HOLD = textwrap.dedent('''
 ''')
 
 DRIVER = textwrap.dedent('''
-    import os, signal, sys, threading
+    import signal, sys
     from pathlib import Path
     from flumekit.pipeline.engine import Graph, make
     from flumekit.pipeline.executors import SerialExecutor
@@ -299,7 +303,6 @@ DRIVER = textwrap.dedent('''
 
     out = Path(sys.argv[1])
     signal.signal(signal.SIGINT, signal.default_int_handler)
-    threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT)).start()
     g = Graph([Rule("hold", "flumekit_hold:hold", {}, {"out": out / "held.txt"})])
     make(g, ["hold"], State(out / "state.json"),
          SerialExecutor(exit_on_interrupt=sys.argv[2] == "exit"), log=lambda s: None)
