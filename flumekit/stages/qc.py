@@ -19,6 +19,7 @@ quasi-steady part of the run only when the beams are not clean there
 
 from __future__ import annotations
 
+from flumekit.conventions import MAX_GAP, SOURCE_FILE, WARNINGS
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
@@ -71,7 +72,6 @@ DOCS = {
                        "condition (its other runs, else the neighbouring conditions) by more "
                        "than this is reported as a possible clock offset [s]",
 }
-WARNINGS = "flumekit_warnings"  # dataset attribute: newline-separated warnings for summaries
 #: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
 #: probe and flap records, written once and read once by the next stage, whose float records of
 #: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
@@ -181,7 +181,7 @@ def _write(ds, outputs, params, title, source, warnings=(), compress=True) -> Wr
 
     if warnings:
         ds.attrs[WARNINGS] = "\n".join(warnings)
-    ds.attrs["max_gap"] = float(params["max_gap"])
+    ds.attrs[MAX_GAP] = float(params["max_gap"])
     # no run coordinates: qc_summary stacks its own counts, and the rule's title and
     # parameters name the run (3 ms a product: a tenth of a probe or flap QC rule)
     return write_run(ds, outputs, params, title, source, compress=compress, coords=False)
@@ -241,7 +241,7 @@ def probes(inputs, outputs, params) -> Written:
                                         "probe records (spectral peak)"})
     warnings = [f"{path}: {name}: masked and not interpolated: {g}"
                 for g in ds.attrs[f"{name}_unfilled_gaps"].split("; ") if g]
-    ds.attrs["source_file"] = str(path)
+    ds.attrs[SOURCE_FILE] = str(path)
     return _write(ds, outputs, params, "Quality-controlled wave probe voltages",
                   f"flumekit qc stage from {path}", warnings, compress=COMPRESS["probes"])
 
@@ -282,7 +282,7 @@ def flap(inputs, outputs, params) -> Written:
     # costs more than one channel's tests)
     ds = xr.Dataset({k: v.variable for p in parts for k, v in p.data_vars.items()},
                     coords=parts[0].coords, attrs={k: v for p in parts for k, v in p.attrs.items()})
-    ds.attrs["source_file"] = str(path)
+    ds.attrs[SOURCE_FILE] = str(path)
     return _write(ds, outputs, params, "Quality-controlled encoder and chamber pressure",
                   f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flumekit.conventions import SOURCE_FILE, WARNINGS, run_warnings
 from flumekit.io.atomic import Written
 
 
@@ -88,7 +89,7 @@ def _declared_start(ds, declared: str, run: str):
         gap = abs(np.datetime64(found.rstrip("Z"), "ns") - np.datetime64(declared.rstrip("Z"),
                                                                          "ns"))
         if gap > np.timedelta64(1, "s"):
-            raise InputError(ds.attrs.get("source_file") or f"run {run}",
+            raise InputError(ds.attrs.get(SOURCE_FILE) or f"run {run}",
                              f"the record starts at {found}, but run.toml of run {run} declares "
                              f"start = {declared}: correct or remove 'start' in run.toml",
                              field="start")
@@ -103,19 +104,6 @@ def summary_rule(ctx, stage: str, version: str, module: str | None = None):
     return Rule(f"{stage}_summary", f"flumekit.stages.{module or stage}:summary",
                 inputs={r.id: ctx.out(stage, f"{r.id}.nc") for r in ctx.campaign.runs},
                 outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
-
-
-#: dataset attribute: newline-separated warnings (flumekit.stages.qc.WARNINGS)
-WARNINGS = "flumekit_warnings"
-
-
-def run_warnings(run: str | None, text: str) -> list[str]:
-    """The lines of a ``flumekit_warnings`` attribute, each starting with ``run <run>: `` when
-    ``run`` is given and the line does not name it already."""
-    lines = [w for w in text.splitlines() if w.strip()]
-    if not run:
-        return lines
-    return [w if run in w else f"run {run}: {w}" for w in lines]
 
 
 def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:

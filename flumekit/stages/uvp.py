@@ -85,6 +85,7 @@ def clean_beam(beam, qc, name: str, copy: bool = True):
     beam's own velocity array is cleaned (a beam read for the caller)."""
     import numpy as np
 
+    from flumekit.conventions import MAX_GAP
     from flumekit.qc.record import clean
 
     flags = qc[f"beam_velocity_qc_{name}"].transpose("channel", ...).values
@@ -97,7 +98,7 @@ def clean_beam(beam, qc, name: str, copy: bool = True):
     v = beam["beam_velocity"].transpose("channel", "time").values
     out = np.array(v) if copy else v
     fs = (t.size - 1) / (t[-1] - t[0])
-    cleaned = clean(out[:, span], flags, fs, float(qc.attrs["max_gap"]), copy=False)
+    cleaned = clean(out[:, span], flags, fs, float(qc.attrs[MAX_GAP]), copy=False)
     if not np.may_share_memory(cleaned, out):  # cleaned in place, as a rule
         out[:, span] = cleaned
     return beam.assign(beam_velocity=beam["beam_velocity"].copy(

@@ -73,10 +73,10 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     import warnings
 
+    from flumekit.conventions import WARNINGS
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.checks import check_declared, check_height
-    from flumekit.stages.qc import WARNINGS
 
     eta_ds = read_dataset(inputs["eta"])
     eta = eta_ds["eta"]
