@@ -8,8 +8,8 @@ raw files. The values as read are not repeated (the QC figure reads the raw file
 probe and flap products are not deflated (:data:`COMPRESS`).
 
 The UVP beams are checked (Goring-Nikora despiking, echo level) by the rule that analyses them,
-before its analysis: :func:`check_beams`, called by the uvp rule, writes ``qc/uvp/<run>.nc``
-with the per-sample flags. Their analysis reads the beams whole, 18 MB a run: a rule of its own
+before its analysis: :func:`beam_checker`, called by the uvp rule, which writes the per-sample
+flags to ``qc/uvp/<run>.nc``. Their analysis reads the beams whole, 18 MB a run: a rule of its own
 would read them and the waves a second time, 25-30 ms a run before any checking, a tenth of
 the uvp rule (``flumekit bench qc``). The UVP is checked where its average reads: over the
 earliest window of N waves that the waves and the flap angle allow, and over the whole
@@ -77,7 +77,7 @@ DOCS = {
 #: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
 COMPRESS = {"probes": False, "flap": False, "uvp": True}
 #: the [stages.qc] parameters of the UVP's quality control, which the uvp rules carry (they
-#: check the beams they read: :func:`check_beams`)
+#: check the beams they read: :func:`beam_checker`)
 UVP_PARAMS = ("despike_iterations", "dropout", "gap_tolerance", "max_gap", "velocity_range")
 
 
@@ -287,23 +287,28 @@ def flap(inputs, outputs, params) -> Written:
                   f"flumekit qc stage from {path}", compress=COMPRESS["flap"])
 
 
-def check_beams(beams: dict, span: tuple[float, float], params: dict, path, sources):
-    """Quality control of a run's UVP beams, called by its uvp rule on the beams it has read:
-    the flags of :func:`flumekit.qc.record.beam_flags` over ``span`` [s] with the [stages.qc]
-    parameters ``params["qc"]`` (:data:`UVP_PARAMS`), written to ``path``
-    (``qc/uvp/<run>.nc``); returns them, with attribute ``max_gap`` [s], and the written file
-    (:class:`~flumekit.io.atomic.Written`)."""
+def beam_checker(beams: dict, params: dict):
+    """The quality control of a run's UVP beams over a span [s] (probes' clock): the flags of
+    :func:`flumekit.qc.record.beam_flags` with the [stages.qc] parameters ``params["qc"]``
+    (:data:`UVP_PARAMS`) of the uvp rule; pure (nothing written)."""
     from flumekit.qc.record import Thresholds, beam_flags
 
     qc = params["qc"]
-    ds = beam_flags(beams, span, Thresholds.from_params(qc),
-                    time_offset=float(params.get("time_offset", 0.0)),
-                    gross_range=_span(qc["velocity_range"]))
-    written = _write(ds, {"dataset": path}, {**params, "max_gap": qc["max_gap"]},
-                     "Quality-control flags of the UVP beam velocities",
-                     "flumekit qc stage from " + ", ".join(map(str, sources)),
-                     compress=COMPRESS["uvp"])
-    return ds, written
+    th = Thresholds.from_params(qc)
+
+    def check(span):
+        return beam_flags(beams, span, th, time_offset=float(params.get("time_offset", 0.0)),
+                          gross_range=_span(qc["velocity_range"]))
+
+    return check
+
+
+def write_beam_flags(flags, path, params: dict, sources) -> Written:
+    """Write the UVP beams' QC flags (:func:`beam_checker`) to ``path`` (``qc/uvp/<run>.nc``)."""
+    return _write(flags, {"dataset": path}, {**params, "max_gap": params["qc"]["max_gap"]},
+                  "Quality-control flags of the UVP beam velocities",
+                  "flumekit qc stage from " + ", ".join(map(str, sources)),
+                  compress=COMPRESS["uvp"])
 
 
 def summary(inputs, outputs, params) -> Written:
