@@ -22,6 +22,7 @@ from __future__ import annotations
 from flumekit.conventions import MAX_GAP, SOURCE_FILE, WARNINGS
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
+from flumekit.stages.common import raw_reading, read_raw
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params
 
@@ -81,39 +82,12 @@ COMPRESS = {"probes": False, "flap": False, "uvp": True}
 UVP_PARAMS = ("despike_iterations", "dropout", "gap_tolerance", "max_gap", "velocity_range")
 
 
-def _reading(ctx: Context, run) -> dict:
-    """Per instrument, how its raw file is read: the parameters of :func:`read_raw` as the
-    campaign declares them ([files.<instrument>], dialect, units, clocks)."""
-    c = ctx.campaign
-    out = {"probes": {"probes": list(c.probes.names), "sampling_rate": c.probes.sampling_rate,
-                      "dialect": c.dialect("probes", run), "units": c.probes.units,
-                      "time_offset": run.clock.get("probes", 0.0)}}
-    if "flap" in c.instruments:
-        out["flap"] = {"sampling_rate": c.encoder.sampling_rate,
-                       "dialect": c.dialect("flap", run),
-                       "time_offset": run.clock.get("flap", 0.0)}
-    return out
-
-
-def read_raw(kind: str, path, reading: dict):
-    """The raw record of instrument ``kind`` ("probes" or "flap") read by its instrument
-    reader with the parameters of :func:`_reading` (the qc rules and the QC figure alike)."""
-    from flumekit.io.instruments import read_flap, read_probes
-
-    if kind == "probes":
-        return read_probes(path, tuple(reading["probes"]), reading["sampling_rate"],
-                           reading.get("dialect"), units=reading.get("units", "V"),
-                           time_offset=reading.get("time_offset", 0.0))
-    return read_flap(path, reading["sampling_rate"], reading.get("dialect"),
-                     time_offset=reading.get("time_offset", 0.0))
-
-
 def rules(ctx: Context, params: dict) -> list[Rule]:
     c = ctx.campaign
     out = []
     for run in c.runs:
         rp = {**params, **run_params(run, c)}
-        reading = _reading(ctx, run)
+        reading = raw_reading(ctx, run)
         out.append(Rule(f"qc/probes/{run.id}", "flumekit.stages.qc:probes",
                         inputs={"probes": run.file("probes"), "run": run.path / "run.toml"},
                         outputs={"dataset": ctx.out("qc", "probes", f"{run.id}.nc")},
@@ -133,33 +107,6 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                             "conditions": {r.id: [r.period, r.height] for r in c.runs}},
                     version=VERSION))
     return out
-
-
-def figure_inputs(ctx: Context, run) -> tuple[dict, dict]:
-    """Inputs and parameters of the QC figure of ``run``: the QC products of its instruments
-    and the raw probe and flap files (the values as read are drawn from them, the products do
-    not repeat them), with how to read them."""
-    c = ctx.campaign
-    reading = _reading(ctx, run)
-    inputs = {}
-    for kind in reading:
-        inputs[kind] = ctx.out("qc", kind, f"{run.id}.nc")
-        inputs[f"{kind}_raw"] = run.file(kind)
-    if c.uvp is not None and run.kind == "uvp":
-        inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
-    return inputs, {"reading": reading, "run": run.id}
-
-
-def figure_data(inputs: dict, params: dict) -> dict:
-    """The datasets of :func:`figure_inputs`: QC products read back, raw files through their
-    instrument readers."""
-    from flumekit.io.netcdf import read_dataset
-
-    data = {k: (read_raw(k.removesuffix("_raw"), v, params["reading"][k.removesuffix("_raw")])
-                if k.endswith("_raw") else read_dataset(v)) for k, v in inputs.items()}
-    # the products carry no run coordinate: the figure names its run from the rule's
-    data["probes"] = data["probes"].assign_coords(run=params["run"])
-    return data
 
 
 def _thresholds(params: dict):
