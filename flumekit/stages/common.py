@@ -1,6 +1,7 @@
 """What several stages share beyond the run helpers (:mod:`flumekit.stages.runs`): how a run's
-raw instrument files are read, by the qc rules and the QC figure alike, and how a rule's
-inputs are read whether processed datasets or raw files. No domain code needs this module."""
+raw instrument files are read (by the qc rules and the QC figure), how a rule's inputs are
+read whether processed datasets or raw files, and how a quality-controlled product is written
+(by the qc rules and the uvp rule). No domain code needs this module."""
 
 from __future__ import annotations
 
@@ -42,3 +43,22 @@ def read_inputs(inputs: dict, reading: dict | None = None) -> dict:
 
     return {k: read_raw(k.removesuffix(RAW), v, reading[k.removesuffix(RAW)])
             if k.endswith(RAW) else read_dataset(v) for k, v in inputs.items()}
+
+
+def gross_range(value) -> tuple[float, float] | None:
+    """A ``[min, max]`` gross-range parameter as floats (None: not tested)."""
+    return None if value is None else (float(value[0]), float(value[1]))
+
+
+def write_qc(ds, outputs, params, title, source, warnings=(), compress=True):
+    """Write a quality-controlled product of one run: its ``warnings`` and the interpolation
+    limit ``params["max_gap"]`` [s] as attributes, no run coordinates."""
+    from flumekit.conventions import MAX_GAP, WARNINGS
+    from flumekit.stages.runs import write_run
+
+    if warnings:
+        ds.attrs[WARNINGS] = "\n".join(warnings)
+    ds.attrs[MAX_GAP] = float(params["max_gap"])
+    # no run coordinates: qc_summary stacks its own counts, and the rule's title and
+    # parameters name the run (3 ms a product: a tenth of a probe or flap QC rule)
+    return write_run(ds, outputs, params, title, source, compress=compress, coords=False)

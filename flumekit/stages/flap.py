@@ -7,7 +7,6 @@ spectral energy flux J of that stage (:func:`flumekit.flap.analyse_irregular_run
 
 from __future__ import annotations
 
-from flumekit.conventions import SOURCE_FILE
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
@@ -59,6 +58,7 @@ def build(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
+    from flumekit.conventions import SOURCE_FILE
     from flumekit.errors import InputError
     from flumekit.flap import analyse_irregular_run, analyse_run
     from flumekit.io.netcdf import read_dataset

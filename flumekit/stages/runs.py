@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from flumekit.conventions import SOURCE_FILE, WARNINGS, run_warnings
 from flumekit.io.atomic import Written
 
 
@@ -89,7 +88,7 @@ def _declared_start(ds, declared: str, run: str):
         gap = abs(np.datetime64(found.rstrip("Z"), "ns") - np.datetime64(declared.rstrip("Z"),
                                                                          "ns"))
         if gap > np.timedelta64(1, "s"):
-            raise InputError(ds.attrs.get(SOURCE_FILE) or f"run {run}",
+            raise InputError(ds.attrs.get(conventions.SOURCE_FILE) or f"run {run}",
                              f"the record starts at {found}, but run.toml of run {run} declares "
                              f"start = {declared}: correct or remove 'start' in run.toml",
                              field="start")
@@ -114,6 +113,7 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     """
     import xarray as xr
 
+    from flumekit.conventions import WARNINGS, run_warnings
     from flumekit.io.netcdf import read_dataset, write_product
 
     rows, warned = [], []
@@ -127,3 +127,14 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
     return write_product(out, outputs["dataset"], title,
                          f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
+
+
+def __getattr__(name: str):
+    """``WARNINGS`` and ``run_warnings``, which live in :mod:`flumekit.conventions`, for the
+    callers outside ``stages/`` that still import them from here (loaded on use: planning
+    imports no xarray)."""
+    if name in ("WARNINGS", "run_warnings"):
+        from flumekit import conventions
+
+        return getattr(conventions, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

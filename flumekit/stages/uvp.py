@@ -12,7 +12,7 @@ from __future__ import annotations
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.runs import run_params
 
 VERSION = "5"
 NEEDS = "uvp"  # the instrument this stage reads (stages.build_rules)
@@ -32,12 +32,13 @@ DOCS = {
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
-    from flumekit.stages import qc as qc_stage
+    from flumekit.stages.qc_params import DEFAULTS as QC_DEFAULTS
+    from flumekit.stages.qc_params import UVP_PARAMS
 
     c = ctx.campaign
     runs = [r for r in c.runs if r.kind == "uvp"]
-    qc_params = ctx.stage_params("qc", qc_stage.DEFAULTS)
-    qc = {k: qc_params[k] for k in qc_stage.UVP_PARAMS}
+    qc_params = ctx.stage_params("qc", QC_DEFAULTS)
+    qc = {k: qc_params[k] for k in UVP_PARAMS}
     out = []
     for run in runs:
         inputs = {b.name: run.path / f"{b.name}.mfprof" for b in c.uvp.beams}
@@ -46,7 +47,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
         p = {**params, **run_params(run, c), "time_offset": run.clock.get("uvp", 0.0), "qc": qc}
         # the rule checks the beams it reads before analysing them and writes their QC flags
         # too (flumekit.uvp.run_window.checked_window)
-        out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp:build", inputs=inputs,
+        out.append(Rule(f"uvp/{run.id}", "flumekit.stages.uvp_run:build", inputs=inputs,
                         outputs={"dataset": ctx.out("uvp", f"{run.id}.nc"),
                                  "qc": ctx.out("qc", "uvp", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
@@ -82,52 +83,6 @@ def clean_beam(beam, qc, name: str, copy: bool = True):
     from flumekit.uvp.run_window import clean_beam
 
     return clean_beam(beam, qc, name, copy)
-
-
-def build(inputs, outputs, params) -> list[Written]:
-    """The run's beams read once, checked where the average reads them
-    (:func:`flumekit.uvp.run_window.checked_window`, the flags written), cleaned and
-    phase-averaged."""
-    from pathlib import Path
-
-    from flumekit.campaign import load_campaign
-    from flumekit.errors import InputError
-    from flumekit.io.mfprof import read_mfprof
-    from flumekit.io.netcdf import read_dataset
-    from flumekit.stages.qc import beam_checker, write_beam_flags
-    from flumekit.uvp import phase_average_beams
-    from flumekit.uvp.run_window import checked_window, clean_beam, waves_span
-
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
-    names = [b.name for b in campaign.uvp.beams]
-    raw = {n: read_mfprof(inputs[n]) for n in names}
-    waves = read_dataset(inputs["waves"])
-    try:
-        span = waves_span(waves)
-    except ValueError as e:
-        raise InputError(inputs["waves"], f"run {params['run']}: {e}") from None
-    theta = read_dataset(inputs["flap"])["theta"]
-    files = [inputs[n] for n in names]
-    offset = float(params["time_offset"])
-    try:
-        start, period, qc = checked_window(
-            waves, theta, raw, beam_checker(raw, params), n_cycles=params["n_cycles"],
-            cutoff=params["cutoff"], max_gap=float(params["qc"]["max_gap"]), span=span,
-            time_offset=offset, run=params["run"])
-    except ValueError as e:
-        raise InputError(", ".join(map(str, files)), str(e)) from None
-    qc_file = write_beam_flags(qc, outputs["qc"], params, files)
-    beams = {n: clean_beam(raw[n], qc, n, copy=False) for n in names}  # read for this rule
-    if offset:  # the run file's declared clock offset of the UVP [s]
-        beams = {k: v.assign_coords(time=v["time"] + offset) for k, v in beams.items()}
-    ds = phase_average_beams(beams, campaign.uvp, params["uvp_elevation"], period=period,
-                             start=start, n_cycles=params["n_cycles"], n_phase=params["n_phase"],
-                             cutoff=params["cutoff"], order=params["order"], theta=theta,
-                             flap_thickness=campaign.flap.thickness, margin=params["margin"],
-                             min_amplitude=params["min_amplitude"])
-    return [qc_file, write_run(ds, outputs, params, "Phase-averaged UVP beam velocities",
-                               "flumekit uvp stage from " + ", ".join(str(inputs[n])
-                                                                      for n in names))]
 
 
 def field(inputs, outputs, params) -> Written:
