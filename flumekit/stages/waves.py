@@ -1,13 +1,11 @@
-"""Stage: incident/reflected separation and wave statistics per run, and their campaign summary.
-
-The per-run action is :func:`flumekit.stages.waves_run.build`."""
+"""Stage: incident/reflected separation and wave statistics per run, and their campaign summary."""
 
 from __future__ import annotations
 
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, stack_runs, summary_rule
+from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
 VERSION = "6"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
@@ -63,13 +61,58 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     for run in c.runs:
         p = {**params, "depth": c.flume.water_depth, "density": c.flume.density,
              "separation_probes": list(c.probes.separation), **run_params(run, c)}
-        out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves_run:build",
+        out.append(Rule(f"waves/{run.id}", "flumekit.stages.waves:build",
                         inputs={"eta": ctx.out("eta", f"{run.id}.nc"),
                                 "run": run.path / "run.toml", "probes": run.file("probes")},
                         outputs={"dataset": ctx.out("waves", f"{run.id}.nc")},
                         params=p, version=VERSION, run=run.id))
     out.append(summary_rule(ctx, "waves", VERSION))
     return out
+
+
+def build(inputs, outputs, params) -> Written:
+    import warnings
+
+    from flumekit.conventions import WARNINGS
+    from flumekit.errors import InputError
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.qc.checks import check_declared, check_height
+    from flumekit.stages.waves_run import irregular, regular
+
+    eta_ds = read_dataset(inputs["eta"])
+    eta = eta_ds["eta"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            ds = (irregular if params["kind"] == "irregular" else regular)(eta, params)
+        except ValueError as e:  # a dead probe, a record too short: the message names the probe
+            raise InputError(inputs["probes"], str(e)) from None
+    # kept in the dataset, where the make summary, the summaries and the report find them
+    recorded = [f"{inputs['probes']}: {w.message}" for w in caught
+                if issubclass(w.category, UserWarning)]
+    # the declared height (sea state) only labels the run (the analysis uses the measured
+    # one), so a moderate disagreement is a warning and a gross one an error; an undeclared
+    # one is not checked
+    warned = []
+    if params["height"] is not None:
+        warned.append(check_height(params["height"], float(ds["incident_height"]),
+                                   params["height_tolerance"], params["height_warning"],
+                                   inputs["run"], "incident height at the flap"))
+    sea = params.get("sea_state") or {}
+    for key, measured, unit, what in (
+            ("hm0", "hm0", "m", "incident Hm0 at the flap"),
+            ("tp", "tp", "s", "incident peak period (smoothed spectrum)"),
+            ("te", "te", "s", "incident energy period Tm-1,0")):
+        if sea.get(key) is not None:
+            warned.append(check_declared(key, sea[key], float(ds[measured]), unit,
+                                         params["sea_state_tolerance"],
+                                         params["sea_state_warning"], inputs["run"], what,
+                                         "sea_state_tolerance"))
+    warnings_ = [w for w in (eta_ds.attrs.get(WARNINGS, ""), *recorded, *warned) if w]
+    if warnings_:
+        ds.attrs[WARNINGS] = "\n".join(warnings_)
+    return write_run(ds, outputs, params, "Incident and reflected waves",
+                     f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
 
 
 def report(path) -> str:
