@@ -7,6 +7,10 @@ from __future__ import annotations
 
 #: an input of this suffix is a raw instrument file (``<instrument>_raw``), read by its reader
 RAW = "_raw"
+#: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
+#: probe and flap records, written once and read once by the next stage, whose float records of
+#: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
+COMPRESS = {"probes": False, "flap": False, "uvp": True}
 
 
 def raw_reading(ctx, run) -> dict:

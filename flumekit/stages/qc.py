@@ -17,7 +17,7 @@ reads the beams whole, and a rule of its own would read them and the waves a sec
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
-from flumekit.stages.common import raw_reading, read_raw  # noqa: F401  (read_raw: tests/qc)
+from flumekit.stages.common import COMPRESS, raw_reading, read_raw  # noqa: F401  (bench, tests)
 from flumekit.stages.context import Context
 from flumekit.stages.qc_params import DEFAULTS, DOCS  # noqa: F401  (the stage's parameters)
 from flumekit.stages.qc_records import flap, probes  # noqa: F401  (the rules' actions)

@@ -4,12 +4,8 @@ their metadata and quality-controlled (:mod:`flumekit.stages.qc`)."""
 from __future__ import annotations
 
 from flumekit.io.atomic import Written
-from flumekit.stages.common import gross_range, read_raw, write_qc
+from flumekit.stages.common import COMPRESS, gross_range, read_raw, write_qc
 
-#: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
-#: probe and flap records, written once and read once by the next stage, whose float records of
-#: measured noise deflate by a third only and slowly (6-10 ms a product, a third of the rule)
-COMPRESS = {"probes": False, "flap": False}
 
 def _thresholds(params: dict):
     """The QARTOD thresholds of a run's probe or flap rule: an irregular run's dropout level

@@ -4,7 +4,7 @@ checked where the average reads them, their flags written, cleaned and phase-ave
 from __future__ import annotations
 
 from flumekit.io.atomic import Written
-from flumekit.stages.common import gross_range, write_qc
+from flumekit.stages.common import COMPRESS, gross_range, write_qc
 from flumekit.stages.runs import write_run
 
 
@@ -28,7 +28,8 @@ def write_beam_flags(flags, path, params: dict, sources) -> Written:
     """Write the UVP beams' QC flags (:func:`beam_checker`) to ``path`` (``qc/uvp/<run>.nc``)."""
     return write_qc(flags, {"dataset": path}, {**params, "max_gap": params["qc"]["max_gap"]},
                     "Quality-control flags of the UVP beam velocities",
-                    "flumekit qc stage from " + ", ".join(map(str, sources)), compress=True)
+                    "flumekit qc stage from " + ", ".join(map(str, sources)),
+                    compress=COMPRESS["uvp"])
 
 
 def build(inputs, outputs, params) -> list[Written]:
