@@ -7,7 +7,9 @@ every wave run; ``power_matrix`` and ``capture_width_ratio`` those of the irregu
 (:mod:`flumekit.figures.performance`). Single-run figures use the run named by
 ``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m). Each
 figure is written in every format of ``[stages.figures] formats`` (default PNG at 300 dpi and
-PDF), after passing the figure test (:mod:`flumekit.figures.check`).
+PDF), after passing the figure test (:mod:`flumekit.figures.check`). A rule names its figure,
+which the figure modules register (:mod:`flumekit.figures.registry`), and its inputs; this
+stage knows no figure function.
 """
 
 from __future__ import annotations
