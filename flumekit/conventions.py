@@ -23,6 +23,39 @@ CONVENTIONS = "CF-1.8"
 RECORD_START = "record_start"
 #: its value in a file when neither the raw file nor the run says when the record started
 UNKNOWN_START = "unknown"
+#: global attribute: newline-separated warnings of the analysis that wrote a dataset, kept by
+#: every stage that reads it and by the campaign summaries (each line naming its run)
+WARNINGS = "flumekit_warnings"
+#: global attribute: the raw file a dataset was read or quality-controlled from
+SOURCE_FILE = "source_file"
+#: global attribute of a quality-controlled product: the longest run of failed samples that
+#: is interpolated [s] (masked spans longer than this stay NaN)
+MAX_GAP = "max_gap"
+
+
+def run_warnings(run: str | None, text: str) -> list[str]:
+    """The lines of a :data:`WARNINGS` attribute ``text``, each starting with ``run <run>: ``
+    when ``run`` is given and the line does not name it already.
+
+    Parameters
+    ----------
+    run : The run the warnings are of, or None to leave the lines as they are.
+    text : The attribute's value (newline-separated warnings).
+
+    Returns
+    -------
+    list of str
+        The non-blank lines.
+
+    Examples
+    --------
+    >>> run_warnings("r1", "probe WP2 flat\\nrun r1: gap")
+    ['run r1: probe WP2 flat', 'run r1: gap']
+    """
+    lines = [w for w in text.splitlines() if w.strip()]
+    if not run:
+        return lines
+    return [w if run in w else f"run {run}: {w}" for w in lines]
 
 
 def record_start(ds: xr.Dataset | xr.DataArray, axis: str = "time") -> str | None:

@@ -13,6 +13,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit.ballscrew.scenario import GENERATOR_REGIONS
+from flumekit.figures.registry import register
 from flumekit.figures.style import (
     ONE_COLUMN,
     TWO_COLUMNS,
@@ -264,3 +265,5 @@ def figure_18(fem: xr.Dataset):
 
 FIGURES = {9: figure_9, 10: figure_10, 11: figure_11, 12: figure_12, 13: figure_13, 14: figure_14,
            15: figure_15, 16: figure_16, 17: figure_17, 18: figure_18}
+for _number, _function in FIGURES.items():  # drawn from the step's dataset (stages.ballscrew)
+    register(f"bs_fig{_number:02d}")(_function)

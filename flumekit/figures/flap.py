@@ -14,6 +14,7 @@ import xarray as xr
 
 from flumekit import signal as sig
 from flumekit.figures.groups import by_height, height_of, period_of, runs_of
+from flumekit.figures.registry import register
 from flumekit.figures.simulator import (
     MARKERS,
     SOURCE_LINES,
@@ -40,6 +41,32 @@ from flumekit.figures.style import (
 
 _TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
 _PERIOD = label("wave_period", "$T$", text="Wave period")
+
+
+def _sorted_runs(data, params) -> tuple[tuple, dict]:
+    """Arguments of Fig. 7: the flap datasets of its runs, in input-name order."""
+    return ([data[k] for k in sorted(data)],), {}
+
+
+def _experiment_and_models(data, params) -> tuple[tuple, dict]:
+    """Arguments of Figs. 8-9 from the comparison datasets of every regular run: the
+    experiment's and, per model source, the model's, in input-name order."""
+    comps = [data[k] for k in sorted(data)]
+    models = {str(s): [c.sel(source=s) for c in comps]
+              for s in comps[0]["source"].values if str(s) != "experiment"}
+    return ([c.sel(source="experiment") for c in comps],), {"models": models}
+
+
+def _figure_10_data(data, params) -> tuple[tuple, dict]:
+    """Arguments of Fig. 10 from a run's flap, waves and comparison datasets: the measured
+    elevation at the probe nearest the flap over the whole record (the separated incident
+    wave exists only in the waves' own steady window) and every model of the comparison."""
+    eta = data["waves"]["eta"]
+    comp = data["comparison"]
+    models = {str(s): comp.sel(source=s) for s in comp["source"].values
+              if str(s) != "experiment"}
+    return (data["flap"],), {"eta": eta.isel(probe=int(np.argmin(np.abs(eta["x"].values)))),
+                             "models": models}
 
 
 def _require(ds: xr.Dataset, *names: str) -> None:
@@ -71,6 +98,7 @@ def _crest_trough(ax, levels, lab: str | None = "crest and trough of the steady 
         ax.axhline(level, color="0.3", ls="-.", lw=0.9, label=lab if k == 0 else None)
 
 
+@register("fig05b")
 def figure_5b(flap: xr.Dataset, ax=None):
     """Full time series of the normalised flap angle θ/θ_s against t/T (Fig. 5b).
 
@@ -101,6 +129,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
     return fig
 
 
+@register("fig06bcd")
 def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=None):
     """Normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
 
@@ -144,6 +173,7 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
     return fig
 
 
+@register("fig07", prepare=_sorted_runs)
 def figure_7(flaps, n_waves: int = 3, axes=None):
     """Measured and fitted torque of the cylinder pressure force (Fig. 7), one panel per run.
 
@@ -209,6 +239,7 @@ def _heights(flaps, models) -> list[float]:
     return sorted({height_of(r) for r in runs})
 
 
+@register("fig08", prepare=_experiment_and_models)
 def figure_8(flaps, models: dict | None = None, ax=None):
     """Amplitude of the hydrodynamic torque against the wave period, per wave height (Fig. 8).
 
@@ -233,6 +264,7 @@ def figure_8(flaps, models: dict | None = None, ax=None):
     return fig
 
 
+@register("fig09", prepare=_experiment_and_models)
 def figure_9(flaps, models: dict | None = None, axes=None):
     """(a) Amplitude of θ and (b) capture factor C_f against the wave period (Fig. 9).
 
@@ -260,6 +292,7 @@ def figure_9(flaps, models: dict | None = None, axes=None):
     return fig
 
 
+@register("fig10", prepare=_figure_10_data)
 def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | None = None,
               axes=None):
     """Normalised phase averages over the quasi-steady window (Fig. 10).

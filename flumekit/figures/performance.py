@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.registry import register
 from flumekit.figures.simulator import MARKERS, SOURCE_LINES, height_colours
 from flumekit.figures.style import (
     COLOURS,
@@ -35,6 +36,7 @@ def _edges(bounds: xr.DataArray) -> np.ndarray:
     return np.concatenate([b[:, 0], b[-1:, 1]])
 
 
+@register("power_matrix")
 def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
     """The power matrix: cells coloured by the mean of ``quantity`` over their runs, the count
     and the mean written in each cell, one panel per source (experiment and models).
@@ -80,6 +82,7 @@ def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
     return fig
 
 
+@register("capture_width_ratio")
 def figure_capture_width_ratio(ds: xr.Dataset):
     """Capture width ratio of each irregular run against its energy period Te, one colour per
     Hm0 bin: the experiment as markers, the models as lines (per Hm0 bin, in order of Te).

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.figures.registry import register
 from flumekit.figures.style import TWO_COLUMNS, new_figure, thin, units_text
 from flumekit.qc.flags import FAIL, MISSING, NOT_EVALUATED, SUSPECT
 
@@ -97,6 +98,13 @@ def _draw_uvp(ax_time, ax_bin, uvp) -> None:
     ax_bin.set_xlabel("UVP channel (bin) [-]")
 
 
+def _figure_qc_data(data, params) -> tuple[tuple, dict]:
+    """Arguments of the QC figure: its datasets by keyword (QC products and raw records), the
+    probes' product labelled with the rule's run (the products carry no run coordinate)."""
+    return (), {**data, "probes": data["probes"].assign_coords(run=params["run"])}
+
+
+@register("qc", prepare=_figure_qc_data)
 def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     """Raw (grey) and QC'd (black) records of every probe and flap channel of a run, with the
     suspect, failed and missing samples marked at their raw values and the tests that flagged

@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.registry import register
 from flumekit.figures.style import (
     COLOURS,
     TWO_COLUMNS,
@@ -27,6 +28,7 @@ _NEEDS = ("eta_incident", "eta_reflected", "spectrum_incident", "spectrum_reflec
           "individual_wave_height", "analysis_start")
 
 
+@register("separation_irregular")
 def separation(waves: xr.Dataset, n_waves: int = 12):
     """The incident/reflected separation of one irregular run.
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.registry import register
 from flumekit.figures.style import (
     COLOURS,
     TWO_COLUMNS,
@@ -59,6 +60,7 @@ def _reference_length(vmax: float) -> float:
     return float(max(s * mag for s in (1, 2, 5) if s * mag <= vmax))
 
 
+@register("fig11")
 def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
           arrow: float = 1.5):
     """Phase-averaged vector field (⟨u⟩, ⟨w⟩)/U0 and contours of ⟨u⟩/U0 (Fig. 11).
@@ -140,6 +142,7 @@ def _column(field: xr.Dataset, name: str, x: float):
     return da.isel(x=k), float(xs[k])
 
 
+@register("fig12")
 def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
           truth: xr.Dataset | None = None):
     """⟨u⟩/U0 and ⟨w⟩/U0 profiles at x/h = ``x_over_h`` (Fig. 12).

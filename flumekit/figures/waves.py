@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.registry import register
 from flumekit.figures.style import (
     COLOURS,
     TWO_COLUMNS,
@@ -49,6 +50,7 @@ def _probe_text(waves: xr.Dataset, p: str) -> str:
     return f"probe {p} at x = {float(waves.x.sel(probe=p)):.2f} m"
 
 
+@register("fig05a")
 def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     """Full time series of the normalised elevation η/A_s against t/T (Brito et al. 2020, Fig. 5a).
 
@@ -79,6 +81,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     return fig
 
 
+@register("fig06a")
 def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=None, ax=None):
     """Five consecutive waves of the normalised elevation (Brito et al. 2020, Fig. 6a).
 
@@ -118,6 +121,7 @@ def _spans(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
 
 
+@register("separation")
 def separation(waves: xr.Dataset, n_waves: int = 5):
     """The incident/reflected separation of one run: what a wave engineer checks first.
 

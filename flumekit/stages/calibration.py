@@ -8,7 +8,7 @@ from flumekit.stages.context import Context
 
 VERSION = "2"
 #: ``min_r2``: a fit below it is an error naming the file and probe; ``warn_r2``: a warning
-#: recorded in the dataset (``flumekit_warnings``)
+#: recorded in the dataset (:data:`flumekit.conventions.WARNINGS`)
 DEFAULTS = {"order": 1, "min_r2": 0.99, "warn_r2": 0.999}
 DOCS = {"order": "order of the calibration polynomial, level [m] against voltage [V]",
         "min_r2": "coefficient of determination below which a probe's fit is an error [-]",
@@ -28,10 +28,10 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     import warnings
 
+    from flumekit.conventions import WARNINGS
     from flumekit.io.instruments import read_calibration
     from flumekit.io.netcdf import write_product
     from flumekit.qc.checks import check_calibration
-    from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
 
     raw = read_calibration(inputs["calibration"], tuple(params["probes"]),

@@ -41,14 +41,14 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     import numpy as np
 
+    from flumekit.conventions import SOURCE_FILE, WARNINGS
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
-    from flumekit.stages.qc import WARNINGS
     from flumekit.waves import calibration
     from flumekit.waves.still_water import remove_still_water
 
     qc = read_dataset(inputs["probes"])
-    source_file = qc.attrs.get("source_file", inputs["probes"])
+    source_file = qc.attrs.get(SOURCE_FILE, inputs["probes"])
     warnings = [qc.attrs.get(WARNINGS, "")]
     if "probe_voltage" in qc:
         raw = qc["probe_voltage"].sel(probe=list(params["probes"]))

@@ -7,12 +7,15 @@ every wave run; ``power_matrix`` and ``capture_width_ratio`` those of the irregu
 (:mod:`flumekit.figures.performance`). Single-run figures use the run named by
 ``[stages.figures] run`` (default: the paper's UVP condition T = 3.5 s, H = 0.25 m). Each
 figure is written in every format of ``[stages.figures] formats`` (default PNG at 300 dpi and
-PDF), after passing the figure test (:mod:`flumekit.figures.check`).
+PDF), after passing the figure test (:mod:`flumekit.figures.check`). A rule names its figure,
+which the figure modules register (:mod:`flumekit.figures.registry`), and its inputs; this
+stage knows no figure function.
 """
 
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
+from flumekit.stages.common import RAW, raw_reading, read_inputs
 from flumekit.stages.context import Context
 
 VERSION = "4"
@@ -42,7 +45,6 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.figures.style import FORMATS
-    from flumekit.stages import qc as qc_stage
     from flumekit.stages.ballscrew import FIGURE_SOURCES
 
     formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
@@ -54,111 +56,81 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
                             f"list of {sorted(FORMATS)}")
     out: list[Rule] = []
 
-    def fig(name: str, draw: str, inputs: dict, **params) -> None:
+    def fig(figure: str, inputs: dict, target: str | None = None, **params) -> None:
+        """The rule of the registered figure ``figure`` (flumekit.figures.registry), drawn
+        from ``inputs``, as target ``figure/<target>`` (default: the figure's name)."""
+        name = target or figure
         out.append(Rule(f"figure/{name}", "flumekit.stages.figures:draw", inputs=inputs,
                         outputs={f: ctx.out("figures", f"{name}.{f}") for f in formats},
-                        params={"draw": draw, **params}, version=VERSION))
+                        params={"figure": figure, **params}, version=VERSION))
 
     run = _figure_run(ctx, p["run"])
     if run is not None:
         waves = ctx.out("waves", f"{run}.nc")
-        fig("fig05a", "waves:figure_5a", {"waves": waves})
-        fig("fig06a", "waves:figure_6a", {"waves": waves})
+        fig("fig05a", {"waves": waves})
+        fig("fig06a", {"waves": waves})
     if run is not None and "flap" in ctx.campaign.instruments:
         flap = ctx.out("flap", f"{run}.nc")
-        fig("fig05b", "flap:figure_5b", {"flap": flap})
-        fig("fig06bcd", "flap:figure_6bcd", {"flap": flap})
-        fig("fig10", "flap:figure_10", {"flap": flap, "waves": waves,
-                                        "comparison": ctx.out("comparison", f"{run}.nc")})
+        fig("fig05b", {"flap": flap})
+        fig("fig06bcd", {"flap": flap})
+        fig("fig10", {"flap": flap, "waves": waves,
+                      "comparison": ctx.out("comparison", f"{run}.nc")})
         # one wave run per condition (the UVP runs repeat the paper's condition)
         pressure = []
         for cond in p["pressure_runs"]:
             match = sorted((r for r in ctx.campaign.runs if r.kind == "waves"
                             and [r.period, r.height] == list(cond)), key=lambda r: r.repeat)
             pressure += [match[0].id] if match else []
-        fig("fig07", "flap:figure_7",
-            {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
+        fig("fig07", {r: ctx.out("flap", f"{r}.nc") for r in (pressure or [run])})
         every = {r.id: ctx.out("comparison", f"{r.id}.nc") for r in ctx.campaign.runs
                  if not r.irregular}  # Figs. 8-9: regular waves (amplitudes, C_f)
-        fig("fig08", "flap:figure_8", every)
-        fig("fig09", "flap:figure_9", every)
+        fig("fig08", every)
+        fig("fig09", every)
     if "flap" in ctx.campaign.instruments and any(r.irregular for r in ctx.campaign.runs):
         matrix = {"matrix": ctx.out("power_matrix.nc")}
-        fig("power_matrix", "performance:figure_power_matrix", matrix)
-        fig("capture_width_ratio", "performance:figure_capture_width_ratio", matrix)
+        fig("power_matrix", matrix)
+        fig("capture_width_ratio", matrix)
     for r in ctx.campaign.runs:
         # the QC products and the raw files they were made from (the values as read)
-        qc, reading = qc_stage.figure_inputs(ctx, r)
-        fig(f"qc/{r.id}", "qc:figure_qc", qc, **reading)
+        fig("qc", _qc_inputs(ctx, r), target=f"qc/{r.id}", reading=raw_reading(ctx, r),
+            run=r.id)
     for r in ctx.campaign.runs:
         if r.kind in ("waves", "irregular"):
-            fig(f"separation/{r.id}", "sea_state:separation" if r.irregular
-                else "waves:separation", {"waves": ctx.out("waves", f"{r.id}.nc")})
+            fig("separation_irregular" if r.irregular else "separation",
+                {"waves": ctx.out("waves", f"{r.id}.nc")}, target=f"separation/{r.id}")
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
-        fig("fig11", "uvp:fig11", {"field": ctx.out("uvp_field.nc")})
-        fig("fig12", "uvp:fig12", {"field": ctx.out("uvp_field.nc")})
+        fig("fig11", {"field": ctx.out("uvp_field.nc")})
+        fig("fig12", {"field": ctx.out("uvp_field.nc")})
     for n, step in FIGURE_SOURCES.items():
-        fig(f"bs_fig{n:02d}", f"ballscrew:FIGURES[{n}]",
-            {step: ctx.out("ballscrew", f"{step}.nc")})
+        fig(f"bs_fig{n:02d}", {step: ctx.out("ballscrew", f"{step}.nc")})
     return out
 
 
-def _function(draw: str):
-    import importlib
-
-    module, _, name = draw.partition(":")
-    mod = importlib.import_module(f"flumekit.figures.{module}")
-    if "[" in name:  # a registry entry such as FIGURES[11]
-        table, key = name.rstrip("]").split("[")
-        return getattr(mod, table)[int(key)]
-    return getattr(mod, name)
-
-
-def _description(fn) -> str:
-    """What a figure shows: the first paragraph of its function's docstring, on one line."""
-    import inspect
-
-    doc = inspect.getdoc(fn) or ""
-    return " ".join(doc.split("\n\n", 1)[0].split())
+def _qc_inputs(ctx: Context, run) -> dict:
+    """Inputs of the QC figure of ``run``: the QC products of its instruments and the raw
+    probe and flap files (the values as read: the products do not repeat them)."""
+    inputs = {}
+    for kind in raw_reading(ctx, run):
+        inputs[kind] = ctx.out("qc", kind, f"{run.id}.nc")
+        inputs[f"{kind}{RAW}"] = run.file(kind)
+    if ctx.campaign.uvp is not None and run.kind == "uvp":
+        inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
+    return inputs
 
 
 def draw(inputs, outputs, params) -> None:
-    import numpy as np
-
+    """Draw the registered figure ``params["figure"]`` from the rule's inputs (processed
+    datasets; raw files through their readers) and save it in every format, after the
+    figure test."""
     from flumekit.figures.check import assert_passes
+    from flumekit.figures.registry import figure
     from flumekit.figures.style import laid_out, save, style
-    from flumekit.io.netcdf import read_dataset
 
-    draw = params["draw"]
-    if draw == "qc:figure_qc":  # raw files among the inputs, read by their instrument readers
-        from flumekit.stages.qc import figure_data
-
-        data = figure_data(inputs, params)
-    else:
-        data = {k: read_dataset(v) for k, v in inputs.items()}
-    fn = _function(draw)
+    entry = figure(params["figure"])
+    data = read_inputs(inputs, params.get("reading"))
     with style():
-        if draw == "flap:figure_10":
-            # the measured elevation at the probe nearest the flap, over the whole record
-            # (the separated incident wave exists only in the waves' own steady window)
-            eta = data["waves"]["eta"]
-            comp = data["comparison"]
-            models = {str(s): comp.sel(source=s) for s in comp["source"].values
-                      if str(s) != "experiment"}
-            fig = fn(data["flap"], eta=eta.isel(probe=int(np.argmin(np.abs(eta["x"].values)))),
-                     models=models)
-        elif draw in ("flap:figure_8", "flap:figure_9"):
-            comps = [data[k] for k in sorted(data)]
-            models = {str(s): [c.sel(source=s) for c in comps]
-                      for s in comps[0]["source"].values if str(s) != "experiment"}
-            fig = fn([c.sel(source="experiment") for c in comps], models=models)
-        elif draw == "qc:figure_qc":
-            fig = fn(**data)
-        elif draw == "flap:figure_7":
-            fig = fn([data[k] for k in sorted(data)])
-        else:
-            (ds,) = data.values()
-            fig = fn(ds)
+        fig = entry.draw(data, params)
     with laid_out(fig):  # one layout, and one drawing for the check and the PNG
-        save(fig, *outputs.values(), check=lambda f: assert_passes(f, f"figure {draw}"),
-             description=_description(fn))
+        save(fig, *outputs.values(),
+             check=lambda f: assert_passes(f, f"figure {entry.name}"),
+             description=entry.description)

@@ -58,6 +58,7 @@ def build(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
+    from flumekit.conventions import SOURCE_FILE
     from flumekit.errors import InputError
     from flumekit.flap import analyse_irregular_run, analyse_run
     from flumekit.io.netcdf import read_dataset
@@ -68,7 +69,7 @@ def build(inputs, outputs, params) -> Written:
     waves = read_dataset(inputs["waves"])
     checks.check_durations(
         {"flap": _span(raw["time"].values), "probe": _span(waves["time"].values)},
-        {"flap": raw.attrs.get("source_file", inputs["flap"]),
+        {"flap": raw.attrs.get(SOURCE_FILE, inputs["flap"]),
          "probe": inputs.get("probes", inputs["waves"])},
         params["record_length_tolerance"])
     irregular = params.get("kind") == "irregular"
@@ -98,7 +99,7 @@ def build(inputs, outputs, params) -> Written:
                              n_phase=params["n_phase"],
                              max_flagged_fraction=params["max_flagged_fraction"])
     except ValueError as e:  # a stuck encoder, a record too short: name the file
-        raise InputError(raw.attrs.get("source_file", inputs["flap"]),
+        raise InputError(raw.attrs.get(SOURCE_FILE, inputs["flap"]),
                          f"encoder and pressure record: {e}") from None
     return write_run(ds, outputs, params, "Flap dynamics, PTO and power",
                      f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw)

@@ -120,33 +120,25 @@ def compare(inputs, outputs, params) -> Written:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
-    from flumekit.flap.comparison import compare_run
+    from flumekit.flap.comparison import compare_irregular_run, compare_run
     from flumekit.io.netcdf import read_dataset
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
+    flap, waves, hydro = (read_dataset(inputs[k]) for k in ("flap", "waves", "hydro"))
+    shared = {"flap_params": campaign.flap, "pto": campaign.pto, "dt": params["dt"],
+              "simulator": params["simulator"], "friction": params["friction"],
+              "linear_pto_damping": params["linear_pto_damping"]}
     if params.get("kind") == "irregular":
-        from flumekit.flap.comparison import compare_irregular_run
-
-        waves = read_dataset(inputs["waves"])
         # the simulator's spin-up: as many energy periods as a regular run's wave periods
-        ds = compare_irregular_run(read_dataset(inputs["flap"]), waves,
-                                   read_dataset(inputs["hydro"]), flap_params=campaign.flap,
-                                   pto=campaign.pto, dt=params["dt"],
-                                   simulator=params["simulator"], friction=params["friction"],
-                                   spin_up=params["spin_up_periods"] * float(waves["te"]),
-                                   linear_pto_damping=params["linear_pto_damping"])
-        write_run(ds, outputs, params, "Experiment, linear model and simulator in irregular "
-                  "seas", f"flumekit comparison stage from {inputs['flap']} and "
-                  f"{inputs['waves']}")
-        return
-    ds = compare_run(read_dataset(inputs["flap"]), read_dataset(inputs["waves"]),
-                     read_dataset(inputs["hydro"]), flap_params=campaign.flap, pto=campaign.pto,
-                     depth=campaign.flume.water_depth, dt=params["dt"],
-                     simulator=params["simulator"], friction=params["friction"],
-                     spin_up_periods=params["spin_up_periods"],
-                     linear_pto_damping=params["linear_pto_damping"])
-    return write_run(ds, outputs, params, "Experiment, linear model and simulator",
-                     f"flumekit comparison stage from {inputs['flap']} and {inputs['waves']}")
+        ds = compare_irregular_run(flap, waves, hydro, **shared,
+                                   spin_up=params["spin_up_periods"] * float(waves["te"]))
+        title = "Experiment, linear model and simulator in irregular seas"
+    else:
+        ds = compare_run(flap, waves, hydro, depth=campaign.flume.water_depth, **shared,
+                         spin_up_periods=params["spin_up_periods"])
+        title = "Experiment, linear model and simulator"
+    return write_run(ds, outputs, params, title, f"flumekit comparison stage from "
+                     f"{inputs['flap']} and {inputs['waves']}")
 
 
 def summary(inputs, outputs, params) -> Written:

@@ -88,7 +88,7 @@ def _declared_start(ds, declared: str, run: str):
         gap = abs(np.datetime64(found.rstrip("Z"), "ns") - np.datetime64(declared.rstrip("Z"),
                                                                          "ns"))
         if gap > np.timedelta64(1, "s"):
-            raise InputError(ds.attrs.get("source_file") or f"run {run}",
+            raise InputError(ds.attrs.get(conventions.SOURCE_FILE) or f"run {run}",
                              f"the record starts at {found}, but run.toml of run {run} declares "
                              f"start = {declared}: correct or remove 'start' in run.toml",
                              field="start")
@@ -105,19 +105,6 @@ def summary_rule(ctx, stage: str, version: str, module: str | None = None):
                 outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
 
 
-#: dataset attribute: newline-separated warnings (flumekit.stages.qc.WARNINGS)
-WARNINGS = "flumekit_warnings"
-
-
-def run_warnings(run: str | None, text: str) -> list[str]:
-    """The lines of a ``flumekit_warnings`` attribute, each starting with ``run <run>: `` when
-    ``run`` is given and the line does not name it already."""
-    lines = [w for w in text.splitlines() if w.strip()]
-    if not run:
-        return lines
-    return [w if run in w else f"run {run}: {w}" for w in lines]
-
-
 def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:
     """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
 
@@ -126,6 +113,7 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     """
     import xarray as xr
 
+    from flumekit.conventions import WARNINGS, run_warnings
     from flumekit.io.netcdf import read_dataset, write_product
 
     rows, warned = [], []
@@ -139,3 +127,14 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
     return write_product(out, outputs["dataset"], title,
                          f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
+
+
+def __getattr__(name: str):
+    """``WARNINGS`` and ``run_warnings``, which live in :mod:`flumekit.conventions`, for the
+    callers outside ``stages/`` that still import them from here (loaded on use: planning
+    imports no xarray)."""
+    if name in ("WARNINGS", "run_warnings"):
+        from flumekit import conventions
+
+        return getattr(conventions, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

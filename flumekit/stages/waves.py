@@ -73,17 +73,18 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     import warnings
 
+    from flumekit.conventions import WARNINGS
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.checks import check_declared, check_height
-    from flumekit.stages.qc import WARNINGS
+    from flumekit.stages.waves_run import irregular, regular
 
     eta_ds = read_dataset(inputs["eta"])
     eta = eta_ds["eta"]
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            ds = (_irregular if params["kind"] == "irregular" else _regular)(eta, params)
+            ds = (irregular if params["kind"] == "irregular" else regular)(eta, params)
         except ValueError as e:  # a dead probe, a record too short: the message names the probe
             raise InputError(inputs["probes"], str(e)) from None
     # kept in the dataset, where the make summary, the summaries and the report find them
@@ -112,34 +113,6 @@ def build(inputs, outputs, params) -> Written:
         ds.attrs[WARNINGS] = "\n".join(warnings_)
     return write_run(ds, outputs, params, "Incident and reflected waves",
                      f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
-
-
-def _regular(eta, params):
-    """The analysis of a regular run (:func:`flumekit.waves.analyse_run`)."""
-    from flumekit.waves import analyse_run
-
-    return analyse_run(eta, params["depth"], params["period"], params["x_ref"],
-                       method=params["method"], separation_probes=params["separation_probes"],
-                       n_harmonics=params["n_harmonics"],
-                       bound_harmonics=params["bound_harmonics"],
-                       amplitude_dispersion=params["amplitude_dispersion"],
-                       tolerance=params["tolerance"], min_cycles=params["min_cycles"],
-                       noise_factor=params["noise_factor"])
-
-
-def _irregular(eta, params):
-    """The analysis of an irregular run (:func:`flumekit.waves.analyse_irregular_run`)."""
-    from flumekit.waves import analyse_irregular_run
-
-    sea = params["sea_state"]
-    # JONSWAP with gamma 1-7: Te = 0.86-0.92 Tp (the target steers the band, not the result)
-    target = sea["tp"] if sea["tp"] is not None else sea["te"] / 0.9
-    return analyse_irregular_run(
-        eta, params["depth"], params["x_ref"], method=params["irregular_method"],
-        peak_period=target,
-        separation_probes=params["separation_probes"], gauge_weights=params["gauge_weights"],
-        span=params["span"] or (sea.get("transient"), None), n_bins=params["n_bins"],
-        low_frequency_warning=params["low_frequency_warning"], rho=params["density"])
 
 
 def report(path) -> str:

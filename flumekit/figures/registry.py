@@ -1,0 +1,104 @@
+"""The figures that a pipeline can draw, by name: each figure module registers its own.
+
+A figure module decorates each drawable figure function with :func:`register`, giving its
+name and, when the function takes more than one dataset, how to make its arguments from the
+datasets a rule reads (``prepare``). The figures stage looks a name up with :func:`figure`
+and wires the datasets to it; it knows no figure function and parses no name.
+
+Examples
+--------
+>>> from flumekit.figures.registry import figure
+>>> figure("fig05a").function.__name__
+'figure_5a'
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+#: the figure modules that register figures (imported on the first look-up)
+MODULES = ("waves", "sea_state", "flap", "performance", "qc", "uvp", "ballscrew")
+
+Prepare = Callable[[Mapping[str, Any], Mapping[str, Any]], tuple[tuple, dict]]
+
+
+def one_dataset(data: Mapping[str, Any], params: Mapping[str, Any]) -> tuple[tuple, dict]:
+    """The arguments of a figure drawn from one dataset: that dataset."""
+    (ds,) = data.values()
+    return (ds,), {}
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A registered figure: its drawing function and how its arguments are made.
+
+    Attributes
+    ----------
+    name : The name a pipeline gives it (the target ``figure/<name>``, or its prefix).
+    function : Draws it: returns a :class:`matplotlib.figure.Figure`.
+    prepare : ``(datasets by input name, rule parameters) -> (args, kwargs)`` of ``function``.
+    """
+
+    name: str
+    function: Callable
+    prepare: Prepare = one_dataset
+
+    def draw(self, data: Mapping[str, Any], params: Mapping[str, Any] | None = None):
+        """Draw the figure from the datasets ``data`` read by its rule (``params``: the rule's)."""
+        args, kwargs = self.prepare(data, params or {})
+        return self.function(*args, **kwargs)
+
+    @property
+    def description(self) -> str:
+        """What the figure shows: the first paragraph of its function's docstring, one line."""
+        doc = inspect.getdoc(self.function) or ""
+        return " ".join(doc.split("\n\n", 1)[0].split())
+
+
+FIGURES: dict[str, Figure] = {}
+
+
+def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], Callable]:
+    """Decorator: register a figure function under ``name``.
+
+    Parameters
+    ----------
+    name : The figure's name; unique.
+    prepare : How its arguments are made from the datasets its rule reads (default: the
+        one dataset).
+
+    Returns
+    -------
+    callable
+        The decorator, which returns the function unchanged.
+    """
+    def decorate(function: Callable) -> Callable:
+        known = FIGURES.get(name)
+        if known is not None and known.function is not function:
+            raise ValueError(f"figure '{name}' registered twice ({known.function.__module__}."
+                             f"{known.function.__name__} and {function.__module__}."
+                             f"{function.__name__})")
+        FIGURES[name] = Figure(name, function, prepare)
+        return function
+
+    return decorate
+
+
+def figure(name: str) -> Figure:
+    """Return the registered figure ``name`` (the figure modules imported first).
+
+    Raises
+    ------
+    KeyError
+        No figure of that name, naming the known ones.
+    """
+    for module in MODULES:
+        importlib.import_module(f"flumekit.figures.{module}")
+    try:
+        return FIGURES[name]
+    except KeyError:
+        raise KeyError(f"no figure '{name}'; known: {', '.join(sorted(FIGURES))}") from None

@@ -1,0 +1,32 @@
+"""The analyses of the waves stage's per-run rule (:func:`flumekit.stages.waves.build`): a
+regular or an irregular sea, with the rule's parameters."""
+
+from __future__ import annotations
+
+
+def regular(eta, params):
+    """The analysis of a regular run (:func:`flumekit.waves.analyse_run`)."""
+    from flumekit.waves import analyse_run
+
+    return analyse_run(eta, params["depth"], params["period"], params["x_ref"],
+                       method=params["method"], separation_probes=params["separation_probes"],
+                       n_harmonics=params["n_harmonics"],
+                       bound_harmonics=params["bound_harmonics"],
+                       amplitude_dispersion=params["amplitude_dispersion"],
+                       tolerance=params["tolerance"], min_cycles=params["min_cycles"],
+                       noise_factor=params["noise_factor"])
+
+
+def irregular(eta, params):
+    """The analysis of an irregular run (:func:`flumekit.waves.analyse_irregular_run`)."""
+    from flumekit.waves import analyse_irregular_run
+
+    sea = params["sea_state"]
+    # JONSWAP with gamma 1-7: Te = 0.86-0.92 Tp (the target steers the band, not the result)
+    target = sea["tp"] if sea["tp"] is not None else sea["te"] / 0.9
+    return analyse_irregular_run(
+        eta, params["depth"], params["x_ref"], method=params["irregular_method"],
+        peak_period=target,
+        separation_probes=params["separation_probes"], gauge_weights=params["gauge_weights"],
+        span=params["span"] or (sea.get("transient"), None), n_bins=params["n_bins"],
+        low_frequency_warning=params["low_frequency_warning"], rho=params["density"])
