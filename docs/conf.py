@@ -85,6 +85,16 @@ API_PACKAGES = {
     "flumekit.uvp": "UVP velocity fields",
     "flumekit.plot": "Figures for notebooks",
     "flumekit.report": "Campaign report",
+    "flumekit.qc": "Quality control",
+    "flumekit.hydro": "Hydrodynamics of one degree of freedom",
+    "flumekit.flap.renzi_dias": "The Renzi-Dias flap model",
+    "flumekit.synth": "The virtual flume",
+    "flumekit.figures": "The papers' figures",
+    "flumekit.ballscrew": "The ball-screw converter",
+    "flumekit.ballscrew.thermal": "Thermal models of the ball screw",
+    "flumekit.pipeline": "Pipeline internals",
+    "flumekit.stages": "Stages (pipeline internals)",
+    "flumekit.bench": "Benchmarks",
 }
 
 
