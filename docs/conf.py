@@ -69,7 +69,9 @@ sphinx_gallery_conf = {
 
 html_theme = "alabaster"
 html_title = f"flumekit {version}"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+# code blocks wrap (or scroll) instead of being cut off at the right of the text column
+html_css_files = ["flumekit.css"]
 html_theme_options = {"description": "Wave-flume experiments on wave energy converters",
                       "fixed_sidebar": True}
 
