@@ -12,10 +12,8 @@ import importlib
 #: public name -> module of this package (imported on first use, so that importing the
 #: package stays cheap)
 _LAZY = {
-    "BuoyGeometry": "buoy",
     "kinematics": "buoy",
     "inverse_dynamics": "buoy",
-    "BallScrew": "screw",
     "efficiency": "screw",
     "hertz_contact": "ehl",
     "film_thickness": "ehl",

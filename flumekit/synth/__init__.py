@@ -1,6 +1,8 @@
 """The virtual flume: synthetic campaigns with a known truth (regular and irregular waves,
 the flap's response, UVP profiles), written in the raw format of raw/README.md."""
 
+import importlib
+
 #: marker of a campaign folder the virtual flume wrote: its size, seed, planned runs and (when
 #: written run by run) the runs written so far. Only a folder holding it is ever completed run
 #: by run, and only with runs never written (:mod:`flumekit.pipeline.raw`)
@@ -11,8 +13,6 @@ MARKER = ".flumekit-virtual.json"
 #: the same campaign
 DEFAULT_SEED = 2020
 
-
-import importlib
 
 #: public name -> module of this package (imported on first use, so that importing the
 #: package stays cheap)

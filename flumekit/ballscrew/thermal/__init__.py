@@ -8,7 +8,6 @@ import importlib
 #: public name -> module of this package (imported on first use, so that importing the
 #: package stays cheap)
 _LAZY = {
-    "LumpedThermal": "lumped",
     "thermal_lumped": "lumped",
     "thermal_fem": "fem",
 }
