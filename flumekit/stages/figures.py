@@ -44,6 +44,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.figures.style import FORMATS
     from flumekit.stages import qc as qc_stage
     from flumekit.stages.ballscrew import FIGURE_SOURCES
+    from flumekit.stages.ballscrew import wanted as ballscrew_wanted
 
     formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
     bad = [f for f in formats if f not in FORMATS]
@@ -97,7 +98,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
         fig("fig11", "uvp:fig11", {"field": ctx.out("uvp_field.nc")})
         fig("fig12", "uvp:fig12", {"field": ctx.out("uvp_field.nc")})
-    for n, step in FIGURE_SOURCES.items():
+    for n, step in (FIGURE_SOURCES.items() if ballscrew_wanted(ctx) else ()):
         fig(f"bs_fig{n:02d}", f"ballscrew:FIGURES[{n}]",
             {step: ctx.out("ballscrew", f"{step}.nc")})
     return out
