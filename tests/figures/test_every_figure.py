@@ -277,13 +277,19 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
     from flumekit.stages import figures as stage
     from flumekit.stages.context import Context
 
-    rules = stage.rules(Context(campaign=campaign, processed=tmp_path), dict(stage.DEFAULTS))
+    # the campaign has no run: the figures are the ball-screw study's, which a scene asks for
+    asks = {"ballscrew": ["figure/bs_fig*"]}
+    assert stage.rules(Context(campaign=campaign, processed=tmp_path), dict(stage.DEFAULTS)) == []
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, scenes=asks),
+                        dict(stage.DEFAULTS))
     assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
     assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
                for r in rules)
-    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
+    ctx = Context(campaign=campaign, processed=tmp_path, scenes=asks,
+                  params={"figures": {"formats": ["svg"]}})
     svg = stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
-    assert all(list(r.outputs) == ["svg"] for r in svg)
-    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
+    assert svg and all(list(r.outputs) == ["svg"] for r in svg)
+    ctx = Context(campaign=campaign, processed=tmp_path, scenes=asks,
+                  params={"figures": {"formats": ["jpg"]}})
     with pytest.raises(FlumekitError, match="formats"):
         stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
