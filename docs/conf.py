@@ -69,7 +69,9 @@ sphinx_gallery_conf = {
 
 html_theme = "alabaster"
 html_title = f"flumekit {version}"
-html_static_path: list[str] = []
+html_static_path = ["_static"]
+# code blocks wrap (or scroll) instead of being cut off at the right of the text column
+html_css_files = ["flumekit.css"]
 html_theme_options = {"description": "Wave-flume experiments on wave energy converters",
                       "fixed_sidebar": True}
 
@@ -85,6 +87,16 @@ API_PACKAGES = {
     "flumekit.uvp": "UVP velocity fields",
     "flumekit.plot": "Figures for notebooks",
     "flumekit.report": "Campaign report",
+    "flumekit.qc": "Quality control",
+    "flumekit.hydro": "Hydrodynamics of one degree of freedom",
+    "flumekit.flap.renzi_dias": "The Renzi-Dias flap model",
+    "flumekit.synth": "The virtual flume",
+    "flumekit.figures": "The papers' figures",
+    "flumekit.ballscrew": "The ball-screw converter",
+    "flumekit.ballscrew.thermal": "Thermal models of the ball screw",
+    "flumekit.pipeline": "Pipeline internals",
+    "flumekit.stages": "Stages (pipeline internals)",
+    "flumekit.bench": "Benchmarks",
 }
 
 

@@ -15,6 +15,13 @@ from pathlib import Path
 from flumekit.errors import FlumekitError
 
 DEFAULT_PIPELINE = Path("pipelines") / "default.toml"
+#: what `flumekit --help` says (plain text: argparse prints it as it stands)
+DESCRIPTION = ("Wave-flume experiments on wave energy converters: build the processed data, "
+               "figures and report of a campaign from its raw files (make), inspect the "
+               "pipeline (list, graph, params), write a virtual campaign (synth) or a "
+               "campaign skeleton (new). Flags follow make: -n dry run, -j N jobs, -k keep "
+               "going, -f rebuild the named targets, -F also everything they need; --debug, "
+               "-q and -v work before or after the subcommand.")
 #: how much `make` says: 0 quiet (errors and the closing summary), 1 normal, 2 verbose
 _VERBOSITY = {"quiet": 0, "normal": 1, "verbose": 2}
 
@@ -483,7 +490,7 @@ def parser() -> argparse.ArgumentParser:
     from flumekit.bench import areas as bench_areas
     from flumekit.synth import DEFAULT_SEED
 
-    p = argparse.ArgumentParser(prog="flumekit", description=__doc__,
+    p = argparse.ArgumentParser(prog="flumekit", description=DESCRIPTION,
                                 parents=[_global_options(sub=False)])
     p.add_argument("--version", action="version", version=f"flumekit {_version()}")
     sub = p.add_subparsers(dest="command", required=True)
@@ -491,11 +498,14 @@ def parser() -> argparse.ArgumentParser:
 
     def pipeline_opts(sp):
         sp.add_argument("--pipeline", default=str(DEFAULT_PIPELINE),
-                        help="pipeline file (default: pipelines/default.toml)")
+                        help="pipeline file (default: pipelines/default.toml, relative to the "
+                             "current folder)")
         sp.add_argument("--processed", default=None,
                         help="write processed data here instead of the pipeline's folder")
 
     m = sub.add_parser("make", help="build targets or scenes (default: every scene)",
+                       description="Build targets or scenes (default: every scene the "
+                                   "pipeline file names); only what is out of date runs.",
                        parents=common)
     m.add_argument("targets", nargs="*", help="scene names, target names or glob patterns")
     m.add_argument("-n", "--dry-run", action="store_true", help="print what would run and why")
@@ -503,7 +513,9 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("-k", "--keep-going", action="store_true",
                    help="after a failure, build everything that does not depend on it; list "
                         "the failures at the end (exit status 1)")
-    m.add_argument("--executor", choices=("processes", "threads"), default="processes")
+    m.add_argument("--executor", choices=("processes", "threads"), default="processes",
+                   help="with -j N: run rules in worker processes (default) or in threads "
+                        "of this process")
     m.add_argument("-f", "--force", action="store_true",
                    help="rebuild the named targets even if up to date (not their inputs)")
     m.add_argument("-F", "--forceall", action="store_true",
@@ -516,18 +528,24 @@ def parser() -> argparse.ArgumentParser:
     pipeline_opts(m)
     m.set_defaults(func=cmd_make)
 
-    ls = sub.add_parser("list", help="targets and scenes with their state", parents=common)
+    ls = sub.add_parser("list", help="targets and scenes with their state", parents=common,
+                        description="List every target and scene of the pipeline with its "
+                                    "state (up to date, out of date or missing).")
     pipeline_opts(ls)
     ls.set_defaults(func=cmd_list)
 
     g = sub.add_parser("graph", help="dependency graph of targets (DOT or Mermaid)",
-                       parents=common)
+                       description="Print the dependency graph of targets as DOT or "
+                                   "Mermaid text.", parents=common)
     g.add_argument("targets", nargs="*", help="scene names, target names or glob patterns")
-    g.add_argument("--format", choices=("dot", "mermaid"), default="dot")
+    g.add_argument("--format", choices=("dot", "mermaid"), default="dot",
+                   help="output language (default: dot, for Graphviz)")
     pipeline_opts(g)
     g.set_defaults(func=cmd_graph)
 
-    c = sub.add_parser("clean", help="remove built outputs (never raw data)", parents=common)
+    c = sub.add_parser("clean", help="remove built outputs (never raw data)", parents=common,
+                       description="Remove built outputs of the named targets (never raw "
+                                   "data).")
     c.add_argument("targets", nargs="*", help="scene names, target names or glob patterns "
                                               "(default: every target)")
     c.add_argument("-n", "--dry-run", action="store_true", help="print what would be removed")
@@ -535,40 +553,54 @@ def parser() -> argparse.ArgumentParser:
     c.set_defaults(func=cmd_clean)
 
     s = sub.add_parser("synth", help="write a virtual-flume raw campaign and its truth",
-                       parents=common)
-    s.add_argument("--size", choices=("small", "default", "paper"), default="small")
+                       description="Write a virtual-flume raw campaign (the raw format) "
+                                   "and the truth it was made from.", parents=common)
+    s.add_argument("--size", choices=("small", "default", "paper"), default="small",
+                   help="how many runs: small (2 regular, 2 UVP and 1 irregular run, for trying "
+                        "things), default (the shipped campaign: every period at 3 heights, "
+                        "4 sea states) or paper (the papers' 78 UVP repeats and a 3 x 4 "
+                        "power matrix); default small")
     s.add_argument("--seed", type=int, default=DEFAULT_SEED,
                    help=f"random seed (default {DEFAULT_SEED}, as the shipped pipelines)")
     s.add_argument("--out", default="raw/synthetic",
                    help="an absent or empty folder (existing files are never overwritten)")
     s.set_defaults(func=cmd_synth)
 
-    n = sub.add_parser("new", help="write a commented campaign skeleton into an empty folder")
-    n.add_argument("dir")
+    n = sub.add_parser("new", help="write a commented campaign skeleton into an empty folder",
+                       description="Write a commented campaign skeleton (campaign.toml, "
+                                   "a run, a pipeline file) into an empty folder.")
+    n.add_argument("dir", help="an absent or empty folder")
     n.set_defaults(func=cmd_new)
 
-    pa = sub.add_parser("params", help="stage parameters: defaults and meaning")
+    pa = sub.add_parser("params", help="stage parameters: defaults and meaning",
+                        description="Print the parameters of the stages ([stages.<name>] "
+                                    "in a pipeline file): default, unit and meaning.")
     pa.add_argument("stage", nargs="?", help="one stage (default: all)")
     pa.add_argument("--markdown", action="store_true", help="the reference as Markdown")
     pa.set_defaults(func=cmd_params)
 
     ck = sub.add_parser("clock", help="estimate a clock offset by cross-correlation (reported, "
-                        "never applied)")
-    ck.add_argument("run")
+                        "never applied)",
+                        description="Estimate the clock offset of one channel against "
+                                    "another of the same run by cross-correlation (reported, "
+                                    "never applied).")
+    ck.add_argument("run", help="run name (its folder under runs/)")
     ck.add_argument("reference", help="probes:<probe> or flap:encoder|pressure")
     ck.add_argument("other", help="the channel whose clock offset is estimated")
     pipeline_opts(ck)
     ck.set_defaults(func=cmd_clock)
 
     r = sub.add_parser("report", help="one static HTML page for the processed campaign",
-                       parents=common)
+                       description="Write one static HTML page of the processed campaign "
+                                   "(summaries, QC counts, figures).", parents=common)
     r.add_argument("--out", default=None,
                    help="file name in the processed folder (default: report.html there)")
     pipeline_opts(r)
     r.set_defaults(func=cmd_report)
 
-    b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks", parents=common)
-    b.add_argument("area", help=", ".join(bench_areas()))
+    b = sub.add_parser("bench", help="accuracy-versus-run-time benchmarks", parents=common,
+                       description="Run the accuracy-versus-run-time benchmarks of one area.")
+    b.add_argument("area", help="one of: " + ", ".join(bench_areas()))
     b.add_argument("--quick", action="store_true", help="shorter runs, fewer cases")
     b.set_defaults(func=cmd_bench)
     return p

@@ -8,6 +8,7 @@ of the ``test`` extra) and turns every warning into an error.
 
 import doctest
 import importlib
+import importlib.util
 import os
 import runpy
 import subprocess
@@ -22,20 +23,16 @@ matplotlib.use("Agg")
 ROOT = Path(__file__).resolve().parents[1]
 GALLERY = ROOT / "examples" / "gallery"
 EXAMPLES = sorted(p.name for p in GALLERY.glob("plot_*.py"))
-#: real data each example reads (under shared/data), skipped where absent
-NEEDS = {"plot_wavelabx_separation.py": ("wavelabx", "wavedata.csv"),
-         "plot_uvp_file.py": ("metflow", "data_sample.mfprof")}
+#: real data each example reads (relative to the gallery, where it runs), skipped where absent
+NEEDS = {"plot_wavelabx_separation.py": "../wavelabx/wavedata.csv",
+         "plot_uvp_file.py": "../../../shared/data/metflow/data_sample.mfprof"}
 
 
 def _run(name: str, monkeypatch) -> dict:
     monkeypatch.chdir(GALLERY)
     monkeypatch.syspath_prepend(str(GALLERY))
-    if name in NEEDS:
-        data = importlib.import_module("_data")
-        try:
-            data.find(*NEEDS[name])
-        except FileNotFoundError as e:
-            pytest.skip(str(e))
+    if name in NEEDS and not (GALLERY / NEEDS[name]).exists():
+        pytest.skip(f"{(GALLERY / NEEDS[name]).resolve()} not found")
     import matplotlib.pyplot as plt
 
     try:
@@ -48,6 +45,31 @@ def test_every_gallery_script_is_tested():
     assert set(EXAMPLES) == {"plot_wavelabx_separation.py", "plot_uvp_file.py",
                              "plot_simulator_run.py", "plot_ballscrew_efficiency.py",
                              "plot_irregular_sea.py"}
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_gallery_scripts_import_only_public_names(name):
+    """A notebook can copy a gallery script: no private module or name, no helper module of
+    the gallery's own."""
+    import ast
+
+    local = {p.stem for p in GALLERY.glob("*.py")}
+    for node in ast.walk(ast.parse((GALLERY / name).read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            mods, names = [a.name for a in node.names], []
+        elif isinstance(node, ast.ImportFrom):
+            mods, names = [node.module or ""], [a.name for a in node.names]
+        else:
+            continue
+        for mod in mods:
+            assert mod.split(".")[0] not in local, (name, mod)
+            assert not any(part.startswith("_") for part in mod.split(".")), (name, mod)
+            if mod.startswith("flumekit"):
+                m = importlib.import_module(mod)
+                for n in names:  # a package's public names are its __all__
+                    assert not n.startswith("_"), (name, mod, n)
+                    assert not hasattr(m, "__all__") or n in m.__all__ or (
+                        importlib.util.find_spec(f"{mod}.{n}") is not None), (name, mod, n)
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
@@ -125,3 +147,17 @@ def test_docs_build_without_warnings(tmp_path):
     text = (html / "parameters.html").read_text(encoding="utf-8")
     assert "[stages.flap]" in text and all(k in text for k in DEFAULTS)
     assert 'href="parameters.html"' in (html / "pipeline.html").read_text(encoding="utf-8")
+    # code blocks wrap: the style sheet is copied and linked from every page
+    assert "pre-wrap" in (html / "_static" / "flumekit.css").read_text(encoding="utf-8")
+    assert "_static/flumekit.css" in (html / "getting_started.html").read_text(encoding="utf-8")
+
+
+def test_code_blocks_wrap_or_scroll():
+    """The docs' style sheet makes a long code line wrap (or scroll) instead of being cut."""
+    import re
+
+    css = (ROOT / "docs" / "_static" / "flumekit.css").read_text(encoding="utf-8")
+    rule = re.search(r"div\.highlight pre[^{]*\{([^}]*)\}", css)
+    assert rule and "white-space: pre-wrap" in rule.group(1) and "overflow-x: auto" in rule.group(1)
+    conf = (ROOT / "docs" / "conf.py").read_text(encoding="utf-8")
+    assert 'html_css_files = ["flumekit.css"]' in conf and 'html_static_path = ["_static"]' in conf

@@ -126,3 +126,35 @@ def test_list_and_make_on_a_probes_only_campaign(tmp_path, capsys):
     assert "flap/" not in out and "eta/regular" in out
     assert main(["make", "--pipeline", str(p), "waves"]) == 0
     assert (tmp_path / "out" / "figures" / "fig06a.png").exists()
+
+
+def _targets(pipeline: Path) -> list[str]:
+    from flumekit.pipeline.config import load_pipeline
+    from flumekit.stages.plan import pipeline_rules
+
+    return [r.target for r in pipeline_rules(load_pipeline(pipeline), None)]
+
+
+def test_a_waves_only_campaign_has_no_uvp_coordinate_nor_ballscrew_targets(built, tmp_path):
+    """Targets and run coordinates follow what the campaign declares and the pipeline asks:
+    no all-NaN ``uvp_elevation`` without a UVP, no ball-screw study unless a scene names it
+    or the pipeline has ``[stages.ballscrew]``."""
+    from flumekit.io.netcdf import read_dataset
+
+    out, code, _ = built
+    assert code == 0
+    for name in ("waves/regular.nc", "eta/regular.nc", "waves_summary.nc"):
+        ds = read_dataset(out / name)
+        assert "uvp_elevation" not in ds.variables, name
+        assert "wave_period" in ds.coords, name  # the other run coordinates stay
+    targets = _targets(EXAMPLE / "pipeline.toml")
+    assert "waves/regular" in targets
+    assert not [t for t in targets if t.startswith(("ballscrew/", "figure/bs_fig"))]
+    # asked for: by [stages.ballscrew] alone, or by a scene naming its targets
+    for extra in ('[stages.ballscrew]\nlead = 0.02\n',
+                  '[scenes]\nscrew = ["figure/bs_fig11"]\n'):
+        p = tmp_path / "p.toml"
+        p.write_text(f'[pipeline]\nname = "w"\nraw = "{EXAMPLE}"\n'
+                     f'processed = "{tmp_path / "o"}"\n' + extra)
+        got = _targets(p)
+        assert "ballscrew/kinematics" in got and "figure/bs_fig11" in got, extra

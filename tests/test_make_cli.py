@@ -559,3 +559,25 @@ def test_every_shipped_pipeline_plans_on_a_fresh_clone(tmp_path, name):
     assert any(s.startswith("would build synth/campaign") for s in steps)
     assert any(s.startswith("would build figure/fig10") for s in steps)
     assert not (project / "raw").exists() and not (project / "processed").exists()
+
+
+def test_every_help_is_plain_text_and_describes_every_option():
+    """`flumekit --help` and each subcommand's help: no reStructuredText markup, and every
+    argument (option or positional) has a description."""
+    import argparse
+    import re
+
+    from flumekit.cli import parser
+
+    top = parser()
+    subs = next(a for a in top._actions if isinstance(a, argparse._SubParsersAction))
+    markup = re.compile(r"``|:(func|mod|class|meth|attr):|`[^`]+`_")
+    for name, p in [("flumekit", top), *subs.choices.items()]:
+        text = p.format_help()
+        assert not markup.search(text), (name, markup.search(text).group(0))
+        assert p.description, name
+        for action in p._actions:
+            if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)):
+                continue
+            assert action.help and action.help.strip(), (name, action.option_strings or
+                                                         action.dest)

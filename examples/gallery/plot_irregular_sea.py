@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import flumekit
-from flumekit.synth.waves import irregular_wave_field, jonswap
+from flumekit.synth import irregular_wave_field, jonswap
 
 fs, duration, depth = 25.0, 1200.0, 0.5  # [Hz], [s], [m]
 time = np.arange(int(duration * fs)) / fs

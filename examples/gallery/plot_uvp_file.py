@@ -8,12 +8,15 @@ one transducer, 4 MHz, 654 channels, 50 ms between profiles) read with
 with the along-beam velocity in m/s and the distance of each channel from the transducer.
 """
 
+from pathlib import Path
+
 import matplotlib.pyplot as plt
-from _data import find
 
 import flumekit
 
-uvp = flumekit.read_mfprof(find("metflow", "data_sample.mfprof"))
+# the recording is GPL-3.0 and not vendored: it lies in shared/data beside the project folder
+path = Path("../../../shared/data/metflow/data_sample.mfprof")
+uvp = flumekit.read_mfprof(path)
 print(uvp.sizes, f"velocity resolution {uvp.attrs['velocity_resolution'] * 1000:.2f} mm/s")
 
 # %%

@@ -14,9 +14,7 @@ first-harmonic reflection coefficient, without an option. Fitted bin by bin as f
 (``regular=False``), the bound second harmonic would be counted as reflection.
 """
 
-from _data import find  # the gallery's helper: where the data file lives
-
-path = find("wavelabx", "wavedata.csv")
+path = "../wavelabx/wavedata.csv"  # vendored beside the gallery, in examples/wavelabx
 
 # %%
 # Separate, with public names only:

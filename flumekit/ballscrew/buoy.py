@@ -254,8 +254,10 @@ def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
 def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.Dataset:
     """Wave (hydrodynamic) force needed to realise the kinematic input, from the arm's balance.
 
-    Moment balance about the hinge (rigid arm, float CoG at distance L):
+    Moment balance about the hinge (rigid arm, float CoG at distance L)::
+
         I θ'' = L cos θ (F_hs + F_hd - m g) + F_PTO s'(θ),
+
     with F_PTO the axial PTO force on the nut (Eq. (3), positive extending the actuator) and
     s'(θ) its lever (virtual work). Solved for F_hd.
 

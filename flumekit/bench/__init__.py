@@ -6,6 +6,8 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+__all__ = ["areas", "best_time"]
+
 
 def areas() -> list[str]:
     """The benchmark areas: the modules of this package that define ``run`` (found without

@@ -78,7 +78,8 @@ def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
                                                   r.uvp_elevation, r.probe_x))
     from flumekit.campaign import load_campaign
 
-    graph = Graph(build_rules(Context(load_campaign(pipe.raw), pipe.processed, pipe.stages)))
+    graph = Graph(build_rules(Context(load_campaign(pipe.raw), pipe.processed, pipe.stages,
+                                      pipe.scenes)))
     for rule in graph.rules.values():
         for p in [*rule.inputs.values(), *rule.outputs.values()]:
             if not Path(p).exists():

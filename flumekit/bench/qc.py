@@ -304,7 +304,7 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
 
     pipe = load_pipeline(processed.parents[1] / "pipelines" / "small.toml")
     campaign = load_campaign(raw)
-    ctx = Context(campaign=campaign, processed=processed, params=pipe.stages)
+    ctx = Context(campaign=campaign, processed=processed, params=pipe.stages, scenes=pipe.scenes)
     rules = {r.target: r for r in build_rules(ctx)}
 
     def run_rules(targets, repeat=REPEAT):

@@ -5,7 +5,7 @@ is neither one (3.5 in) nor two (7 in) journal columns, text smaller than 8 pt o
 figure's edge, an axes with nothing drawn in it or hidden (a hole in the layout), an axis
 whose tick labels are shown without a label giving units in square brackets, a legend that
 overlaps an axes' data area or the title, no figure title (which names the run(s) and
-condition).
+condition), panels lettered other than (a), (b), ... in the order of the axes.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import re
 from flumekit.figures.style import MIN_FONT_SIZE, ONE_COLUMN, TWO_COLUMNS
 
 _UNITS = re.compile(r"\[[^\]]+\]")
+_LETTER = re.compile(r"^\(([a-z])\)")
 #: tallest figure that fits a page with its caption [in]
 MAX_HEIGHT = 9.0
 
@@ -126,6 +127,11 @@ def _problems(fig, canvas) -> list[str]:
                 out.append(f"{name}: {which} label '{text}' gives no units in [brackets]")
         if not getattr(ax, "_colorbar", None):
             boxes.append((name, ax.get_window_extent(renderer)))
+    # each file's panels lettered from (a) in order: a reader refers to them by these letters
+    letters = [m.group(1) for ax in fig.axes if ax.get_visible()
+               for m in [_LETTER.match(ax.get_title(loc="left") or ax.get_title())] if m]
+    if letters and letters != [chr(ord("a") + k) for k in range(len(letters))]:
+        out.append(f"panels lettered ({'), ('.join(letters)}), not from (a) in order")
     legends = list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
     for leg in legends:
         box = leg.get_window_extent(renderer)

@@ -133,9 +133,10 @@ def figure_5b(flap: xr.Dataset, ax=None):
 def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=None):
     """Normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
 
-    Each signal is divided by its amplitude scale (half the range of its phase average over
-    the quasi-steady window; for P_int, whose suction side is clamped at the vapour pressure,
-    the maximum of the phase average); dash-dotted lines mark the crest and trough of the
+    Panels (a)-(c) of this figure are the paper's Fig. 6b-d. Each signal is divided by its
+    amplitude scale (half the range of its phase average over the quasi-steady window; for
+    P_int, whose suction side is clamped at the vapour pressure, the maximum of the phase
+    average), stated in the panel's title; dash-dotted lines mark the crest and trough of the
     phase average, which the steady cycles meet.
 
     Parameters
@@ -149,23 +150,27 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
              "chamber_pressure_phase_mean", "theta_dot_phase_mean", "measured_period")
     tt, sel, _ = _window(flap, start, n_waves)
     rows = []
-    for name, sym, half in (("theta", r"$\theta/\theta_s$", True),
-                            ("chamber_pressure", r"$P_{int}/P_s$", False),
-                            ("theta_dot", r"$\dot\theta/\dot\theta_s$", True)):
+    for name, sym, half, shown in (
+            ("theta", r"$\theta/\theta_s$", True,
+             lambda v: rf"$\theta_s$ = {np.degrees(v):.1f}°"),
+            ("chamber_pressure", r"$P_{int}/P_s$", False,
+             lambda v: f"$P_s$ = {v / 1e3:.0f} kPa"),
+            ("theta_dot", r"$\dot\theta/\dot\theta_s$", True,
+             lambda v: rf"$\dot\theta_s$ = {v:.2f} rad/s")):
         pm = flap[f"{name}_phase_mean"].values
         scale = 0.5 * float(np.ptp(pm)) if half else float(np.max(pm))
-        rows.append((name, scale, sym, pm))
+        rows.append((name, scale, sym, pm, shown(scale)))
     if axes is None:
         fig, grid = new_figure(3, 1, width=TWO_COLUMNS, row_height=1.6, sharex=True)
         axes = grid[:, 0]
     fig = axes[0].figure
     with style():
-        for ax, (name, scale, sym, pm), tag in zip(axes, rows, "bcd"):
+        for ax, (name, scale, sym, pm, stated), tag in zip(axes, rows, "abc"):
             ax.plot(tt[sel], flap[name].values[sel] / scale, color=COLOURS["experiment"],
                     label="measured")
             _crest_trough(ax, _levels(pm, scale))
             ax.set_ylabel(label(text=sym, units="1"))
-            ax.set_title(f"({tag}) {long_name(name)}")
+            ax.set_title(f"({tag}) {long_name(name)}, {stated}")
         axes[-1].set_xlabel(_TIME_OVER_PERIOD)
         axes[-1].set_xlim(start, start + n_waves)
         title(fig, run_title(flap, "Flap rotation, chamber pressure and angular velocity"))
@@ -297,8 +302,9 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
               axes=None):
     """Normalised phase averages over the quasi-steady window (Fig. 10).
 
-    Panels: (a) ⟨η⟩/H (only with ``eta``), (b) ⟨θ⟩/π, (c) ⟨W_out⟩/W_I with its mean over the
-    cycle dotted, (d) ⟨θ̇⟩/(π ω), ω = 2π/T. The paper does not state its normalisation of θ̇;
+    Panels: ⟨η⟩/H (only with ``eta``), ⟨θ⟩/π, ⟨W_out⟩/W_I with its mean over the cycle
+    dotted, ⟨θ̇⟩/(π ω), ω = 2π/T, lettered from (a) in the order shown; each panel's title
+    states its scale (H, W_I, ω). The paper does not state its normalisation of θ̇;
     dividing by π ω gives a sinusoidal motion the same amplitude in (b) and (d). Cycles start
     at a zero up-crossing of θ (t/T = 0: the flap vertical and moving to the beach), as in the
     paper. The experiment is drawn on top (thick black) so that model curves that coincide
@@ -352,9 +358,12 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
         axes[3].set_ylabel(label(text=r"$\langle\dot\theta\rangle/(\pi\omega)$", units="1"))
         for source, summary in (models or {}).items():
             add_figure_10(axes, summary, label=source)
-        shown = [(ax, tag) for ax, tag in zip(axes, "abcd") if ax is not None]
-        for ax, tag in shown:
-            ax.set_title(f"({tag})")
+        h_i = float(flap.incident_height)
+        scales = (f"$H$ = {h_i:.3f} m", None, f"$W_I$ = {w_i:.3g} W",
+                  rf"$\omega$ = {omega:.2f} rad/s")
+        shown = [(ax, s) for ax, s in zip(axes, scales) if ax is not None]
+        for (ax, stated), tag in zip(shown, "abcd"):
+            ax.set_title(f"({tag})" + (f" {stated}" if stated else ""))
             ax.set_xlim(0, 1)
             ax.set_xlabel(_TIME_OVER_PERIOD)
         title(fig, run_title(flap, "Phase averages") + "; dotted: mean over the cycle")

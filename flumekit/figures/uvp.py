@@ -41,7 +41,28 @@ def _field_title(field: xr.Dataset, what: str) -> str:
     n = int(field.attrs.get("n_runs", 0))
     runs = f"{n} UVP run{'s' if n != 1 else ''}" if n else "UVP runs"
     cond = condition(field)
-    return f"{what}: {runs}" + (f" ({cond})" if cond else "")
+    return f"{what}: {runs}" + (f" ({cond})" if cond else "") + _scales(field)
+
+
+def _scales(field: xr.Dataset) -> str:
+    """The normalising scales: U0 = πH/T (Brito et al. 2020, §4) and the depth h."""
+    h = _depth(field)
+    if "velocity_scale" not in field.coords and "velocity_scale" not in field:
+        return "\n" + f"$h$ = {h:.3f} m"
+    u0 = float(field["velocity_scale"])
+    return "\n" + rf"$U_0 = \pi H/T$ = {u0:.3f} m/s, $h$ = {h:.3f} m"
+
+
+def _strides(x: np.ndarray, z: np.ndarray, n_arrows: int) -> tuple[int, int, float]:
+    """Strides in x and z that put about ``n_arrows`` arrows across the wider extent of the
+    field, on a near-square lattice, and the lattice spacing (in the units of x and z)."""
+    dx = float(np.min(np.abs(np.diff(x)))) if x.size > 1 else 1.0
+    dz = float(np.min(np.abs(np.diff(z)))) if z.size > 1 else 1.0
+    extent = max(float(np.ptp(x)) if x.size > 1 else 0.0,
+                 float(np.ptp(z)) if z.size > 1 else 0.0)
+    target = extent / max(n_arrows - 1, 1) if extent > 0 else max(dx, dz)
+    sx, sz = max(1, int(round(target / dx))), max(1, int(round(target / dz)))
+    return sx, sz, min(sx * dx, sz * dz)
 
 
 def _nice_levels(lim: float, n: int = 10) -> np.ndarray:
@@ -61,18 +82,23 @@ def _reference_length(vmax: float) -> float:
 
 
 @register("fig11")
-def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
-          arrow: float = 1.5):
+def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
+          arrow: float = 0.9):
     """Phase-averaged vector field (⟨u⟩, ⟨w⟩)/U0 and contours of ⟨u⟩/U0 (Fig. 11).
+
+    Legible at print size: about ``n_arrows`` arrows across each panel on a near-square
+    lattice, the longest no longer than ``arrow`` lattice spacings so that arrows never run
+    into their neighbours, and colour levels symmetric over the largest ⟨u⟩/U0 of the shown
+    phases, so that no value saturates the colour bar. The title states U0 and h.
 
     Parameters
     ----------
     field : Field dataset (phase, z, x).
     phases : t/T of the panels (the nearest phase of the grid is shown).
-    levels : Contour levels of ⟨u⟩/U0; default symmetric, on round numbers over the field's
-        range (the colour-bar ticks).
-    stride : Plot every ``stride``-th vector in x and z.
-    arrow : Length of the longest arrow in units of the plotted vector spacing.
+    levels : Contour levels of ⟨u⟩/U0; default symmetric, on round numbers covering the
+        largest magnitude of the shown phases (the colour-bar ticks).
+    n_arrows : Arrows across the wider extent of a panel [-].
+    arrow : Length of the longest arrow in lattice spacings [-] (below 1: no overlap).
 
     Returns
     -------
@@ -80,14 +106,19 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
     """
     h = _depth(field)
     x, z = field["x"].values / h, field["z"].values / h
-    un = field["u_normalised"].values
-    if levels is None:
-        lim = np.nanmax(np.abs(un)) if np.any(np.isfinite(un)) else 1.0
+    sx, sz, spacing = _strides(x, z, n_arrows)
+    shown = [_at_phase(field, p) for p in phases]
+    un = np.stack([f["u_normalised"].values for f in shown])
+    if levels is None:  # over what is drawn: nothing beyond the outermost level
+        lim = float(np.nanmax(np.abs(un))) if np.any(np.isfinite(un)) else 1.0
         levels = _nice_levels(lim)
-    speed = np.hypot(un, field["w_normalised"].values)
-    vmax = np.nanmax(speed) if np.any(np.isfinite(speed)) else 1.0
-    spacing = stride * min(np.min(np.abs(np.diff(x))) if x.size > 1 else 1.0,
-                           np.min(np.abs(np.diff(z))) if z.size > 1 else 1.0)
+    # a triangle on the colour bar only where values lie beyond its levels
+    big, small = np.nanmax(un) > levels[-1], np.nanmin(un) < levels[0]
+    extend = {(True, True): "both", (True, False): "max", (False, True): "min"}.get(
+        (bool(big), bool(small)), "neither")
+    sub = (slice(None), slice(None, None, sz), slice(None, None, sx))
+    speed = np.hypot(un[sub], np.stack([f["w_normalised"].values for f in shown])[sub])
+    vmax = float(np.nanmax(speed)) if np.any(np.isfinite(speed)) else 1.0
     scale = vmax / (arrow * spacing)  # data units (U0) per unit of x/h
     # panels shaped like the field (equal axes): three columns when it is taller than wide
     aspect = float(np.ptp(z) / np.ptp(x)) if x.size > 1 and z.size > 1 else 1.0
@@ -100,16 +131,20 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, stride: int = 2,
         fig.delaxes(ax)
     with style():
         cs = q = None
-        for ax, p, tag in zip(axes.flat, phases, "abcdefgh"):
-            f = _at_phase(field, p)
+        for ax, f, tag in zip(axes.flat, shown, "abcdefgh"):
             u = f["u_normalised"].values
             w = f["w_normalised"].values
             if np.any(np.isfinite(u)):
-                cs = ax.contourf(x, z, u, levels=levels, cmap="RdBu_r", extend="both")
-            sl = (slice(None, None, stride), slice(None, None, stride))
-            q = ax.quiver(x[::stride], z[::stride], u[sl], w[sl], angles="xy",
-                          scale_units="xy", scale=scale, width=0.004)
+                cs = ax.contourf(x, z, u, levels=levels, cmap="RdBu_r", extend=extend)
+            sl = (slice(None, None, sz), slice(None, None, sx))
+            q = ax.quiver(x[::sx], z[::sz], u[sl], w[sl], angles="xy", scale_units="xy",
+                          scale=scale, width=0.007, headwidth=3.5, headlength=4,
+                          headaxislength=3.5, pivot="middle")
             ax.set_title(f"({tag}) t/T = {float(f['phase']):.2f}")
+            # half a lattice spacing around the field: the arrows (centred on their points)
+            # of the outer rows and columns stay inside the panel
+            ax.set_xlim(x.min() - spacing / 2, x.max() + spacing / 2)
+            ax.set_ylim(z.min() - spacing / 2, z.max() + spacing / 2)
             ax.set_aspect("equal")
             ax.set_xlabel(label(text="$x/h$", units="1"))
             ax.set_ylabel(label(text="$z/h$", units="1"))

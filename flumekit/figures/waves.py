@@ -36,14 +36,19 @@ def _probe(waves: xr.Dataset, probe) -> str:
     return waves.probe.values[int(np.argmin(np.abs(waves.x.values - x_ref)))]
 
 
-def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, float]:
+def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, float, float]:
     for name in ("eta", "amplitude_scale", "measured_period", "steady_start"):
         if name not in waves:
             raise ValueError(f"the waves dataset lacks '{name}': pass the output of analyse_run")
     p = _probe(waves, probe)
     period = float(waves.measured_period)
     scale = float(waves.amplitude_scale.sel(probe=p))
-    return p, waves.time.values / period, waves.eta.sel(probe=p).values / scale, period
+    return p, waves.time.values / period, waves.eta.sel(probe=p).values / scale, period, scale
+
+
+def _scales(scale: float, period: float) -> str:
+    """The normalising scales of the elevation figures, for the title."""
+    return f"$A_s$ = {scale:.3f} m, $T$ = {period:.2f} s"
 
 
 def _probe_text(waves: xr.Dataset, p: str) -> str:
@@ -65,7 +70,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     matplotlib.figure.Figure. The dash-dotted line is the amplitude scale A_s (η/A_s = 1), the
     vertical line the start of the quasi-steady window.
     """
-    p, tt, eta, period = _normalised(waves, probe)
+    p, tt, eta, period, scale = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
     with style():
         ax.plot(*thin(tt, eta, fig.get_figwidth()), color=COLOURS["experiment"], lw=0.5,
@@ -76,7 +81,8 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         ax.set_xlim(tt[0], tt[-1])
         ax.set_xlabel(_TIME_OVER_PERIOD)
         ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
-        title(fig, run_title(waves, f"Normalised surface elevation, {_probe_text(waves, p)}"))
+        title(fig, run_title(waves, f"Normalised surface elevation, {_probe_text(waves, p)}")
+              + f"\n{_scales(scale, period)}")
         legend(fig)
     return fig
 
@@ -97,7 +103,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     -------
     matplotlib.figure.Figure with the amplitude scale as a dash-dotted line at η/A_s = 1.
     """
-    p, tt, eta, _ = _normalised(waves, probe)
+    p, tt, eta, period, scale = _normalised(waves, probe)
     stop = start + n_waves
     if start < tt[0] or stop > tt[-1]:
         raise ValueError(f"t/T = {start:g}..{stop:g} lies outside the record "
@@ -110,7 +116,8 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
         ax.set_xlim(start, stop)
         ax.set_xlabel(_TIME_OVER_PERIOD)
         ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
-        title(fig, run_title(waves, f"Five waves, {_probe_text(waves, p)}"))
+        title(fig, run_title(waves, f"Five waves, {_probe_text(waves, p)}")
+              + f"\n{_scales(scale, period)}")
         legend(fig)
     return fig
 
@@ -122,13 +129,15 @@ def _spans(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 @register("separation")
-def separation(waves: xr.Dataset, n_waves: int = 5):
+def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
     """The incident/reflected separation of one run: what a wave engineer checks first.
 
     (a) Incident and reflected elevation at the reference point ``x_ref`` over ``n_waves``
     periods from the start of the separated window; (b) their variance density spectra
-    (log scale) with the bins masked as ill-conditioned shaded and the analysis band marked.
-    The title gives Kr, H_I and the masked energy fraction.
+    (log scale), averaged over bands of ``n_bins`` periodogram bins (2 ``n_bins`` degrees of
+    freedom, stated in the panel title; Bendat & Piersol 2010, §11.5: a raw periodogram has 2
+    and scatters by its own size), with the bins masked as ill-conditioned shaded and the
+    analysis band marked. The title gives Kr, H_I and the masked energy fraction.
 
     Parameters
     ----------
@@ -138,6 +147,7 @@ def separation(waves: xr.Dataset, n_waves: int = 5):
         ``reflection_coefficient``, ``incident_height``.
     n_waves : Periods shown in (a) [-]; the whole separated series if the dataset gives no
         period.
+    n_bins : Periodogram bins per band of the spectra in (b) [-]; 1 shows the periodogram.
 
     Returns
     -------
@@ -174,11 +184,17 @@ def separation(waves: xr.Dataset, n_waves: int = 5):
         ax_t.set_xlabel(label("time", "$t$"))
         ax_t.set_ylabel(label("eta", r"$\eta$", text="Elevation"))
         ax_t.set_title(f"(a) at the reference point x = {x_ref:g} m")
+        from flumekit.waves.irregular import band_average
+
+        # masked bins stay out of the bands: their separation is not defined
+        n_bins = int(max(1, min(n_bins, f.size)))
+        fb, *bands = band_average(f, waves["spectrum_incident"].values,
+                                  waves["spectrum_reflected"].values, n_bins=n_bins,
+                                  valid=~masked)
         peak = 0.0
-        for name in ("incident", "reflected"):
-            s = waves[f"spectrum_{name}"].values
-            pos = s > 0
-            ax_f.semilogy(f[pos], s[pos], ".-", ms=2, lw=0.7, color=COLOURS[name])
+        for name, s in zip(("incident", "reflected"), bands):
+            pos = np.isfinite(s) & (s > 0)
+            ax_f.semilogy(fb[pos], s[pos], ".-", ms=2, lw=0.7, color=COLOURS[name])
             peak = max(peak, float(s[pos].max())) if pos.any() else peak
         if masked.any():
             df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
@@ -193,7 +209,8 @@ def separation(waves: xr.Dataset, n_waves: int = 5):
             ax_f.set_ylim(bottom=peak * 1e-7)
         ax_f.set_xlabel(label("frequency", "$f$"))
         ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
-        ax_f.set_title("(b) spectra")
+        ax_f.set_title(f"(b) spectra, bands of {n_bins} bins, {2 * n_bins} degrees of freedom"
+                       if n_bins > 1 else "(b) periodograms, 2 degrees of freedom")
         kr = float(waves["reflection_coefficient"])
         h_i = float(waves["incident_height"])
         extra = ""

@@ -9,3 +9,38 @@ the excitation filter in :mod:`~flumekit.hydro.excitation`; the frequency-domain
 :mod:`~flumekit.hydro.response`. Usable for a pitching flap and a heaving buoy alike: nothing here
 knows about a particular device.
 """
+
+
+import importlib
+
+#: public name -> module of this package (imported on first use, so that importing the
+#: package stays cheap)
+_LAZY = {
+    "hydro_dataset": "coefficients",
+    "from_capytaine": "coefficients",
+    "from_renzi_dias": "coefficients",
+    "passivity_report": "coefficients",
+    "infinite_frequency_inertia": "coefficients",
+    "read_capytaine": "capytaine",
+    "read_wamit": "wamit",
+    "impulse_response": "radiation",
+    "fit_state_space": "radiation",
+    "response": "response",
+    "optimal_pto_damping": "response",
+    "excitation_torque": "excitation",
+    "simulate": "simulation",
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

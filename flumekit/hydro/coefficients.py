@@ -393,9 +393,9 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     -------
     Dataset with ``added_inertia_infinite_estimate`` over ``angular_frequency`` [kg m2] and the
     scalar ``added_inertia_infinite`` (median of the estimates) [kg m2]; ``attrs``:
-    ``spread`` = (90th − 10th percentile)/|median| of the estimates (robust to the lowest
+    ``spread`` = (90th − 10th percentile)/abs(median) of the estimates (robust to the lowest
     frequencies, where the 1/ω factor amplifies the error of the low-frequency extension of B),
-    ``full_spread`` = (max − min)/|median|, ``rms_spread`` = std/|median|.
+    ``full_spread`` = (max − min)/abs(median), ``rms_spread`` = std/abs(median).
     """
     from flumekit.hydro.radiation import impulse_response, sine_transform
 

@@ -85,7 +85,8 @@ def pipeline_key(pipe) -> tuple[str | None, Synthesis | None]:
     plan = None if lazy is None else [lazy.size, lazy.seed]
     try:
         key = graph_key(campaign_files(pipe.raw),
-                        [str(pipe.raw), str(pipe.processed), pipe.stages, pipe.synth, plan])
+                        [str(pipe.raw), str(pipe.processed), pipe.stages, pipe.synth, plan,
+                         pipe.scenes])
     except OSError:  # a run.toml that is a folder, an unreadable file: load_campaign says so
         key = None
     return key, lazy

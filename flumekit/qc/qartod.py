@@ -117,9 +117,9 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
                floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
     """QARTOD spike test (the "average" method), robust and local.
 
-    The statistic is d_n = x_n - (x_(n-1) + x_(n+1))/2. A sample is a spike where |d_n| exceeds
+    The statistic is d_n = x_n - (x_(n-1) + x_(n+1))/2. A sample is a spike where abs(d_n) exceeds
     ``suspect`` (SUSPECT) or ``fail`` (FAIL) robust local standard deviations of d and is the
-    largest |d| of its three neighbours: a spike of size s also moves its neighbours' d by s/2,
+    largest abs(d) of its three neighbours: a spike of size s also moves its neighbours' d by s/2,
     and those neighbours are good data. After each pass the FAIL samples are replaced by the
     mean of their neighbours and the test runs again (``passes``), which finds spikes hidden next
     to larger ones. End samples are not evaluated (2).
@@ -151,7 +151,7 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
 
 def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
                         floor: np.ndarray | float | None = None) -> np.ndarray:
-    """QARTOD rate of change: SUSPECT where |x_n - x_(n-1)| exceeds ``threshold`` robust local
+    """QARTOD rate of change: SUSPECT where abs(x_n - x_(n-1)) exceeds ``threshold`` robust local
     standard deviations of the first difference (QARTOD's "N standard deviations" rule).
     The first sample is not evaluated (2)."""
     x, f, floor = _local_test_start(x, 2, floor)

@@ -94,3 +94,6 @@ def parameters_markdown() -> str:
         lines += [f"| `{k}` | `{_show(d)}` | {doc} |" for k, (d, doc) in params.items()]
         lines.append("")
     return "\n".join(lines)
+
+
+__all__ = ["STAGES", "build_rules", "check_stage_params", "parameters", "parameters_markdown"]

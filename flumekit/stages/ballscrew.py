@@ -2,6 +2,11 @@
 
 kinematics -> efficiency -> thermal_lumped -> thermal_fem, each its own rule, so that a scene
 asking only for the efficiency never runs the thermal finite-element model.
+
+The study needs no instrument and no run, so it is part of a pipeline only when the pipeline
+asks for it (:func:`wanted`): a ``[stages.ballscrew]`` table, or a scene naming its targets
+(an entry beginning ``ballscrew/`` or ``figure/bs_fig``). A wave-flume campaign's pipeline
+that asks for neither lists no ``ballscrew/*`` or ``figure/bs_fig*`` target.
 """
 
 from __future__ import annotations
@@ -66,7 +71,20 @@ FIGURE_SOURCES = {9: "thermal_lumped", 10: "thermal_fem", 11: "efficiency", 12: 
                   17: "thermal_fem", 18: "thermal_fem"}
 
 
+#: how a scene entry names the study's targets: ballscrew/<step> and figure/bs_fig<n>
+PREFIXES = ("ballscrew/", "figure/bs_fig")
+
+
+def wanted(ctx: Context) -> bool:
+    """Whether the pipeline asks for the ball-screw study: a ``[stages.ballscrew]`` table, or
+    a scene entry beginning with one of :data:`PREFIXES`."""
+    return "ballscrew" in ctx.params or any(
+        t.startswith(PREFIXES) for targets in ctx.scenes.values() for t in targets)
+
+
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    if not wanted(ctx):
+        return []
     keys = {"kinematics": ("amplitude", "period", "samples_per_period", "lead"),
             "efficiency": (),
             "thermal_lumped": ("cycle_duration", "total_duration", "lumped_time_step"),

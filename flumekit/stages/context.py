@@ -15,6 +15,8 @@ class Context:
     campaign: Campaign
     processed: Path
     params: dict[str, dict[str, Any]] = field(default_factory=dict)
+    #: the pipeline's scenes (name -> target patterns): what it asks to build
+    scenes: dict[str, list[str]] = field(default_factory=dict)
 
     def stage_params(self, stage: str, defaults: dict[str, Any]) -> dict[str, Any]:
         """Defaults overridden by ``[stages.<stage>]`` of the pipeline file (unknown keys fail)."""

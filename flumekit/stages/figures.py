@@ -46,6 +46,7 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
 def rules(ctx: Context, p: dict) -> list[Rule]:
     from flumekit.figures.style import FORMATS
     from flumekit.stages.ballscrew import FIGURE_SOURCES
+    from flumekit.stages.ballscrew import wanted as ballscrew_wanted
 
     formats = [p["formats"]] if isinstance(p["formats"], str) else list(p["formats"])
     bad = [f for f in formats if f not in FORMATS]
@@ -101,7 +102,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     if any(r.kind == "uvp" for r in ctx.campaign.runs) and ctx.campaign.uvp is not None:
         fig("fig11", {"field": ctx.out("uvp_field.nc")})
         fig("fig12", {"field": ctx.out("uvp_field.nc")})
-    for n, step in FIGURE_SOURCES.items():
+    for n, step in (FIGURE_SOURCES.items() if ballscrew_wanted(ctx) else ()):
         fig(f"bs_fig{n:02d}", {step: ctx.out("ballscrew", f"{step}.nc")})
     return out
 

@@ -32,11 +32,12 @@ def pipeline_rules(pipe, lazy) -> list:
     check_stage_params(pipe.stages, pipe.path)
     if lazy is None:
         return build_rules(Context(campaign=load_campaign(pipe.raw), processed=pipe.processed,
-                                   params=pipe.stages))
+                                   params=pipe.stages, scenes=pipe.scenes))
     from flumekit.synth.campaign import virtual_campaign
 
     campaign = virtual_campaign(pipe.raw, lazy.size, lazy.seed)
-    rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages))
+    rules = build_rules(Context(campaign=campaign, processed=pipe.processed, params=pipe.stages,
+                                scenes=pipe.scenes))
     return rules + virtual.rules(rules, pipe.raw, lazy.size, lazy.seed,
                                  [r.id for r in campaign.runs])
 

@@ -12,7 +12,8 @@ def run_params(run, campaign=None) -> dict:
     ``kind`` is the run's kind ("waves", "uvp", "irregular"), ``sea_state`` the target sea
     state of an irregular run (a dict, else None); ``sea_state_coords``: whether the runs of
     ``campaign`` carry the target sea state as coordinates (when any run is irregular, so
-    that every run of a mixed campaign has the same coordinates).
+    that every run of a mixed campaign has the same coordinates); ``uvp_coords`` False (set
+    only then): the campaign declares no UVP, so its runs carry no ``uvp_elevation``.
     """
     sea = run.sea_state
     return {"run": run.id, "kind": run.kind, "period": run.period, "height": run.height,
@@ -20,13 +21,16 @@ def run_params(run, campaign=None) -> dict:
             "sea_state": None if sea is None else dict(sea.__dict__),
             "sea_state_coords": bool(campaign is not None
                                      and any(r.irregular for r in campaign.runs)),
-            **({"start": run.start} if run.start else {})}
+            **({"start": run.start} if run.start else {}),
+            **({"uvp_coords": False} if campaign is not None
+               and "uvp" not in campaign.instruments else {})}
 
 
 def run_coords(params: dict) -> dict:
     """Run parameters as scalar coordinates, so runs concatenate along ``run``.
 
-    ``uvp_elevation`` is NaN for runs without UVP, the target period and height NaN for an
+    ``uvp_elevation`` (present when the campaign declares the UVP) is NaN for runs without
+    UVP, the target period and height NaN for an
     irregular run and its target Hm0, Tp and Te (``wave_hm0``, ``wave_tp``, ``wave_te``,
     present when the campaign has irregular runs) NaN for a regular one, so every run has the
     same coordinates.
@@ -35,8 +39,9 @@ def run_coords(params: dict) -> dict:
         return float("nan") if v is None else v
 
     out = {"run": params["run"], "wave_period": nan(params["period"]),
-           "wave_height": nan(params["height"]), "repeat": params["repeat"],
-           "uvp_elevation": nan(params.get("uvp_elevation"))}
+           "wave_height": nan(params["height"]), "repeat": params["repeat"]}
+    if params.get("uvp_coords", True):
+        out["uvp_elevation"] = nan(params.get("uvp_elevation"))
     if params.get("sea_state_coords"):
         sea = params.get("sea_state") or {}
         out.update({f"wave_{k}": nan(sea.get(k)) for k in ("hm0", "tp", "te")})

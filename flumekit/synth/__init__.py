@@ -1,4 +1,7 @@
-"""synth"""
+"""The virtual flume: synthetic campaigns with a known truth (regular and irregular waves,
+the flap's response, UVP profiles), written in the raw format of raw/README.md."""
+
+import importlib
 
 #: marker of a campaign folder the virtual flume wrote: its size, seed, planned runs and (when
 #: written run by run) the runs written so far. Only a folder holding it is ever completed run
@@ -9,3 +12,31 @@ MARKER = ".flumekit-virtual.json"
 #: without a seed, ``flumekit synth`` and :func:`flumekit.synth.campaign.write_campaign` write
 #: the same campaign
 DEFAULT_SEED = 2020
+
+
+#: public name -> module of this package (imported on first use, so that importing the
+#: package stays cheap)
+_LAZY = {
+    "write_campaign": "campaign",
+    "virtual_campaign": "campaign",
+    "regular_wave_field": "waves",
+    "irregular_wave_field": "waves",
+    "jonswap": "waves",
+    "flap_record": "flap",
+    "true_field": "uvp",
+    "irregular_sea": "irregular",
+}
+
+__all__ = sorted([*_LAZY, "DEFAULT_SEED", "MARKER"])
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))

@@ -160,7 +160,7 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
 
 def separate(eta, depth: float, method: str = "mansard_funke",
-             band: tuple[float, float] | None = None, x_ref: float | None = None, *,
+             band: tuple[float, float] | None = None, x_ref: float = 0.0, *,
              x=None, sampling_rate: float | None = None,
              regular: bool | None = None, period: float | None = None,
              bound_harmonics: bool | None = None,
@@ -186,8 +186,12 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         (f_min, f_max) analysis band [Hz]; default every bin between 0 and the Nyquist
         frequency (both excluded).
     x_ref : float, optional
-        Position [m] where the incident and reflected elevations are returned; default the
-        first probe.
+        Position [m] where the incident and reflected elevations and phases are returned;
+        default 0, the device (the flap hinge): by the coordinate convention of the raw
+        format (``x`` = 0 at the hinge, positive towards the beach) the waves that reach and
+        leave the device are what an analysis of its response needs, and the pipeline's
+        ``[stages.waves] x_ref`` has the same default, so a result computed here and the
+        processed dataset agree without an option.
     x : sequence of float, optional
         Probe positions [m] when ``eta`` does not carry them.
     sampling_rate : float, optional
@@ -307,7 +311,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    x_ref = float(x[0]) if x_ref is None else float(x_ref)
+    x_ref = float(x_ref)
     n = t.size
     freq, sel = _band_bins(t, band)
     f = freq[sel]

@@ -27,7 +27,11 @@ def _passes(fig):
 def test_wave_figures(waves):
     fig = _passes(wave_figs.figure_5a(waves))
     assert "T2.00_H0.150_r0" in fig._suptitle.get_text()
-    _passes(wave_figs.figure_6a(waves, start=40))
+    fig6 = _passes(wave_figs.figure_6a(waves, start=40))
+    # the normalising scale, the amplitude scale of the probe shown (nearest x_ref = 0: WP4)
+    a_s = float(waves.amplitude_scale.sel(probe="WP4"))
+    for f in (fig, fig6):
+        assert f"$A_s$ = {a_s:.3f} m" in f._suptitle.get_text().replace("\xa0", " ")
 
 
 def test_separation_figure(waves):
@@ -46,6 +50,23 @@ def test_separation_figure(waves):
     masked["masked"] = ("frequency", m)
     fig = _passes(wave_figs.separation(masked))
     assert len(fig.axes[1].patches) == 1
+
+
+def test_separation_spectra_are_band_averaged_with_their_degrees_of_freedom(waves):
+    fig = _passes(wave_figs.separation(waves, n_bins=4))
+    ax_f = fig.axes[1]
+    assert "8 degrees of freedom" in ax_f.get_title(loc="left")
+    # the drawn incident spectrum: means of consecutive groups of 4 periodogram bins
+    f = waves.frequency.values
+    s = waves.spectrum_incident.values
+    n = f.size // 4 * 4
+    fb, sb = f[:n].reshape(-1, 4).mean(axis=1), s[:n].reshape(-1, 4).mean(axis=1)
+    line = ax_f.lines[0]
+    keep = sb > 0
+    np.testing.assert_allclose(line.get_xdata(), fb[keep], rtol=1e-12)
+    np.testing.assert_allclose(line.get_ydata(), sb[keep], rtol=1e-12)
+    # the variance is kept: the bands hold what the bins hold (to round-off)
+    assert np.sum(sb) * 4 == pytest.approx(np.sum(s[:n]), rel=1e-12)
 
 
 def test_separation_figure_of_separate_output(waves):
@@ -68,7 +89,16 @@ def test_flap_time_series_figures(flaps):
     scale = float(ds.theta_amplitude)
     assert levels == pytest.approx([float(ds.theta_phase_mean.min()) / scale,
                                     float(ds.theta_phase_mean.max()) / scale])
-    _passes(figs.figure_6bcd(ds, start=30))
+    fig = _passes(figs.figure_6bcd(ds, start=30))
+    titles = [ax.get_title(loc="left").replace("\xa0", " ") for ax in fig.axes]
+    assert [t[:3] for t in titles] == ["(a)", "(b)", "(c)"]  # lettered in this file from (a)
+    # each panel states its scale, computed here from the phase averages
+    theta_s = 0.5 * float(np.ptp(ds.theta_phase_mean.values))
+    p_s = float(ds.chamber_pressure_phase_mean.max())
+    dot_s = 0.5 * float(np.ptp(ds.theta_dot_phase_mean.values))
+    assert titles[0].endswith(rf"$\theta_s$ = {np.degrees(theta_s):.1f}°")
+    assert titles[1].endswith(f"$P_s$ = {p_s / 1e3:.0f} kPa")
+    assert titles[2].endswith(rf"$\dot\theta_s$ = {dot_s:.2f} rad/s")
 
 
 def test_figure_7_one_panel_per_run_named(flaps):
@@ -95,7 +125,11 @@ def test_figure_10_experiment_visible_and_in_the_legend(flaps):
     comp = comparison_run(ds)
     models = {s: comp.sel(source=s) for s in ("analytical", "simulator")}
     fig = _passes(figs.figure_10(ds, models=models))
-    assert len(fig.axes) == 3  # no elevation given: no empty panel (a)
+    assert len(fig.axes) == 3  # no elevation given: no empty panel
+    titles = [ax.get_title(loc="left").replace("\xa0", " ") for ax in fig.axes]
+    assert [t[:3] for t in titles] == ["(a)", "(b)", "(c)"]
+    assert f"$W_I$ = {float(ds.incident_power):.3g} W" in titles[1]
+    assert rf"$\omega$ = {2 * np.pi / float(ds.measured_period):.2f} rad/s" in titles[2]
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert len(labels) == 3 and labels[0].startswith("experiment")
     exp_line = fig.axes[0].lines[0]
@@ -107,13 +141,30 @@ def test_figure_10_experiment_visible_and_in_the_legend(flaps):
 
 def test_uvp_figures(field):
     fig = _passes(uvp.fig11(field))
+    u0 = float(field.velocity_scale)
+    assert f"= {u0:.3f} m/s" in fig._suptitle.get_text().replace("\xa0", " ")  # U0 stated
+    # no arrow reaches its neighbour: the longest is shorter than the lattice spacing
+    q = [c for c in fig.axes[0].collections if type(c).__name__ == "Quiver"][0]
+    xy = q.get_offsets()
+    xs, zs = np.unique(xy[:, 0]), np.unique(xy[:, 1])
+    spacing = min(np.min(np.diff(xs)), np.min(np.diff(zs)))
+    shown = [uvp._at_phase(field, p) for p in uvp.PHASES]
+    longest = max(float(np.nanmax(np.hypot(f.u_normalised.values, f.w_normalised.values)))
+                  for f in shown)  # over every grid point, so at least the drawn ones
+    assert longest / q.scale <= spacing  # drawn length [x/h] of the longest arrow
+    assert 3 <= xs.size <= 12 and 3 <= zs.size <= 12  # a few arrows, not a hatching
+    # the colour bar covers every value drawn: no saturated colour, no extension triangle
+    cs = [c for c in fig.axes[0].collections if hasattr(c, "levels")][0]
+    umax = max(float(np.nanmax(np.abs(f.u_normalised.values))) for f in shown)
+    assert cs.levels[0] <= -umax and cs.levels[-1] >= umax and cs.extend == "neither"
     cbar = [ax for ax in fig.axes if getattr(ax, "_colorbar", None)][0]
     ticks = cbar.get_yticks()
     # readable colour-bar ticks: round numbers (multiples of 0.05)
     assert np.allclose(ticks * 20, np.round(ticks * 20))
     assert any(type(a).__name__ == "QuiverKey" for a in fig.axes[0].texts + fig.axes[0].artists
                + fig.axes[0].get_children())
-    _passes(uvp.fig12(field))
+    fig = _passes(uvp.fig12(field))
+    assert f"= {u0:.3f} m/s" in fig._suptitle.get_text().replace("\xa0", " ")
 
 
 def test_fig12_drops_phases_without_data(field):
@@ -166,6 +217,10 @@ def test_check_passes_a_good_figure():
     (lambda fig, ax: fig.suptitle(""), "no figure title"),
     (lambda fig, ax: fig.set_size_inches(6.5, 2.5), "neither one column"),
     (lambda fig, ax: fig.text(0.98, 0.5, "a long note running off the page"), "cut at the"),
+    (lambda fig, ax: [a.set_title(f"({t}) panel", loc="left") for a, t in zip(ax, "bc")],
+     "not from (a)"),
+    (lambda fig, ax: [a.set_title(f"({t}) panel", loc="left") for a, t in zip(ax, "ac")],
+     "not from (a)"),
 ])
 def test_check_catches(fault, expect):
     fig, ax = _good()
@@ -222,13 +277,19 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
     from flumekit.stages import figures as stage
     from flumekit.stages.context import Context
 
-    rules = stage.rules(Context(campaign=campaign, processed=tmp_path), dict(stage.DEFAULTS))
+    # the campaign has no run: the figures are the ball-screw study's, which a scene asks for
+    asks = {"ballscrew": ["figure/bs_fig*"]}
+    assert stage.rules(Context(campaign=campaign, processed=tmp_path), dict(stage.DEFAULTS)) == []
+    rules = stage.rules(Context(campaign=campaign, processed=tmp_path, scenes=asks),
+                        dict(stage.DEFAULTS))
     assert rules and all(sorted(r.outputs) == ["pdf", "png"] for r in rules)
     assert all(r.outputs["png"] == tmp_path / "figures" / (r.target[len("figure/"):] + ".png")
                for r in rules)
-    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["svg"]}})
+    ctx = Context(campaign=campaign, processed=tmp_path, scenes=asks,
+                  params={"figures": {"formats": ["svg"]}})
     svg = stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
-    assert all(list(r.outputs) == ["svg"] for r in svg)
-    ctx = Context(campaign=campaign, processed=tmp_path, params={"figures": {"formats": ["jpg"]}})
+    assert svg and all(list(r.outputs) == ["svg"] for r in svg)
+    ctx = Context(campaign=campaign, processed=tmp_path, scenes=asks,
+                  params={"figures": {"formats": ["jpg"]}})
     with pytest.raises(FlumekitError, match="formats"):
         stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))

@@ -316,3 +316,23 @@ def test_swapping_the_direction_of_travel_swaps_incident_and_reflected(kr, phase
     np.testing.assert_allclose(m.eta_reflected.values, r.eta_incident.values, atol=1e-12)
     np.testing.assert_allclose(m.spectrum_incident.values, r.spectrum_reflected.values,
                                rtol=1e-9, atol=1e-18)
+
+
+def test_default_x_ref_is_the_device_in_the_api_and_the_pipeline():
+    """Without ``x_ref`` the incident wave is returned at x = 0 (the flap hinge), as the
+    pipeline's ``[stages.waves]`` does, not at the first probe."""
+    import inspect
+
+    from flumekit.stages.waves import DEFAULTS
+
+    T, a = 2.5, 0.05
+    k = wavenumber(2 * np.pi / T, H)
+    x = layout(T)  # the first probe at -6 m: the two defaults differ by k * 6 m in phase
+    t = np.arange(int(40 * T * FS)) / FS
+    da = xr.DataArray(a * np.cos(2 * np.pi / T * t[None, :] - k * x[:, None]),
+                      dims=("probe", "time"), coords={"x": ("probe", x), "time": t})
+    r = separate(da, H)
+    assert inspect.signature(separate).parameters["x_ref"].default == DEFAULTS["x_ref"] == 0.0
+    assert r.attrs["x_ref"] == 0.0
+    # truth at x = 0: a cos(ωt), to the round-off of a noise-free periodic record
+    np.testing.assert_allclose(r.eta_incident.values, a * np.cos(2 * np.pi / T * t), atol=1e-10)

@@ -183,7 +183,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
         - ``evanescent_modes`` N, evanescent vertical modes (default 8; error ∝ N^{-3.5},
           2e-6 at 8);
         - ``lattice_modes`` Q, transverse modes of the Kummer-accelerated modal lattice sum
-          (default max(16, 80 b/(πw), max|κ_n| b/π); terms fall like q^{-9/2});
+          (default max(16, 80 b/(πw), max abs(κ_n) b/π); terms fall like q^{-9/2});
         - ``quadrature_nodes``: Gauss nodes for the smooth channel kernels (default from the
           Bernstein ellipse of w/b, 1e-14) or, in open water, Gauss–Legendre nodes per side of
           each collocation point (default 24);
@@ -199,7 +199,7 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
     ``reflection_coefficient_real/imag``, ``transmission_coefficient_real/imag`` (complex R_0,
     T_0 of the fixed flap for the plane wave; use :func:`reflection`, :func:`transmission`) and
     ``propagating_transverse_modes`` (number of sloshing modes above their cut-off; above the
-    first one the plane-wave |R_0|² + |T_0|² < 1, the rest goes into transverse modes).
+    first one the plane-wave abs(R_0)² + abs(T_0)² < 1, the rest goes into transverse modes).
 
     Raises
     ------
