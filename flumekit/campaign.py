@@ -182,6 +182,13 @@ CAMPAIGN: dict[str, Key] = {
         "flap": Key("table", "encoder and pressure records", required=False, table=DIALECT),
         "calibration": Key("table", "static probe calibration", required=False,
                            table=DIALECT)}),
+    "scale": Key("table", "Froude scale of the model (flumekit.scale: prototype values)",
+                 required=False, table={
+        "factor": _num("geometric scale lambda = L_prototype / L_model", "1", positive=True),
+        "model_density": _num("water density of the model test", "kg m-3", positive=True,
+                              required=False, default=1000.0),
+        "prototype_density": _num("sea water density at full scale", "kg m-3", positive=True,
+                                  required=False, default=1025.0)}),
 }
 
 INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
@@ -358,6 +365,15 @@ class UVP:
 
 
 @dataclass(frozen=True)
+class Scale:
+    """Froude scale of the model: lambda = L_prototype / L_model and the two densities."""
+
+    factor: float  # [-]
+    model_density: float = 1000.0  # [kg m-3]
+    prototype_density: float = 1025.0  # [kg m-3]
+
+
+@dataclass(frozen=True)
 class Run:
     id: str
     path: Path
@@ -396,6 +412,7 @@ class Campaign:
     runs: tuple[Run, ...] = field(default_factory=tuple)
     # instrument -> dialect (io.dialects); not hashed (a dict), see Probes.still_water
     files: dict[str, dict] = field(default_factory=dict, hash=False)
+    scale: Scale | None = None  # [scale]: Froude scale of the model, when declared
 
     @property
     def calibration_file(self) -> Path:
@@ -602,9 +619,12 @@ def load_campaign(root: str | Path) -> Campaign:
                   float(u["channel_width"]), float(u["sound_speed"]),
                   tuple(Beam(b, float(u[b]["x"]), float(u[b]["dz"]),
                              math.radians(u[b]["angle_deg"])) for b in beams))
+    sc = _table(data, "scale")
     campaign = Campaign(name=c["name"], title=c.get("title", c["name"]), root=root,
                         flume=flume, flap=flap, pto=pto, encoder=enc, probes=probes, uvp=uvp,
-                        files=files)
+                        files=files,
+                        scale=Scale(float(sc["factor"]), float(sc.get("model_density", 1000.0)),
+                                    float(sc.get("prototype_density", 1025.0))) if sc else None)
     runs_dir = root / "runs"
     run_files = sorted(runs_dir.glob("*/run.toml")) if runs_dir.is_dir() else []
     run_problems: list[Problem] = []
