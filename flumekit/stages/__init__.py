@@ -21,7 +21,8 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
 #: stage modules in the order their rules are declared
-STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "ballscrew", "figures")
+STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "ballscrew", "figures",
+          "uncertainty")
 
 
 def build_rules(ctx: Context) -> list[Rule]:
