@@ -65,7 +65,9 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     out.append(Rule("conditions", "flumekit.stages.uncertainty:conditions", inputs=inputs,
                     outputs={"dataset": ctx.out("conditions.nc"),
                              "budget": ctx.out("budget.nc")},
-                    params={"draws": params["draws"]}, version=VERSION))
+                    params={"draws": params["draws"],
+                            "scale": None if c.scale is None else dict(c.scale.__dict__)},
+                    version=VERSION))
     if regular and params["linear"]:
         from flumekit.stages.figures import DEFAULTS as FIG
 
@@ -137,6 +139,10 @@ def conditions(inputs, outputs, params) -> None:
         stacked = xr.concat([read_dataset(inputs[k]).expand_dims("run") for k in runs],
                             dim="run", coords="all", compat="override", join="outer")
         cond, budget = combine(cond, stacked)
+    if params.get("scale"):  # full-scale values in the report (flumekit.scale)
+        sc = params["scale"]
+        cond.attrs.update({"froude_scale": sc["factor"], "model_density": sc["model_density"],
+                           "prototype_density": sc["prototype_density"]})
     source = f"flumekit conditions stage from {len(summary.run)} runs"
     write_product(cond, outputs["dataset"], "Repeat statistics and uncertainty per condition",
                   source, params)

@@ -7,6 +7,7 @@ Carlo (JCGM 101) and linear (GUM) propagation through the waves and flap analyse
 coverage factor; ``report_section``: the HTML section of the report.
 """
 
+from flumekit.uncertainty.html import report_sections
 from flumekit.uncertainty.repeats import CONDITION_COORDS, QUANTITIES, condition_statistics
 
-__all__ = ["CONDITION_COORDS", "QUANTITIES", "condition_statistics"]
+__all__ = ["CONDITION_COORDS", "QUANTITIES", "condition_statistics", "report_sections"]

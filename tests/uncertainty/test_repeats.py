@@ -96,3 +96,31 @@ def test_combination_welch_satterthwaite():
     assert share.sum() == pytest.approx(100.0, rel=1e-12)
     assert share[-1] == pytest.approx(100 * u_a ** 2 / u_c ** 2, rel=1e-10)
     assert list(budget.uncertainty_component.values) == ["a", "b", "repeatability"]
+
+
+def test_report_sections_show_results_budget_and_full_scale():
+    from flumekit.uncertainty import report_sections
+
+    s = xr.Dataset({"incident_height": ("run", [0.150, 0.152]),
+                    "mean_power": ("run", [14.0, 16.0])},
+                   coords={"wave_period": ("run", [2.0, 2.0]),
+                           "wave_height": ("run", [0.15, 0.15])})
+    c = condition_statistics(s)
+    runs = xr.Dataset(
+        {"incident_height_uncertainty_type_b": ("run", [1e-4, 1e-4], {"degrees_of_freedom": 9}),
+         "incident_height_budget": (("run", "uncertainty_component"), [[1e-4], [1e-4]]),
+         "incident_height_sensitivity": (("run", "uncertainty_component"), [[1.0], [1.0]]),
+         "input_units": ("uncertainty_component", ["m"]),
+         "input_standard_uncertainty": ("uncertainty_component", [1e-4])},
+        coords={"wave_period": ("run", [2.0, 2.0]), "wave_height": ("run", [0.15, 0.15]),
+                "uncertainty_component": ["water_depth"]})
+    c, b = combine(c, runs)
+    c.attrs.update(froude_scale=10.0, model_density=1000.0, prototype_density=1025.0)
+    secs = dict((a, h) for a, _, h in report_sections(c, b))
+    u = float(c.incident_height_expanded_uncertainty[0])
+    assert f"0.151 ± {u:.2g}" in secs["uncertainty-results"]
+    # full scale: H x 10, P x 10^3.5 x 1.025, the power's 2 u_A (no Type B) not scaled in
+    assert f"1.51 ± {10 * u:.2g}" in secs["uncertainty-results"]
+    assert f"{15.0 * 10 ** 3.5 * 1.025:.4g}" in secs["uncertainty-results"]
+    assert "water depth" in secs["uncertainty-budget"]
+    assert "repeatability" in secs["uncertainty-budget"]
