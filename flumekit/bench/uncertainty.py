@@ -134,12 +134,21 @@ def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str
             "capture_factor": float(np.mean(flap.power.values[win])) / w_i}
 
 
-def _model(eta, cal, record, campaign):
+#: the [uncertainty] table of the virtual flume's own errors: exact probe positions, depth,
+#: inertia and clocks, the CSV's 1e-6 V steps at ~10 V m-1 (the probe noise, calibration,
+#: encoder and pressure components keep their defaults, which are the virtual flume's)
+VIRTUAL_ERRORS = {"probe_position": {"value": 0.0}, "water_depth": {"value": 0.0},
+                  "flap_inertia": {"value": 0.0}, "clock_offset": {"value": 0.0},
+                  "probe_resolution": {"value": 5e-8}}
+
+
+def _model(eta, cal, record, campaign, components=None):
     from flumekit.stages.flap import DEFAULTS as FLAP
     from flumekit.stages.waves import DEFAULTS as WAVES
     from flumekit.uncertainty.propagation import RunModel, resolve_inputs
 
-    inputs = resolve_inputs(campaign.uncertainty, calibration=cal,
+    inputs = resolve_inputs(campaign.uncertainty if components is None else components,
+                            calibration=cal,
                             counts_per_metre=campaign.encoder.counts_per_metre)
     waves_kw = {k: WAVES[k] for k in ("method", "x_ref", "n_harmonics", "bound_harmonics",
                                       "amplitude_dispersion", "tolerance", "min_cycles",
@@ -169,38 +178,46 @@ def _flap_window(model) -> dict:
 
 
 def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
-    """Coverage of the expanded intervals over ``n_repeats`` virtual repeats.
+    """Coverage of the expanded intervals over ``n_repeats`` virtual repeats, with the
+    campaign's default components ("defaults") and with the virtual flume's own errors
+    (:data:`VIRTUAL_ERRORS`, "virtual").
 
-    Returns a dict: quantity -> (share covered, RMS error / RMS u, RMS error, RMS u), and
-    'seconds' per repeat (synthesis + propagation).
+    Returns a dict: set -> quantity -> (share covered, RMS error / RMS u, RMS error, RMS u),
+    set -> "bias" -> quantity -> mean error, and "seconds" per repeat.
     """
+    from flumekit.campaign import uncertainty_components
     from flumekit.uncertainty.propagation import propagate
 
     campaign, hydro = _setup()
+    sets = {"defaults": None, "virtual": uncertainty_components(VIRTUAL_ERRORS)}
     names = QUANTITIES + ("theta_amplitude_lowpass",)
-    err = {q: [] for q in names}
-    u = {q: [] for q in names}
-    covered = {q: [] for q in names}
+    err = {k: {q: [] for q in names} for k in sets}
+    u = {k: {q: [] for q in names} for k in sets}
+    covered = {k: {q: [] for q in names} for k in sets}
     t0 = time.perf_counter()
     for i in range(n_repeats):
         eta, cal, record, truth = virtual_repeat(i, seed, campaign, hydro)
-        model, inputs = _model(eta, cal, record, campaign)
-        ds = propagate(model, inputs, draws=draws, seed=[seed, i], linear_check=False)
-        true = truth_values(truth, _flap_window(model), campaign, model.flap_kw["cutoff"])
-        for q in names:
-            r = q.replace("_lowpass", "")
-            e = float(ds[r]) - true[q]
-            err[q].append(e)
-            u[q].append(float(ds[f"{r}_uncertainty_type_b"]))
-            covered[q].append(abs(e) <= float(ds[f"{r}_expanded_uncertainty"]))
+        for key, comps in sets.items():
+            model, inputs = _model(eta, cal, record, campaign, comps)
+            ds = propagate(model, inputs, draws=draws, seed=[seed, i], linear_check=False)
+            true = truth_values(truth, _flap_window(model), campaign,
+                                model.flap_kw["cutoff"])
+            for q in names:
+                r = q.replace("_lowpass", "")
+                e = float(ds[r]) - true[q]
+                err[key][q].append(e)
+                u[key][q].append(float(ds[f"{r}_uncertainty_type_b"]))
+                covered[key][q].append(abs(e) <= float(ds[f"{r}_expanded_uncertainty"]))
         if progress:
             progress(i)
-    out = {q: (float(np.mean(covered[q])), float(np.sqrt(np.mean(np.square(err[q])))
-                                                   / np.sqrt(np.mean(np.square(u[q])))),
-               float(np.sqrt(np.mean(np.square(err[q])))), float(np.sqrt(np.mean(
-                   np.square(u[q]))))) for q in names}
+    out = {}
+    for key in sets:
+        rms_e = {q: float(np.sqrt(np.mean(np.square(err[key][q])))) for q in names}
+        rms_u = {q: float(np.sqrt(np.mean(np.square(u[key][q])))) for q in names}
+        out[key] = {q: (float(np.mean(covered[key][q])), rms_e[q] / rms_u[q], rms_e[q],
+                        rms_u[q]) for q in names}
+        out[key]["bias"] = {q: float(np.mean(err[key][q])) for q in names}
     out["seconds"] = (time.perf_counter() - t0) / max(n_repeats, 1)
-    out["bias"] = {q: float(np.mean(err[q])) for q in names}
     return out
 
 
@@ -222,9 +239,10 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
     return out
 
 
-def cost(draws_list=(10, 40, 160), seed: int = 5) -> dict:
-    """Seconds of the propagation of one run against the number of draws (with the linear
-    budget at the stage's 4 directions, and without)."""
+def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
+    """Seconds of the propagation of one run against the number of draws, and of the linear
+    budget at the stage's default directions."""
+    from flumekit.stages.uncertainty import DEFAULTS
     from flumekit.uncertainty.propagation import linear, monte_carlo
 
     campaign, hydro = _setup()
@@ -236,7 +254,7 @@ def cost(draws_list=(10, 40, 160), seed: int = 5) -> dict:
         monte_carlo(model, inputs, n, seed)
         out[n] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    linear(model, inputs, 4, seed)
+    linear(model, inputs, int(DEFAULTS["directions"]), seed)
     out["linear"] = time.perf_counter() - t0
     return out
 
@@ -248,14 +266,16 @@ def run(quick: bool = False) -> str:
     draws = int(DEFAULTS["draws"])
     n_rep = 20 if quick else 100
     lines = [f"Uncertainty on the virtual flume: T = {PERIOD} s, H = {HEIGHT} m", ""]
-    t = cost((10, 40) if quick else (10, 40, 160))
+    t = cost((10, 20, 40) if quick else (10, 20, 40, 160))
     n_runs = sum(1 for r in plan_runs("default"))
     per_run = t[draws] if draws in t else t[40] * draws / 40
-    lines += ["cost of one run (the waves and flap analyses per draw):"]
+    first = len({(r.period, r.height) for r in plan_runs("default")})
+    lines += ["cost of one run (the waves and flap analyses per draw; one BLAS thread):"]
     lines += [f"  {k:>4} draws: {v:6.2f} s" for k, v in t.items() if k != "linear"]
-    lines += [f"  linear budget (4 directions): {t['linear']:.2f} s",
-              f"  default campaign ({n_runs} regular runs, {draws} draws + budget): "
-              f"{n_runs * (per_run + t['linear']):.0f} s on one core", ""]
+    lines += [f"  linear budget ({DEFAULTS['directions']} directions): {t['linear']:.2f} s",
+              f"  default campaign ({n_runs} regular runs, {draws} draws; budget on the "
+              f"first run of each of {first} conditions): "
+              f"{n_runs * per_run + first * t['linear']:.0f} s on one core", ""]
     n = 100 if quick else 400
     agr = agreement(n)
     lines += [f"standard uncertainties: MC {n} draws, MC {2 * n} draws, linear "
@@ -266,9 +286,15 @@ def run(quick: bool = False) -> str:
     lines.append("")
     cov = coverage(n_rep, draws)
     lines += [f"coverage of the expanded 95 % intervals over {n_rep} virtual repeats "
-              f"({draws} draws each, {cov['seconds']:.1f} s per repeat):"]
-    for q in QUANTITIES + ("theta_amplitude_lowpass",):
-        share, ratio, rms_e, rms_u = cov[q]
-        lines.append(f"  {q:24s} {share:6.1%}  RMS error {rms_e:.3g}, RMS u {rms_u:.3g} "
-                     f"(ratio {ratio:.2f}), mean error {cov['bias'][q]:+.3g}")
+              f"({draws} draws each, {cov['seconds']:.1f} s per repeat for both sets)"]
+    for key, what in (("virtual", "components of the virtual flume's own errors"),
+                      ("defaults", "the campaign's default components (1 mm positions and "
+                                   "depth, 2 % inertia: errors the virtual flume has not)")):
+        lines.append(f" {what}:")
+        for q in QUANTITIES + ("theta_amplitude_lowpass",):
+            share, ratio, rms_e, rms_u = cov[key][q]
+            lines.append(f"  {q:24s} {share:6.1%}  RMS error {rms_e:.3g}, RMS u {rms_u:.3g} "
+                         f"(ratio {ratio:.2f}), mean error {cov[key]['bias'][q]:+.3g}")
+    lines.append("  (theta_amplitude_lowpass: against the true theta through the analysis' "
+                 "derivative low-pass)")
     return "\n".join(lines)

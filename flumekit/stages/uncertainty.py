@@ -15,16 +15,17 @@ from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, write_run
 
 VERSION = "1"
-DEFAULTS = {"draws": 40, "directions": 4, "seed": 2024, "linear": True}
+DEFAULTS = {"draws": 20, "directions": 2, "seed": 2024, "linear": True}
 DOCS = {
     "draws": "Monte Carlo draws per run [-]: the speed/accuracy knob (each draw reruns the "
              "waves and flap analyses; the relative standard deviation of a standard "
-             "uncertainty from n draws is about 1/sqrt(2 (n - 1)): 11 % at 40); 0: repeat "
-             "statistics only",
+             "uncertainty from n draws is about 1/sqrt(2 (n - 1)): 16 % at 20, the coverage factor "
+             "t_0.975(n - 1) allows for it); 0: repeat statistics only",
     "directions": "random directions of each per-sample input (noise, resolution) in the "
                   "linear propagation and budget [-]",
     "seed": "seed of the draws (with the run's name) [-]",
-    "linear": "run the linear (GUM) propagation: the budget's sensitivities and contributions",
+    "linear": "run the linear (GUM) propagation, on the first run of each condition (its "
+              "repeats share the sensitivities): the budget's sensitivities and contributions",
 }
 
 
@@ -40,7 +41,10 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
     flap_p = ctx.stage_params("flap", flap_stage.DEFAULTS) if has_flap else {}
     out = []
     regular = [r for r in c.runs if not r.irregular] if params["draws"] > 0 else []
+    seen = set()
     for run in regular:
+        first = (run.period, run.height) not in seen
+        seen.add((run.period, run.height))
         inputs = {"eta": ctx.out("eta", f"{run.id}.nc"), "campaign": ctx.campaign_file}
         if not c.probes.calibrated:
             inputs["calibration"] = ctx.out("calibration.nc")
@@ -53,7 +57,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                  "tolerance", "min_cycles", "noise_factor")},
              "flap": {k: flap_p[k] for k in ("cutoff", "tolerance", "n_phase",
                                              "max_flagged_fraction")} if has_flap else None,
-             **run_params(run, c)}
+             **run_params(run, c), "linear": bool(params["linear"] and first)}
         out.append(Rule(f"uncertainty/{run.id}", "flumekit.stages.uncertainty:run_uncertainty",
                         inputs=inputs, outputs={"dataset": ctx.out("uncertainty",
                                                                    f"{run.id}.nc")},

@@ -103,11 +103,15 @@ def combine(conditions: xr.Dataset, runs: xr.Dataset) -> tuple[xr.Dataset, xr.Da
             [anc, f"{q}_uncertainty_type_b", f"{q}_uncertainty", f"{q}_expanded_uncertainty"]
         ).strip()
         if f"{q}_budget" in runs:
-            cu2 = np.nan_to_num(np.asarray(runs[f"{q}_budget"].values, float) ** 2)  # (run, c)
-            cu = np.sqrt((onehot.T @ cu2) / np.maximum(n_runs, 1)[:, None])  # (cond, comp)
-            sens = np.sqrt((onehot.T @ np.nan_to_num(
-                np.asarray(runs[f"{q}_sensitivity"].values, float) ** 2))
-                / np.maximum(n_runs, 1)[:, None])
+            # runs without a budget (the linear propagation runs on one run per condition:
+            # the sensitivities of repeats are the same) are left out of its mean
+            raw = np.asarray(runs[f"{q}_budget"].values, float)  # (run, component)
+            has = np.isfinite(raw).all(axis=1).astype(float)
+            wb = onehot * has[:, None]
+            nb = np.maximum(wb.sum(axis=0), 1)[:, None]
+            cu = np.sqrt((wb.T @ np.nan_to_num(raw ** 2)) / nb)  # (condition, component)
+            sens = np.sqrt((wb.T @ np.nan_to_num(
+                np.asarray(runs[f"{q}_sensitivity"].values, float) ** 2)) / nb)
             cu = np.concatenate([cu, u_a0[:, None]], axis=1)
             sens = np.concatenate([sens, np.ones((nc, 1))], axis=1)
             total = (cu ** 2).sum(axis=1, keepdims=True)
@@ -118,7 +122,9 @@ def combine(conditions: xr.Dataset, runs: xr.Dataset) -> tuple[xr.Dataset, xr.Da
                                            100.0 * cu ** 2 / np.where(total > 0, total, 1.0))
     names = comps + ["repeatability"]
     if "input_units" in runs:
-        first = runs.isel(run=0)
+        first = runs.isel(run=int(np.argmax([str(v) != "nan" for v in
+                                             runs["input_units"].values[:, 0]]))
+                          if runs["input_units"].ndim == 2 else 0)
         budget["input_units"] = ("uncertainty_component",
                                  [str(v) for v in first["input_units"].values] + ["(result)"])
         budget["input_standard_uncertainty"] = (
