@@ -22,7 +22,7 @@ import xarray as xr
 #: UDUNITS symbol -> powers of (m, s, kg); angles and counts are dimensionless
 BASE_UNITS: dict[str, tuple[float, float, float]] = {
     "m": (1, 0, 0), "s": (0, 1, 0), "kg": (0, 0, 1), "1": (0, 0, 0),
-    "rad": (0, 0, 0), "degree": (0, 0, 0), "Hz": (0, -1, 0),
+    "rad": (0, 0, 0), "degree": (0, 0, 0), "percent": (0, 0, 0), "Hz": (0, -1, 0),
     "N": (1, -2, 1), "Pa": (-1, -2, 1), "J": (2, -2, 1), "W": (2, -3, 1),
 }
 _TOKEN = re.compile(r"^([A-Za-z]+|1)\^?(-?\d+)?$")
