@@ -90,9 +90,11 @@ def run_uncertainty(inputs, outputs, params) -> None:
     propagation.propagate`)."""
     from pathlib import Path
 
+    import warnings
+
     from flumekit.campaign import load_campaign
-    from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset
+    from flumekit.stages.qc import WARNINGS
     from flumekit.uncertainty.propagation import RunModel, propagate, resolve_inputs
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
@@ -100,13 +102,16 @@ def run_uncertainty(inputs, outputs, params) -> None:
     eta = read_dataset(inputs["eta"])["eta"]
     if cal is not None and list(cal.probe.values) != list(eta.probe.values):
         cal = cal.sel(probe=list(eta.probe.values))
-    try:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
         comps = resolve_inputs(campaign.uncertainty, calibration=cal,
                                counts_per_metre=(campaign.encoder.counts_per_metre
                                                  if campaign.encoder else None),
                                flap="flap" in inputs)
-    except ValueError as e:
-        raise InputError(inputs["campaign"], str(e), field="uncertainty") from None
+    recorded = [f"{inputs['campaign']}: {w.message}" for w in caught
+                if issubclass(w.category, UserWarning)]
+    for w in recorded:
+        print(f"warning: run {params['run']}: {w}")
     record = kw = None
     if "flap" in inputs:
         raw = read_dataset(inputs["flap"])
@@ -116,8 +121,15 @@ def run_uncertainty(inputs, outputs, params) -> None:
     model = RunModel(eta, params["depth"], params["period"],
                      {**params["waves"], "separation_probes": params["separation_probes"]},
                      record, kw)
-    ds = propagate(model, comps, draws=int(params["draws"]), seed=params["seed"],
-                   directions=int(params["directions"]), linear_check=bool(params["linear"]))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = propagate(model, comps, draws=int(params["draws"]), seed=params["seed"],
+                       directions=int(params["directions"]),
+                       linear_check=bool(params["linear"]))
+    recorded += [f"run {params['run']}: {w.message}" for w in caught
+                 if issubclass(w.category, UserWarning)]
+    if recorded:
+        ds.attrs[WARNINGS] = "\n".join(recorded)
     write_run(ds, outputs, params, "Uncertainty of the results",
               f"flumekit uncertainty stage from {inputs['eta']}")
 

@@ -85,11 +85,12 @@ def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
         Components with a non-zero standard uncertainty that a result depends on (the UVP's
         velocity resolution reaches none of the propagated results and is left out).
 
-    Raises
-    ------
-    ValueError
-        A component whose default needs data the campaign lacks (probe noise of probes
-        recorded in metres: declare ``[uncertainty.probe_noise] value``).
+    Warns
+    -----
+    UserWarning
+        A component whose default needs data the campaign lacks (the noise and calibration of
+        probes recorded in metres, without calibration.nc): it is left out, and the warning
+        says so (declare ``[uncertainty.probe_noise] value``).
     """
     from flumekit.campaign import UNCERTAINTY_COMPONENTS
 
@@ -104,9 +105,11 @@ def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
             u, unit = u * c.rated_output, "Pa"
         if u is None and c.name in ("probe_noise", "calibration"):
             if calibration is None:
-                raise ValueError(f"[uncertainty.{c.name}]: the probes are recorded in length "
-                                 "units (no calibration.nc to derive it from): declare its "
-                                 "value")
+                warnings.warn(f"[uncertainty.{c.name}] is left out of the uncertainty: the "
+                              "probes are recorded in length units (no calibration.nc to "
+                              "derive its default from); declare its value in campaign.toml",
+                              UserWarning, stacklevel=2)
+                continue
             res = calibration["calibration_residual"].transpose("sample", "probe").values
             if c.name == "probe_noise":
                 u = float(np.sqrt(np.nanmean(res ** 2)))

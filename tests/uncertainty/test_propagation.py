@@ -112,8 +112,9 @@ def test_defaults_from_the_calibration_residuals():
     assert got["pressure_accuracy"].u == pytest.approx(0.002 * 1e6) \
         and got["pressure_accuracy"].units == "Pa"
     assert "uvp_velocity_resolution" not in got
-    with pytest.raises(ValueError, match="probe_noise"):
-        resolve_inputs(uncertainty_components(None))
+    with pytest.warns(UserWarning, match="probe_noise.*left out"):
+        left = resolve_inputs(uncertainty_components(None))
+    assert "probe_noise" not in {i.name for i in left}
 
 
 def test_rectangular_component_standard_uncertainty():
