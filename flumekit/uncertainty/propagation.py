@@ -296,7 +296,8 @@ def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
     Returns
     -------
     xarray.Dataset
-        For each result X: ``X`` (the unperturbed analysis), ``X_uncertainty_type_b`` (standard
+        For each result X: ``X`` (the unperturbed analysis), ``X_uncertainty`` (the run's
+        combined standard uncertainty, its Type B), ``X_uncertainty_type_b`` (standard
         deviation of the draws; attributes ``method``, ``draws``, ``degrees_of_freedom``),
         ``X_expanded_uncertainty`` (coverage factor from the t distribution with draws - 1
         degrees of freedom, attribute ``coverage_factor``), ``X_coverage_low``/``_high``
@@ -336,7 +337,10 @@ def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
     method = (f"Monte Carlo (JCGM 101), {n} draws of the declared Type B components through "
               "flumekit.waves.analyse_run and flumekit.flap.analyse_run")
     for j, q in enumerate(model.results):
-        anc = [f"{q}_uncertainty_type_b", f"{q}_expanded_uncertainty"]
+        anc = [f"{q}_uncertainty", f"{q}_uncertainty_type_b", f"{q}_expanded_uncertainty"]
+        data[f"{q}_uncertainty"] = ((), u_mc[j], {
+            "method": "combined standard uncertainty of the run: its Type B (a single run has "
+                      "no Type A evaluation; conditions.nc combines the repeats)"})
         data[f"{q}_uncertainty_type_b"] = ((), u_mc[j], {
             "method": method, "draws": n, "failed_draws": failed,
             "degrees_of_freedom": n - 1})
