@@ -84,6 +84,7 @@ API_PACKAGES = {
     "flumekit.uvp": "UVP velocity fields",
     "flumekit.plot": "Figures for notebooks",
     "flumekit.report": "Campaign report",
+    "flumekit.uncertainty": "Uncertainty of the results",
 }
 
 
