@@ -97,6 +97,7 @@ API_PACKAGES = {
     "flumekit.pipeline": "Pipeline internals",
     "flumekit.stages": "Stages (pipeline internals)",
     "flumekit.bench": "Benchmarks",
+    "flumekit.uncertainty": "Uncertainty of the results",
 }
 
 

@@ -29,6 +29,7 @@ _LAZY = {
     "write_dataset": "flumekit.io.netcdf",
     "open_processed": "flumekit.io.processed",
     "load_campaign": "flumekit.campaign",
+    "scale": "flumekit.scaling",
 }
 _SUBPACKAGES = ("ballscrew", "conventions", "flap", "hydro", "io", "plot", "signal", "synth",
                 "uvp", "waves", "performance")

@@ -211,10 +211,67 @@ CAMPAIGN: dict[str, Key] = {
         "flap": Key("table", "encoder and pressure records", required=False, table=DIALECT),
         "calibration": Key("table", "static probe calibration", required=False,
                            table=DIALECT)}),
+    "scale": Key("table", "Froude scale of the model (flumekit.scale: prototype values)",
+                 required=False, table={
+        "factor": _num("geometric scale lambda = L_prototype / L_model", "1", positive=True),
+        "model_density": _num("water density of the model test", "kg m-3", positive=True,
+                              required=False, default=1000.0),
+        "prototype_density": _num("sea water density at full scale", "kg m-3", positive=True,
+                                  required=False, default=1025.0)}),
 }
 
 #: deepest still water a campaign may declare [m]: the deepest wave basins hold tens of metres
 MAX_WATER_DEPTH = 1000.0
+
+#: the Type B components of [uncertainty]: name -> (unit, meaning, default distribution, default
+#: value or None when derived from the campaign's own data, where the default comes from).
+#: ``value`` is the standard uncertainty of a normal distribution or the half-width of a
+#: rectangular one (GUM 4.3.7: u = a / sqrt(3)).
+UNCERTAINTY_COMPONENTS: dict[str, tuple[str, str, str, float | None, str]] = {
+    "probe_noise": ("m", "wave probe noise, per sample", "normal", None,
+                    "the RMS residual of the static calibration (calibration.nc)"),
+    "probe_resolution": ("m", "wave probe digitisation step, per sample (half-width: half "
+                         "the step)", "rectangular", 0.5e-4,
+                         "not in the paper: 0.1 mm steps (16-bit over +-10 V at ~10 V m-1)"),
+    "calibration": ("1", "relative uncertainty of each probe's calibration gain",
+                    "normal", None, "the standard error of the fitted gain (calibration.nc "
+                    "residuals over the spread of the static levels)"),
+    "probe_position": ("m", "position x of each probe", "normal", 1.0e-3,
+                       "not in the paper: 1 mm (tape measure along the flume)"),
+    "water_depth": ("m", "still water depth", "normal", 1.0e-3,
+                    "not in the paper: 1 mm (point gauge)"),
+    "encoder_resolution": ("m", "wire encoder step (half-width: half a count)", "rectangular",
+                           None, "half of 1 / counts_per_metre of [encoder]"),
+    "pressure_accuracy": ("1", "pressure sensor accuracy as a fraction of its rated output, "
+                          "per sample", "normal", 0.002,
+                          "Brito et al. (2020), §2.3: 0.2 % of the rated output"),
+    "flap_inertia": ("1", "relative uncertainty of the flap's moment of inertia", "normal",
+                     0.02, "not in the paper: 2 % (pendulum test)"),
+    "clock_offset": ("s", "time offset between the probes' and the flap's clocks", "normal",
+                     0.01, "not in the paper: one encoder sample (100 Hz)"),
+    "uvp_velocity_resolution": ("m s-1", "UVP velocity resolution (half-width)", "rectangular",
+                                0.7e-3, "not in the paper: Met-Flow UVP-DUO at 2 MHz, ~0.7 "
+                                "mm s-1"),
+}
+
+
+def _component_key(name: str) -> Key:
+    unit, doc, dist, value, source = UNCERTAINTY_COMPONENTS[name]
+    return Key("table", f"{doc} [{unit}]; default {value if value is not None else source} "
+               f"({dist})", required=False, table={
+                   "value": _num(f"standard uncertainty (normal) or half-width (rectangular); "
+                                 f"default: {source}", unit, nonnegative=True, required=False),
+                   "distribution": Key("text", "normal or rectangular", required=False,
+                                       default=dist, choices=("normal", "rectangular")),
+                   **({"rated_output": _num("rated output of the pressure sensor", "Pa",
+                                            positive=True, required=False, default=1.0e6)}
+                      if name == "pressure_accuracy" else {})})
+
+
+CAMPAIGN["uncertainty"] = Key(
+    "table", "Type B uncertainty components of the instruments and set-up, each a table "
+    "{value, distribution}; an absent component takes its documented default",
+    required=False, table={k: _component_key(k) for k in UNCERTAINTY_COMPONENTS})
 
 INSTRUMENT_FILES = {"probes": "probes.csv", "flap": "flap.csv",
                     "calibration": "calibration/probes.csv"}
@@ -404,6 +461,50 @@ class UVP:
 
 
 @dataclass(frozen=True)
+class Scale:
+    """Froude scale of the model: lambda = L_prototype / L_model and the two densities."""
+
+    factor: float  # [-]
+    model_density: float = 1000.0  # [kg m-3]
+    prototype_density: float = 1025.0  # [kg m-3]
+
+
+@dataclass(frozen=True)
+class Component:
+    """One declared Type B component: ``value`` is the standard uncertainty (normal) or the
+    half-width (rectangular) in the unit of :data:`UNCERTAINTY_COMPONENTS`, None when it is
+    derived from the campaign's data (calibration residuals, encoder counts)."""
+
+    name: str
+    value: float | None
+    distribution: str  # "normal" or "rectangular"
+    declared: bool  # False: the documented default
+    rated_output: float | None = None  # [Pa], pressure_accuracy only
+
+    @property
+    def standard_uncertainty(self) -> float | None:
+        """u in the component's unit: the value, or value / sqrt(3) when rectangular."""
+        if self.value is None:
+            return None
+        return self.value / math.sqrt(3.0) if self.distribution == "rectangular" else self.value
+
+
+def uncertainty_components(table: dict | None) -> tuple[Component, ...]:
+    """Every component of :data:`UNCERTAINTY_COMPONENTS`, declared in ``table`` (the
+    ``[uncertainty]`` table of campaign.toml) or at its documented default."""
+    table = table or {}
+    out = []
+    for name, (_, _, dist, value, _) in UNCERTAINTY_COMPONENTS.items():
+        given = table.get(name, {})
+        v = given.get("value", value)
+        out.append(Component(name, None if v is None else float(v),
+                             given.get("distribution", dist), "value" in given,
+                             float(given.get("rated_output", 1.0e6))
+                             if name == "pressure_accuracy" else None))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
 class Run:
     id: str
     path: Path
@@ -444,6 +545,10 @@ class Campaign:
     runs: tuple[Run, ...] = field(default_factory=tuple)
     # instrument -> dialect (io.dialects); not hashed (a dict), see Probes.still_water
     files: dict[str, dict] = field(default_factory=dict, hash=False)
+    scale: Scale | None = None  # [scale]: Froude scale of the model, when declared
+    # [uncertainty]: every Type B component, declared or at its default
+    uncertainty: tuple[Component, ...] = field(default_factory=lambda: uncertainty_components(
+        None))
 
     @property
     def calibration_file(self) -> Path:
@@ -685,9 +790,13 @@ def load_campaign(root: str | Path) -> Campaign:
                   float(u["channel_width"]), float(u["sound_speed"]),
                   tuple(Beam(b, float(u[b]["x"]), float(u[b]["dz"]),
                              math.radians(u[b]["angle_deg"])) for b in beams))
+    sc = _table(data, "scale")
     campaign = Campaign(name=c["name"], title=c.get("title", c["name"]), root=root,
                         flume=flume, flap=flap, pto=pto, encoder=enc, probes=probes, uvp=uvp,
-                        files=files)
+                        files=files,
+                        scale=Scale(float(sc["factor"]), float(sc.get("model_density", 1000.0)),
+                                    float(sc.get("prototype_density", 1025.0))) if sc else None,
+                        uncertainty=uncertainty_components(_table(data, "uncertainty")))
     runs_dir = root / "runs"
     run_files = sorted(runs_dir.glob("*/run.toml")) if runs_dir.is_dir() else []
     run_problems: list[Problem] = []

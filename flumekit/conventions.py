@@ -478,6 +478,45 @@ VARIABLES: dict[str, Variable] = {
 }
 
 
+# --- uncertainty (flumekit.uncertainty): repeat statistics and uncertainties of the per-run
+# summary quantities, each in the unit of its quantity ---
+#: the summary quantities that carry repeat statistics and uncertainties
+UNCERTAIN_QUANTITIES = ("incident_height", "measured_period", "reflection_coefficient",
+                        "energy_flux", "theta_amplitude", "torque_amplitude", "mean_power",
+                        "capture_factor", "hm0", "tp", "te", "capture_width_ratio")
+#: suffix -> long name prefix of the statistics of quantity X (X_<suffix>)
+UNCERTAINTY_SUFFIXES = {
+    "std": "sample standard deviation over the repeats (ddof = 1) of the",
+    "standard_error": "standard error of the mean over the repeats of the",
+    "uncertainty_type_a": "Type A standard uncertainty (repeats) of the",
+    "uncertainty_type_b": "Type B standard uncertainty (instruments, propagated) of the",
+    "uncertainty": "combined standard uncertainty of the",
+    "expanded_uncertainty": "expanded uncertainty (95 % coverage) of the",
+    "uncertainty_linear": "standard uncertainty by linear GUM propagation of the",
+    "budget": "standard uncertainty contributed by each component to the",
+    "contribution": "share of the combined variance contributed by each component to the",
+    "sensitivity": "sensitivity coefficient (per unit of the component's input) of the",
+    "dof": "degrees of freedom of the Type A uncertainty of the",
+    "coverage_low": "lower end of the probabilistically symmetric 95 % Monte Carlo coverage "
+                    "interval of the",
+    "coverage_high": "upper end of the probabilistically symmetric 95 % Monte Carlo coverage "
+                     "interval of the",
+}
+VARIABLES.update({
+    f"{q}_{suffix}": _V({"dof": "1", "contribution": "percent", "sensitivity": "1"}.get(
+        suffix, VARIABLES[q].units), f"{prefix} {VARIABLES[q].long_name}")
+    for q in UNCERTAIN_QUANTITIES if q in VARIABLES
+    for suffix, prefix in UNCERTAINTY_SUFFIXES.items()})
+VARIABLES.update({
+    "condition": _V("1", "test condition index (runs with the same target wave)"),
+    "uncertainty_component": _V("1", "Type B uncertainty component (campaign [uncertainty])"),
+    "input_standard_uncertainty": _V("1", "standard uncertainty of the component's input, in "
+                                     "the unit named by input_units"),
+    "input_units": _V("1", "unit of the component's input"),
+    "component_type": _V("1", "GUM evaluation type of the component (A or B)"),
+    "draws": _V("1", "number of Monte Carlo draws"),
+})
+
 def attrs(name: str) -> dict[str, str]:
     """CF attributes of a registered variable name."""
     try:

@@ -18,12 +18,12 @@ PACKAGE = ROOT / "flumekit"
 
 #: layers in import order; a module may import from its own layer and the ones before it
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("errors", "conventions", "units", "schema", "campaign", "signal"),
+    ("errors", "conventions", "units", "schema", "campaign", "signal", "scaling"),
     ("io",),
     ("qc",),
     ("waves", "hydro", "performance"),
     ("flap", "ballscrew", "uvp"),
-    ("synth",),
+    ("synth", "uncertainty"),
     ("figures", "plot", "report"),
     ("pipeline",),
     ("stages",),

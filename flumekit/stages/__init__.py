@@ -22,7 +22,7 @@ from flumekit.stages.context import Context
 
 #: stage modules in the order their rules are declared
 STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "performance",
-          "ballscrew", "figures")
+          "ballscrew", "figures", "uncertainty")
 
 
 def build_rules(ctx: Context) -> list[Rule]:

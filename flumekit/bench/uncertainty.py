@@ -1,0 +1,301 @@
+"""Uncertainty of the results against the virtual flume's truth, and its cost.
+
+``flumekit bench uncertainty`` synthesises independent virtual repeats of one condition
+(T = 2 s, H = 0.15 m of Table 1): each with its own probe gains and static calibration, the
+wavemaker's repeat scatter and the flap's loss drift (:class:`flumekit.synth.flume.
+RepeatScatter`), probe noise, encoder quantisation and pressure sensor noise, exactly as the
+virtual flume writes a run. Each repeat is analysed as the pipeline does (calibration, waves,
+flap) and its uncertainty propagated as the ``uncertainty`` stage does (the campaign's default
+components, the stage's default draws). It reports:
+
+- coverage: the share of repeats whose expanded 95 % interval of H_I, Kr, θ amplitude and C_f
+  contains the repeat's truth (acceptance: 90-99 %), with the RMS error over the RMS standard
+  uncertainty (1: the uncertainty is the size of the error);
+- Monte Carlo against linear propagation on the standard uncertainties (acceptance: within
+  10 % on H_I and Kr) and the Monte Carlo estimate when the draws double (within 5 %);
+- the cost per run against the number of draws and the cost on the default campaign.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+PERIOD, HEIGHT = 2.0, 0.15  # the condition of the repeats [s], [m]
+QUANTITIES = ("incident_height", "reflection_coefficient", "theta_amplitude", "capture_factor")
+
+
+def _setup():
+    import tempfile
+    from pathlib import Path
+
+    from flumekit.campaign import load_campaign
+    from flumekit.synth.campaign import campaign_toml
+    from flumekit.synth.flap import flume_hydrodynamics
+
+    with tempfile.TemporaryDirectory() as tmp:
+        (Path(tmp) / "campaign.toml").write_text(campaign_toml("bench"))
+        campaign = load_campaign(tmp)
+    return campaign, flume_hydrodynamics(campaign)
+
+
+def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
+    """One virtual repeat of the condition: what the pipeline would read and the truth.
+
+    Returns (eta [m] as the eta stage makes it, calibration dataset, flap record dict,
+    truth dict with the generated height, the effective Kr at the hinge, and the flap truth
+    dataset).
+    """
+    import dataclasses
+
+    import pandas as pd
+    import xarray as xr
+
+    from flumekit.synth.campaign import CALIBRATION_LEVELS, Truth, probe_positions
+    from flumekit.synth.flap import FlapTruth, flap_record
+    from flumekit.synth.flume import repeat_conditions
+    from flumekit.synth.waves import regular_wave_field
+    from flumekit.waves import calibration
+    from flumekit.waves.theory import group_velocity
+
+    truth = Truth()
+    rng = np.random.default_rng([seed, index])
+    names = list(campaign.probes.names)
+    rate = campaign.probes.sampling_rate
+    depth = campaign.flume.water_depth
+    # the virtual flume's sensor law V = a + b eta and static calibration (synth.campaign)
+    b = 10.0 * (1 + 0.05 * rng.standard_normal(len(names)))
+    a = 2.5 + 0.3 * rng.standard_normal(len(names))
+    levels = np.repeat(CALIBRATION_LEVELS, int(truth.static_seconds * rate))
+    volts = a + b * (levels[:, None] + truth.probe_noise
+                     * rng.standard_normal((levels.size, len(names))))
+    volts = np.round(volts, 6)  # the CSV's 6 decimals
+    cal = calibration.fit(pd.DataFrame(volts, columns=names), levels=levels)
+    # as the calibration stage writes it, with the static voltages
+    cal = cal.assign(calibration_voltage=(("sample", "probe"), volts))
+    flap_truth = FlapTruth()
+    period, height, losses = repeat_conditions(rng, PERIOD, HEIGHT, truth.scatter,
+                                               flap_truth.losses)
+    flap_truth = dataclasses.replace(flap_truth, losses=losses)
+    xp = probe_positions(PERIOD, depth, truth)
+    travel = abs(truth.x_wavemaker) / float(group_velocity(PERIOD, depth))
+    duration = float(np.ceil(travel + (35 + n_steady + 10) * PERIOD))
+    kw = dict(period=period, height=height, depth=depth, reflection=truth.reflection,
+              reflection_phase=truth.reflection_phase, x_reflector=0.0,
+              ramp_waves=truth.ramp_waves, second_order=True, x_wavemaker=truth.x_wavemaker,
+              beach=truth.beach)
+    t25 = np.arange(int(duration * rate)) / rate
+    field = regular_wave_field(t25, np.array([xp[p] for p in names] + [0.0]), **kw)
+    eta_true = field["eta"].values[:-1]
+    noisy = eta_true + truth.probe_noise * rng.standard_normal(eta_true.shape)
+    v = np.round(a[:, None] + b[:, None] * noisy, 6)  # the CSV's 6 decimals
+    voltage = xr.DataArray(v, dims=("probe", "time"), coords={"probe": names, "time": t25})
+    eta = calibration.apply(voltage, cal).assign_coords(x=("probe", [xp[p] for p in names]))
+    enc = campaign.encoder
+    t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
+    n100 = t100.size
+    t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
+    at = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **kw)
+    at = {k: at[k].values[0] for k in ("eta_incident", "eta_reflected", "eta_beach")}
+    flap = flap_record(t100, at["eta_incident"][:n100], period=period, campaign=campaign,
+                       rng=rng, height=height, hydro=hydro, truth=flap_truth,
+                       eta_lead_out=at["eta_incident"][n100:],
+                       eta_front=at["eta_incident"] + at["eta_reflected"] + at["eta_beach"])
+    record = {"time": t100, "encoder_counts": flap["encoder_counts"].values.astype(float),
+              # the CSV's pressure in bar with 6 decimals
+              "chamber_pressure": np.round(flap["chamber_pressure"].values / 1e5, 6) * 1e5}
+    return eta, cal, record, {"height": float(field.attrs["wave_height"]),
+                              "reflection": float(field.attrs["reflection_coefficient"]),
+                              "flap": flap}
+
+
+def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str, float]:
+    """The true H_I, Kr, θ amplitude and C_f of a repeat, by the definitions of the analysis:
+    θ amplitude by :func:`flumekit.signal.cycle_amplitude` of the true θ over the analysed
+    window (``theta_amplitude_lowpass``: of the true θ through the analysis' low-pass at
+    ``cutoff`` [Hz]), C_f as the true mean power over that window over W_I of the true
+    height."""
+    from flumekit.flap.power import incident_power
+    from flumekit.signal import cycle_amplitude, smooth_derivatives
+
+    flap = truth["flap"]
+    t = flap.time.values
+    period, start = float(result["flap_period"]), float(result["flap_start"])
+    n = int(result["flap_cycles"])
+    win = (t >= start) & (t < start + n * period)
+    w_i = float(incident_power(truth["height"], period, campaign.flume.water_depth,
+                               campaign.flap.width))
+    # the analysis takes θ's amplitude after its derivative low-pass (flap.analysis): the
+    # amplitude of the true θ low-passed alike is the measurand as the analysis defines it
+    smooth = smooth_derivatives(flap.theta.values, 1.0 / (t[1] - t[0]), cutoff)[0]
+    return {"incident_height": truth["height"], "reflection_coefficient": truth["reflection"],
+            "theta_amplitude": cycle_amplitude(flap.theta.values, t, period, start, n),
+            "theta_amplitude_lowpass": cycle_amplitude(smooth, t, period, start, n),
+            "capture_factor": float(np.mean(flap.power.values[win])) / w_i}
+
+
+#: the [uncertainty] table of the virtual flume's own errors: exact probe positions, depth,
+#: inertia and clocks, the CSV's 1e-6 V steps at ~10 V m-1 (the probe noise, calibration,
+#: encoder and pressure components keep their defaults, which are the virtual flume's)
+VIRTUAL_ERRORS = {"probe_position": {"value": 0.0}, "water_depth": {"value": 0.0},
+                  "flap_inertia": {"value": 0.0}, "clock_offset": {"value": 0.0},
+                  "probe_resolution": {"value": 5e-8}}
+
+
+def _model(eta, cal, record, campaign, components=None):
+    from flumekit.stages.flap import DEFAULTS as FLAP
+    from flumekit.stages.waves import DEFAULTS as WAVES
+    from flumekit.uncertainty.propagation import RunModel, resolve_inputs
+
+    inputs = resolve_inputs(campaign.uncertainty if components is None else components,
+                            calibration=cal,
+                            counts_per_metre=campaign.encoder.counts_per_metre)
+    waves_kw = {k: WAVES[k] for k in ("method", "x_ref", "n_harmonics", "bound_harmonics",
+                                      "amplitude_dispersion", "tolerance", "min_cycles",
+                                      "noise_factor")}
+    waves_kw["separation_probes"] = list(campaign.probes.separation)
+    flap_kw = {"flap": campaign.flap, "pto": campaign.pto, "encoder": campaign.encoder,
+               **{k: FLAP[k] for k in ("cutoff", "tolerance", "n_phase",
+                                       "max_flagged_fraction")}}
+    return RunModel(eta, campaign.flume.water_depth, PERIOD, waves_kw, record, flap_kw), inputs
+
+
+def _flap_window(model) -> dict:
+    """The flap analysis' window of the unperturbed run."""
+    import warnings
+
+    from flumekit.flap import analyse_run
+
+    r = model.flap_record
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        w = model.waves({})
+        ds = analyse_run(r["time"], r["encoder_counts"], r["chamber_pressure"],
+                         depth=model.depth, period=model.period,
+                         incident_height=w["incident_height"], **model.flap_kw)
+    return {"flap_period": float(ds.measured_period), "flap_start": float(ds.steady_start),
+            "flap_cycles": int(ds.steady_cycles)}
+
+
+def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
+    """Coverage of the expanded intervals over ``n_repeats`` virtual repeats, with the
+    campaign's default components ("defaults") and with the virtual flume's own errors
+    (:data:`VIRTUAL_ERRORS`, "virtual").
+
+    Returns a dict: set -> quantity -> (share covered, RMS error / RMS u, RMS error, RMS u),
+    set -> "bias" -> quantity -> mean error, and "seconds" per repeat.
+    """
+    from flumekit.campaign import uncertainty_components
+    from flumekit.uncertainty.propagation import propagate
+
+    campaign, hydro = _setup()
+    sets = {"defaults": None, "virtual": uncertainty_components(VIRTUAL_ERRORS)}
+    names = QUANTITIES + ("theta_amplitude_lowpass",)
+    err = {k: {q: [] for q in names} for k in sets}
+    u = {k: {q: [] for q in names} for k in sets}
+    covered = {k: {q: [] for q in names} for k in sets}
+    t0 = time.perf_counter()
+    for i in range(n_repeats):
+        eta, cal, record, truth = virtual_repeat(i, seed, campaign, hydro)
+        for key, comps in sets.items():
+            model, inputs = _model(eta, cal, record, campaign, comps)
+            ds = propagate(model, inputs, draws=draws, seed=[seed, i], linear_check=False)
+            true = truth_values(truth, _flap_window(model), campaign,
+                                model.flap_kw["cutoff"])
+            for q in names:
+                r = q.replace("_lowpass", "")
+                e = float(ds[r]) - true[q]
+                err[key][q].append(e)
+                u[key][q].append(float(ds[f"{r}_uncertainty_type_b"]))
+                covered[key][q].append(abs(e) <= float(ds[f"{r}_expanded_uncertainty"]))
+        if progress:
+            progress(i)
+    out = {}
+    for key in sets:
+        rms_e = {q: float(np.sqrt(np.mean(np.square(err[key][q])))) for q in names}
+        rms_u = {q: float(np.sqrt(np.mean(np.square(u[key][q])))) for q in names}
+        out[key] = {q: (float(np.mean(covered[key][q])), rms_e[q] / rms_u[q], rms_e[q],
+                        rms_u[q]) for q in names}
+        out[key]["bias"] = {q: float(np.mean(err[key][q])) for q in names}
+    out["seconds"] = (time.perf_counter() - t0) / max(n_repeats, 1)
+    return out
+
+
+def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
+    """On one repeat: Monte Carlo with ``draws`` and 2 ``draws`` against the linear
+    propagation; quantity -> (u_MC(n), u_MC(2n), u_linear)."""
+    from flumekit.uncertainty.propagation import linear, monte_carlo
+
+    campaign, hydro = _setup()
+    eta, cal, record, _ = virtual_repeat(0, seed, campaign, hydro)
+    model, inputs = _model(eta, cal, record, campaign)
+    mc = monte_carlo(model, inputs, 2 * draws, seed)
+    _, contrib = linear(model, inputs, directions, seed)
+    u_lin = np.sqrt(np.sum(contrib ** 2, axis=0))
+    out = {}
+    for j, q in enumerate(model.results):
+        out[q] = (float(np.nanstd(mc[:draws, j], ddof=1)), float(np.nanstd(mc[:, j], ddof=1)),
+                  float(u_lin[j]))
+    return out
+
+
+def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
+    """Seconds of the propagation of one run against the number of draws, and of the linear
+    budget at the stage's default directions."""
+    from flumekit.stages.uncertainty import DEFAULTS
+    from flumekit.uncertainty.propagation import linear, monte_carlo
+
+    campaign, hydro = _setup()
+    eta, cal, record, _ = virtual_repeat(0, seed, campaign, hydro)
+    model, inputs = _model(eta, cal, record, campaign)
+    out = {}
+    for n in draws_list:
+        t0 = time.perf_counter()
+        monte_carlo(model, inputs, n, seed)
+        out[n] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    linear(model, inputs, int(DEFAULTS["directions"]), seed)
+    out["linear"] = time.perf_counter() - t0
+    return out
+
+
+def run(quick: bool = False) -> str:
+    from flumekit.stages.uncertainty import DEFAULTS
+    from flumekit.synth.campaign import plan_runs
+
+    draws = int(DEFAULTS["draws"])
+    n_rep = 20 if quick else 100
+    lines = [f"Uncertainty on the virtual flume: T = {PERIOD} s, H = {HEIGHT} m", ""]
+    t = cost((10, 20, 40) if quick else (10, 20, 40, 160))
+    n_runs = sum(1 for r in plan_runs("default"))
+    per_run = t[draws] if draws in t else t[40] * draws / 40
+    first = len({(r.period, r.height) for r in plan_runs("default")})
+    lines += ["cost of one run (the waves and flap analyses per draw; one BLAS thread):"]
+    lines += [f"  {k:>4} draws: {v:6.2f} s" for k, v in t.items() if k != "linear"]
+    lines += [f"  linear budget ({DEFAULTS['directions']} directions): {t['linear']:.2f} s",
+              f"  default campaign ({n_runs} regular runs, {draws} draws; budget on the "
+              f"first run of each of {first} conditions): "
+              f"{n_runs * per_run + first * t['linear']:.0f} s on one core", ""]
+    n = 100 if quick else 400
+    agr = agreement(n)
+    lines += [f"standard uncertainties: MC {n} draws, MC {2 * n} draws, linear "
+              "(16 directions for the per-sample inputs)"]
+    for q, (a, b, c) in agr.items():
+        lines.append(f"  {q:24s} {a:10.4g} {b:10.4g} {c:10.4g}   MC(2n)/MC(n) - 1 = "
+                     f"{b / a - 1:+6.1%}   linear/MC - 1 = {c / b - 1:+6.1%}")
+    lines.append("")
+    cov = coverage(n_rep, draws)
+    lines += [f"coverage of the expanded 95 % intervals over {n_rep} virtual repeats "
+              f"({draws} draws each, {cov['seconds']:.1f} s per repeat for both sets)"]
+    for key, what in (("virtual", "components of the virtual flume's own errors"),
+                      ("defaults", "the campaign's default components (1 mm positions and "
+                                   "depth, 2 % inertia: errors the virtual flume has not)")):
+        lines.append(f" {what}:")
+        for q in QUANTITIES + ("theta_amplitude_lowpass",):
+            share, ratio, rms_e, rms_u = cov[key][q]
+            lines.append(f"  {q:24s} {share:6.1%}  RMS error {rms_e:.3g}, RMS u {rms_u:.3g} "
+                         f"(ratio {ratio:.2f}), mean error {cov[key]['bias'][q]:+.3g}")
+    lines.append("  (theta_amplitude_lowpass: against the true theta through the analysis' "
+                 "derivative low-pass)")
+    return "\n".join(lines)

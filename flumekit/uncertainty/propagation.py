@@ -1,0 +1,384 @@
+"""Propagation of the declared Type B components through the real analysis of a run.
+
+Monte Carlo after JCGM 101:2008: each draw perturbs the run's records and set-up by one sample of
+every declared component (probe noise and resolution, calibration gains, probe positions, water
+depth; encoder resolution, pressure sensor accuracy, flap inertia, clock offset) and reruns the
+analyses the pipeline runs (:func:`flumekit.waves.analyse_run`, then
+:func:`flumekit.flap.analyse_run` with the draw's incident height, so that H_I's uncertainty
+reaches C_f). The standard uncertainty of a result is the standard deviation of its draws and
+its 95 % coverage interval the probabilistically symmetric one (JCGM 101 §7.7).
+
+The linear propagation of GUM §5.1 is the cross-check and the budget: sensitivity coefficients
+by central differences, ±u of one input at a time; an input with one value per sample (noise,
+resolution) is a vector, and its contribution E[(∇f·z)²] u² is estimated from
+``directions`` random unit-variance directions z.
+
+A draw applies a perturbation to the record as it was measured: the spread of the results over
+the draws is the spread that errors of the declared size cause (the recorded noise is one draw
+of it), which is what a Type B evaluation of a single run states.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+#: results of the waves analysis and of the flap analysis that are propagated
+WAVES_RESULTS = ("incident_height", "reflection_coefficient", "measured_period", "energy_flux")
+FLAP_RESULTS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
+
+#: component -> (what it perturbs, how): "probe_time" one value per probe and sample,
+#: "probe" one per probe, "scalar" one, "flap_time" one per flap sample
+SHAPES = {"probe_noise": "probe_time", "probe_resolution": "probe_time",
+          "calibration": "probe", "probe_position": "probe", "water_depth": "scalar",
+          "encoder_resolution": "flap_time", "pressure_accuracy": "flap_time",
+          "flap_inertia": "scalar", "clock_offset": "scalar"}
+FLAP_ONLY = ("encoder_resolution", "pressure_accuracy", "flap_inertia", "clock_offset")
+
+
+@dataclass(frozen=True)
+class Input:
+    """A Type B component resolved for a run.
+
+    ``u`` is the standard uncertainty in ``units`` (a scalar, or one value per probe for
+    ``calibration``); ``distribution`` "normal" or "rectangular" (then the draws are uniform
+    over ±sqrt(3) u); ``source`` says where the value comes from.
+    """
+
+    name: str
+    u: float | np.ndarray
+    units: str
+    distribution: str
+    source: str
+
+    @property
+    def shape(self) -> str:
+        return SHAPES[self.name]
+
+
+def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
+                   counts_per_metre: float | None = None, flap: bool = True) -> list[Input]:
+    """The components of a campaign (``Campaign.uncertainty``) resolved for its runs.
+
+    Parameters
+    ----------
+    components : sequence of flumekit.campaign.Component
+        The declared (or default) components.
+    calibration : xarray.Dataset, optional
+        ``calibration.nc`` of the campaign (probes in volts): the default probe noise is its
+        RMS residual (the static records hold the probes' noise) and the default calibration
+        uncertainty the standard error of each fitted gain, s / sqrt(sum (V - V̄)²) over the
+        gain (GUM H.3).
+    counts_per_metre : float, optional
+        The encoder's counts per metre of wire [m-1]: the default encoder resolution is half a
+        count.
+    flap : bool
+        Whether the campaign has the flap instruments (else their components are left out).
+
+    Returns
+    -------
+    list of Input
+        Components with a non-zero standard uncertainty that a result depends on (the UVP's
+        velocity resolution reaches none of the propagated results and is left out).
+
+    Warns
+    -----
+    UserWarning
+        A component whose default needs data the campaign lacks (the noise and calibration of
+        probes recorded in metres, without calibration.nc): it is left out, and the warning
+        says so (declare ``[uncertainty.probe_noise] value``).
+    """
+    from flumekit.campaign import UNCERTAINTY_COMPONENTS
+
+    out = []
+    for c in components:
+        if c.name not in SHAPES or (c.name in FLAP_ONLY and not flap):
+            continue
+        unit = UNCERTAINTY_COMPONENTS[c.name][0]
+        src = "declared" if c.declared else "default: " + UNCERTAINTY_COMPONENTS[c.name][4]
+        u = c.standard_uncertainty
+        if c.name == "pressure_accuracy" and u is not None:
+            u, unit = u * c.rated_output, "Pa"
+        if u is None and c.name in ("probe_noise", "calibration"):
+            if calibration is None:
+                warnings.warn(f"[uncertainty.{c.name}] is left out of the uncertainty: the "
+                              "probes are recorded in length units (no calibration.nc to "
+                              "derive its default from); declare its value in campaign.toml",
+                              UserWarning, stacklevel=2)
+                continue
+            res = calibration["calibration_residual"].transpose("sample", "probe").values
+            if c.name == "probe_noise":
+                u = float(np.sqrt(np.nanmean(res ** 2)))
+            else:
+                volts = calibration["calibration_voltage"].transpose("sample", "probe").values
+                n = np.sum(np.isfinite(res), axis=0)
+                s = np.sqrt(np.nansum(res ** 2, axis=0) / np.maximum(n - 2, 1))
+                sxx = np.nansum((volts - np.nanmean(volts, axis=0)) ** 2, axis=0)
+                u = s / np.sqrt(sxx) / np.abs(calibration["gain"].values)
+        if u is None and c.name == "encoder_resolution":
+            if counts_per_metre is None:
+                continue
+            u = 0.5 / counts_per_metre / math.sqrt(3.0)
+        if u is None or not np.any(np.asarray(u) > 0):
+            continue
+        out.append(Input(c.name, u, unit, c.distribution, src))
+    return out
+
+
+def _sample(rng: np.random.Generator, distribution: str, shape) -> np.ndarray:
+    """Unit-variance draws of a normal or rectangular distribution."""
+    if distribution == "rectangular":
+        return rng.uniform(-math.sqrt(3.0), math.sqrt(3.0), shape)
+    return rng.standard_normal(shape)
+
+
+class RunModel:
+    """The analysis of one run as a function of the perturbations of its inputs.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Calibrated elevation (probe, time) [m] with ``x`` on ``probe``.
+    depth, period : float
+        Water depth [m] and target period [s].
+    waves_kw : dict
+        Keyword arguments of :func:`flumekit.waves.analyse_run` (x_ref, method, ...).
+    flap_record : dict, optional
+        ``time`` [s], ``encoder_counts`` [-], ``chamber_pressure`` [Pa] of the run.
+    flap_kw : dict, optional
+        Keyword arguments of :func:`flumekit.flap.analyse_run` (flap, pto, encoder, cutoff...).
+    """
+
+    def __init__(self, eta: xr.DataArray, depth: float, period: float, waves_kw: dict,
+                 flap_record: dict | None = None, flap_kw: dict | None = None):
+        self.eta = eta.transpose("probe", "time")
+        self.depth, self.period = float(depth), float(period)
+        self.waves_kw = dict(waves_kw)
+        self.flap_record, self.flap_kw = flap_record, dict(flap_kw or {})
+        self.results = WAVES_RESULTS + (FLAP_RESULTS if flap_record is not None else ())
+        self.n_probes, self.n_samples = self.eta.shape
+        self.n_flap = 0 if flap_record is None else len(flap_record["time"])
+        self._base_waves = None
+
+    def size(self, inp: Input) -> tuple[int, ...]:
+        """Shape of one draw of ``inp``."""
+        return {"probe_time": (self.n_probes, self.n_samples), "probe": (self.n_probes,),
+                "scalar": (), "flap_time": (self.n_flap,)}[inp.shape]
+
+    def waves(self, d: dict) -> dict[str, float]:
+        """The waves results with the perturbations ``d`` (name -> array in input units)."""
+        from flumekit.waves import analyse_run
+
+        v = self.eta.values
+        if "probe_noise" in d:
+            v = v + d["probe_noise"]
+        if "probe_resolution" in d:
+            v = v + d["probe_resolution"]
+        if "calibration" in d:
+            v = v * (1.0 + d["calibration"])[:, None]
+        x = self.eta["x"].values + d.get("probe_position", 0.0)
+        eta = self.eta.copy(data=v).assign_coords(x=("probe", x))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the warnings of the unperturbed run are recorded
+            ds = analyse_run(eta, self.depth + float(d.get("water_depth", 0.0)), self.period,
+                             **self.waves_kw)
+        return {k: float(ds[k]) for k in WAVES_RESULTS}
+
+    def flap(self, d: dict, incident_height: float) -> dict[str, float]:
+        """The flap results with the perturbations ``d`` and the draw's incident height."""
+        import dataclasses
+
+        from flumekit.flap import analyse_run
+
+        r = self.flap_record
+        kw = dict(self.flap_kw)
+        if "flap_inertia" in d:
+            kw["flap"] = dataclasses.replace(kw["flap"], inertia=kw["flap"].inertia
+                                             * (1.0 + float(d["flap_inertia"])))
+        counts = r["encoder_counts"]
+        if "encoder_resolution" in d:
+            counts = counts + d["encoder_resolution"] * kw["encoder"].counts_per_metre
+        pressure = r["chamber_pressure"] + d.get("pressure_accuracy", 0.0)
+        time = r["time"] + float(d.get("clock_offset", 0.0))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            ds = analyse_run(time, counts, pressure, depth=self.depth
+                             + float(d.get("water_depth", 0.0)), period=self.period,
+                             incident_height=incident_height, **kw)
+        return {k: float(ds[k]) for k in FLAP_RESULTS}
+
+    def __call__(self, d: dict) -> np.ndarray:
+        """All results (in the order of ``self.results``) with the perturbations ``d``; NaN
+        where the analysis refuses the perturbed run."""
+        flap_only = all(k in FLAP_ONLY for k in d)
+        try:
+            if flap_only and self._base_waves is not None:
+                w = self._base_waves
+            else:
+                w = self.waves(d)
+            out = dict(w)
+            if self.flap_record is not None:
+                out.update(self.flap(d, w["incident_height"]))
+        except ValueError:
+            return np.full(len(self.results), np.nan)
+        if not d:
+            self._base_waves = w
+        return np.array([out[k] for k in self.results])
+
+
+def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.ndarray:
+    """Results of ``draws`` Monte Carlo draws (draws, results), seeded.
+
+    Draw i uses its own generator (``SeedSequence(seed).spawn``), so the first n draws of a
+    larger sample are the n draws of a smaller one, and the same seed gives the same numbers.
+    """
+    model({})  # the unperturbed run, kept for the flap-only components
+    children = np.random.SeedSequence(seed).spawn(draws)
+    out = np.empty((draws, len(model.results)))
+    for i, child in enumerate(children):  # one analysis per draw
+        rng = np.random.default_rng(child)
+        d = {inp.name: np.asarray(inp.u) * _sample(rng, inp.distribution, model.size(inp))
+             for inp in inputs}
+        out[i] = model(d)
+    return out
+
+
+def linear(model: RunModel, inputs: list[Input], directions: int, seed
+           ) -> tuple[np.ndarray, np.ndarray]:
+    """Linear (GUM §5.1) propagation: per input, the sensitivity coefficient (results per unit
+    of the input; for an input with one value per probe the root-sum-square over probes, for
+    one per sample the RMS over ``directions`` random directions) and the contribution c u
+    [unit of the result]; arrays (inputs, results)."""
+    base = model({})
+    rng = np.random.default_rng(np.random.SeedSequence(seed).spawn(1)[0])
+    sens = np.zeros((len(inputs), base.size))
+    contrib = np.zeros((len(inputs), base.size))
+    for i, inp in enumerate(inputs):
+        shape = model.size(inp)
+        u = np.broadcast_to(np.asarray(inp.u, float), shape if inp.shape == "probe" else ())
+        if inp.shape in ("probe", "scalar"):
+            steps = [np.eye(shape[0])[j] * u for j in range(shape[0])] if shape else [u]
+        else:  # a random direction of unit variance per element, scaled by u
+            steps = [rng.standard_normal(shape) * u for _ in range(max(1, directions))]
+        d = np.array([(model({inp.name: s}) - model({inp.name: -s})) / 2.0 for s in steps])
+        c_u_sq = np.sum(d ** 2, axis=0) if inp.shape in ("probe", "scalar") \
+            else np.mean(d ** 2, axis=0)
+        contrib[i] = np.sqrt(c_u_sq)
+        scale = float(np.sqrt(np.mean(np.square(u)))) if np.size(u) else 0.0
+        sens[i] = contrib[i] / scale if scale > 0 else np.nan
+    return sens, contrib
+
+
+def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
+              directions: int = 4, linear_check: bool = True) -> xr.Dataset:
+    """Monte Carlo and linear propagation of ``inputs`` through the analysis of one run.
+
+    Parameters
+    ----------
+    model : RunModel
+        The run's analysis.
+    inputs : list of Input
+        Resolved components (:func:`resolve_inputs`).
+    draws : int
+        Monte Carlo draws [-]: the speed/accuracy knob (the relative standard deviation of an
+        estimated standard uncertainty is about 1/sqrt(2 (draws - 1))).
+    seed : int or sequence of int
+        Seed of the draws (same seed and inputs: same result).
+    directions : int
+        Random directions of each per-sample input in the linear propagation [-].
+    linear_check : bool
+        Whether to run the linear propagation (the budget).
+
+    Returns
+    -------
+    xarray.Dataset
+        For each result X: ``X`` (the unperturbed analysis), ``X_uncertainty`` (the run's
+        combined standard uncertainty, its Type B), ``X_uncertainty_type_b`` (standard
+        deviation of the draws; attributes ``method``, ``draws``, ``degrees_of_freedom``),
+        ``X_expanded_uncertainty`` (coverage factor from the t distribution with draws - 1
+        degrees of freedom, attribute ``coverage_factor``), ``X_coverage_low``/``_high``
+        (2.5 and 97.5 % quantiles of the draws), ``X_uncertainty_linear`` and, along
+        ``uncertainty_component``, ``X_sensitivity``, ``X_budget`` (c u) and
+        ``X_contribution`` [%]; ``input_standard_uncertainty`` with ``input_units``.
+
+    References
+    ----------
+    JCGM 101:2008, Propagation of distributions using a Monte Carlo method, §5-7.
+    JCGM 100:2008 (GUM), §5.1 and G.4. ITTC 7.5-02-07-03.12 (2021), Uncertainty analysis for
+    a wave energy converter.
+
+    Examples
+    --------
+    See :func:`flumekit.stages.uncertainty.run_uncertainty` for a run of the pipeline.
+    """
+    from scipy import stats
+
+    from flumekit import conventions
+
+    base = model({})
+    mc = monte_carlo(model, inputs, draws, seed)
+    ok = np.isfinite(mc).all(axis=1)
+    failed = int((~ok).sum())
+    mc = mc[ok]
+    n = mc.shape[0]
+    u_mc = mc.std(axis=0, ddof=1) if n > 1 else np.full(base.size, np.nan)
+    k = float(stats.t.ppf(0.975, n - 1)) if n > 1 else np.nan
+    lo, hi = (np.quantile(mc, [0.025, 0.975], axis=0) if n > 1
+              else (np.full(base.size, np.nan),) * 2)
+    names = [i.name for i in inputs]
+    data = {}
+    if linear_check:
+        sens, contrib = linear(model, inputs, directions, seed)
+        u_lin = np.sqrt(np.sum(contrib ** 2, axis=0))
+    method = (f"Monte Carlo (JCGM 101), {n} draws of the declared Type B components through "
+              "flumekit.waves.analyse_run and flumekit.flap.analyse_run")
+    for j, q in enumerate(model.results):
+        anc = [f"{q}_uncertainty", f"{q}_uncertainty_type_b", f"{q}_expanded_uncertainty"]
+        data[f"{q}_uncertainty"] = ((), u_mc[j], {
+            "method": "combined standard uncertainty of the run: its Type B (a single run has "
+                      "no Type A evaluation; conditions.nc combines the repeats)"})
+        data[f"{q}_uncertainty_type_b"] = ((), u_mc[j], {
+            "method": method, "draws": n, "failed_draws": failed,
+            "degrees_of_freedom": n - 1})
+        data[f"{q}_expanded_uncertainty"] = ((), k * u_mc[j], {
+            "coverage_factor": k, "coverage_probability": 0.95,
+            "method": "t distribution with draws - 1 degrees of freedom times the Monte Carlo "
+                      "standard uncertainty"})
+        data[f"{q}_coverage_low"] = ((), lo[j])
+        data[f"{q}_coverage_high"] = ((), hi[j])
+        if linear_check:
+            anc.append(f"{q}_uncertainty_linear")
+            total = u_lin[j] ** 2
+            data[f"{q}_uncertainty_linear"] = ((), u_lin[j], {
+                "method": f"linear GUM propagation, central differences of +-u (vector inputs: "
+                          f"{directions} random directions)"})
+            data[f"{q}_sensitivity"] = ("uncertainty_component", sens[:, j], {
+                "comment": "result per unit of the component's input (input_units); vector "
+                           "inputs: root-sum-square over probes or RMS over random directions"})
+            data[f"{q}_budget"] = ("uncertainty_component", contrib[:, j])
+            data[f"{q}_contribution"] = ("uncertainty_component",
+                                         100.0 * contrib[:, j] ** 2 / total if total > 0
+                                         else np.zeros(len(inputs)))
+        data[q] = ((), base[j], {"ancillary_variables": " ".join(anc)})
+    coords = {"uncertainty_component": names}
+    if linear_check:
+        data["input_standard_uncertainty"] = ("uncertainty_component", [
+            float(np.sqrt(np.mean(np.square(i.u)))) for i in inputs], {
+            "comment": "RMS over probes for a component with one value per probe"})
+        data["input_units"] = ("uncertainty_component", [i.units for i in inputs])
+        data["component_type"] = ("uncertainty_component", ["B"] * len(inputs))
+        data["component_distribution"] = ("uncertainty_component",
+                                          [i.distribution for i in inputs],
+                                          {"long_name": "probability distribution of the "
+                                           "component"})
+        data["component_source"] = ("uncertainty_component", [i.source for i in inputs],
+                                    {"long_name": "where the component's value comes from"})
+    ds = xr.Dataset(data, coords=coords if linear_check else {})
+    if failed:
+        warnings.warn(f"{failed} of {draws} Monte Carlo draws were refused by the analysis and "
+                      "left out", UserWarning, stacklevel=2)
+    return conventions.annotate(ds)
