@@ -180,6 +180,18 @@ def _value(v) -> str:
     return value_label(v)
 
 
+def _uncertainty(summaries: dict[str, xr.Dataset]) -> list[tuple[str, str, str]]:
+    """Give the sections of the results per condition with their uncertainties and budgets.
+
+    Those of :func:`flumekit.uncertainty.report_sections`, where the campaign has them.
+    """
+    if "conditions" not in summaries:
+        return []
+    from flumekit.uncertainty import report_sections
+
+    return report_sections(summaries["conditions"], summaries.get("budget"))
+
+
 def _notes(root: Path) -> str:
     """List the notes the per-run products carry in their attributes, with their runs.
 
@@ -391,7 +403,8 @@ def write_report(processed: str | Path, out: str | Path | None = None,
         ("conditions", "Run conditions", _conditions(summaries)),
         *([("sea-states", "Irregular runs: sea states and capture", sea)] if sea else []),
         *([("power-matrix", "Power matrix", matrix)] if matrix else []),
-        ("statistics", "Summary statistics over the runs", stats or
+        *_uncertainty(summaries),
+        ("statistics", "Range over all runs (every condition pooled)", stats or
          '<p class="muted">No campaign summary datasets.</p>'),
         ("notes", "Notes on fitted parameters", _notes(root)),
         ("warnings", "Warnings", _warnings({**summaries, **qc})),

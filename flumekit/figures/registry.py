@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 #: the figure modules that register figures (imported on the first look-up)
-MODULES = ("waves", "sea_state", "flap", "performance", "qc", "uvp", "ballscrew")
+MODULES = ("waves", "sea_state", "flap", "performance", "qc", "uvp", "ballscrew", "uncertainty")
 
 Prepare = Callable[[Mapping[str, Any], Mapping[str, Any]], tuple[tuple, dict]]
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.figures.registry import register
 from flumekit.figures.style import TWO_COLUMNS, label, legend, new_figure, style, title
 
 #: the results whose budgets the figure shows, with their symbols
@@ -24,6 +25,7 @@ def _condition_labels(budget: xr.Dataset) -> list[str]:
     return out
 
 
+@register("uncertainty_budget")
 def figure_budget(budget: xr.Dataset, axes=None):
     """Stacked bars: each component's share of the combined variance of H_I, Kr, θ amplitude
     and C_f in every condition (the budget of ``budget.nc``), with the combined standard

@@ -81,7 +81,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
                         inputs={"budget": ctx.out("budget.nc")},
                         outputs={f: ctx.out("figures", f"uncertainty_budget.{f}")
                                  for f in formats},
-                        params={"draw": "uncertainty:figure_budget"}, version=VERSION))
+                        params={"figure": "uncertainty_budget"}, version=VERSION))
     return out
 
 
@@ -92,8 +92,8 @@ def run_uncertainty(inputs, outputs, params) -> None:
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
-    from flumekit.io.netcdf import read_dataset
     from flumekit.conventions import WARNINGS
+    from flumekit.io.netcdf import read_dataset
     from flumekit.uncertainty.propagation import RunModel, propagate, resolve_inputs
 
     campaign = load_campaign(Path(inputs["campaign"]).parent)
