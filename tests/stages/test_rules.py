@@ -9,6 +9,7 @@ and one irregular JONSWAP run, with probes, flap instruments and UVP.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import importlib
 from pathlib import Path
 
@@ -28,8 +29,16 @@ def campaign(tmp_path_factory):
     return virtual_campaign(tmp_path_factory.mktemp("raw") / "small", "small", 2020)
 
 
+@functools.cache
+def default_scenes() -> dict:
+    """The default pipeline's scenes: what it asks to build (the ball-screw study among them)."""
+    from flumekit.pipeline.config import load_pipeline
+
+    return load_pipeline(Path(__file__).resolve().parents[2] / "pipelines" / "default.toml").scenes
+
+
 def ctx(campaign, **params) -> Context:
-    return Context(campaign, PROCESSED, params)
+    return Context(campaign, PROCESSED, params, scenes=default_scenes())
 
 
 def rules_of(stage: str, context: Context) -> dict:
