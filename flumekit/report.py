@@ -210,6 +210,28 @@ def _notes(root: Path) -> str:
     return _table(["note", "runs"], [[_esc(n), _esc(", ".join(r))] for n, r in where.items()])
 
 
+def _qc_counts(summaries: dict[str, xr.Dataset]) -> str:
+    """Tabulate the QC summary: per run and record, the samples of each QARTOD flag.
+
+    From ``qc_summary.nc`` (its ``<record>_qc_count`` over ``flag_meaning``); empty without it.
+    """
+    ds = summaries.get("qc_summary")
+    if ds is None or "flag_meaning" not in ds.dims:
+        return ""
+    names = [v for v in ds.data_vars if v.endswith("_qc_count")]
+    meanings = [str(m) for m in ds["flag_meaning"].values]
+    rows = []
+    for r in ds["run"].values:
+        for v in names:
+            counts = ds[v].sel(run=r).values
+            rows.append([_esc(r), _esc(v.removesuffix("_qc_count")),
+                         *(str(int(c)) if np.isfinite(c) else "" for c in counts)])
+    return ("<p>Samples per QARTOD flag of every run's records (qc_summary.nc); the per-sample "
+            "flags are in qc/&lt;record&gt;/&lt;run&gt;.nc and drawn in figures/qc.</p>"
+            + _table(["run", "record", *(_esc(m.replace("_", " ")) for m in meanings)],
+                     rows, left=2))
+
+
 def _flag_counts(datasets: dict[str, xr.Dataset]) -> str:
     rows = []
     for name, ds in datasets.items():
@@ -408,7 +430,7 @@ def write_report(processed: str | Path, out: str | Path | None = None,
          '<p class="muted">No campaign summary datasets.</p>'),
         ("notes", "Notes on fitted parameters", _notes(root)),
         ("warnings", "Warnings", _warnings({**summaries, **qc})),
-        ("qc", "Quality control", _flag_counts({**summaries, **qc})),
+        ("qc", "Quality control", _qc_counts(summaries) or _flag_counts({**summaries, **qc})),
         ("figures", "Figures", _figures(root)),
         ("datasets", "Datasets", _datasets(root)),
     ]

@@ -204,3 +204,20 @@ def test_irregular_runs_and_power_matrix_tables(tmp_path):
     matrix = page.split('id="power-matrix"')[1].split("<h2")[0]
     assert "0.09-0.11" in matrix and "1.5-2.5" in matrix
     assert "0.2 (2 W, n = 1)" in matrix and "0.3 (3 W, n = 1)" in matrix
+
+
+def test_qc_counts_from_the_qc_summary(tmp_path):
+    """The counts per flag of every run's records, as qc_summary.nc holds them (the per-run
+    QC products lie in qc/<record>/, where no flag_values variable is at the top level)."""
+    root = tmp_path / "p"
+    root.mkdir()
+    meanings = ["pass", "not_evaluated", "suspect", "fail", "missing_data"]
+    xr.Dataset({"probe_voltage_qc_count": (("run", "flag_meaning"),
+                                           [[21790, 0, 7, 3, 0], [36400, 0, 0, 0, 0]])},
+               coords={"run": ["r1", "r2"], "flag_meaning": meanings}
+               ).to_netcdf(root / "qc_summary.nc")
+    page = write_report(root).read_text(encoding="utf-8")
+    qc = page.split('id="qc"')[1].split("<h2")[0]
+    assert "No quality-control flags" not in qc
+    assert ('<td class="l">r1</td><td class="l">probe_voltage</td><td>21790</td><td>0</td>'
+            "<td>7</td><td>3</td><td>0</td>") in qc
