@@ -25,7 +25,8 @@ _LAZY = {
     "read_wamit": "wamit",
     "impulse_response": "radiation",
     "fit_state_space": "radiation",
-    "response": "response",
+    # the frequency-domain response itself is flumekit.hydro.response.response: a name of
+    # the package equal to its submodule's would hide the submodule from `from ... import`
     "optimal_pto_damping": "response",
     "excitation_torque": "excitation",
     "simulate": "simulation",
