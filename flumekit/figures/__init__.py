@@ -3,7 +3,7 @@ flap (Figs. 5b, 6b-d, 7-10), the UVP field (Figs. 11, 12), the power matrix and 
 ratio, and the quality-control summary of a run. Each returns a matplotlib Figure."""
 
 
-import importlib
+from flumekit.lazy import lazy_names
 
 #: public name -> module of this package (imported on first use, so that importing the
 #: package stays cheap)
@@ -26,13 +26,4 @@ _LAZY = {
 __all__ = sorted(_LAZY)
 
 
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())

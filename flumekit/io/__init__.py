@@ -8,7 +8,7 @@ what the pipeline wrote; :func:`read_dataset` and :func:`write_dataset` read and
 netCDF file.
 """
 
-import importlib
+from flumekit.lazy import lazy_names
 
 #: public name -> module (imported on first use: the pipeline's planning imports
 #: flumekit.io.atomic, and must not pay for numpy and xarray on a no-op make)
@@ -22,13 +22,4 @@ _LAZY = {
 __all__ = sorted(_LAZY)
 
 
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module 'flumekit.io' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"flumekit.io.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())

@@ -2,7 +2,7 @@
 masking and gap filling, and checks of the metadata against the records."""
 
 
-import importlib
+from flumekit.lazy import lazy_names
 
 #: public name -> module of this package (imported on first use, so that importing the
 #: package stays cheap)
@@ -24,13 +24,4 @@ _LAZY = {
 __all__ = sorted(_LAZY)
 
 
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())

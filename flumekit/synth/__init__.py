@@ -1,7 +1,7 @@
 """The virtual flume: synthetic campaigns with a known truth (regular and irregular waves,
 the flap's response, UVP profiles), written in the raw format of raw/README.md."""
 
-import importlib
+from flumekit.lazy import lazy_names
 
 #: marker of a campaign folder the virtual flume wrote: its size, seed, planned runs and (when
 #: written run by run) the runs written so far. Only a folder holding it is ever completed run
@@ -30,13 +30,4 @@ _LAZY = {
 __all__ = sorted([*_LAZY, "DEFAULT_SEED", "MARKER"])
 
 
-def __getattr__(name: str):
-    if name not in _LAZY:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(importlib.import_module(f"{__name__}.{_LAZY[name]}"), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(__all__))
+__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
