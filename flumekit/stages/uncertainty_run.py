@@ -1,0 +1,86 @@
+"""The uncertainty stage's actions (:mod:`flumekit.stages.uncertainty` declares the rules):
+the propagation of one run and the conditions with their budgets."""
+
+from __future__ import annotations
+
+from flumekit.stages.runs import write_run
+
+
+def run_uncertainty(inputs, outputs, params) -> None:
+    """Monte Carlo and linear propagation of one run (:func:`~flumekit.uncertainty.
+    propagation.propagate`)."""
+    import warnings
+    from pathlib import Path
+
+    from flumekit.campaign import load_campaign
+    from flumekit.conventions import WARNINGS
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.uncertainty.propagation import RunModel, propagate, resolve_inputs
+
+    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    cal = read_dataset(inputs["calibration"]) if "calibration" in inputs else None
+    eta = read_dataset(inputs["eta"])["eta"]
+    if cal is not None and list(cal.probe.values) != list(eta.probe.values):
+        cal = cal.sel(probe=list(eta.probe.values))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        comps = resolve_inputs(campaign.uncertainty, calibration=cal,
+                               counts_per_metre=(campaign.encoder.counts_per_metre
+                                                 if campaign.encoder else None),
+                               flap="flap" in inputs)
+    recorded = [f"{inputs['campaign']}: {w.message}" for w in caught
+                if issubclass(w.category, UserWarning)]
+    for w in recorded:
+        print(f"warning: run {params['run']}: {w}")
+    record = kw = None
+    if "flap" in inputs:
+        raw = read_dataset(inputs["flap"])
+        record = {k: raw[k].values for k in ("time", "encoder_counts", "chamber_pressure")}
+        kw = {"flap": campaign.flap, "pto": campaign.pto, "encoder": campaign.encoder,
+              **params["flap"]}
+    model = RunModel(eta, params["depth"], params["period"],
+                     {**params["waves"], "separation_probes": params["separation_probes"]},
+                     record, kw)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        ds = propagate(model, comps, draws=int(params["draws"]), seed=params["seed"],
+                       directions=int(params["directions"]),
+                       linear_check=bool(params["linear"]))
+    recorded += [f"run {params['run']}: {w.message}" for w in caught
+                 if issubclass(w.category, UserWarning)]
+    if recorded:
+        ds.attrs[WARNINGS] = "\n".join(recorded)
+    write_run(ds, outputs, params, "Uncertainty of the results",
+              f"flumekit uncertainty stage from {inputs['eta']}")
+
+
+def conditions(inputs, outputs, params) -> None:
+    """Repeat statistics per condition with the runs' propagated uncertainties, and the
+    budget."""
+    import xarray as xr
+
+    from flumekit.io.netcdf import read_dataset, write_product
+    from flumekit.uncertainty import condition_statistics
+    from flumekit.uncertainty.combine import combine
+
+    summary = read_dataset(inputs["waves"])
+    if "flap" in inputs:
+        f = read_dataset(inputs["flap"])
+        summary = xr.merge([summary, f[[v for v in f.data_vars if v not in summary]]],
+                           compat="override", join="exact")
+    cond = condition_statistics(summary)
+    runs = sorted(k for k in inputs if k.startswith("run:"))
+    budget = xr.Dataset(coords=cond.coords)
+    if runs:
+        stacked = xr.concat([read_dataset(inputs[k]).expand_dims("run") for k in runs],
+                            dim="run", coords="all", compat="override", join="outer")
+        cond, budget = combine(cond, stacked)
+    if params.get("scale"):  # full-scale values in the report (flumekit.scale)
+        sc = params["scale"]
+        cond.attrs.update({"froude_scale": sc["factor"], "model_density": sc["model_density"],
+                           "prototype_density": sc["prototype_density"]})
+    source = f"flumekit conditions stage from {len(summary.run)} runs"
+    write_product(cond, outputs["dataset"], "Repeat statistics and uncertainty per condition",
+                  source, params)
+    write_product(budget, outputs["budget"], "Uncertainty budget per condition", source,
+                  params)
