@@ -161,6 +161,11 @@ class PoolExecutor(Executor):
                 p.kill()
 
 
+#: the loggers of dask.distributed that report a lost scheduler with tracebacks
+LOST_SCHEDULER_LOGS = ("distributed.client", "distributed.batched", "distributed.comm",
+                       "distributed.core")
+
+
 class DaskExecutor(Executor):
     """Rules as tasks on a dask.distributed cluster (``pip install flumekit[dask]``).
 
@@ -188,13 +193,15 @@ class DaskExecutor(Executor):
             # "dask.distributed", and xarray/dask code later in the same process (tests, a
             # notebook) then fails with "no Client active" once this one is closed
             self.client = Client(address, timeout=timeout, set_as_default=False)
-            # a lost scheduler is reported once, in one line (wait_any); the client's own log
-            # would print a traceback for each attempt to reconnect
+            # a lost scheduler is reported once, in one line (wait_any); the client's own
+            # logs would print a traceback for each attempt to reconnect and for the closed
+            # batched stream
             import logging
 
-            self._log = logging.getLogger("distributed.client")
-            self._level = self._log.level
-            self._log.setLevel(logging.CRITICAL)
+            self._logs = {name: logging.getLogger(name) for name in LOST_SCHEDULER_LOGS}
+            self._levels = {name: log.level for name, log in self._logs.items()}
+            for log in self._logs.values():
+                log.setLevel(logging.CRITICAL)
         except (OSError, TimeoutError) as e:
             raise FlumekitError(f"cannot reach the Dask scheduler at {address} within "
                                 f"{timeout:g} s ({type(e).__name__}); check the address, or "
@@ -249,7 +256,8 @@ class DaskExecutor(Executor):
         except (OSError, TimeoutError, CancelledError):
             pass  # a scheduler already lost: reported by wait_any
         finally:
-            self._log.setLevel(self._level)
+            for name, log in self._logs.items():
+                log.setLevel(self._levels[name])
 
 
 def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes",
