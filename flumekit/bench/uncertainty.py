@@ -52,7 +52,12 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     import pandas as pd
     import xarray as xr
 
-    from flumekit.synth.campaign import CALIBRATION_LEVELS, Truth, probe_positions
+    from flumekit.synth.campaign import (
+        CALIBRATION_LEVELS,
+        Truth,
+        probe_positions,
+        regular_waves_at_flap,
+    )
     from flumekit.synth.flap import FlapTruth, flap_record
     from flumekit.synth.flume import repeat_conditions
     from flumekit.synth.waves import regular_wave_field
@@ -93,11 +98,8 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     voltage = xr.DataArray(v, dims=("probe", "time"), coords={"probe": names, "time": t25})
     eta = calibration.apply(voltage, cal).assign_coords(x=("probe", [xp[p] for p in names]))
     enc = campaign.encoder
-    t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
+    t100, at = regular_waves_at_flap(duration, enc.sampling_rate, kw)
     n100 = t100.size
-    t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
-    at = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **kw)
-    at = {k: at[k].values[0] for k in ("eta_incident", "eta_reflected", "eta_beach")}
     flap = flap_record(t100, at["eta_incident"][:n100], period=period, campaign=campaign,
                        rng=rng, height=height, hydro=hydro, truth=flap_truth,
                        eta_lead_out=at["eta_incident"][n100:],

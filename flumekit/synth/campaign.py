@@ -397,6 +397,38 @@ def transient(sea: dict, depth: float, probe_x: dict[str, float], truth: Truth) 
                           returning=returning, developed=sea_cfg.developed)
 
 
+def regular_waves_at_flap(duration: float, rate: float, wave_kw: dict
+                          ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The flap's time axis and the regular waves at x = 0 that drive it.
+
+    The waves are computed 20 s past the record's end, so that the flap's last seconds see the
+    wave that goes on (:func:`flumekit.synth.flap.flap_record`, ``eta_lead_out``).
+
+    Parameters
+    ----------
+    duration : float
+        Record length [s].
+    rate : float
+        The flap instruments' sampling rate [Hz].
+    wave_kw : dict
+        Keyword arguments of :func:`flumekit.synth.waves.regular_wave_field`.
+
+    Returns
+    -------
+    time : numpy.ndarray
+        The record's sample times [s].
+    waves : dict of str to numpy.ndarray
+        ``eta_incident``, ``eta_reflected``, ``eta_beach`` at x = 0 [m], over ``time`` and the
+        20 s after it.
+    """
+    from flumekit.synth.waves import regular_wave_field
+
+    t = np.arange(int(duration * rate)) / rate
+    t_lead = t[-1] + np.arange(1, int(20.0 * rate) + 1) / rate
+    field = regular_wave_field(np.concatenate([t, t_lead]), np.array([0.0]), **wave_kw)
+    return t, {k: field[k].values[0] for k in ("eta_incident", "eta_reflected", "eta_beach")}
+
+
 def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
              probe_x: dict[str, float], sea: dict | None = None) -> str:
     """The text of a virtual run's ``run.toml``; an irregular run's target sea state in
@@ -452,14 +484,8 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
     write_table(run_dir / "probes.csv", [("time", "s")] + [(p, "V") for p in names],
                 np.column_stack([t25, volts.T]), fmt=["%.2f"] + ["%.6f"] * len(names))
 
-    enc = campaign.encoder
-    t100 = np.arange(int(duration * enc.sampling_rate)) / enc.sampling_rate
+    t100, at_flap = regular_waves_at_flap(duration, campaign.encoder.sampling_rate, wave_kw)
     n100 = t100.size
-    # the flap is driven 20 s past the record's end, so that its last seconds see the wave
-    # that goes on (flumekit.synth.flap.flap_record, eta_lead_out)
-    t_lead = t100[-1] + np.arange(1, int(20.0 * enc.sampling_rate) + 1) / enc.sampling_rate
-    at_flap = regular_wave_field(np.concatenate([t100, t_lead]), np.array([0.0]), **wave_kw)
-    at_flap = {k: at_flap[k].values[0] for k in ("eta_incident", "eta_reflected", "eta_beach")}
     flap = flap_record(t100, at_flap["eta_incident"][:n100], period=generated_period,
                        campaign=campaign, rng=rng, height=generated_height, hydro=flap_hydro,
                        truth=flap_truth,
