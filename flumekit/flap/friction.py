@@ -184,8 +184,10 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
-    z, h = kernel_step(float(state[0]), float(state[1]), float(velocity), float(dt),
-                       kernel_constants(model))
+    from flumekit.flap.kernels import lugre_step
+
+    z, h = lugre_step(float(state[0]), float(state[1]), float(velocity), float(dt),
+                      kernel_constants(model))
     return FrictionState(z, h)
 
 
@@ -212,7 +214,9 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
-    z, h = kernel_advance(float(state[0]), float(state[1]), float(velocity_start),
+    from flumekit.flap.kernels import lugre_advance
+
+    z, h = lugre_advance(float(state[0]), float(state[1]), float(velocity_start),
                           float(velocity_end), float(dt), kernel_constants(model))
     return FrictionState(z, h)
 
@@ -234,51 +238,24 @@ def friction_force(state: FrictionState, velocity, model: LuGre):
     return model.sigma0 * z + model.sigma1 * zdot + model.sigma2 * v
 
 
-def kernel_constants(m: LuGre) -> tuple:
-    """Return the parameters as the plain tuple :func:`kernel_step` and :func:`kernel_advance` take.
+def kernel_constants(m: LuGre) -> np.ndarray:
+    """Return the parameters as the float array the compiled kernels take.
 
-    Time-stepping loops call the kernels directly, without a dataclass per step.
+    Parameters
+    ----------
+    m : LuGre
+        Friction parameters.
+
+    Returns
+    -------
+    ndarray
+        σ0, σ1, σ2, F_c, F_s, 1/v_s, n, v_b, K_f, h_max, τ_hp, τ_hm, τ_h0
+        (:mod:`flumekit.flap.kernels`).
     """
-    return (m.sigma0, m.sigma1, m.sigma2, m.coulomb_force, m.static_force,
-            1.0 / m.stribeck_velocity, m.stribeck_exponent, m.minimum_friction_velocity,
-            m.film_gain, m.film_max, m.tau_hp, m.tau_hm, m.tau_h0)
-
-
-def kernel_step(z, h, v, dt, c):
-    """One exact frozen-velocity step of Eqs. (A4) and (A6); plain floats for speed.
-
-    ``z`` bristle deflection [m], ``h`` film thickness [-], ``v`` velocity [m s-1], ``dt`` step
-    [s], ``c`` from :func:`kernel_constants`; returns the new ``(z, h)``.
-    """
-    s0, s1, s2, fc, fs, ivs, n, vb, kf, hmax, thp, thm, th0 = c
-    a = abs(v)
-    # film state, Eqs. (A6)-(A8): exact exponential towards h_ss for frozen v
-    if a == 0.0:
-        hss, tau = 0.0, th0
-    else:
-        hss = kf * a ** (2.0 / 3.0) if a < vb else hmax
-        tau = thp if h <= hss else thm
-    eh = math.exp(-0.5 * dt / tau)
-    if a == 0.0:  # dwell: the bristles hold their deflection
-        return z, hss + (h - hss) * eh * eh
-    hmid = hss + (h - hss) * eh
-    x = a * ivs
-    g = fc + ((1.0 - hmid) * fs - fc) * math.exp(-(x if n == 1.0 else x ** n))
-    zss = g / s0 if v > 0 else -g / s0  # steady deflection for this v
-    # Eq. (A4) for frozen v: dz/dt = r (z_ss - z), r = s0 |v| / g
-    return zss + (z - zss) * math.exp(-s0 * a / g * dt), hss + (h - hss) * eh * eh
-
-
-def kernel_advance(z, h, v0, v1, dt, c):
-    """Apply :func:`kernel_step` for a velocity linear from ``v0`` to ``v1`` over the step.
-
-    The step is split at a velocity reversal, else taken at the mid-step velocity.
-    """
-    if v0 * v1 < 0.0:
-        s = v0 / (v0 - v1)
-        z, h = kernel_step(z, h, 0.5 * v0, s * dt, c)
-        return kernel_step(z, h, 0.5 * v1, (1.0 - s) * dt, c)
-    return kernel_step(z, h, 0.5 * (v0 + v1), dt, c)
+    return np.array([m.sigma0, m.sigma1, m.sigma2, m.coulomb_force, m.static_force,
+                     1.0 / m.stribeck_velocity, m.stribeck_exponent,
+                     m.minimum_friction_velocity, m.film_gain, m.film_max, m.tau_hp, m.tau_hm,
+                     m.tau_h0], dtype=float)
 
 
 def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = FrictionState(),
@@ -316,27 +293,10 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
         raise ValueError(f"friction_series: dt must be > 0, got {dt}")
     if int(substeps) != substeps or substeps < 1:
         raise ValueError(f"substeps must be an integer >= 1, got {substeps}")
-    c = kernel_constants(model)
-    n = v.size
-    zs = np.empty(n)
-    hs = np.empty(n)
-    z, h = float(state[0]), float(state[1])
-    zs[0], hs[0] = z, h
-    vl = v.tolist()
-    adv = kernel_advance
-    # sequential by nature: per-step work is a handful of float operations and two exp()
-    # (0.4-1.5 million steps per second in CPython, flumekit.bench.flap)
-    if substeps == 1:
-        for k in range(1, n):
-            z, h = adv(z, h, vl[k - 1], vl[k], dt, c)
-            zs[k] = z
-            hs[k] = h
-    else:
-        hsub = dt / substeps
-        for k in range(1, n):
-            v0, dv = vl[k - 1], (vl[k] - vl[k - 1]) / substeps
-            for j in range(substeps):
-                z, h = adv(z, h, v0 + j * dv, v0 + (j + 1) * dv, hsub, c)
-            zs[k] = z
-            hs[k] = h
+    from flumekit.flap.kernels import friction_loop
+
+    zs, hs = np.empty(v.size), np.empty(v.size)
+    # sequential by nature (each state needs the last): a compiled loop
+    friction_loop(np.ascontiguousarray(v), float(dt), float(state[0]), float(state[1]),
+                  int(substeps), kernel_constants(model), zs, hs)
     return friction_force((zs, hs), v, model), zs, hs

@@ -82,34 +82,6 @@ __all__ = ["BadParameterError", "DivergenceError", "FlapDynamics", "HydraulicCyl
            "simulate_run"]
 
 
-def _friction_kernels(model: LuGre):
-    """Scalar stepping and force functions of the modified LuGre model for the inner loop.
-
-    The public ``friction_step``/``friction_advance``/``friction_force`` validate and convert
-    their arguments (numpy) on every call, several microseconds each, more than the rest of a
-    simulator step; the scalar kernels ``kernel_step``/``kernel_advance`` of
-    :mod:`flumekit.flap.friction` take plain floats. The force is Eq. (A3) with the corrected
-    Eq. (A5) of :mod:`flumekit.flap.friction`, evaluated on floats (tested against
-    :func:`flumekit.flap.friction.friction_force`).
-
-    Returns step(z, h, v, dt) -> (z, h), advance(z, h, v0, v1, dt) -> (z, h), force(z, h, v).
-    """
-    s0, s1, s2 = model.sigma0, model.sigma1, model.sigma2
-    fc, fs, ivs, n_exp = (model.coulomb_force, model.static_force, 1.0 / model.stribeck_velocity,
-                          model.stribeck_exponent)
-    exp = math.exp
-
-    def force(z, h, v):
-        x = abs(v) * ivs
-        g = fc + ((1.0 - h) * fs - fc) * exp(-(x if n_exp == 1.0 else x**n_exp))  # Eq. (A5)
-        return s0 * z + s1 * (v - s0 * abs(v) * z / g) + s2 * v  # Eqs. (A3)-(A4)
-
-    c = _friction.kernel_constants(model)
-    s_, a_ = _friction.kernel_step, _friction.kernel_advance
-    return ((lambda z, h, v, dt: s_(z, h, v, dt, c)),
-            (lambda z, h, v0, v1, dt: a_(z, h, v0, v1, dt, c)), force)
-
-
 def drag_torque_coefficient(drag_coefficient: float, flap_width: float, submerged_height: float,
                             rho: float = 1000.0) -> float:
     """c_d [N m s2] of the quadratic drag torque c_d θ̇|θ̇| of a flat flap (Morison-type drag).
@@ -135,7 +107,7 @@ def _lever_table(cyl: HydraulicCylinder, span: float = 1.2, n: int = 4001):
     """Signed lever arm m(θ) [m] on a uniform θ grid from flumekit.flap.geometry."""
     th = np.linspace(-span, span, n)
     m = rod_kinematics(th, np.zeros_like(th), cyl.bed_anchor, cyl.flap_anchor).lever_arm
-    return float(th[0]), float(th[1] - th[0]), m.tolist(), np.diff(m).tolist()
+    return float(th[0]), float(th[1] - th[0]), m
 
 
 @dataclass(frozen=True)
@@ -183,62 +155,27 @@ class HydraulicCylinder:
                    pto.vapour_pressure, fr)
 
     def kernel(self, inertia: float, dt: float) -> PTOKernel:
-        """Scalar kernels (module notes): θ̈ with the fluid inertia and the vapour clamp, the
-        LuGre states at the stage times and at the end of the step."""
-        th_lo, dth, mtab, dmtab = _lever_table(self)
-        inv_dth, n_tab = 1.0 / dth, len(mtab) - 1
-        # Eq. (13) sign: +1 if θ̇ > 0 compresses the chamber (lever arm m < 0)
-        s_comp = -1.0 if mtab[n_tab // 2] > 0 else 1.0
-        A, Kp, Ip, J0 = self.bore_area, self.pressure_loss_coefficient, self.fluid_inertia, inertia
-        pcav = self.vapour_pressure - self.atmospheric_pressure
+        """Compiled kernels (:mod:`flumekit.flap.kernels`): θ̈ with the fluid inertia and the
+        vapour clamp, the LuGre states at the stage times and at the end of the step."""
+        from flumekit.flap import kernels
+
+        th_lo, dth, mtab = _lever_table(self)
         fr = self.friction
-        hh, hq = 0.5 * dt, 0.25 * dt
+        params = kernels.cylinder_params(
+            th_lo, dth, mtab, self.bore_area, self.pressure_loss_coefficient,
+            self.fluid_inertia, inertia, self.vapour_pressure - self.atmospheric_pressure,
+            None if fr is None else _friction.kernel_constants(fr), dt)
 
-        def lever(th):
-            u = (th - th_lo) * inv_dth
-            i = int(u)
-            if not 0 <= i < n_tab:
-                raise SimulationError(f"flap angle {th:.4g} rad is outside the PTO geometry "
-                                      f"table [{th_lo:.3g}, {-th_lo:.3g}] rad")
-            return mtab[i] + (u - i) * dmtab[i]
-
-        f_force = None if fr is None else _friction_kernels(fr)[2]
-
-        def accel(t, th, om, rest, z, hl):
-            m = lever(th)
-            if f_force is not None:
-                ff = f_force(z, hl, m * om)  # Eq. (A3), resisting the rod extension rate m θ̇
-                rest -= m * ff  # resisting friction torque T_f = m F_f
-            else:
-                ff = 0.0
-            g = -m * s_comp * A  # > 0
-            q = om * abs(om)
-            a = (rest - g * Kp * q) / (J0 + g * Ip)
-            p = s_comp * (Kp * q + Ip * a)  # Eq. (13), signed form, no cavitation
-            if p < pcav:  # Eq. (14) with σ_c = 0: clamp at the vapour pressure
-                p = pcav
-                a = (rest + m * A * p) / J0
-            return a, p, ff
+        def explain(theta: float) -> str | None:
+            if th_lo <= theta < th_lo + dth * (len(mtab) - 1):
+                return None
+            return (f"flap angle {theta:.4g} rad is outside the PTO geometry table "
+                    f"[{th_lo:.3g}, {-th_lo:.3g}] rad")
 
         if fr is None:
-            return PTOKernel(accel)
-
-        # the friction's scalar kernels called directly (no wrapper: the inner loop's cost)
-        c = _friction.kernel_constants(fr)
-        step, adv = _friction.kernel_step, _friction.kernel_advance
-
-        def predict(z, hl, th, om, a1):
-            # LuGre state at the stage times: exact frozen-velocity steps at the rod velocities
-            # predicted at h/4 and 3h/4 from the first stage
-            zm, hm = step(z, hl, lever(th + hq * om) * (om + hq * a1), hh, c)
-            ze, he = step(zm, hm, lever(th + 3 * hq * om) * (om + 3 * hq * a1), hh, c)
-            return zm, hm, ze, he
-
-        def advance(z, hl, th, om, th_new, om_new):
-            # final LuGre state from the actual rod velocities (split at a reversal)
-            return adv(z, hl, lever(th) * om, lever(th_new) * om_new, dt, c)
-
-        return PTOKernel(accel, predict, advance)
+            return PTOKernel(kernels.cylinder_accel, params=params, explain=explain)
+        return PTOKernel(kernels.cylinder_accel, kernels.cylinder_predict,
+                         kernels.cylinder_advance, params, explain)
 
     def outputs(self, time, theta, theta_dot, theta_ddot, pressure, friction, z, h) -> dict:
         """Pressure, forces, torques, flow, power, lever arm, cavitation, LuGre state."""

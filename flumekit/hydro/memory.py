@@ -20,8 +20,8 @@ once, in the simulator, for all three models:
 * :class:`ConvolutionMemory`: the impulse response K(t) sampled every h/2, the convolution by the
   trapezoidal rule on the step grid (Falnes 2002, Sec. 5.9).
 
-The methods work on Python floats: they run once per time step, where a numpy call costs more
-than the arithmetic (the convolution's dot product over the kernel's length excepted).
+Each model is a pair of compiled kernels over its state arrays (:mod:`flumekit.hydro.stepping`),
+called once per step by the compiled loop.
 
 References
 ----------
@@ -33,13 +33,13 @@ Falnes, J. (2002). Ocean Waves and Oscillating Systems. Cambridge University Pre
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from operator import mul
 
 import numpy as np
 import xarray as xr
+from numba import njit
 
 from flumekit.hydro.radiation import StateSpace
+from flumekit.hydro.stepping import BEGIN, FINISH
 
 
 class StageWeights:
@@ -62,17 +62,43 @@ class StageWeights:
         return (self.w21, self.w22, self.w32, self.w33, self.w41, self.w43, self.w44)
 
 
-class NoMemory:
-    """No radiation memory: μ = 0 at every stage."""
+class _Memory:
+    """A memory integrator: its compiled kernels and state (:mod:`flumekit.hydro.stepping`).
 
-    weights = StageWeights()
+    The state lives in ``c`` (complex) and ``r`` (real) arrays that the kernels advance in
+    place; :meth:`begin` and :meth:`finish` call the kernels from Python.
+    """
+
+    weights: StageWeights
+    c: np.ndarray
+    r: np.ndarray
+
+    @property
+    def kernels(self):
+        """The compiled ``(begin, finish)`` kernels of this model."""
+        raise NotImplementedError
 
     def begin(self, n: int, u1: float) -> tuple[float, float, float]:
-        """(M, P_h, P_f) of step ``n`` (module notes): all zero."""
-        return 0.0, 0.0, 0.0
+        """(M, P_h, P_f) of step ``n`` (module notes) from the state at its start."""
+        return self.kernels[0](int(n), float(u1), self.c, self.r)
 
     def finish(self, u1: float, u2: float, u3: float, u4: float) -> None:
-        """Nothing to advance."""
+        """Advance the state over the step from the four stage velocities."""
+        self.kernels[1](float(u1), float(u2), float(u3), float(u4), self.c, self.r)
+
+
+class NoMemory(_Memory):
+    """No radiation memory: μ = 0 at every stage (a modal model without modes)."""
+
+    def __init__(self):
+        self.weights = StageWeights()
+        self.c = np.zeros((7, 0), complex)
+        self.r = np.zeros(0)
+
+    @property
+    def kernels(self):
+        """The compiled ``(begin, finish)`` kernels of this model."""
+        return _modal_begin, _modal_finish
 
 
 def phi(z: np.ndarray, k: int) -> np.ndarray:
@@ -117,8 +143,29 @@ def phi(z: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
-@dataclass
-class ModalMemory:
+@njit(BEGIN, cache=True)
+def _modal_begin(n, u1, c, r):
+    # rows of c: e^z, e^{z/2}, the three input weights, the scaled states y, e^z y
+    s0 = sh = sf = 0j
+    for i in range(c.shape[1]):
+        y = c[5, i]
+        ey = c[0, i] * y
+        c[6, i] = ey
+        s0 += y
+        sh += c[1, i] * y
+        sf += ey
+    return s0.real, sh.real, sf.real
+
+
+@njit(FINISH, cache=True)
+def _modal_finish(u1, u2, u3, u4, c, r):
+    um = 0.5 * (u2 + u3)
+    for i in range(c.shape[1]):
+        c[5, i] = c[6, i] + c[2, i] * u1 + c[3, i] * um + c[4, i] * u4
+    return 0.0
+
+
+class ModalMemory(_Memory):
     """Exponential (ETDRK4) update of the radiation modes of a state-space model.
 
     The modal states are scaled, y_k = c_k x_k, so that μ = Re Σ y_k. Over a step,
@@ -140,46 +187,73 @@ class ModalMemory:
     Cox, S. M., Matthews, P. C. (2002), Eq. (26)-(29).
     """
 
-    model: StateSpace
-    step: float
-    y: list = field(init=False)
-    weights: StageWeights = field(init=False)
-
-    def __post_init__(self):
-        lam = np.asarray(self.model.poles, complex)
-        c = np.asarray(self.model.residues, complex)
-        h = self.step
+    def __init__(self, model: StateSpace, step: float):
+        self.model, self.step = model, step
+        lam = np.asarray(model.poles, complex)
+        c = np.asarray(model.residues, complex)
+        h = step
         z, zh = lam * h, lam * h / 2
         p1, p2, p3 = phi(z, 1), phi(z, 2), phi(z, 3)
         q1 = phi(zh, 1)
         eh = np.exp(zh)
-        self._e = np.exp(z).tolist()
-        self._eh = eh.tolist()
-        self._qa = (c * h * (p1 - 3 * p2 + 4 * p3)).tolist()
-        self._qm = (c * h * (4 * p2 - 8 * p3)).tolist()
-        self._qb = (c * h * (4 * p3 - p2)).tolist()
         g2 = float(np.real(np.sum(c * h / 2 * q1)))
         g4 = float(np.real(np.sum(c * eh * h / 2 * q1)))
         # μ₂ = P_h + g2 u₁, μ₃ = P_h + g2 u₂, μ₄ = P_f + g4 u₁ + g2 (2 u₃ − u₁)
         self.weights = StageWeights(w21=g2, w32=g2, w41=g4 - g2, w43=2.0 * g2)
-        self.y = [0j] * lam.size
-        self._ey = self.y
+        zero = np.zeros(lam.size, complex)
+        self.c = np.array([np.exp(z), eh, c * h * (p1 - 3 * p2 + 4 * p3),
+                           c * h * (4 * p2 - 8 * p3), c * h * (4 * p3 - p2), zero, zero])
+        self.r = np.zeros(0)
 
-    def begin(self, n: int, u1: float) -> tuple[float, float, float]:
-        """(M, P_h, P_f) of step ``n`` (module notes) from the modal states at its start."""
-        y = self.y
-        self._ey = ey = list(map(mul, self._e, y))
-        return sum(y).real, sum(map(mul, self._eh, y)).real, sum(ey).real
+    @property
+    def kernels(self):
+        """The compiled ``(begin, finish)`` kernels of this model."""
+        return _modal_begin, _modal_finish
 
-    def finish(self, u1: float, u2: float, u3: float, u4: float) -> None:
-        """Advance the modal states over the step."""
-        um = 0.5 * (u2 + u3)
-        self.y = [e + a * u1 + b * um + c * u4
-                  for e, a, b, c in zip(self._ey, self._qa, self._qm, self._qb)]
+    @property
+    def y(self) -> np.ndarray:
+        """The scaled modal states y_k [N m] at the start of the next step."""
+        return self.c[5]
 
 
-@dataclass
-class ConvolutionMemory:
+# layout of the convolution's real state: h, M, K(0), K(h/2), the full-step sums of this step
+# and the last, then K(m h) and K((m + 1/2) h) for m = 0..M+1, K((m + 1) h) and K((m + 1/2) h)
+# for m = M..0 (reversed), and the velocity history
+_H, _M, _K0, _KH0, _S1, _S1P, _HEAD = range(7)
+
+
+@njit(BEGIN, cache=True)
+def _convolution_begin(n, u1, c, r):
+    h, m, k0, khalf0 = r[_H], int(r[_M]), r[_K0], r[_KH0]
+    o_kint = _HEAD
+    o_khalf = o_kint + m + 2
+    o_k1r = o_khalf + m + 2
+    o_khr = o_k1r + m + 1
+    o_hist = o_khr + m + 1
+    r[o_hist + n] = u1
+    w0 = r[o_hist]
+    mu1 = h * (r[_S1P] - (0.5 * r[o_kint + n] * w0 if n <= m + 1 else 0.0) + 0.5 * k0 * u1)
+    lo = n - m if n > m else 0
+    base = m - (n - lo)
+    s_half = s1 = 0.0
+    for i in range(n - lo + 1):
+        w = r[o_hist + lo + i]
+        s_half += r[o_khr + base + i] * w
+        s1 += r[o_k1r + base + i] * w
+    r[_S1] = s1
+    p_half = h * (s_half - (0.5 * r[o_khalf + n] * w0 if n <= m else 0.0)
+                  - 0.5 * khalf0 * u1) + 0.25 * h * khalf0 * u1
+    p_full = h * (s1 - (0.5 * r[o_kint + n + 1] * w0 if n + 1 <= m + 1 else 0.0))
+    return mu1, p_half, p_full
+
+
+@njit(FINISH, cache=True)
+def _convolution_finish(u1, u2, u3, u4, c, r):
+    r[_S1P] = r[_S1]  # the full-step sum is the next step's memory torque
+    return 0.0
+
+
+class ConvolutionMemory(_Memory):
     """The convolution of the impulse response with the velocity history, trapezoidal rule.
 
     μ at t_n (and the part known at the step's start of μ at t_n + h/2 and t_n + h) is the
@@ -201,47 +275,28 @@ class ConvolutionMemory:
     Falnes, J. (2002), Eq. (5.168); Cummins (1962).
     """
 
-    irf: xr.DataArray
-    step: float
-    n_steps: int
-    history: np.ndarray = field(init=False)
-    weights: StageWeights = field(init=False)
-
-    def __post_init__(self):
-        h = self.step
-        lag = self.irf["lag"].values
+    def __init__(self, irf: xr.DataArray, step: float, n_steps: int):
+        self.irf, self.step, self.n_steps = irf, step, n_steps
+        h = step
+        lag = irf["lag"].values
         m = math.floor(float(lag[-1]) / h + 1e-9)
-        kk = np.interp(0.5 * h * np.arange(2 * m + 4), lag, self.irf.values, right=0.0)
-        self._m = m
-        self._k0, self._khalf0 = float(kk[0]), float(kk[1])
-        self._kint = kk[0::2].tolist()  # K(m h), m = 0..M+1
-        self._khalf = kk[1::2].tolist()  # K((m + 1/2) h)
-        self._k1r = kk[2::2][: m + 1][::-1].copy()  # K((m + 1) h), reversed
-        self._khr = kk[1::2][: m + 1][::-1].copy()  # K((m + 1/2) h), reversed
-        self.history = np.zeros(self.n_steps + 1)
-        self._s1 = self._s1_prev = 0.0
-        self.weights = StageWeights(w22=0.25 * h * self._k0, w33=0.25 * h * self._k0,
-                                    w44=0.5 * h * self._k0)
+        kk = np.interp(0.5 * h * np.arange(2 * m + 4), lag, irf.values, right=0.0)
+        self.weights = StageWeights(w22=0.25 * h * kk[0], w33=0.25 * h * kk[0],
+                                    w44=0.5 * h * kk[0])
+        self.c = np.zeros((7, 0), complex)
+        self.r = np.concatenate([[h, m, kk[0], kk[1], 0.0, 0.0], kk[0::2], kk[1::2],
+                                 kk[2::2][: m + 1][::-1], kk[1::2][: m + 1][::-1],
+                                 np.zeros(n_steps + 1)])
 
-    def begin(self, n: int, u1: float) -> tuple[float, float, float]:
-        """(M, P_h, P_f) of step ``n`` (module notes); stores θ̇_n in the history."""
-        h, m, hist = self.step, self._m, self.history
-        hist[n] = u1
-        w0 = hist[0]
-        mu1 = h * (self._s1_prev - (0.5 * self._kint[n] * w0 if n <= m + 1 else 0.0)
-                   + 0.5 * self._k0 * u1)
-        lo = n - m if n > m else 0
-        win = hist[lo:n + 1]
-        s_half = float(np.dot(self._khr[m - (n - lo):], win))
-        self._s1 = float(np.dot(self._k1r[m - (n - lo):], win))
-        p_half = h * (s_half - (0.5 * self._khalf[n] * w0 if n <= m else 0.0)
-                      - 0.5 * self._khalf0 * u1) + 0.25 * h * self._khalf0 * u1
-        p_full = h * (self._s1 - (0.5 * self._kint[n + 1] * w0 if n + 1 <= m + 1 else 0.0))
-        return mu1, p_half, p_full
+    @property
+    def kernels(self):
+        """The compiled ``(begin, finish)`` kernels of this model."""
+        return _convolution_begin, _convolution_finish
 
-    def finish(self, u1: float, u2: float, u3: float, u4: float) -> None:
-        """Keep the full-step sum for the next step's memory torque."""
-        self._s1_prev = self._s1
+    @property
+    def history(self) -> np.ndarray:
+        """The stored velocity history θ̇_n [rad s-1]."""
+        return self.r[-(self.n_steps + 1):]
 
 
 def memory_integrator(radiation, step: float, n_steps: int):

@@ -24,7 +24,7 @@ Integrator: fixed-step exponential Runge-Kutta ETDRK4 (Cox & Matthews 2002): cla
 set no step limit (module notes of :mod:`flumekit.flap.simulator` for the PTO's own stiff
 states). The Runge-Kutta step is written once; each radiation model is its own memory
 integrator (:mod:`flumekit.hydro.memory`) that gives the memory torque at the four stages. The
-loop over steps is plain Python on floats (numpy calls per step cost more than the step);
+loop over steps is compiled (:mod:`flumekit.hydro.stepping`), sequential by nature;
 everything else is vectorised per chunk of steps.
 
 Energy balance. With the stored energy E = ½ (I + A∞) θ̇² + V(θ) (V = ½ C θ², or
@@ -70,7 +70,6 @@ from flumekit import conventions
 from flumekit.errors import FlumekitError
 from flumekit.hydro.coefficients import check_passive
 from flumekit.hydro.excitation import excitation_torque, transfer_function
-from flumekit.hydro.memory import memory_integrator
 from flumekit.hydro.radiation import StateSpace
 
 
@@ -137,19 +136,25 @@ class BodyDynamics:
 # --- PTOs ------------------------------------------------------------------------------------
 
 class PTOKernel(NamedTuple):
-    """Scalar functions of a PTO for the time-stepping loop (plain floats, no numpy).
+    """Scalar kernels of a PTO for the time-stepping loop (:mod:`flumekit.hydro.stepping`).
 
-    ``accel(t, θ, θ̇, rest, s0, s1) -> (θ̈, out0, out1)``: the acceleration given the sum
-    ``rest`` of every other torque and the PTO's two internal states (s0, s1); out0 and out1
-    are recorded at every step (e.g. a chamber pressure and a friction force).
-    ``predict(s0, s1, θ, θ̇, θ̈) -> (s0, s1, s0', s1')``: internal states at the middle and the
-    end of the step, predicted from its start (None for a PTO without states).
-    ``advance(s0, s1, θ, θ̇, θ_new, θ̇_new) -> (s0, s1)``: states at the end of the step.
+    ``accel(t, θ, θ̇, rest, s0, s1, params) -> (θ̈, out0, out1)``: the acceleration given the
+    sum ``rest`` of every other torque and the PTO's two internal states (s0, s1); out0 and out1
+    are recorded at every step (e.g. a chamber pressure and a friction force); a non-finite θ̈
+    stops the run. ``predict(s0, s1, θ, θ̇, θ̈, params) -> (s0, s1, s0', s1')``: internal
+    states at the middle and the end of the step, predicted from its start (None for a PTO
+    without states). ``advance(s0, s1, θ, θ̇, θ_new, θ̇_new, params) -> (s0, s1)``: states at
+    the end of the step. ``params``: the float array the kernels take. ``explain(θ)``: why the
+    PTO gave no finite θ̈ at θ (None if it cannot say). Compiled kernels (numba, with the
+    signatures of :mod:`flumekit.hydro.stepping`) run in the compiled loop; Python functions run
+    the same loop uncompiled.
     """
 
     accel: Callable
     predict: Callable | None = None
     advance: Callable | None = None
+    params: np.ndarray | None = None
+    explain: Callable | None = None
 
 
 class PTO(Protocol):
@@ -176,8 +181,9 @@ class LinearPTO:
         check_parameter("pto damping", self.damping, 0.0)
 
     def kernel(self, inertia, dt):
-        nu, inv = self.damping, 1.0 / inertia
-        return PTOKernel(lambda t, th, om, rest, s0, s1: ((rest - nu * om) * inv, 0.0, 0.0))
+        from flumekit.hydro.stepping import linear_accel
+
+        return PTOKernel(linear_accel, params=np.array([self.damping, 1.0 / inertia]))
 
     def outputs(self, time, theta, theta_dot, theta_ddot, out0, out1, s0, s1):
         t = self.damping * theta_dot
@@ -200,7 +206,8 @@ class CallablePTO:
 
     def kernel(self, inertia, dt):
         f, inv = self.torque, 1.0 / inertia
-        return PTOKernel(lambda t, th, om, rest, s0, s1: ((rest - f(t, th, om)) * inv, 0.0, 0.0))
+        return PTOKernel(lambda t, th, om, rest, s0, s1, p: ((rest - f(t, th, om)) * inv, 0.0,
+                                                             0.0))
 
     def outputs(self, time, theta, theta_dot, theta_ddot, out0, out1, s0, s1):
         t = np.array([self.torque(a, b, c) for a, b, c in zip(time, theta, theta_dot)])
@@ -350,6 +357,8 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
     term: for slowly varying losses beyond the model, e.g. the virtual flume's); its work is
     ``work_extra``. Returns a dict of arrays for :func:`to_dataset`.
     """
+    from flumekit.hydro.memory import memory_integrator
+
     dt = check_parameter("dt", dt, 0.0, strict=True)
     theta0 = check_parameter("theta0", theta0)
     theta_dot0 = check_parameter("theta_dot0", theta_dot0)
@@ -363,7 +372,10 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
     except TypeError as e:
         raise BadParameterError(str(e)) from None
     guard = _Guard(body, dt, getattr(pto, "damping", 0.0), energy_growth)
-    state = _BodyState(theta0, theta_dot0)
+    state = np.array([theta0, theta_dot0, 0.0, 0.0])
+    body_vec = np.array([dt, body.hydrostatic_stiffness, body.drag_coefficient,
+                         1.0 if body.restoring == "sine" else 0.0, *memory.weights.astuple()])
+    extra = _Extra.of(extra_torque)
     keep: dict[str, list] = {}
     carry = None
     for first in range(0, n_steps + 1, chunk):
@@ -377,12 +389,11 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
         if not np.all(np.isfinite(exc)):
             raise BadParameterError("bad parameter: the excitation torque is not finite")
         try:
-            raw = _run_chunk(first, last, exc.tolist(), state, memory, final, body, kern, dt,
-                             extra_torque)
+            raw = _run_chunk(first, last, exc, state, memory, final, body_vec, kern, extra)
         except _StepFailure as e:
             guard.check_angle(e.theta[: e.step - first], first, t0)  # the earlier symptom
             raise guard.diverged(e.step, t0 + e.step * dt, e.what) from None
-        guard.check_angle(raw.theta, first, t0)
+        guard.check_angle(raw[0], first, t0)
         arrays = _post(raw, t, exc[::2][: last - first], body, pto)
         carry = _energies(arrays, dt, carry)
         guard.check_energy(arrays, first, t0)
@@ -446,10 +457,9 @@ class _Guard:
                                 f"{supplied:.4g} J supplied")
 
 
-def _post(raw: _Record, t, exc, body: BodyDynamics, pto) -> dict:
-    """Torques and powers of a chunk (vectorised)."""
-    th, om, acc, mu = (np.asarray(v) for v in (raw.theta, raw.theta_dot, raw.theta_ddot,
-                                                raw.memory))
+def _post(raw: np.ndarray, t, exc, body: BodyDynamics, pto) -> dict:
+    """Torques and powers of a chunk (vectorised) from its record (:func:`_run_chunk`)."""
+    th, om, acc, mu, out0, out1, s0, s1, xt = raw
     sine = body.restoring == "sine"
     a = {"theta": th, "theta_dot": om, "theta_ddot": acc,
          "torque_excitation": exc,
@@ -458,11 +468,9 @@ def _post(raw: _Record, t, exc, body: BodyDynamics, pto) -> dict:
          "torque_gravity": body.hydrostatic_stiffness * (np.sin(th) if sine else th),
          "torque_inertia": body.inertia * acc}
     a["torque_hydrodynamic"] = exc + a["torque_radiation"] + a["torque_drag"]
-    xt = np.asarray(raw.extra)
     a["torque_extra"] = xt
     p = (pto if pto is not None else LinearPTO(0.0)).outputs(
-        t, th, om, acc, np.asarray(raw.out0), np.asarray(raw.out1), np.asarray(raw.s0),
-        np.asarray(raw.s1))
+        t, th, om, acc, out0, out1, s0, s1)
     a.update(p)
     c = body.hydrostatic_stiffness
     a["energy_stored"] = (0.5 * (body.inertia + body.added_inertia_infinite) * om**2
@@ -502,99 +510,48 @@ def _energies(a: dict, dt: float, carry):
     return new
 
 
-@dataclass
-class _BodyState:
-    """State of the body and the PTO at the start of the next step to integrate."""
+def _run_chunk(first: int, last: int, exc: np.ndarray, state: np.ndarray, memory, final: bool,
+               body: np.ndarray, kern: PTOKernel, extra: _Extra) -> np.ndarray:
+    """Steps ``first`` to ``last`` of the run (:func:`flumekit.hydro.stepping.steps`):
+    compiled when every part is, else the same loop in Python; ``state`` and ``memory`` are
+    advanced in place. Returns the (9, last - first) record of the steps."""
+    from flumekit.hydro import stepping
 
-    theta: float
-    theta_dot: float
-    pto0: float = 0.0
-    pto1: float = 0.0
+    begin, finish = memory.kernels
+    predict = kern.predict if kern.predict is not None else stepping.no_predict
+    advance = kern.advance if kern.advance is not None else stepping.no_advance
+    params = kern.params if kern.params is not None else np.zeros(0)
+    parts = (begin, finish, kern.accel, predict, advance, extra.function)
+    loop = stepping.steps if stepping.is_compiled(*parts) else stepping.steps.py_func
+    out = np.zeros((9, last - first))
+    status, step, theta = loop(first, last, exc, state, body, final, begin, finish, memory.c,
+                               memory.r, kern.accel, predict, advance, params, extra.function,
+                               extra.params, extra.state, extra.record, extra.active, out)
+    if status:
+        why = kern.explain(theta) if kern.explain is not None else None
+        raise _StepFailure(step, why or "the state became non-finite", out[0])
+    return out
 
 
-@dataclass
-class _Record:
-    """Values at every step of a chunk, for :func:`_post` (lists of floats)."""
+class _Extra(NamedTuple):
+    """An extra torque on the body as the stepping loop takes it (:func:`integrate`)."""
 
-    theta: list
-    theta_dot: list
-    theta_ddot: list
-    memory: list
-    out0: list
-    out1: list
-    s0: list
-    s1: list
-    extra: list
+    function: Callable
+    params: np.ndarray
+    state: np.ndarray
+    record: np.ndarray
+    active: bool
 
     @classmethod
-    def empty(cls, n: int) -> _Record:
-        return cls(*([0.0] * n for _ in range(9)))
+    def of(cls, extra: Callable | None) -> _Extra:
+        from flumekit.hydro import stepping
 
-
-def _run_chunk(first: int, last: int, exc: list, state: _BodyState, memory, final: bool,
-               body: BodyDynamics, kern: PTOKernel, h: float,
-               extra: Callable | None) -> _Record:
-    """Steps ``first`` to ``last`` of the run (module notes): classical RK4 for (θ, θ̇) with the
-    memory torque of ``memory`` (:mod:`flumekit.hydro.memory`) at the four stages; ``state``
-    and ``memory`` are advanced in place."""
-    C, cd = body.hydrostatic_stiffness, body.drag_coefficient
-    sine = body.restoring == "sine"
-    pto_accel, predict, advance = kern
-    begin, finish = memory.begin, memory.finish
-    w21, w22, w32, w33, w41, w43, w44 = memory.weights.astuple()
-    sin, isfinite = math.sin, math.isfinite
-    th, om, z, hl = state.theta, state.theta_dot, state.pto0, state.pto1
-    n1 = last - first
-    rec = _Record.empty(n1)
-    o_th, o_om, o_acc, o_mu = rec.theta, rec.theta_dot, rec.theta_ddot, rec.memory
-    o_0, o_1, o_z, o_h, o_x = rec.out0, rec.out1, rec.s0, rec.s1, rec.extra
-    xt = 0.0
-    hh, h6 = 0.5 * h, h / 6.0
-    n = first
-    try:
-        for n in range(first, last):
-            k = n - first
-            t = n * h
-            # memory torque now, and the parts of the later stages' memory known at the start
-            mu1, p_half, p_full = begin(n, om)
-            if extra is not None:  # frozen over the step (operator splitting)
-                xt = extra(2 * n, th, om)
-            rest = exc[2 * k] - mu1 - (C * sin(th) if sine else C * th) - cd * om * abs(om)
-            a1, p1, f1 = pto_accel(t, th, om, rest + xt, z, hl)
-            o_th[k], o_om[k], o_acc[k], o_mu[k], o_0[k], o_1[k] = th, om, a1, mu1, p1, f1
-            o_z[k], o_h[k], o_x[k] = z, hl, xt
-            if not (isfinite(th) and isfinite(om) and isfinite(a1)):
-                raise _StepFailure(n, "the state became non-finite", o_th)
-            if final and k == n1 - 1:
-                break
-            te_h, te_f = exc[2 * k + 1] + xt, exc[2 * k + 2] + xt
-            if predict is not None:
-                zm, hm, ze, he = predict(z, hl, th, om, a1)
-            else:
-                zm = hm = ze = he = 0.0
-            # stages 2 and 3 at t + h/2, 4 at t + h
-            om2 = om + hh * a1
-            th2 = th + hh * om
-            a2 = pto_accel(t + hh, th2, om2, te_h - (p_half + w21 * om + w22 * om2)
-                           - (C * sin(th2) if sine else C * th2) - cd * om2 * abs(om2), zm, hm)[0]
-            om3 = om + hh * a2
-            th3 = th + hh * om2
-            a3 = pto_accel(t + hh, th3, om3, te_h - (p_half + w32 * om2 + w33 * om3)
-                           - (C * sin(th3) if sine else C * th3) - cd * om3 * abs(om3), zm, hm)[0]
-            om4 = om + h * a3
-            th4 = th + h * om3
-            a4 = pto_accel(t + h, th4, om4, te_f - (p_full + w41 * om + w43 * om3 + w44 * om4)
-                           - (C * sin(th4) if sine else C * th4) - cd * om4 * abs(om4), ze, he)[0]
-            finish(om, om2, om3, om4)
-            th_new = th + h6 * (om + 2.0 * (om2 + om3) + om4)
-            om_new = om + h6 * (a1 + 2.0 * (a2 + a3) + a4)
-            if advance is not None:
-                z, hl = advance(z, hl, th, om, th_new, om_new)
-            th, om = th_new, om_new
-    except SimulationError as e:  # a PTO leaving its range: say at which step
-        raise _StepFailure(n, str(e), o_th) from None
-    state.theta, state.theta_dot, state.pto0, state.pto1 = th, om, z, hl
-    return rec
+        empty, none = np.zeros(0), np.zeros((0, 0))
+        if extra is None:
+            return cls(stepping.no_extra, empty, empty, none, False)
+        if hasattr(extra, "kernel"):  # compiled: (function, params, state, record)
+            return cls(*extra.kernel(), True)
+        return cls(lambda j, th, om, p, s, r: extra(j, th, om), empty, empty, none, True)
 
 
 _ATTRS = {

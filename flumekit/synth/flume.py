@@ -178,9 +178,9 @@ class FlumeLosses:
 class ExtraTorque:
     """The flume's extra torque as a scalar function of (half step j, θ, θ̇) for the simulator.
 
-    Called once per simulator step (~4e4 times per record), so the sum is a closure over
-    local floats and lists (:meth:`__call__`); it keeps every call's parts, which
-    :meth:`record` returns for the truth. One instance serves one simulation.
+    Called once per simulator step, as a compiled kernel (:meth:`kernel`,
+    :mod:`flumekit.synth.kernels`); it keeps every call's parts, which :meth:`record` returns
+    for the truth. One instance serves one simulation.
 
     Parameters
     ----------
@@ -204,131 +204,59 @@ class ExtraTorque:
                  campaign, losses: FlumeLosses, compression_sign: int,
                  pressure_loss_coefficient: float = 0.0, time_step: float = 0.01,
                  rho: float = 1000.0, g: float = 9.81):
+        from flumekit.synth import kernels
+
         flap, pto = campaign.flap, campaign.pto
-        eta = np.asarray(eta_front, dtype=float).tolist()
+        eta = np.asarray(eta_front, dtype=float)
         d = campaign.flume.water_depth - flap.hinge_height  # h − c [m]
-        lf = flap.height  # flap length above the hinge [m]
-        inv_w = 1.0 / omega
-        k_drag = rho * losses.drag_coefficient_kc1 * flap.width / 8.0
-        # C_d ∝ KC^(-1/3) with KC = 2π Θ: (KC²)^(-1/6), KC² = 4π² (θ² + (θ̇/ω)²)
-        four_pi2, kc2_min = 4 * math.pi**2, losses.kc_min**2
-        k_wet = 0.5 * rho * g * flap.width * d * losses.wetted_length
-        k_over = losses.overtopping * excitation
-        load = losses.bearing_load + excitation * amplitude / (0.5 * d)
-        t_bear = losses.bearing_friction * losses.bearing_radius * load
-        inv_wb = 1.0 / losses.bearing_rate
-        p_valve, inv_vc, area = losses.valve_pressure, 1.0 / losses.valve_speed, pto.bore_area
-        s = float(compression_sign)
+        k_p = pressure_loss_coefficient
         th_grid = np.linspace(-1.2, 1.2, 2401)
         m_tab = rod_kinematics(th_grid, np.zeros_like(th_grid), pto.bed_anchor,
                                pto.flap_anchor).lever_arm
-        th0, inv_dth = float(th_grid[0]), 1.0 / float(th_grid[1] - th_grid[0])
-        mt, dmt = m_tab.tolist(), np.diff(m_tab).tolist()
-        n_tab = len(dmt) - 1
-        cos, tanh, expm1, exp = math.cos, math.tanh, math.expm1, math.exp
-        k_p, tau_c, half_step = pressure_loss_coefficient, losses.compliance_time, 0.5 * time_step
-        lag = [0, 0.0]  # half-step index and the compliance's lagged pressure [Pa] then
-        # vapour cavity: half-step index, cavity volume over the bore area [m], its rate [m s-1]
-        cav = [0, 0.0, 0.0]
-        cav_open = [False]  # whether the last call had a cavity
-        phi = losses.vapour_cavity
-        w_refill = math.sqrt((pto.atmospheric_pressure - pto.vapour_pressure) / k_p) \
-            if k_p > 0 else math.inf  # θ̇ the refill keeps up with at P_v [rad s-1]
-        p_cav = pto.atmospheric_pressure - pto.vapour_pressure  # suction that cavitates [Pa]
+        consts = np.zeros(kernels.N_PARAMS)
+        consts[:] = (
+            d, flap.height, 1.0 / omega,
+            rho * losses.drag_coefficient_kc1 * flap.width / 8.0,
+            # C_d ∝ KC^(-1/3) with KC = 2π Θ: (KC²)^(-1/6), KC² = 4π² (θ² + (θ̇/ω)²)
+            4 * math.pi**2, losses.kc_min**2,
+            0.5 * rho * g * flap.width * d * losses.wetted_length,
+            losses.overtopping * excitation,
+            losses.bearing_friction * losses.bearing_radius
+            * (losses.bearing_load + excitation * amplitude / (0.5 * d)),
+            1.0 / losses.bearing_rate, losses.valve_pressure, 1.0 / losses.valve_speed,
+            pto.bore_area, float(compression_sign),
+            float(th_grid[0]), 1.0 / float(th_grid[1] - th_grid[0]), m_tab.size - 2,
+            k_p, losses.compliance_time, 0.5 * time_step, losses.vapour_cavity,
+            # θ̇ the refill keeps up with at P_v [rad s-1]
+            math.sqrt((pto.atmospheric_pressure - pto.vapour_pressure) / k_p)
+            if k_p > 0 else math.inf,
+            pto.atmospheric_pressure - pto.vapour_pressure,  # suction that cavitates [Pa]
+            eta.size)
+        self._params = np.concatenate([consts, eta, m_tab, np.diff(m_tab)])
+        self._state = np.zeros(kernels.N_STATE)
+        self._record = np.zeros(((eta.size + 1) // 2, kernels.N_TERMS))
+        self._function = kernels.flume_torque
 
-        def terms(j, th, om):
-            # one call per simulator step: everything inline (no nested calls), the lever arm
-            # interpolated once
-            ef = eta[j]
-            c = cos(th)
-            dw = (d + ef) / c
-            dw = lf if dw > lf else (0.0 if dw < 0 else dw)
-            kc2 = four_pi2 * (th * th + (om * inv_w) ** 2)
-            dw2 = dw * dw
-            t_d = -k_drag * (kc2 if kc2 > kc2_min else kc2_min) ** (-1.0 / 6.0) \
-                * dw2 * dw2 * om * abs(om)
-            t_w = k_wet * ef * ef
-            over = ef - (lf * c - d)
-            t_o = -k_over * over if over > 0 else 0.0
-            t_b = -t_bear * tanh(om * inv_wb)
-            u = (th - th0) * inv_dth
-            i = int(u)
-            i = 0 if i < 0 else (n_tab if i > n_tab else i)
-            m = mt[i] + (u - i) * dmt[i]
-            so = s * om  # compression rate [rad s-1]
-            p_k = p_c = p_v = 0.0
-            p13u = k_p * so * abs(om)  # Eq. (13)'s K_p pressure [Pa]
-            # clamped at P_v as the simulator clamps it, there with I_p θ̈ added, which this
-            # term does not see (at H = 0.3 m the two clamps part for a sample or two)
-            p13 = p13u if p13u > -p_cav else -p_cav
-            dd = -so - w_refill  # > 0: the suction outruns the refill
-            # the chamber holds the compression stroke's resistances (K_p θ̇² and the valve)
-            # through the compliance's first-order lag (module notes); a cavity holds nothing
-            x = cav[1] + cav[2] * (j - cav[0]) * half_step if phi > 0 else 0.0
-            x = x if x > 0 else 0.0
-            cav[0], cav[1] = j, x
-            if x > 0:
-                # discrete vapour cavity (module notes): the chamber stays at P_v while it
-                # lasts (ΔP = P_v - Eq. (13)'s K_p pressure); it grows by φ times the suction's
-                # excess over the refill, shrinks at the refill plus the compression rate
-                # (explicit over the time to the next call)
-                p_k = -p_cav - p13
-                cav[2] = (m if m > 0 else -m) * (phi * dd if dd > 0 else dd)
-                p_q = 0.0
-            else:
-                if so > 0 and p_valve > 0:
-                    p_v = -p_valve * expm1(-abs(m * om) * inv_vc)
-                p_q = k_p * om * om + p_v if so > 0 else 0.0
-            if x <= 0 and cav_open[0]:
-                lag[1] = -p_cav - p13u - p_v + p_q  # collapse: the chamber goes on from P_v
-            elif tau_c > 0:
-                lag[1] = p_q + (lag[1] - p_q) * exp(-(j - lag[0]) * half_step / tau_c)
-            else:
-                lag[1] = p_q
-            lag[0] = j
-            cav_open[0] = x > 0
-            if x <= 0:
-                # the chamber's pressure, at P_v at least: the suction cavitates it once the
-                # lag's stored pressure has returned, and only then can a cavity open
-                p = p13u + p_v + lag[1] - p_q
-                cav[2] = 0.0
-                if p <= -p_cav:
-                    p = -p_cav
-                    if phi > 0 and dd > 0:
-                        cav[2] = (m if m > 0 else -m) * phi * dd
-                p_c = p - p13 - p_v
-            if p_v == 0.0 and p_c == 0.0 and p_k == 0.0:
-                return t_d, t_w, t_o, t_b, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-            ma = m * area
-            return t_d, t_w, t_o, t_b, p_v, ma * p_v, p_c, ma * p_c, p_k, ma * p_k
-
-        seen = self._seen = []
-        keep = seen.append
-
-        def total(j, th, om):
-            parts = terms(j, th, om)
-            keep(parts)
-            t_d, t_w, t_o, t_b, _, t_v, _, t_c, _, t_k = parts
-            return t_d + t_w + t_o + t_b + t_v + t_c + t_k
-
-        self.terms = terms
-        self._total = total
+    def kernel(self):
+        """The compiled torque, its constants, state and record (:mod:`flumekit.synth.kernels`)
+        for the simulator's loop (:func:`flumekit.hydro.simulation.integrate`)."""
+        return self._function, self._params, self._state, self._record
 
     def __call__(self, j: int, th: float, om: float) -> float:
-        return self._total(j, th, om)
+        return self._function(int(j), float(th), float(om), self._params, self._state,
+                              self._record)
 
     def record(self, step: int = 1) -> dict[str, np.ndarray]:
-        """Every term as the simulator used it, one value per ``step`` calls [N m], [Pa].
+        """Every term as the simulator used it, one value per ``step`` steps [N m], [Pa].
 
         The simulator calls the torque once per time step at the step's start state (see
-        :func:`flumekit.flap.simulator.simulate`), so the k-th call is the k-th output sample.
+        :func:`flumekit.flap.simulator.simulate`), into the step's row of the record.
         """
-        parts = np.array(self._seen[::step], dtype=float).reshape(-1, 10)
         names = ("torque_vortex_drag", "torque_wetted_length", "torque_overtopping",
                  "torque_bearing", "chamber_pressure_valve", "torque_valve",
                  "chamber_pressure_compliance", "torque_compliance",
                  "chamber_pressure_cavity", "torque_cavity")
-        return dict(zip(names, parts.T))
+        return dict(zip(names, self._record[::step].T.copy()))
 
 
 @dataclass(frozen=True)

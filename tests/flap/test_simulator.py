@@ -430,22 +430,38 @@ def test_against_the_simulated_virtual_flume(campaign):
     assert np.sqrt(np.mean((ds["theta"].values[sel] - ref) ** 2)) < 0.02 * amp
 
 
-def test_friction_adapter_matches_the_flap_package(campaign):
+def test_compiled_friction_kernels_match_the_numpy_model(campaign):
+    """The compiled LuGre kernels against the vectorised model of flumekit.flap.friction."""
     from flumekit.flap import friction as fr
+    from flumekit.flap import kernels
 
     model = fr.LuGre.from_campaign(campaign.pto.friction)
-    step, advance, force = S._friction_kernels(model)
+    c = fr.kernel_constants(model)
     rng = np.random.default_rng(7)
     z = rng.uniform(-1, 1, 50) * model.static_force / model.sigma0
     h = rng.uniform(0, model.film_max, 50)
     v = rng.normal(0, 0.1, 50)
-    np.testing.assert_allclose([force(*a) for a in zip(z, h, v)],
+    np.testing.assert_allclose([kernels.lugre_force(*a, c) for a in zip(z, h, v)],
                                fr.friction_force((z, h), v, model), rtol=1e-12, atol=1e-12)
+    # the exact frozen-velocity step (module notes of flumekit.flap.friction), from the
+    # vectorised Stribeck and film functions: the film relaxes towards h_ss with τ_hp (it is
+    # below h_ss) or τ_hm, and g takes the film at the middle of the step
+    dt = 0.03
+    hss = fr.film_steady_state(v, model)
+    tau = np.where(h <= hss, model.tau_hp, model.tau_hm)
+    h_mid = hss + (h - hss) * np.exp(-0.5 * dt / tau)
+    g = fr.stribeck(v, h_mid, model)
+    zss = np.sign(v) * g / model.sigma0
+    z_ref = zss + (z - zss) * np.exp(-model.sigma0 * np.abs(v) / g * dt)
+    h_ref = hss + (h - hss) * np.exp(-dt / tau)
+    got = np.array([kernels.lugre_step(*a, dt, c) for a in zip(z, h, v)])
+    np.testing.assert_allclose(got[:, 0], z_ref, rtol=1e-12, atol=1e-18)
+    np.testing.assert_allclose(got[:, 1], h_ref, rtol=1e-12, atol=1e-15)
+    # a reversal inside the step: two frozen steps split at the crossing
     for a in zip(z[:10], h[:10], v[:10]):
-        assert step(*a, 0.03) == pytest.approx(tuple(fr.friction_step(a[:2], a[2], 0.03, model)),
-                                               rel=1e-12)
-        assert advance(a[0], a[1], a[2], -a[2], 0.03) == pytest.approx(
-            tuple(fr.friction_advance(a[:2], a[2], -a[2], 0.03, model)), rel=1e-12)
+        mid = kernels.lugre_step(a[0], a[1], 0.5 * a[2], 0.5 * dt, c)
+        assert kernels.lugre_advance(a[0], a[1], a[2], -a[2], dt, c) == pytest.approx(
+            kernels.lugre_step(*mid, -0.5 * a[2], 0.5 * dt, c), rel=1e-12)
 
 
 def test_summary_and_figure_helpers(campaign, ss):

@@ -1,0 +1,207 @@
+"""Compiled scalar kernels of the flap PTO: the modified LuGre friction and the hydraulic cylinder.
+
+The friction's state equations are integrated sample by sample (each step needs the last), and
+the simulator evaluates the cylinder four times per Runge-Kutta step, so these loops and kernels
+are compiled (numba, cached on disk). The physics and its corrections to the paper's equations
+are documented where the models are defined: :mod:`flumekit.flap.friction` (Brito et al. 2020,
+Appendix B) and :mod:`flumekit.flap.simulator` (Eqs. 12-14). The PTO kernels have the
+signatures of :mod:`flumekit.hydro.stepping` and take their parameters as one float array
+(:func:`cylinder_params`).
+
+This module imports numba; :mod:`flumekit.flap` imports it only inside the functions that run
+a loop.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from flumekit.hydro.stepping import ACCEL, ADVANCE, PREDICT
+
+__all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_predict",
+           "friction_loop", "lugre_advance", "lugre_force", "lugre_step"]
+
+
+@njit(cache=True)
+def lugre_step(z, h, v, dt, c):
+    """One exact frozen-velocity step of Eqs. (A4) and (A6).
+
+    Parameters
+    ----------
+    z : float
+        Bristle deflection [m].
+    h : float
+        Film thickness parameter [-].
+    v : float
+        Rod velocity, frozen over the step [m s-1].
+    dt : float
+        Step [s].
+    c : ndarray
+        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+
+    Returns
+    -------
+    z, h : float
+        The state at the end of the step.
+    """
+    s0, fc, fs, ivs, n = c[0], c[3], c[4], c[5], c[6]
+    vb, kf, hmax, thp, thm, th0 = c[7], c[8], c[9], c[10], c[11], c[12]
+    a = abs(v)
+    # film state, Eqs. (A6)-(A8): exact exponential towards h_ss for frozen v
+    if a == 0.0:
+        hss, tau = 0.0, th0
+    else:
+        hss = kf * a ** (2.0 / 3.0) if a < vb else hmax
+        tau = thp if h <= hss else thm
+    eh = math.exp(-0.5 * dt / tau)
+    if a == 0.0:  # dwell: the bristles hold their deflection
+        return z, hss + (h - hss) * eh * eh
+    hmid = hss + (h - hss) * eh
+    x = a * ivs
+    g = fc + ((1.0 - hmid) * fs - fc) * math.exp(-(x if n == 1.0 else x ** n))
+    zss = g / s0 if v > 0 else -g / s0  # steady deflection for this v
+    # Eq. (A4) for frozen v: dz/dt = r (z_ss - z), r = s0 |v| / g
+    return zss + (z - zss) * math.exp(-s0 * a / g * dt), hss + (h - hss) * eh * eh
+
+
+@njit(cache=True)
+def lugre_advance(z, h, v0, v1, dt, c):
+    """Advance the state for a velocity linear from ``v0`` to ``v1`` [m s-1] over ``dt`` [s].
+
+    The step is split at a velocity reversal, else taken at the mid-step velocity
+    (:func:`lugre_step`, same parameters and returns).
+    """
+    if v0 * v1 < 0.0:
+        s = v0 / (v0 - v1)
+        z, h = lugre_step(z, h, 0.5 * v0, s * dt, c)
+        return lugre_step(z, h, 0.5 * v1, (1.0 - s) * dt, c)
+    return lugre_step(z, h, 0.5 * (v0 + v1), dt, c)
+
+
+@njit(cache=True)
+def lugre_force(z, h, v, c):
+    """Friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3 with the corrected Eq. A5) at the
+    state (z [m], h [-]) and rod velocity v [m s-1]."""
+    s0, s1, s2, fc, fs, ivs, n = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
+    x = abs(v) * ivs
+    g = fc + ((1.0 - h) * fs - fc) * math.exp(-(x if n == 1.0 else x ** n))  # Eq. (A5)
+    return s0 * z + s1 * (v - s0 * abs(v) * z / g) + s2 * v  # Eqs. (A3)-(A4)
+
+
+@njit(cache=True)
+def friction_loop(v, dt, z, h, substeps, c, zs, hs):
+    """The state at every sample of a velocity series (:func:`flumekit.flap.friction.
+    friction_series`): ``substeps`` steps of :func:`lugre_advance` per interval, written into
+    ``zs`` and ``hs`` from the initial state (z, h)."""
+    zs[0], hs[0] = z, h
+    hsub = dt / substeps
+    for k in range(1, v.size):
+        v0, dv = v[k - 1], (v[k] - v[k - 1]) / substeps
+        if substeps == 1:
+            z, h = lugre_advance(z, h, v0, v[k], dt, c)
+        else:
+            for j in range(substeps):
+                z, h = lugre_advance(z, h, v0 + j * dv, v0 + (j + 1) * dv, hsub, c)
+        zs[k], hs[k] = z, h
+
+
+# --- the hydraulic cylinder (flumekit.flap.simulator.HydraulicCylinder) ----------------------
+# layout of the parameter array: scalars, the 13 friction constants, the lever-arm table
+_TH_LO, _INV_DTH, _N_TAB, _S_COMP, _AREA, _KP, _IP, _J0, _PCAV, _FRICTION, _DT = range(11)
+_C = 11  # friction constants
+_TAB = _C + 13  # lever arms m(θ) at the table's nodes, then their differences
+
+
+def cylinder_params(theta_lo: float, dtheta: float, lever: np.ndarray, bore_area: float,
+                    pressure_loss_coefficient: float, fluid_inertia: float, inertia: float,
+                    cavitation_pressure: float, friction: np.ndarray | None,
+                    dt: float) -> np.ndarray:
+    """The parameter array of the cylinder's kernels.
+
+    Parameters
+    ----------
+    theta_lo, dtheta : float
+        First node and spacing of the lever-arm table [rad].
+    lever : ndarray
+        Signed lever arm m(θ) [m] at the table's nodes.
+    bore_area : float
+        A [m2].
+    pressure_loss_coefficient, fluid_inertia : float
+        K_p [Pa s2 rad-2] and I_p [Pa s2 rad-1] of Eq. (13).
+    inertia : float
+        I + A∞ [kg m2].
+    cavitation_pressure : float
+        P_v − P_atm [Pa] (the gauge pressure of the vapour clamp, Eq. 14).
+    friction : ndarray or None
+        :func:`flumekit.flap.friction.kernel_constants`, or None without friction.
+    dt : float
+        Simulator step [s].
+
+    Returns
+    -------
+    ndarray
+        The parameters in the layout of this module.
+    """
+    lever = np.asarray(lever, dtype=float)
+    n_tab = lever.size - 1
+    # Eq. (13) sign: +1 if θ̇ > 0 compresses the chamber (lever arm m < 0)
+    s_comp = -1.0 if lever[n_tab // 2] > 0 else 1.0
+    head = [theta_lo, 1.0 / dtheta, n_tab, s_comp, bore_area, pressure_loss_coefficient,
+            fluid_inertia, inertia, cavitation_pressure, friction is not None, dt]
+    fr = np.zeros(13) if friction is None else np.asarray(friction, dtype=float)
+    return np.concatenate([np.array(head, dtype=float), fr, lever, np.diff(lever)])
+
+
+@njit(cache=True)
+def _lever(th, p):
+    """m(θ) [m], linear in the table; NaN outside it."""
+    u = (th - p[_TH_LO]) * p[_INV_DTH]
+    n_tab = int(p[_N_TAB])
+    if not (u > -1.0 and u < n_tab):  # int() truncates towards zero, as the table's index
+        return math.nan
+    i = int(u)
+    return p[_TAB + i] + (u - i) * p[_TAB + n_tab + 1 + i]
+
+
+@njit(ACCEL, cache=True)
+def cylinder_accel(t, th, om, rest, z, hl, p):
+    """θ̈ with the fluid inertia and the vapour clamp; out0 the chamber pressure [Pa], out1
+    the friction force [N]; NaN outside the lever-arm table."""
+    m = _lever(th, p)
+    if m != m:
+        return math.nan, math.nan, math.nan
+    ff = 0.0
+    if p[_FRICTION] != 0.0:
+        ff = lugre_force(z, hl, m * om, p[_C:_TAB])  # Eq. (A3), resisting the rod rate m θ̇
+        rest -= m * ff  # resisting friction torque T_f = m F_f
+    s_comp, area, kp, ip, j0 = p[_S_COMP], p[_AREA], p[_KP], p[_IP], p[_J0]
+    g = -m * s_comp * area  # > 0
+    q = om * abs(om)
+    a = (rest - g * kp * q) / (j0 + g * ip)
+    pr = s_comp * (kp * q + ip * a)  # Eq. (13), signed form, no cavitation
+    if pr < p[_PCAV]:  # Eq. (14) with σ_c = 0: clamp at the vapour pressure
+        pr = p[_PCAV]
+        a = (rest + m * area * pr) / j0
+    return a, pr, ff
+
+
+@njit(PREDICT, cache=True)
+def cylinder_predict(z, hl, th, om, a1, p):
+    """LuGre state at the stage times: exact frozen-velocity steps at the rod velocities
+    predicted at h/4 and 3h/4 from the first stage."""
+    dt = p[_DT]
+    hh, hq = 0.5 * dt, 0.25 * dt
+    c = p[_C:_TAB]
+    zm, hm = lugre_step(z, hl, _lever(th + hq * om, p) * (om + hq * a1), hh, c)
+    ze, he = lugre_step(zm, hm, _lever(th + 3 * hq * om, p) * (om + 3 * hq * a1), hh, c)
+    return zm, hm, ze, he
+
+
+@njit(ADVANCE, cache=True)
+def cylinder_advance(z, hl, th, om, th_new, om_new, p):
+    """Final LuGre state from the actual rod velocities (split at a reversal)."""
+    return lugre_advance(z, hl, _lever(th, p) * om, _lever(th_new, p) * om_new, p[_DT],
+                         p[_C:_TAB])

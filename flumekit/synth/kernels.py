@@ -1,0 +1,114 @@
+"""The virtual flume's extra torque on the flap, compiled: one call per simulator step.
+
+The terms and their physics are :class:`flumekit.synth.flume.ExtraTorque`'s (module notes of
+:mod:`flumekit.synth.flume`); this is their scalar kernel with the signature of an extra torque
+of :mod:`flumekit.hydro.stepping`, its constants in one float array (layout below), its state
+(the compliance's lag and the vapour cavity) in another, and the ten terms of each call
+recorded in one row of the record.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from flumekit.hydro.stepping import EXTRA
+
+__all__ = ["N_PARAMS", "N_STATE", "N_TERMS", "flume_torque"]
+
+# constants: depth below the still water level to the hinge h − c, flap length above the hinge,
+# 1/ω, the drag, KC, waterline, overtopping and bearing coefficients, the valve, the bore area,
+# the compression sign, the lever-arm table's origin, inverse spacing and last index, K_p, the
+# compliance time, the half step, the cavity share, the refill rate and the cavitating suction;
+# then the local elevation at the half steps, the lever arms at the nodes and their differences
+(_D, _LF, _INV_W, _K_DRAG, _FOUR_PI2, _KC2_MIN, _K_WET, _K_OVER, _T_BEAR, _INV_WB, _P_VALVE,
+ _INV_VC, _AREA, _SIGN, _TH0, _INV_DTH, _N_TAB, _K_P, _TAU_C, _HALF_STEP, _PHI, _W_REFILL,
+ _P_CAV, _N_ETA, N_PARAMS) = range(25)
+# state: the compliance's last call (half step) and lagged pressure [Pa]; the cavity's last
+# call, its volume over the bore area [m] and rate [m s-1]; whether the last call had a cavity
+_LAG_J, _LAG_P, _CAV_J, _CAV_X, _CAV_R, _CAV_OPEN, N_STATE = range(7)
+#: terms recorded per call (flumekit.synth.flume.ExtraTorque.record)
+N_TERMS = 10
+
+
+@njit(EXTRA, cache=True)
+def flume_torque(j, th, om, p, st, rec):
+    """The flume's extra torque [N m] at half step ``j``, angle θ [rad] and rate θ̇ [rad s-1].
+
+    ``p`` holds the constants (module layout), ``st`` the state (advanced), and row ``j // 2``
+    of ``rec`` receives the terms: vortex drag, wetted length, overtopping and bearing torques,
+    then the valve's, the compliance's and the cavity's chamber pressure [Pa] and torque.
+    """
+    n_eta = int(p[_N_ETA])
+    ef = p[N_PARAMS + j]
+    c = math.cos(th)
+    d, lf = p[_D], p[_LF]
+    dw = (d + ef) / c
+    dw = lf if dw > lf else (0.0 if dw < 0 else dw)
+    kc2 = p[_FOUR_PI2] * (th * th + (om * p[_INV_W]) ** 2)
+    kc2_min = p[_KC2_MIN]
+    dw2 = dw * dw
+    t_d = -p[_K_DRAG] * (kc2 if kc2 > kc2_min else kc2_min) ** (-1.0 / 6.0) \
+        * dw2 * dw2 * om * abs(om)
+    t_w = p[_K_WET] * ef * ef
+    over = ef - (lf * c - d)
+    t_o = -p[_K_OVER] * over if over > 0 else 0.0
+    t_b = -p[_T_BEAR] * math.tanh(om * p[_INV_WB])
+    n_tab = int(p[_N_TAB])
+    u = (th - p[_TH0]) * p[_INV_DTH]
+    i = int(u)
+    i = 0 if i < 0 else (n_tab if i > n_tab else i)
+    o_m = N_PARAMS + n_eta
+    m = p[o_m + i] + (u - i) * p[o_m + n_tab + 2 + i]
+    so = p[_SIGN] * om  # compression rate [rad s-1]
+    k_p, p_cav, phi, half_step = p[_K_P], p[_P_CAV], p[_PHI], p[_HALF_STEP]
+    p_k = p_c = p_v = 0.0
+    p13u = k_p * so * abs(om)  # Eq. (13)'s K_p pressure [Pa]
+    # clamped at P_v as the simulator clamps it, there with I_p θ̈ added, which this term does
+    # not see (at H = 0.3 m the two clamps part for a sample or two)
+    p13 = p13u if p13u > -p_cav else -p_cav
+    dd = -so - p[_W_REFILL]  # > 0: the suction outruns the refill
+    # the chamber holds the compression stroke's resistances (K_p θ̇² and the valve) through
+    # the compliance's first-order lag; a cavity holds nothing
+    x = st[_CAV_X] + st[_CAV_R] * (j - st[_CAV_J]) * half_step if phi > 0 else 0.0
+    x = x if x > 0 else 0.0
+    st[_CAV_J], st[_CAV_X] = j, x
+    if x > 0:
+        # discrete vapour cavity: the chamber stays at P_v while it lasts (ΔP = P_v - Eq. (13)'s
+        # K_p pressure); it grows by φ times the suction's excess over the refill, shrinks at
+        # the refill plus the compression rate (explicit over the time to the next call)
+        p_k = -p_cav - p13
+        st[_CAV_R] = (m if m > 0 else -m) * (phi * dd if dd > 0 else dd)
+        p_q = 0.0
+    else:
+        if so > 0 and p[_P_VALVE] > 0:
+            p_v = -p[_P_VALVE] * math.expm1(-abs(m * om) * p[_INV_VC])
+        p_q = k_p * om * om + p_v if so > 0 else 0.0
+    tau_c = p[_TAU_C]
+    if x <= 0 and st[_CAV_OPEN] != 0.0:
+        st[_LAG_P] = -p_cav - p13u - p_v + p_q  # collapse: the chamber goes on from P_v
+    elif tau_c > 0:
+        st[_LAG_P] = p_q + (st[_LAG_P] - p_q) * math.exp(-(j - st[_LAG_J]) * half_step / tau_c)
+    else:
+        st[_LAG_P] = p_q
+    st[_LAG_J] = j
+    st[_CAV_OPEN] = 1.0 if x > 0 else 0.0
+    if x <= 0:
+        # the chamber's pressure, at P_v at least: the suction cavitates it once the lag's
+        # stored pressure has returned, and only then can a cavity open
+        pr = p13u + p_v + st[_LAG_P] - p_q
+        st[_CAV_R] = 0.0
+        if pr <= -p_cav:
+            pr = -p_cav
+            if phi > 0 and dd > 0:
+                st[_CAV_R] = (m if m > 0 else -m) * phi * dd
+        p_c = pr - p13 - p_v
+    r = rec[j // 2]
+    r[0], r[1], r[2], r[3] = t_d, t_w, t_o, t_b
+    if p_v == 0.0 and p_c == 0.0 and p_k == 0.0:
+        r[4] = r[5] = r[6] = r[7] = r[8] = r[9] = 0.0
+        return t_d + t_w + t_o + t_b + 0.0 + 0.0 + 0.0
+    ma = m * p[_AREA]
+    r[4], r[5], r[6], r[7], r[8], r[9] = p_v, ma * p_v, p_c, ma * p_c, p_k, ma * p_k
+    return t_d + t_w + t_o + t_b + ma * p_v + ma * p_c + ma * p_k
