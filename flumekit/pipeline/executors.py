@@ -260,11 +260,21 @@ class DaskExecutor(Executor):
                 log.setLevel(self._levels[name])
 
 
-def executor_for(jobs: int = 1, scheduler: str | None = None, kind: str = "processes",
+def default_jobs() -> int:
+    """The number of CPUs this process may run on (its affinity mask, else the machine's)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on every platform
+        return max(1, os.cpu_count() or 1)
+
+
+def executor_for(jobs: int | None = 1, scheduler: str | None = None, kind: str = "processes",
                  timeout: float = DASK_TIMEOUT, exit_on_interrupt: bool = False) -> Executor:
     address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
     if address:
         return DaskExecutor(address, timeout)
+    if jobs is None:
+        jobs = default_jobs()
     if jobs > 1:
         return PoolExecutor(jobs, kind)
     return SerialExecutor(exit_on_interrupt=exit_on_interrupt)
