@@ -49,6 +49,7 @@ Engineering, vol. 5, P. L.-F. Liu (ed.), World Scientific, 241-324.
 from __future__ import annotations
 
 import dataclasses
+import functools
 
 import numpy as np
 
@@ -251,6 +252,81 @@ def _newton(v: np.ndarray, args: tuple, max_iter: int = 40) -> tuple[np.ndarray,
     return v, float(np.max(np.abs(_residuals(v, *args))))
 
 
+#: spacing of the grid of dimensionless periods T (g/h)^½ and heights H/h whose waves start
+#: the Newton iteration of a nearby wave (a few iterations instead of the height continuation)
+_ANCHOR_STEP = (0.02, 0.005)
+
+
+@functools.lru_cache(maxsize=512)
+def _grid_wave(tg: int, hg: int, n: int, current: str) -> np.ndarray | None:
+    """Solve the grid wave (tg, hg) of :data:`_ANCHOR_STEP` from linear theory.
+
+    Returns its unknowns, or None beyond the highest wave or where it does not converge.
+    """
+    t_nd, h_nd = tg * _ANCHOR_STEP[0], hg * _ANCHOR_STEP[1]
+    k0 = float(wavenumber(2 * np.pi / t_nd, 1.0, 1.0))
+    h_max = float(highest_wave(2 * np.pi / k0, 1.0))
+    if h_nd >= 0.95 * h_max:
+        return None
+    try:
+        return _solve(t_nd, h_nd, n, current, 1 + int(np.floor(5 * h_nd / h_max)), k0, h_max,
+                      "a grid wave")
+    except ValueError:
+        return None
+
+
+def _solve(t_nd: float, h_nd: float, n: int, current: str, height_steps: int | None,
+           k0: float, h_max: float, label: str) -> np.ndarray:
+    """Solve for the unknowns (module notes) of the wave of dimensionless period and height.
+
+    With ``height_steps`` None, Newton's method starts from the nearest wave of a grid
+    (:data:`_ANCHOR_STEP`), itself solved from linear theory, so the result depends on the
+    inputs only, not on what was solved before; where that fails, and with ``height_steps``
+    given, H is raised in steps from linear theory.
+    """
+    m = np.arange(n + 1)
+    jm = np.outer(m, np.arange(1, n + 1)) * np.pi / n  # j k X_m, (N+1, N)
+    cosm, sinm = np.cos(jm), np.sin(jm)
+    weights = np.full(n + 1, 1.0 / n)
+    weights[[0, -1]] = 0.5 / n
+    fixed = (t_nd, current, cosm, sinm, weights)
+    if height_steps is None:
+        hg = round(h_nd / _ANCHOR_STEP[1])
+        anchor = _grid_wave(round(t_nd / _ANCHOR_STEP[0]), hg, n, current) if hg >= 1 else None
+        if anchor is not None:
+            x, res = _newton(anchor.copy(), (n, h_nd) + fixed)
+            if np.all(np.isfinite(x)) and res < 1e-10:
+                return x
+        height_steps = 1 + int(np.floor(5 * h_nd / h_max))
+
+    def linear_guess(hh: float) -> np.ndarray:
+        c = 2 * np.pi / (k0 * t_nd)
+        v = np.zeros(2 * n + 4)
+        v[0] = k0
+        v[1:n + 2] = 1.0 + 0.5 * hh * np.cos(m * np.pi / n)
+        v[n + 2] = c * 0.5 * hh / np.tanh(k0)
+        v[2 * n + 2] = c
+        v[2 * n + 3] = 1.0 + 0.5 * c * c
+        return v
+
+    previous: list[np.ndarray] = []
+    for step in range(1, height_steps + 1):
+        hh = h_nd * step / height_steps
+        if len(previous) >= 2:
+            guess = 2 * previous[-1] - previous[-2]
+        elif previous:
+            guess = previous[-1]
+        else:
+            guess = linear_guess(hh)
+        x, res = _newton(guess, (n, hh) + fixed)
+        if not (np.all(np.isfinite(x)) and res < 1e-10):
+            raise ValueError(f"the stream-function solution did not converge for {label} "
+                             f"(residual {res:.2e} at height step {step}/{height_steps}); "
+                             "raise height_steps")
+        previous.append(x)
+    return previous[-1]
+
+
 def stream_function_wave(period: float, height: float, depth: float, *, n_modes: int = 20,
                          current: str = "stokes", height_steps: int | None = None,
                          g: float = G) -> StreamFunctionWave:
@@ -266,7 +342,10 @@ def stream_function_wave(period: float, height: float, depth: float, *, n_modes:
     current : ``"stokes"`` (Stokes' second definition, zero mean mass transport: a closed
         flume) or ``"euler"`` (Stokes' first definition, zero mean Eulerian current).
     height_steps : Number of steps in which H is raised, each started from the extrapolation
-        of the previous two solutions (Fenton 1988, §3); default from H/H_max.
+        of the previous two solutions (Fenton 1988, §3). Default: Newton's method from the
+        nearest wave of a fixed grid in T (g/h)^½ and H/h (steps 0.02 and 0.005), itself
+        raised in 1 + ⌊5 H/H_max⌋ steps, so that the result depends on the inputs only;
+        that number of steps where no grid wave is close enough.
     g : Gravitational acceleration [m s-2].
 
     Returns
@@ -285,7 +364,8 @@ def stream_function_wave(period: float, height: float, depth: float, *, n_modes:
     Unknowns (dimensionless, g = h = 1): k, η_m at kX_m = mπ/N (m = 0..N), B_1..B_N, ū or Q, R
     (2N + 4); equations: Eqs. (3) and (4) at the N + 1 points, Eq. (5) by the trapezoidal rule,
     Eq. (6); Eq. (7) with (8) or (9) eliminates c and the other of ū, Q. Solved by Newton's
-    method with the exact Jacobian (complex-step derivatives), from linear theory.
+    method with the exact Jacobian (complex-step derivatives), from linear theory or a grid
+    wave (``height_steps``).
     E_j is the discrete cosine transform of the η_m (the trapezoidal rule of Fenton 1988), with
     E_N halved.
     """
@@ -303,41 +383,11 @@ def stream_function_wave(period: float, height: float, depth: float, *, n_modes:
     if h_nd >= 0.95 * h_max:
         raise ValueError(f"wave height {height} m is too close to or above the highest wave "
                          f"(about {h_max * depth:.3g} m for T = {period} s in h = {depth} m)")
-    if height_steps is None:
-        height_steps = 1 + int(np.floor(5 * h_nd / h_max))
-    m = np.arange(n + 1)
-    jm = np.outer(m, np.arange(1, n + 1)) * np.pi / n  # j k X_m, (N+1, N)
-    cosm, sinm = np.cos(jm), np.sin(jm)
+    cosm = np.cos(np.outer(np.arange(n + 1), np.arange(1, n + 1)) * np.pi / n)
     weights = np.full(n + 1, 1.0 / n)
     weights[[0, -1]] = 0.5 / n
-
-    def linear_guess(hh: float) -> np.ndarray:
-        c = 2 * np.pi / (k0 * t_nd)
-        v = np.zeros(2 * n + 4)
-        v[0] = k0
-        v[1:n + 2] = 1.0 + 0.5 * hh * np.cos(m * np.pi / n)
-        v[n + 2] = c * 0.5 * hh / np.tanh(k0)
-        v[2 * n + 2] = c
-        v[2 * n + 3] = 1.0 + 0.5 * c * c
-        return v
-
-    fixed = (t_nd, current, cosm, sinm, weights)
-    previous: list[np.ndarray] = []
-    for step in range(1, height_steps + 1):
-        hh = h_nd * step / height_steps
-        if len(previous) >= 2:
-            guess = 2 * previous[-1] - previous[-2]
-        elif previous:
-            guess = previous[-1]
-        else:
-            guess = linear_guess(hh)
-        x, res = _newton(guess, (n, hh) + fixed)
-        if not (np.all(np.isfinite(x)) and res < 1e-10):
-            raise ValueError(f"the stream-function solution did not converge for T = {period} s, "
-                             f"H = {height} m, h = {depth} m (residual {res:.2e} at height "
-                             f"step {step}/{height_steps}); raise height_steps")
-        previous.append(x)
-    v = previous[-1]
+    v = _solve(t_nd, h_nd, n, current, height_steps, k0, h_max,
+               f"T = {period} s, H = {height} m, h = {depth} m")
     k = v[0]
     eta = v[1:n + 2]
     b = v[n + 2:2 * n + 2]
