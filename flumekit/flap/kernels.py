@@ -83,8 +83,11 @@ def lugre_advance(z, h, v0, v1, dt, c):
 
 @njit(cache=True)
 def lugre_force(z, h, v, c):
-    """Friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3 with the corrected Eq. A5) at the
-    state (z [m], h [-]) and rod velocity v [m s-1]."""
+    """Compute the friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3, corrected Eq. A5).
+
+    At the state (z [m], h [-]) and rod velocity v [m s-1]; ``c`` the parameters of
+    :func:`flumekit.flap.friction.kernel_constants`.
+    """
     s0, s1, s2, fc, fs, ivs, n = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     x = abs(v) * ivs
     g = fc + ((1.0 - h) * fs - fc) * math.exp(-(x if n == 1.0 else x ** n))  # Eq. (A5)
@@ -93,9 +96,11 @@ def lugre_force(z, h, v, c):
 
 @njit(cache=True)
 def friction_loop(v, dt, z, h, substeps, c, zs, hs):
-    """The state at every sample of a velocity series (:func:`flumekit.flap.friction.
-    friction_series`): ``substeps`` steps of :func:`lugre_advance` per interval, written into
-    ``zs`` and ``hs`` from the initial state (z, h)."""
+    """Integrate the state over a velocity series (:func:`flumekit.flap.friction.friction_series`).
+
+    ``substeps`` steps of :func:`lugre_advance` per sampling interval ``dt`` [s] from the
+    initial state (z [m], h [-]); the state at every sample is written into ``zs`` and ``hs``.
+    """
     zs[0], hs[0] = z, h
     hsub = dt / substeps
     for k in range(1, v.size):
@@ -119,7 +124,7 @@ def cylinder_params(theta_lo: float, dtheta: float, lever: np.ndarray, bore_area
                     pressure_loss_coefficient: float, fluid_inertia: float, inertia: float,
                     cavitation_pressure: float, friction: np.ndarray | None,
                     dt: float) -> np.ndarray:
-    """The parameter array of the cylinder's kernels.
+    """Pack the parameters of the cylinder's kernels into one array.
 
     Parameters
     ----------
@@ -168,8 +173,11 @@ def _lever(th, p):
 
 @njit(ACCEL, cache=True)
 def cylinder_accel(t, th, om, rest, z, hl, p):
-    """θ̈ with the fluid inertia and the vapour clamp; out0 the chamber pressure [Pa], out1
-    the friction force [N]; NaN outside the lever-arm table."""
+    """Compute θ̈ [rad s-2] with the fluid inertia and the vapour clamp (Eqs. 12-14).
+
+    Returns (θ̈, the chamber pressure [Pa], the friction force [N]); NaN outside the lever-arm
+    table.
+    """
     m = _lever(th, p)
     if m != m:
         return math.nan, math.nan, math.nan
@@ -190,8 +198,11 @@ def cylinder_accel(t, th, om, rest, z, hl, p):
 
 @njit(PREDICT, cache=True)
 def cylinder_predict(z, hl, th, om, a1, p):
-    """LuGre state at the stage times: exact frozen-velocity steps at the rod velocities
-    predicted at h/4 and 3h/4 from the first stage."""
+    """Predict the LuGre state at the stage times (middle and end of the step).
+
+    Exact frozen-velocity steps at the rod velocities predicted at h/4 and 3h/4 from the first
+    stage.
+    """
     dt = p[_DT]
     hh, hq = 0.5 * dt, 0.25 * dt
     c = p[_C:_TAB]
@@ -202,6 +213,6 @@ def cylinder_predict(z, hl, th, om, a1, p):
 
 @njit(ADVANCE, cache=True)
 def cylinder_advance(z, hl, th, om, th_new, om_new, p):
-    """Final LuGre state from the actual rod velocities (split at a reversal)."""
+    """Advance the LuGre state over the step from the rod velocities (split at a reversal)."""
     return lugre_advance(z, hl, _lever(th, p) * om, _lever(th_new, p) * om_new, p[_DT],
                          p[_C:_TAB])

@@ -58,7 +58,7 @@ class StageWeights:
         self.w41, self.w43, self.w44 = float(w41), float(w43), float(w44)
 
     def astuple(self) -> tuple[float, ...]:
-        """The seven weights in the order of the constructor."""
+        """Return the seven weights in the order of the constructor."""
         return (self.w21, self.w22, self.w32, self.w33, self.w41, self.w43, self.w44)
 
 
@@ -102,7 +102,7 @@ class NoMemory(_Memory):
 
 
 def phi(z: np.ndarray, k: int) -> np.ndarray:
-    """The ETD function φ_k(z) = Σ_j z^j/(j+k)! (φ₁ = (e^z − 1)/z, ...).
+    """Evaluate the ETD function φ_k(z) = Σ_j z^j/(j+k)! (φ₁ = (e^z − 1)/z, ...).
 
     Parameters
     ----------
@@ -300,7 +300,7 @@ class ConvolutionMemory(_Memory):
 
 
 def memory_integrator(radiation, step: float, n_steps: int):
-    """The memory integrator of a radiation model.
+    """Build the memory integrator of a radiation model.
 
     Parameters
     ----------

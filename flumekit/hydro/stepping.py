@@ -85,8 +85,10 @@ _SIG = types.Tuple((i8, i8, f8))(
 @njit(_SIG, cache=True)
 def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, accel, predict,
           advance, pto_params, extra, extra_params, extra_state, extra_record, has_extra, out):
-    """Steps ``first`` to ``last`` of a run: classical RK4 for (θ, θ̇) with the memory torque
-    at the four stages (module notes of :mod:`flumekit.hydro.memory`).
+    """Integrate steps ``first`` to ``last`` of a run.
+
+    Classical RK4 for (θ, θ̇) with the memory torque at the four stages (module notes of
+    :mod:`flumekit.hydro.memory`).
 
     Parameters
     ----------

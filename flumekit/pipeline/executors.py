@@ -261,7 +261,7 @@ class DaskExecutor(Executor):
 
 
 def default_jobs() -> int:
-    """The number of CPUs this process may run on (its affinity mask, else the machine's)."""
+    """Count the CPUs this process may run on (its affinity mask, else the machine's)."""
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on every platform

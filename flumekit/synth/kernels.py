@@ -34,7 +34,7 @@ N_TERMS = 10
 
 @njit(EXTRA, cache=True)
 def flume_torque(j, th, om, p, st, rec):
-    """The flume's extra torque [N m] at half step ``j``, angle θ [rad] and rate θ̇ [rad s-1].
+    """Compute the flume's extra torque [N m] at half step ``j``, angle θ [rad], rate θ̇ [rad s-1].
 
     ``p`` holds the constants (module layout), ``st`` the state (advanced), and row ``j // 2``
     of ``rec`` receives the terms: vortex drag, wetted length, overtopping and bearing torques,
