@@ -121,7 +121,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.qc.checks", "flumekit.qc.clock",
                                     "flumekit.qc.despike", "flumekit.qc.fill",
                                     "flumekit.qc.flags", "flumekit.qc.qartod",
-                                    "flumekit.qc.record"])
+                                    "flumekit.qc.record",
+                                    "flumekit.uncertainty.repeats",
+                                    "flumekit.uncertainty.html"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

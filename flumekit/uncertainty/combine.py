@@ -27,7 +27,7 @@ def _condition_of(runs: xr.Dataset, conditions: xr.Dataset) -> np.ndarray:
 
 
 def combine(conditions: xr.Dataset, runs: xr.Dataset) -> tuple[xr.Dataset, xr.Dataset]:
-    """Combined and expanded uncertainty of every condition result, and the budget.
+    """Combine the Type A and Type B uncertainty of every condition result, with the budget.
 
     Parameters
     ----------
