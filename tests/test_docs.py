@@ -123,7 +123,10 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.qc.flags", "flumekit.qc.qartod",
                                     "flumekit.qc.record",
                                     "flumekit.uncertainty.repeats",
-                                    "flumekit.uncertainty.html"])
+                                    "flumekit.uncertainty.html",
+                                    "flumekit.ballscrew.buoy", "flumekit.ballscrew.ehl",
+                                    "flumekit.ballscrew.screw",
+                                    "flumekit.ballscrew.scenario"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
