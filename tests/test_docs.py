@@ -126,7 +126,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.uncertainty.html",
                                     "flumekit.ballscrew.buoy", "flumekit.ballscrew.ehl",
                                     "flumekit.ballscrew.screw",
-                                    "flumekit.ballscrew.scenario"])
+                                    "flumekit.ballscrew.scenario",
+                                    "flumekit.bench", "flumekit.bench.flume",
+                                    "flumekit.bench.truth"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
