@@ -307,7 +307,7 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
     """Return the mean entrainment (rolling) speed of the ball-groove contacts.
 
     Ball-bearing kinematics with the screw as inner race turning at ω relative to the
-    non-rotating nut: u = |ω| d_m/4 (1 - γ²), γ = d cos β / d_m, stretched by 1/cos α along the
+    non-rotating nut: u = ``|ω|`` d_m/4 (1 - γ²), γ = d cos β / d_m, stretched by 1/cos α along the
     helical path. Pure rolling on the nut (the paper's assumption), so u is the same at both
     contacts.
 
@@ -600,8 +600,8 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
 
     The load transmitted through the balls to the screw is F_t = K_damp v + J (2π/l)² a
     (generator and rotor inertia). When F_t v ≥ 0 the nut drives the screw (indirect mode) and
-    the nut must push F_t/η: the friction force is F_fr = |F_t| (1/η - 1); otherwise the rotor
-    drives the nut (direct mode) and F_fr = |F_t| (1 - η_d). The ball load
+    the nut must push F_t/η: the friction force is F_fr = ``|F_t|`` (1/η - 1); otherwise the rotor
+    drives the nut (direct mode) and F_fr = ``|F_t|`` (1 - η_d). The ball load
     Q = Q_preload + F_balls / (z sin β cos α) depends on η, so η, Q and the EHL state are
     iterated to a fixed point (a handful of vectorised iterations; η depends on Q only through
     the film thickness, W^-0.073).

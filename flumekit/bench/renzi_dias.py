@@ -2,7 +2,7 @@
 
 The flume of Brito et al. (2020): h = 0.825 m, flap w = 1.31 m hinged at c = 0.10 m, channel
 b = 1.5 m, the 9 periods of Table 1 (T = 2–4 s). Errors are the largest relative deviation of
-μ, ν and |F| over the periods from a reference with every order raised; "next" is the change to
+μ, ν and ``|F|`` over the periods from a reference with every order raised; "next" is the change to
 the next order in the table. Run times are the best of several calls of
 :func:`flumekit.flap.renzi_dias.model.coefficients` (dataset construction included).
 """

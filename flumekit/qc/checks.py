@@ -79,7 +79,7 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
     Raises
     ------
     flumekit.errors.InputError
-        When |measured / declared - 1| exceeds ``tolerance`` (or is NaN), on ``run.period``.
+        When ``|measured / declared - 1|`` exceeds ``tolerance`` (or is NaN), on ``run.period``.
     """
     rel = abs(measured / declared - 1.0)
     if not rel <= tolerance:
@@ -197,7 +197,7 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
     """Check a declared run value against the measured one.
 
     An error beyond ``tolerance``, a warning (returned text) beyond ``warning`` (relative
-    differences |measured / declared - 1|).
+    differences ``|measured / declared - 1|``).
 
     Parameters
     ----------

@@ -71,7 +71,7 @@ def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     """Return the QARTOD flags of the despiking of velocity records, as bytes.
 
     :func:`goring_nikora` on (channel, time) records in any memory layout: FAIL at the spikes
-    whose departure from their neighbours' mean, |u_n - (u_(n-1) + u_(n+1))/2|, is at least that
+    whose departure from their neighbours' mean, ``|u_n - (u_(n-1) + u_(n+1))/2|``, is at least that
     of both neighbours (a spike moves the derivatives of its two neighbours too, which the method
     then flags with it: GN 2002, §4), MISSING where not finite, NOT_EVALUATED where finite and
     ``exclude``, else GOOD.

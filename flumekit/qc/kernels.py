@@ -347,7 +347,7 @@ def _universal(u, exclude):
 
 @njit(cache=True)
 def _departure(x, k):
-    """Return |x_k - (x_(k-1) + x_(k+1))/2|, 0 at the first and last samples."""
+    """Return ``|x_k - (x_(k-1) + x_(k+1))/2|``, 0 at the first and last samples."""
     if k < 1 or k > x.size - 2:
         return 0.0
     return abs(x[k] - 0.5 * (x[k - 1] + x[k + 1]))
@@ -420,10 +420,10 @@ def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
 
 @njit(cache=True)
 def level_fail_rows(x, threshold):
-    """Return where |x - median(x)| exceeds ``threshold`` robust standard deviations, per row.
+    """Return where ``|x - median(x)|`` exceeds ``threshold`` robust standard deviations, per row.
 
     The robust standard deviation is 1.4826 MAD, at least the channel's resolution (its
-    smallest non-zero step); exact: in half steps, |2x - 2M| against the floor of twice the
+    smallest non-zero step); exact: in half steps, ``|2x - 2M|`` against the floor of twice the
     bound. The median and the MAD are read from the row's histogram (the deviations' histogram
     from the values'), O(n); a row spanning more values than ``HIST_BINS`` by selection instead
     (:func:`_middle`).

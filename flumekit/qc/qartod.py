@@ -71,7 +71,7 @@ def resolution(x: np.ndarray) -> np.ndarray:
 def local_scale(stat: np.ndarray, block: int, floor: np.ndarray | float = 0.0) -> np.ndarray:
     """Return the robust local standard deviation of ``stat`` along the last axis, per sample.
 
-    1.4826 x median |stat| per block of ``block`` samples (NaN ignored), the largest of each
+    1.4826 x median ``|stat|`` per block of ``block`` samples (NaN ignored), the largest of each
     block and its two neighbours (so a block at the arrival of the waves is judged with the
     scale of the waves), at least ``floor``.
 
@@ -409,7 +409,7 @@ def robust_median(x: np.ndarray) -> np.ndarray:
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """Flag samples far from the record's median (the level form of :func:`dropout_test`).
 
-    FAIL where |x - median(x)| exceeds ``threshold`` robust standard deviations of x over the
+    FAIL where ``|x - median(x)|`` exceeds ``threshold`` robust standard deviations of x over the
     record (1.4826 MAD, at least the channel's resolution), per channel along the last axis.
 
     Parameters
@@ -482,7 +482,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
                  hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
     """Flag dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
 
-    * Level: samples far outside the record's robust envelope, |x - median(x)| above
+    * Level: samples far outside the record's robust envelope, ``|x - median(x)|`` above
       ``threshold`` robust standard deviations of x over the record (1.4826 MAD; a sinusoid
       reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water
       lead-in of up to about half the record).
