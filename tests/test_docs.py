@@ -124,6 +124,7 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.qc.record",
                                     "flumekit.uncertainty.repeats",
                                     "flumekit.uncertainty.html",
+                                    "flumekit.uncertainty.combine",
                                     "flumekit.ballscrew.buoy", "flumekit.ballscrew.ehl",
                                     "flumekit.ballscrew.screw",
                                     "flumekit.ballscrew.scenario",
