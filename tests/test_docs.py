@@ -117,7 +117,19 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
 
 @pytest.mark.parametrize("module", ["flumekit.waves.records", "flumekit.waves.separation",
                                     "flumekit.waves.calibration", "flumekit.waves.spectra",
-                                    "flumekit.waves.statistics"])
+                                    "flumekit.waves.statistics",
+                                    "flumekit.qc.checks", "flumekit.qc.clock",
+                                    "flumekit.qc.despike", "flumekit.qc.fill",
+                                    "flumekit.qc.flags", "flumekit.qc.qartod",
+                                    "flumekit.qc.record",
+                                    "flumekit.uncertainty.repeats",
+                                    "flumekit.uncertainty.html",
+                                    "flumekit.uncertainty.combine",
+                                    "flumekit.ballscrew.buoy", "flumekit.ballscrew.ehl",
+                                    "flumekit.ballscrew.screw",
+                                    "flumekit.ballscrew.scenario",
+                                    "flumekit.bench", "flumekit.bench.flume",
+                                    "flumekit.bench.truth"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

@@ -18,6 +18,18 @@ _LAZY = {
     "hertz_contact": "ehl",
     "film_thickness": "ehl",
     "reference_scenario": "scenario",
+    "BuoyGeometry": "buoy",
+    "reference_motion": "buoy",
+    "forward_dynamics": "buoy",
+    "lift_from_energy_balance": "buoy",
+    "BallScrew": "screw",
+    "Lubricant": "screw",
+    "PTOCoefficients": "screw",
+    "pto_state": "screw",
+    "indirect_efficiency": "screw",
+    "sea_state_motion": "screw",
+    "stribeck_friction": "ehl",
+    "stated_results": "scenario",
 }
 
 __all__ = sorted(_LAZY)

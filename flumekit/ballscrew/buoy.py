@@ -35,25 +35,59 @@ GRAVITY = 9.81  # [m s-2]
 
 @dataclass(frozen=True)
 class BuoyGeometry:
-    """Geometry and mass of the buoy, arm and PTO linkage (all lengths [m], hinge at origin).
+    """Geometry and mass of the buoy, arm and PTO linkage (hinge at the origin).
 
     The defaults are a plausible near-shore device of the size the paper's Fig. 1 suggests
-    (the paper gives no numbers); each choice and its reason:
+    (the paper gives no numbers); each parameter says its choice and the reason. The float
+    CoG is at the sphere centre and its mass is the displaced water at the static draft (no
+    PTO force at rest: the ball screw back-drives).
 
-    float_radius : 2.5 m. Hemispherical float (a Wavestar-like bowl, deck at the sphere centre),
-        so the waterplane area (≈ 15-20 m²) catches a few kW in T = 3.8 s waves.
-    static_draft : 1.25 m = R/2. Leaves ±1.25 m of heave before the float leaves the water or
-        the deck submerges, enough for the reference motion A = 1 m.
-    arm_length : 6.0 m from the hinge to the float CoG. Keeps the arm angle within ±10° for
+    Parameters
+    ----------
+    float_radius : float
+        Radius of the hemispherical float [m]; 2.5 m: a Wavestar-like bowl, deck at the sphere
+        centre, whose waterplane area (about 15-20 m²) catches a few kW in T = 3.8 s waves.
+    static_draft : float
+        Draft at static equilibrium [m]; 1.25 m = R/2 leaves ±1.25 m of heave before the float
+        leaves the water or the deck submerges, enough for the reference motion A = 1 m.
+    arm_length : float
+        Distance from the hinge to the float CoG [m]; 6.0 m keeps the arm angle within ±10° for
         A = 1 m, so the float stays nearly level.
-    rest_angle : 0 rad, the arm horizontal at static equilibrium.
-    pto_arm_anchor : 2.0 m from the hinge along the arm.
-    pto_frame_anchor : (0, -2.0) m, 2 m below the hinge: with the arm anchor this gives a
-        linkage ratio ds/dz ≈ 0.24, a nut stroke of about ±0.24 m for A = 1 m and, with a
-        20 mm lead, screw speeds above 1000 rpm ("high-speed rotary motion").
-    arm_inertia : 2.0e4 kg m², the two steel arms about the hinge (≈ 1.7 t at 6 m, m L²/3).
-    The float CoG is at the sphere centre and its mass is the displaced water at the static
-    draft (no PTO force at rest: the ball screw back-drives).
+    rest_angle : float
+        Arm angle at static equilibrium [rad]; 0: the arm horizontal.
+    pto_arm_anchor : float
+        Distance of the PTO's arm anchor from the hinge along the arm [m].
+    pto_frame_anchor : tuple of float
+        (x, z) of the PTO's frame anchor [m]; (0, -2.0), 2 m below the hinge: with the arm
+        anchor this gives a linkage ratio ds/dz ≈ 0.24, a nut stroke of about ±0.24 m for
+        A = 1 m and, with a 20 mm lead, screw speeds above 1000 rpm ("high-speed rotary
+        motion").
+    arm_inertia : float
+        Moment of inertia of the two steel arms about the hinge [kg m2]; 2.0e4 (about 1.7 t at
+        6 m, m L²/3).
+    water_density : float
+        Density of the water [kg m-3].
+    gravity : float
+        Acceleration of gravity [m s-2].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a non-positive length, density or gravity, a static draft not below the float
+        radius, a rest angle of ±90° or a negative arm inertia.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import BuoyGeometry
+    >>> g = BuoyGeometry()
+    >>> round(g.mass, 1), round(g.inertia)
+    (10482.2, 397359)
     """
 
     float_radius: float = 2.5
@@ -67,6 +101,7 @@ class BuoyGeometry:
     gravity: float = GRAVITY
 
     def __post_init__(self):
+        """Check the geometry (see the class's Raises)."""
         for name in ("float_radius", "static_draft", "arm_length", "pto_arm_anchor",
                      "water_density", "gravity"):
             if not getattr(self, name) > 0:
@@ -92,17 +127,60 @@ class BuoyGeometry:
 # --- hydrostatics (Fig. 3) ---------------------------------------------------------------------
 
 def displaced_volume(draft, radius: float) -> np.ndarray:
-    """Volume of water displaced by a hemispherical float [m3] (Fig. 3).
+    """Return the volume of water displaced by a hemispherical float (Fig. 3).
 
     A spherical cap V = π d² (3R - d)/3 for 0 ≤ d ≤ R; 0 out of the water (d < 0) and the full
     hemisphere 2πR³/3 once the deck is awash (d > R, green water on deck not counted).
+
+    Parameters
+    ----------
+    draft : float or array_like
+        Draft d of the float [m].
+    radius : float
+        Float radius R [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Displaced volume [m3].
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Fig. 3.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import displaced_volume
+    >>> displaced_volume([-0.1, 0.5, 1.0, 2.0], 1.0).round(4).tolist()
+    [0.0, 0.6545, 2.0944, 2.0944]
     """
     d = np.clip(np.asarray(draft, float), 0.0, radius)
     return np.pi * d**2 * (3 * radius - d) / 3.0
 
 
 def waterplane_area(draft, radius: float) -> np.ndarray:
-    """Waterplane area of the hemispherical float [m2]: π(2Rd - d²), 0 outside 0 < d < R."""
+    """Return the waterplane area of the hemispherical float, π(2Rd - d²).
+
+    Parameters
+    ----------
+    draft : float or array_like
+        Draft d of the float [m].
+    radius : float
+        Float radius R [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Waterplane area [m2], 0 outside 0 < d < R.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import waterplane_area
+    >>> waterplane_area([0.5, 1.0], 1.0).round(4).tolist()
+    [2.3562, 0.0]
+    """
     d = np.asarray(draft, float)
     inside = (d > 0) & (d < radius)
     dc = np.clip(d, 0.0, radius)
@@ -112,7 +190,33 @@ def waterplane_area(draft, radius: float) -> np.ndarray:
 # --- linkage ---------------------------------------------------------------------------------
 
 def arm_angle(heave, geometry: BuoyGeometry) -> np.ndarray:
-    """Arm angle θ [rad] from the heave z of the float CoG (z = 0 at static equilibrium)."""
+    """Return the arm angle θ from the heave z of the float CoG (z = 0 at static equilibrium).
+
+    sin θ = sin θ_rest + z / L.
+
+    Parameters
+    ----------
+    heave : float or array_like
+        Heave z [m].
+    geometry : BuoyGeometry
+        The geometry (arm length L, rest angle).
+
+    Returns
+    -------
+    numpy.ndarray
+        Arm angle [rad].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        When the heave is out of reach of the arm.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import BuoyGeometry, arm_angle
+    >>> round(float(arm_angle(1.0, BuoyGeometry())), 4)
+    0.1674
+    """
     g = geometry
     s = np.sin(g.rest_angle) + np.asarray(heave, float) / g.arm_length
     if np.any(np.abs(s) >= 1):
@@ -123,10 +227,37 @@ def arm_angle(heave, geometry: BuoyGeometry) -> np.ndarray:
 
 
 def actuator_length(theta, geometry: BuoyGeometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Actuator (PTO) length s(θ) and its derivatives s'(θ), s''(θ) [m, m rad-1, m rad-2].
+    """Return the actuator (PTO) length s(θ) and its derivatives s'(θ), s''(θ).
 
     s² = (d cos θ - p_x)² + (d sin θ - p_z)² with d the arm anchor distance and (p_x, p_z) the
     frame anchor; s s' = d (p_x sin θ - p_z cos θ); s'² + s s'' = d (p_x cos θ + p_z sin θ).
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Arm angle θ [rad].
+    geometry : BuoyGeometry
+        The linkage geometry.
+
+    Returns
+    -------
+    s : numpy.ndarray
+        Actuator length [m].
+    ds : numpy.ndarray
+        s'(θ) [m rad-1].
+    dds : numpy.ndarray
+        s''(θ) [m rad-2].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        When the anchors coincide (zero length).
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import BuoyGeometry, actuator_length
+    >>> [round(float(v), 4) for v in actuator_length(0.0, BuoyGeometry())]
+    [2.8284, 1.4142, -0.7071]
     """
     d = geometry.pto_arm_anchor
     px, pz = geometry.pto_frame_anchor
@@ -140,7 +271,31 @@ def actuator_length(theta, geometry: BuoyGeometry) -> tuple[np.ndarray, np.ndarr
 
 
 def screw_speed(nut_velocity, lead: float) -> np.ndarray:
-    """Screw angular speed ω = 2π v / lead [rad s-1] (nut velocity [m s-1], lead [m])."""
+    """Return the screw angular speed ω = 2π v / lead.
+
+    Parameters
+    ----------
+    nut_velocity : float or array_like
+        Nut velocity v [m s-1].
+    lead : float
+        Screw lead [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        Screw speed [rad s-1].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a non-positive lead.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import screw_speed
+    >>> round(float(screw_speed(0.1, 0.02)), 4)
+    31.4159
+    """
     if not lead > 0:
         raise GeometryError(f"screw lead must be positive, got {lead}")
     return 2.0 * np.pi * np.asarray(nut_velocity, float) / lead
@@ -150,9 +305,45 @@ def screw_speed(nut_velocity, lead: float) -> np.ndarray:
 
 def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int = 1,
                      samples_per_period: int = 380) -> xr.Dataset:
-    """Sinusoidal heave z(t) = A sin(2π t/T) of the buoy CoG and its exact derivatives.
+    """Return the sinusoidal heave z(t) = A sin(2π t/T) of the buoy CoG and its exact derivatives.
 
     The reference scenario of Senatore & De Simone 2022, Sect. 3.1 (A = 1 m, T = 3.8 s).
+
+    Parameters
+    ----------
+    amplitude : float
+        Heave amplitude A [m].
+    period : float
+        Period T [s].
+    n_periods : int
+        Number of periods.
+    samples_per_period : int
+        Samples per period (at least 8).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``buoy_heave`` [m], ``buoy_heave_velocity`` [m s-1] and ``buoy_heave_acceleration``
+        [m s-2] over ``time`` [s]; attribute ``wave_period`` [s].
+
+    Raises
+    ------
+    ValueError
+        For a negative amplitude, a non-positive period, fewer than one period or fewer than 8
+        samples per period.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 3.1.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import reference_motion
+    >>> m = reference_motion()
+    >>> m.sizes["time"], float(m.buoy_heave.max())
+    (380, 1.0)
     """
     if not (amplitude >= 0 and period > 0 and n_periods >= 1 and samples_per_period >= 8):
         raise ValueError("reference motion needs amplitude >= 0, period > 0, n_periods >= 1, "
@@ -177,23 +368,51 @@ def _derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
 
 def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
                lead: float = 0.02, water_elevation: xr.DataArray | None = None) -> xr.Dataset:
-    """Linkage kinematics and hydrostatics of the buoy for a kinematic input z(t).
+    """Compute the linkage kinematics and hydrostatics of the buoy for a kinematic input z(t).
 
     Parameters
     ----------
-    motion : Dataset with ``buoy_heave`` z(t) [m] over ``time`` [s]; ``buoy_heave_velocity`` and
-        ``buoy_heave_acceleration`` are used when present (else second-order differences).
-    geometry : Buoy, arm and linkage geometry.
-    lead : Lead of the ball screw [m] (screw speed ω = 2π v / lead).
-    water_elevation : Free-surface elevation at the float [m] over ``time``; default still water
-        (the displaced volume of Fig. 3 as a function of the arm angle).
+    motion : xarray.Dataset
+        ``buoy_heave`` z(t) [m] over ``time`` [s]; ``buoy_heave_velocity`` [m s-1] and
+        ``buoy_heave_acceleration`` [m s-2] are used when present (else second-order
+        differences).
+    geometry : BuoyGeometry
+        Buoy, arm and linkage geometry.
+    lead : float
+        Lead of the ball screw [m] (screw speed ω = 2π v / lead).
+    water_elevation : xarray.DataArray, optional
+        Free-surface elevation at the float [m] over ``time``; default still water (the
+        displaced volume of Fig. 3 as a function of the arm angle).
 
     Returns
     -------
-    Dataset over ``time``: buoy_heave(_velocity, _acceleration), arm_angle(_velocity,
-    _acceleration), nut_travel, nut_velocity, nut_acceleration, screw_speed, linkage_ratio
-    (ds/dz), buoy_draft, displaced_volume, waterplane_area, buoyancy_force; attrs carry the
-    geometry and the lead.
+    xarray.Dataset
+        Over ``time``: buoy_heave(_velocity, _acceleration), arm_angle, arm_angular_velocity,
+        arm_angular_acceleration, nut_travel [m], nut_velocity [m s-1], nut_acceleration
+        [m s-2], screw_speed [rad s-1], linkage_ratio (ds/dz) [-], buoy_draft [m],
+        displaced_volume [m3], waterplane_area [m2], buoyancy_force [N]; attributes carry the
+        geometry (:func:`geometry_from_attrs`) and the lead.
+
+    Raises
+    ------
+    ValueError
+        Without ``buoy_heave``, with fewer than 3 samples or a time axis that does not
+        increase, or with non-finite heave.
+    flumekit.errors.GeometryError
+        When the heave is out of reach of the arm.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 2 (multibody model) and Fig. 3.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import kinematics, reference_motion
+    >>> k = kinematics(reference_motion(), lead=0.02)
+    >>> round(float(k.linkage_ratio[0]), 4), round(float(k.nut_travel.max()), 4)
+    (0.2357, 0.2266)
     """
     if "buoy_heave" not in motion:
         raise ValueError("motion dataset needs a 'buoy_heave' variable (z of the buoy CoG)")
@@ -241,7 +460,25 @@ def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
 
 
 def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
-    """The :class:`BuoyGeometry` stored in the attributes of a :func:`kinematics` dataset."""
+    """Return the :class:`BuoyGeometry` stored in the attributes of a :func:`kinematics` dataset.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset written by :func:`kinematics` (attributes ``geometry_<field>``).
+
+    Returns
+    -------
+    BuoyGeometry
+        The geometry.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import (BuoyGeometry, geometry_from_attrs, kinematics,
+    ...                                      reference_motion)
+    >>> geometry_from_attrs(kinematics(reference_motion())) == BuoyGeometry()
+    True
+    """
     kw = {}
     for name in BuoyGeometry.__dataclass_fields__:
         val = np.asarray(ds.attrs[f"geometry_{name}"])
@@ -252,7 +489,7 @@ def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
 # --- dynamics --------------------------------------------------------------------------------
 
 def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.Dataset:
-    """Wave (hydrodynamic) force needed to realise the kinematic input, from the arm's balance.
+    """Compute the wave (hydrodynamic) force that realises the kinematic input.
 
     Moment balance about the hinge (rigid arm, float CoG at distance L)::
 
@@ -263,13 +500,34 @@ def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.D
 
     Parameters
     ----------
-    kin : Output of :func:`kinematics`.
-    pto_force : PTO force F_PTO [N] over time (same length as ``kin.time``).
-    geometry : The geometry used for ``kin``.
+    kin : xarray.Dataset
+        Output of :func:`kinematics`.
+    pto_force : array_like
+        PTO force F_PTO [N] over time (same length as ``kin.time``).
+    geometry : BuoyGeometry
+        The geometry used for ``kin``.
 
     Returns
     -------
-    Dataset with ``wave_force`` F_hd [N] and ``net_vertical_force`` F_z = F_hs + F_hd - m g [N].
+    xarray.Dataset
+        ``wave_force`` F_hd [N] and ``net_vertical_force`` F_z = F_hs + F_hd - m g [N] over
+        ``time``.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 2 and Eq. (3).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.buoy import (BuoyGeometry, inverse_dynamics, kinematics,
+    ...                                      reference_motion)
+    >>> g = BuoyGeometry()
+    >>> k = kinematics(reference_motion(amplitude=0.0), g)
+    >>> float(abs(inverse_dynamics(k, np.zeros(k.sizes["time"]), g).wave_force).max()) < 1e-6
+    True
     """
     g = geometry
     th = kin["arm_angle"].values
@@ -286,7 +544,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
                      inertia: float = 0.0, friction_force: float = 0.0,
                      friction_velocity: float = 1e-3, initial_heave: float = 0.0,
                      initial_velocity: float = 0.0, rtol: float = 1e-8) -> xr.Dataset:
-    """Buoy motion for a force input F_z(t) (forward dynamics of the arm with a simple PTO).
+    """Compute the buoy motion for a force input F_z(t) (forward dynamics of the arm).
 
     (I + K_inert s'²) θ'' = L cos θ F_z - s' (K v + F_fr tanh(v/v_ε) + K_inert s'' θ'²),
     v = s' θ', with F_z the net non-PTO vertical force on the float (buoyancy + waves - weight)
@@ -294,9 +552,47 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
     Eq. (3)) and F_fr a Coulomb friction regularised by tanh (v_ε small). Integrated with the
     implicit Radau method (the regularised friction is stiff).
 
+    Parameters
+    ----------
+    time : array_like
+        Times [s], increasing.
+    net_vertical_force : array_like
+        F_z at those times [N].
+    geometry : BuoyGeometry
+        The geometry.
+    damping : float
+        Viscous PTO coefficient K on the nut [N s m-1].
+    inertia : float
+        Equivalent inertia of the PTO on the nut K_inert [kg].
+    friction_force : float
+        Coulomb friction force on the nut F_fr [N].
+    friction_velocity : float
+        Regularisation velocity v_ε [m s-1].
+    initial_heave : float
+        Heave at ``time[0]`` [m].
+    initial_velocity : float
+        Heave velocity at ``time[0]`` [m s-1].
+    rtol : float
+        Relative tolerance of the integrator [-].
+
     Returns
     -------
-    Dataset over ``time`` with buoy_heave, buoy_heave_velocity, nut_velocity.
+    xarray.Dataset
+        ``buoy_heave`` [m], ``buoy_heave_velocity`` [m s-1] and ``nut_velocity`` [m s-1] over
+        ``time``.
+
+    Raises
+    ------
+    ValueError
+        When ``time`` does not increase or does not match the force samples.
+    RuntimeError
+        When the integration fails.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 2 and Eq. (3).
     """
     t = np.asarray(time, float)
     fz = np.asarray(net_vertical_force, float)
@@ -333,9 +629,40 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
 
 def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
                         gravity: float = GRAVITY) -> np.ndarray:
-    """Energy per unit horizontal area of a linear wave, E = ρ g H² / 16 [J m-2].
+    """Return the energy per unit horizontal area of a linear wave, E = ρ g H² / 16.
 
     Eq. (2) in Senatore & De Simone 2022 (Airy theory, independent of depth).
+
+    Parameters
+    ----------
+    wave_height : float or array_like
+        Wave height H [m].
+    water_density : float
+        Water density ρ [kg m-3].
+    gravity : float
+        Acceleration of gravity g [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        Energy density [J m-2].
+
+    Raises
+    ------
+    ValueError
+        For a negative height.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eq. (2).
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import wave_energy_density
+    >>> float(wave_energy_density(1.0))
+    628.453125
     """
     h = np.asarray(wave_height, float)
     if np.any(h < 0):
@@ -346,12 +673,37 @@ def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
 def nut_work(lift: float, period: float, geometry: BuoyGeometry,
              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
              samples: int = 256, lead: float = 0.02) -> tuple[float, float]:
-    """Work absorbed by the nut over one cycle of z = h sin(2π t/T), and the mean waterplane area.
+    """Return the work absorbed by the nut over one cycle of z = h sin(2π t/T), and the waterplane.
+
+    Parameters
+    ----------
+    lift : float
+        Heave amplitude h [m].
+    period : float
+        Period T [s].
+    geometry : BuoyGeometry
+        The geometry.
+    pto_force : callable
+        (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N].
+    samples : int
+        Samples of the cycle (the rectangle rule on a periodic integrand is spectrally
+        accurate).
+    lead : float
+        Screw lead [m].
 
     Returns
     -------
-    (W, S_avg): W = -∮ F_PTO v dt [J] (positive for a resisting PTO), S_avg the time-mean
-    waterplane area [m2] in still water.
+    work : float
+        W = -∮ F_PTO v dt [J] (positive for a resisting PTO).
+    area : float
+        Time-mean waterplane area S_avg [m2] in still water.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import BuoyGeometry, nut_work
+    >>> w, s = nut_work(1.0, 3.8, BuoyGeometry(), lambda v, a: -1e5 * v)
+    >>> round(w), round(s, 3)
+    (29062, 13.155)
     """
     motion = reference_motion(lift, period, 1, samples)
     kin = kinematics(motion, geometry, lead)
@@ -365,23 +717,52 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
 def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: BuoyGeometry,
                              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
                              lead: float = 0.02, samples: int = 256) -> float:
-    """Lift h of the buoy for a sea state {H, T} by the energy balance algorithm (Fig. 4).
+    """Return the lift h of the buoy for a sea state {H, T} by the energy balance algorithm.
 
     The energy brought by one wave to the float, E S_avg with E = ρ g H²/16 (Eq. (2)) and S_avg
     the mean waterplane area during the motion, equals the work of the nut against the PTO over
-    one cycle of the kinematic input z(t) = h sin(2π t/T). The paper iterates; we solve
-    E S_avg(h) = W(h) with Brent's method (W grows with h, so the root is unique).
+    one cycle of the kinematic input z(t) = h sin(2π t/T) (Fig. 4). The paper iterates; here
+    E S_avg(h) = W(h) is solved with Brent's method (W grows with h, so the root is unique).
 
     Parameters
     ----------
-    wave_height, wave_period : H [m], T [s].
-    geometry : Buoy geometry (limits h below the static draft and the arm reach).
-    pto_force : Callable (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N], e.g.
+    wave_height : float
+        Wave height H [m].
+    wave_period : float
+        Wave period T [s].
+    geometry : BuoyGeometry
+        Buoy geometry (limits h below the static draft and the arm reach).
+    pto_force : callable
+        (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N], e.g.
         :func:`flumekit.ballscrew.screw.pto_force_function`.
+    lead : float
+        Screw lead [m].
+    samples : int
+        Samples per cycle of the work integral.
 
     Returns
     -------
-    Lift h [m] (amplitude of z from the static equilibrium).
+    float
+        Lift h [m] (amplitude of z from the static equilibrium); 0 when the PTO's friction
+        exceeds the wave's energy.
+
+    Raises
+    ------
+    ValueError
+        For H or T not positive, or a sea state carrying more energy than the PTO absorbs
+        within the float's range of motion.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eq. (2) and Fig. 4.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.buoy import BuoyGeometry, lift_from_energy_balance
+    >>> round(lift_from_energy_balance(1.0, 3.8, BuoyGeometry(), lambda v, a: -1e5 * v), 4)
+    0.5563
     """
     if not (wave_height > 0 and wave_period > 0):
         raise ValueError("sea state needs H > 0 and T > 0")

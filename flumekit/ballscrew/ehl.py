@@ -48,16 +48,40 @@ def _positive(name: str, value) -> np.ndarray:
 
 def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = None,
                     poisson_b: float | None = None) -> float:
-    """Effective elastic modulus E' of two bodies in contact (Hamrock's convention).
+    """Return the effective elastic modulus E' of two bodies in contact (Hamrock's convention).
+
+    E' = 2 / [(1 - ν_a²)/E_a + (1 - ν_b²)/E_b], twice the contact modulus E* of Johnson.
 
     Parameters
     ----------
-    young_a, poisson_a : Young's modulus [Pa] and Poisson's ratio [1] of body a.
-    young_b, poisson_b : The same for body b (defaults: equal to body a).
+    young_a : float
+        Young's modulus of body a [Pa].
+    poisson_a : float
+        Poisson's ratio of body a [-].
+    young_b : float, optional
+        Young's modulus of body b [Pa]; default that of body a.
+    poisson_b : float, optional
+        Poisson's ratio of body b [-]; default that of body a.
 
     Returns
     -------
-    E' = 2 / [(1 - ν_a²)/E_a + (1 - ν_b²)/E_b] [Pa].
+    float
+        E' [Pa].
+
+    Raises
+    ------
+    ValueError
+        For a non-positive modulus or a Poisson's ratio outside (-1, 0.5).
+
+    References
+    ----------
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import reduced_modulus
+    >>> round(reduced_modulus(208e9, 0.3) / 1e9, 2)  # bearing steel on bearing steel [GPa]
+    228.57
     """
     young_b = young_a if young_b is None else young_b
     poisson_b = poisson_a if poisson_b is None else poisson_b
@@ -68,16 +92,44 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
 
 
 def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
-    """Effective radii R_x, R_y of two bodies (convex > 0, concave < 0, plane = inf).
+    """Return the effective radii R_x, R_y of two bodies in contact.
+
+    1/R_x = 1/r_ax + 1/r_bx, 1/R_y = 1/r_ay + 1/r_by; radii positive for convex and negative for
+    concave surfaces, infinite for a plane.
+
+    Parameters
+    ----------
+    r_ax : float or array_like
+        Radius of body a in the rolling direction x [m].
+    r_ay : float or array_like
+        Radius of body a in the transverse direction y [m].
+    r_bx : float or array_like
+        Radius of body b in x [m].
+    r_by : float or array_like
+        Radius of body b in y [m].
 
     Returns
     -------
-    (R_x, R_y) [m] with 1/R_x = 1/r_ax + 1/r_bx, 1/R_y = 1/r_ay + 1/r_by.
+    r_x : numpy.ndarray
+        Effective radius in x [m].
+    r_y : numpy.ndarray
+        Effective radius in y [m].
 
     Raises
     ------
-    GeometryError if a curvature sum is not positive (the surfaces would be conformal or
-    interpenetrating, no Hertz contact).
+    flumekit.errors.GeometryError
+        If a curvature sum is not positive (the surfaces would be conformal or interpenetrating:
+        no Hertz contact).
+
+    References
+    ----------
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import curvature_sum
+    >>> [round(float(r), 6) for r in curvature_sum(0.005, 0.005, 0.02, -0.0055)]
+    [0.004, 0.055]
     """
     cx = 1.0 / np.asarray(r_ax, float) + 1.0 / np.asarray(r_bx, float)
     cy = 1.0 / np.asarray(r_ay, float) + 1.0 / np.asarray(r_by, float)
@@ -89,7 +141,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
 
 def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle: float,
                       conformity: float, race: str) -> tuple[float, float]:
-    """Effective radii R_x, R_y of a ball on the screw ('inner') or nut ('outer') groove.
+    """Return the effective radii R_x, R_y of a ball on the screw ('inner') or nut ('outer') groove.
 
     The ball screw is treated like a ball bearing (screw = inner race, nut = outer race): the
     race curvature in the rolling direction is cos β over the distance of the contact point
@@ -99,15 +151,41 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
 
     Parameters
     ----------
-    ball_diameter : Ball diameter d [m].
-    pitch_diameter : Pitch (ball-centre) diameter d_m of the screw [m].
-    contact_angle : Contact angle β [rad].
-    conformity : Groove conformity f = r_g / d [1], > 0.5.
-    race : 'inner' (screw) or 'outer' (nut).
+    ball_diameter : float
+        Ball diameter d [m].
+    pitch_diameter : float
+        Pitch (ball-centre) diameter d_m of the screw [m].
+    contact_angle : float
+        Contact angle β [rad].
+    conformity : float
+        Groove conformity f = r_g / d [-], > 0.5.
+    race : {"inner", "outer"}
+        'inner' (screw) or 'outer' (nut).
 
     Returns
     -------
-    (R_x, R_y) [m].
+    r_x : float
+        Effective radius in the rolling direction [m].
+    r_y : float
+        Effective radius in the transverse direction [m].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a ball not smaller than the pitch diameter or a conformity of 0.5 or less.
+    ValueError
+        For an unknown ``race``.
+
+    References
+    ----------
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.ehl import ball_groove_radii
+    >>> [round(r, 6) for r in ball_groove_radii(0.0127, 0.080, np.pi / 4, 0.54, "inner")]
+    [0.005637, 0.085725]
     """
     d, dm = float(ball_diameter), float(pitch_diameter)
     if d <= 0 or dm <= d:
@@ -128,7 +206,25 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
 
 @dataclass(frozen=True)
 class HertzContact:
-    """Hertz elliptical contact (arrays broadcast like the load)."""
+    """Hertz elliptical contact (arrays broadcast like the load), as :func:`hertz_contact` returns.
+
+    Parameters
+    ----------
+    ellipticity : numpy.ndarray
+        k = a/b [-].
+    elliptic_first : numpy.ndarray
+        F = K(e), complete elliptic integral of the first kind [-].
+    elliptic_second : numpy.ndarray
+        E = E(e), complete elliptic integral of the second kind [-].
+    semi_axis_transverse : numpy.ndarray
+        a = D_y / 2 [m].
+    semi_axis_rolling : numpy.ndarray
+        b = D_x / 2 [m].
+    max_pressure : numpy.ndarray
+        Maximum contact pressure p_max [Pa].
+    approach : numpy.ndarray
+        Mutual approach δ [m].
+    """
 
     ellipticity: np.ndarray  # k = a/b [1]
     elliptic_first: np.ndarray  # F = K(e), complete elliptic integral of the first kind [1]
@@ -149,12 +245,14 @@ def _curvature_ratio(k: np.ndarray) -> np.ndarray:
 
 
 def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Ellipticity k and complete elliptic integrals F, E for a curvature ratio α_r = R_y/R_x.
+    """Return the ellipticity k and complete elliptic integrals F, E for a curvature ratio.
 
     Parameters
     ----------
-    radius_ratio : α_r = R_y / R_x ≥ 1 [1].
-    method : 'exact' solves Hertz's transcendental relation
+    radius_ratio : float or array_like
+        α_r = R_y / R_x ≥ 1 [-].
+    method : {"exact", "hamrock"}
+        'exact' solves Hertz's transcendental relation
         α_r = (k² E(e) - K(e)) / (K(e) - E(e)), e² = 1 - 1/k², with scipy.special.ellipk/ellipe
         (vectorised bisection on ln k to machine precision); 'hamrock' uses the curve fits of
         Hamrock & Brewe (1983): k ≈ 1.0339 α_r^0.6360, E ≈ 1.0003 + 0.5968/α_r,
@@ -162,7 +260,30 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
 
     Returns
     -------
-    (k, F, E) [1].
+    k : numpy.ndarray
+        Ellipticity D_y / D_x [-].
+    F : numpy.ndarray
+        Complete elliptic integral of the first kind [-].
+    E : numpy.ndarray
+        Complete elliptic integral of the second kind [-].
+
+    Raises
+    ------
+    ValueError
+        For a ratio below 1 or not finite, or an unknown ``method``.
+
+    References
+    ----------
+    Hamrock, B. J. and Brewe, D. E. (1983). Simplified solution for stresses and deformations.
+    J. Lubr. Technol. 105, 171-177.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import ellipticity
+    >>> [round(float(v), 4) for v in ellipticity(4.0)]
+    [2.5007, 2.3595, 1.1506]
+    >>> [round(float(v), 4) for v in ellipticity(4.0, "hamrock")]
+    [2.4968, 2.3627, 1.1495]
     """
     ar = np.asarray(radius_ratio, dtype=float)
     if np.any(~np.isfinite(ar)) or np.any(ar < 1):
@@ -187,20 +308,45 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
 
 def hertz_contact(load, r_x: float, r_y: float, modulus: float,
                   method: str = "exact") -> HertzContact:
-    """Hertz elliptical contact under a normal load.
+    """Compute the Hertz elliptical contact under a normal load.
+
+    D_y = 2 (6 k² E w R / (π E'))^(1/3), D_x = 2 (6 E w R / (π k E'))^(1/3),
+    p_max = 6 w / (π D_x D_y), δ = F [9/(2 E R) (w/(π k E'))²]^(1/3), 1/R = 1/R_x + 1/R_y.
 
     Parameters
     ----------
-    load : Normal load w [N], array.
-    r_x, r_y : Effective radii in the rolling and transverse directions [m], R_y ≥ R_x.
-    modulus : Effective modulus E' [Pa] (see :func:`reduced_modulus`).
-    method : 'exact' (elliptic integrals) or 'hamrock' (Hamrock–Brewe fits).
+    load : float or array_like
+        Normal load w [N], ≥ 0.
+    r_x : float
+        Effective radius in the rolling direction [m].
+    r_y : float
+        Effective radius in the transverse direction [m], R_y ≥ R_x.
+    modulus : float
+        Effective modulus E' [Pa] (see :func:`reduced_modulus`).
+    method : {"exact", "hamrock"}
+        Elliptic integrals exact or by the Hamrock-Brewe fits (:func:`ellipticity`).
 
     Returns
     -------
-    HertzContact with D_y = 2 (6 k² E w R / (π E'))^(1/3), D_x = 2 (6 E w R / (π k E'))^(1/3),
-    p_max = 6 w / (π D_x D_y), δ = F [9/(2 E R) (w/(π k E'))²]^(1/3), 1/R = 1/R_x + 1/R_y
-    (Hamrock 1991, Ch. 17/18).
+    HertzContact
+        Ellipticity, elliptic integrals, semi-axes [m], maximum pressure [Pa] and approach [m],
+        of the load's shape.
+
+    Raises
+    ------
+    ValueError
+        For a negative or non-finite load, or a non-positive radius or modulus.
+
+    References
+    ----------
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17-18.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import hertz_contact
+    >>> c = hertz_contact(1000.0, 0.01, 0.01, 228.57e9)  # two 2 cm steel balls
+    >>> round(float(c.semi_axis_rolling) * 1e3, 4), round(float(c.max_pressure) / 1e9, 3)
+    (0.4034, 2.935)
     """
     w = np.asarray(load, dtype=float)
     if np.any(~np.isfinite(w)) or np.any(w < 0):
@@ -221,16 +367,45 @@ def hertz_contact(load, r_x: float, r_y: float, modulus: float,
 
 def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: float,
                          pressure_viscosity: float) -> tuple[np.ndarray, float, np.ndarray]:
-    """Speed, materials and load parameters U, G, W of Hamrock & Dowson.
+    """Return the speed, materials and load parameters U, G, W of Hamrock & Dowson.
+
+    U = η0 u / (E' R_x), G = α E', W = w / (E' R_x²).
 
     Parameters
     ----------
-    speed : Mean entrainment velocity u = (u_a + u_b)/2 [m s-1] (magnitude is used).
-    load : Normal load w [N].
-    r_x : Effective radius in the rolling direction [m].
-    modulus : Effective modulus E' [Pa].
-    viscosity : Dynamic viscosity at ambient pressure η0 [Pa s].
-    pressure_viscosity : Barus pressure-viscosity coefficient α [Pa-1].
+    speed : float or array_like
+        Mean entrainment velocity u = (u_a + u_b)/2 [m s-1] (its magnitude is used).
+    load : float or array_like
+        Normal load w [N].
+    r_x : float
+        Effective radius in the rolling direction [m].
+    modulus : float
+        Effective modulus E' [Pa].
+    viscosity : float
+        Dynamic viscosity at ambient pressure η0 [Pa s].
+    pressure_viscosity : float
+        Barus pressure-viscosity coefficient α [Pa-1].
+
+    Returns
+    -------
+    U : numpy.ndarray
+        Speed parameter [-].
+    G : float
+        Materials parameter [-].
+    W : numpy.ndarray
+        Load parameter [-].
+
+    References
+    ----------
+    Hamrock, B. J. and Dowson, D. (1977). Isothermal elastohydrodynamic lubrication of point
+    contacts, part III. J. Lubr. Technol. 99, 264-276.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import dimensionless_groups
+    >>> u, g, w = dimensionless_groups(1.0, 100.0, 0.005, 228.57e9, 0.07, 2e-8)
+    >>> round(g, 1), float(f"{float(w):.4g}")
+    (4571.4, 1.75e-05)
     """
     return (viscosity * np.abs(np.asarray(speed, float)) / (modulus * r_x),
             pressure_viscosity * modulus,
@@ -239,24 +414,55 @@ def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: flo
 
 def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosity: float,
                    pressure_viscosity: float) -> tuple[np.ndarray, np.ndarray]:
-    """Hamrock–Dowson minimum and central film thickness of an elliptical EHL contact.
+    """Return the Hamrock-Dowson minimum and central film thickness of an elliptical EHL contact.
 
     H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - e^(-0.68 k)),
     H_c = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 e^(-0.73 k)), h = H R_x,
-    with k from the exact Hertz relation (Hamrock & Dowson 1977; Hamrock 1991, Ch. 22).
+    with k from the exact Hertz relation (:func:`ellipticity`).
 
     Parameters
     ----------
-    speed : Mean entrainment velocity [m s-1]; zero speed gives zero film.
-    load : Normal load per contact [N], > 0 (a preload keeps it positive in a ball screw).
-    r_x, r_y : Effective radii [m].
-    modulus : Effective modulus E' [Pa].
-    viscosity : η0 [Pa s].
-    pressure_viscosity : α [Pa-1].
+    speed : float or array_like
+        Mean entrainment velocity [m s-1]; zero speed gives zero film.
+    load : float or array_like
+        Normal load per contact [N], > 0 (a preload keeps it positive in a ball screw).
+    r_x : float
+        Effective radius in the rolling direction [m].
+    r_y : float
+        Effective radius in the transverse direction [m].
+    modulus : float
+        Effective modulus E' [Pa].
+    viscosity : float
+        Dynamic viscosity at ambient pressure η0 [Pa s].
+    pressure_viscosity : float
+        Pressure-viscosity coefficient α [Pa-1].
 
     Returns
     -------
-    (h_min, h_c) [m].
+    h_min : numpy.ndarray
+        Minimum film thickness [m].
+    h_c : numpy.ndarray
+        Central film thickness [m].
+
+    Raises
+    ------
+    ValueError
+        For a non-positive viscosity, pressure-viscosity coefficient or load, or a non-finite
+        speed.
+
+    References
+    ----------
+    Hamrock, B. J. and Dowson, D. (1977). Isothermal elastohydrodynamic lubrication of point
+    contacts, part III. J. Lubr. Technol. 99, 264-276.
+
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 22.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import film_thickness
+    >>> h_min, h_c = film_thickness(1.0, 100.0, 0.005637, 0.085725, 228.57e9, 0.07, 2e-8)
+    >>> round(float(h_min) * 1e6, 3), round(float(h_c) * 1e6, 3)  # [µm]
+    (0.296, 0.367)
     """
     _positive("viscosity", viscosity)
     _positive("pressure-viscosity coefficient", pressure_viscosity)
@@ -274,7 +480,29 @@ def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosit
 
 
 def composite_roughness(*rms_roughness: float) -> float:
-    """Composite RMS roughness σ = sqrt(Σ σ_i²) of the contacting surfaces [m]."""
+    """Return the composite RMS roughness σ = sqrt(Σ σ_i²) of the contacting surfaces.
+
+    Parameters
+    ----------
+    *rms_roughness : float
+        RMS roughness of each surface [m].
+
+    Returns
+    -------
+    float
+        Composite roughness [m].
+
+    Raises
+    ------
+    ValueError
+        For a negative roughness, or none that is positive.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import composite_roughness
+    >>> round(composite_roughness(0.05e-6, 0.15e-6) * 1e6, 4)  # [µm]
+    0.1581
+    """
     arr = np.asarray(rms_roughness, float)
     if arr.size == 0 or np.any(arr < 0) or not np.any(arr > 0):
         raise ValueError(f"RMS roughness must be >= 0 and not all zero, got {rms_roughness}")
@@ -282,30 +510,100 @@ def composite_roughness(*rms_roughness: float) -> float:
 
 
 def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
-    """Film parameter λ = h_min / σ [1] (Eq. (7) in Senatore & De Simone 2022)."""
+    """Return the film parameter λ = h_min / σ (Eq. (7) in Senatore & De Simone 2022).
+
+    Parameters
+    ----------
+    min_film_thickness : float or array_like
+        Minimum film thickness h_min [m].
+    roughness : float
+        Composite RMS roughness σ [m] (:func:`composite_roughness`).
+
+    Returns
+    -------
+    numpy.ndarray
+        λ [-].
+
+    Raises
+    ------
+    ValueError
+        For a non-positive roughness.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358, Eq. (7).
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import film_parameter
+    >>> round(float(film_parameter(0.3e-6, 0.1e-6)), 6)
+    3.0
+    """
     _positive("composite roughness", roughness)
     return np.asarray(min_film_thickness, float) / roughness
 
 
 def lubrication_regime(lam) -> np.ndarray:
-    """Lubrication regime from the film parameter: 0 boundary (λ < 1), 1 mixed (1 ≤ λ < 3),
-    2 full film (λ ≥ 3).
+    """Return the lubrication regime from the film parameter.
 
-    The limits follow the usual reading of the Stribeck curve (Hamrock 1991, Ch. 1; Fig. 8 of
-    Senatore & De Simone 2022); Hamrock's own bands overlap (partial 1 ≤ Λ < 5, EHL 3 ≤ Λ < 10),
-    so we state ours: full film from λ = 3.
+    0 boundary (λ < 1), 1 mixed (1 ≤ λ < 3), 2 full film (λ ≥ 3). The limits follow the usual
+    reading of the Stribeck curve (Hamrock 1991, Ch. 1; Fig. 8 of Senatore & De Simone 2022);
+    Hamrock's own bands overlap (partial 1 ≤ Λ < 5, EHL 3 ≤ Λ < 10), so the limits are stated
+    here: full film from λ = 3.
+
+    Parameters
+    ----------
+    lam : float or array_like
+        Film parameter λ [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Regime (int8): ``BOUNDARY``, ``MIXED`` or ``FULL_FILM``.
+
+    References
+    ----------
+    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 1.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import lubrication_regime
+    >>> lubrication_regime([0.5, 1.0, 2.9, 3.0]).tolist()
+    [0, 1, 1, 2]
     """
     lam = np.asarray(lam, float)
     return np.digitize(lam, REGIME_LIMITS).astype(np.int8)
 
 
 def asperity_load_fraction(lam, lam_half: float = np.sqrt(3.0), sharpness: float = 4.0):
-    """Fraction of the load carried by asperities, φ(λ) = 1 / (1 + (λ/λ_½)^n).
+    """Return the fraction of the load carried by asperities, φ(λ) = 1 / (1 + (λ/λ_½)^n).
 
-    A smooth load-sharing law (model choice, in the spirit of Johnson's load sharing): with the
-    defaults λ_½ = √3 (geometric mean of the regime limits 1 and 3) and n = 4, asperities carry
-    90 % of the load at λ = 1 and 10 % at λ = 3, so the mixed band of
+    A smooth load-sharing law (a model choice, in the spirit of Johnson's load sharing): with
+    the defaults λ_½ = √3 (geometric mean of the regime limits 1 and 3) and n = 4, asperities
+    carry 90 % of the load at λ = 1 and 10 % at λ = 3, so the mixed band of
     :func:`lubrication_regime` is where the load passes from the asperities to the film.
+
+    Parameters
+    ----------
+    lam : float or array_like
+        Film parameter λ [-] (negative values count as 0).
+    lam_half : float
+        λ at which asperities and film share the load equally [-].
+    sharpness : float
+        Exponent n [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        φ [-].
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import asperity_load_fraction
+    >>> asperity_load_fraction([1.0, 3.0]).round(6).tolist()
+    [0.9, 0.1]
     """
     lam = np.maximum(np.asarray(lam, float), 0.0)
     return 1.0 / (1.0 + (lam / lam_half) ** sharpness)
@@ -313,18 +611,48 @@ def asperity_load_fraction(lam, lam_half: float = np.sqrt(3.0), sharpness: float
 
 def stribeck_friction(lam, boundary: float = 0.1, full_film: float = 0.01,
                       lam_half: float = np.sqrt(3.0), sharpness: float = 4.0) -> np.ndarray:
-    """Friction coefficient along the Stribeck curve (Fig. 8 in Senatore & De Simone 2022).
+    """Return the friction coefficient along the Stribeck curve.
 
-    f = φ f_boundary + (1 - φ) f_full_film with φ the asperity load fraction
-    (:func:`asperity_load_fraction`). f decreases monotonically with λ, i.e. with speed in the
-    mixed regime ("right-hand range of the Stribeck curve"). The hydrodynamic rise of f at very
-    large λ is not modelled (the ball screw never gets there).
+    The curve of Fig. 8 in Senatore & De Simone 2022: f = φ f_boundary + (1 - φ) f_full_film
+    with φ the asperity load fraction (:func:`asperity_load_fraction`). f decreases
+    monotonically with λ, i.e. with speed in the mixed regime ("right-hand range of the
+    Stribeck curve"). The hydrodynamic rise of f at very large λ is not modelled (the ball
+    screw never gets there).
 
     Parameters
     ----------
-    lam : Film parameter λ [1].
-    boundary : Friction coefficient of boundary lubrication [1] (0.1, lubricated steel).
-    full_film : Friction (traction) coefficient of a full EHL film [1].
+    lam : float or array_like
+        Film parameter λ [-].
+    boundary : float
+        Friction coefficient of boundary lubrication [-] (0.1, lubricated steel).
+    full_film : float
+        Friction (traction) coefficient of a full EHL film [-].
+    lam_half : float
+        λ of equal load sharing [-] (:func:`asperity_load_fraction`).
+    sharpness : float
+        Exponent of the load-sharing law [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Friction coefficient [-].
+
+    Raises
+    ------
+    ValueError
+        Unless 0 ≤ ``full_film`` ≤ ``boundary``.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358, Fig. 8.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.ehl import stribeck_friction
+    >>> stribeck_friction([0.0, 1.0, 3.0], 0.13, 0.002).round(4).tolist()
+    [0.13, 0.1172, 0.0148]
     """
     if not 0 <= full_film <= boundary:
         raise ValueError(f"need 0 <= full-film friction <= boundary friction, got "

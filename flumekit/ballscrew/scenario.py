@@ -32,7 +32,29 @@ GENERATOR_REGIONS = ("stator", "air_gap", "rotor", "rotor_hub")
 
 @dataclass(frozen=True)
 class StatedResult:
-    """One statement of the paper, its admissible interval and flumekit's value."""
+    """One statement of the paper, its admissible interval and flumekit's value.
+
+    Parameters
+    ----------
+    quantity : str
+        What is compared.
+    paper : str
+        The paper's wording.
+    low : float
+        Lower end of the interval the wording allows [``unit``].
+    high : float
+        Upper end [``unit``].
+    value : float
+        flumekit's value [``unit``].
+    unit : str
+        Unit of the interval and the value.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.scenario import StatedResult
+    >>> StatedResult("lowest indirect efficiency", "73 %", 72.5, 73.5, 73.1, "%").holds
+    True
+    """
 
     quantity: str
     paper: str
@@ -43,19 +65,49 @@ class StatedResult:
 
     @property
     def holds(self) -> bool:
+        """Return whether the value lies in the interval.
+
+        Returns
+        -------
+        bool
+            low ≤ value ≤ high.
+        """
         return bool(self.low <= self.value <= self.high)
 
 
 def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
                        samples_per_period: int = 380) -> tuple[xr.Dataset, xr.Dataset,
                                                                xr.Dataset]:
-    """Efficiency, lumped and FEM thermal datasets of the paper's scenario (§3.1-3.2).
+    """Compute the efficiency, lumped and FEM thermal datasets of the paper's scenario (§3.1-3.2).
+
+    The buoy's kinematics (:func:`flumekit.ballscrew.buoy.kinematics`), the ball screw's
+    efficiency (:func:`flumekit.ballscrew.screw.efficiency`), then the lumped
+    (:func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`) and FEM
+    (:func:`flumekit.ballscrew.thermal.fem.thermal_fem`) thermal models.
 
     Parameters
     ----------
-    amplitude : Amplitude of the buoy's vertical motion [m] (1 m in the paper).
-    period : Wave period [s] (3.8 s in the paper).
-    samples_per_period : Samples of the kinematic input per period [1].
+    amplitude : float
+        Amplitude of the buoy's vertical motion [m] (1 m in the paper).
+    period : float
+        Wave period [s] (3.8 s in the paper).
+    samples_per_period : int
+        Samples of the kinematic input per period [-].
+
+    Returns
+    -------
+    efficiency : xarray.Dataset
+        The efficiency dataset.
+    lumped : xarray.Dataset
+        The lumped thermal dataset.
+    fem : xarray.Dataset
+        The FEM thermal dataset.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, §3.1-3.2.
     """
     kin = buoy.kinematics(buoy.reference_motion(amplitude, period,
                                                 samples_per_period=samples_per_period))
@@ -65,10 +117,26 @@ def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
 
 
 def steady_fraction_lumped(th: xr.Dataset) -> np.ndarray:
-    """Temperature rise over the last operating cycle as a fraction of the steady rise, per lump.
+    """Return each lump's temperature rise over the last cycle as a fraction of its steady rise.
 
     The steady (cycle-mean) rise solves K ΔT = s̄ with s̄ the mean heat sources of Eqs. (8)-(10);
     the rise reached is the mean over the last cycle of the run.
+
+    Parameters
+    ----------
+    th : xarray.Dataset
+        Output of :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`.
+
+    Returns
+    -------
+    numpy.ndarray
+        Fraction per lump (component) [-].
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eqs. (8)-(10) and Fig. 16.
     """
     params = lumped.LumpedThermal(**{k: th.attrs[k] for k in
                                      lumped.LumpedThermal.__dataclass_fields__})
@@ -82,7 +150,18 @@ def steady_fraction_lumped(th: xr.Dataset) -> np.ndarray:
 
 
 def hottest_region(fem_ds: xr.Dataset) -> str:
-    """Name of the FEM region holding the hottest node at the last stored time."""
+    """Return the name of the FEM region holding the hottest node at the last stored time.
+
+    Parameters
+    ----------
+    fem_ds : xarray.Dataset
+        Output of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+
+    Returns
+    -------
+    str
+        The region's name.
+    """
     field = fem_ds["temperature_field"].values[-1]
     cells = fem_ds["cell_nodes"].values
     region = fem_ds["cell_region"].values
@@ -91,7 +170,30 @@ def hottest_region(fem_ds: xr.Dataset) -> str:
 
 
 def stated_results(eff: xr.Dataset, th: xr.Dataset, fem_ds: xr.Dataset) -> list[StatedResult]:
-    """Each statement of the paper about its scenario against flumekit's value (module doc)."""
+    """Compare each statement of the paper about its scenario with flumekit's value.
+
+    See the module's description for the statements and the intervals their wording allows.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        The efficiency dataset of :func:`reference_scenario`.
+    th : xarray.Dataset
+        The lumped thermal dataset.
+    fem_ds : xarray.Dataset
+        The FEM thermal dataset.
+
+    Returns
+    -------
+    list of StatedResult
+        One per statement.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, §3.1-3.2 and §4.
+    """
     indirect = eff["power_flow_direction"].values > 0
     eta = 100 * eff["ballscrew_efficiency"].values[indirect]
     mixed = 100 * np.mean(eff["lubrication_regime_screw"].values == 1)
@@ -122,7 +224,24 @@ def stated_results(eff: xr.Dataset, th: xr.Dataset, fem_ds: xr.Dataset) -> list[
 
 
 def table(results: list[StatedResult]) -> str:
-    """The stated results as a plain-text table."""
+    """Return the stated results as a plain-text table.
+
+    Parameters
+    ----------
+    results : list of StatedResult
+        The results (:func:`stated_results`).
+
+    Returns
+    -------
+    str
+        One header line and one line per result.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.scenario import StatedResult, table
+    >>> print(table([StatedResult("ratio", "four times", 3.5, 4.5, 4.0, "1")]).split()[-1])
+    yes
+    """
     rows = [f"{'quantity':<62} {'paper':<26} {'flumekit':>9} {'interval':>15}  ok"]
     for r in results:
         rows.append(f"{r.quantity:<62} {r.paper:<26} {r.value:>9.2f} "

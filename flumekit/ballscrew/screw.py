@@ -1,10 +1,11 @@
-"""Ball-screw PTO: force Eq. (3), per-ball force balance and efficiency Eqs. (4)-(6), coupled to
-the EHL model at every time step (the "simultaneous" scheme of Fig. 6).
+"""Ball-screw PTO: force Eq. (3), ball forces and efficiency Eqs. (4)-(6), coupled to the EHL.
 
-Senatore & De Simone 2022, Sect. 2. Notation: α lead angle at the pitch radius r_m, β contact
-angle, Q ball-groove normal load, f (= f_A) ball-nut and f_B ball-screw friction coefficients,
-γ_B slip angle at the ball-screw contact, ρ rolling-friction angle (tan ρ = rolling resistance
-coefficient; the paper takes it from Houpert and Balan, we keep it a parameter).
+The EHL model of the contacts is evaluated at every time step (the "simultaneous" scheme of
+Fig. 6). Senatore & De Simone 2022, Sect. 2. Notation: α lead angle at the pitch radius r_m,
+β contact angle, Q ball-groove normal load, f (= f_A) ball-nut and f_B ball-screw friction
+coefficients, γ_B slip angle at the ball-screw contact, ρ rolling-friction angle (tan ρ =
+rolling resistance coefficient; the paper takes it from Houpert and Balan, here it is a
+parameter).
 
 Two corrections to Eqs. (5)-(6) as printed, both needed for energy conservation:
 
@@ -12,17 +13,20 @@ Two corrections to Eqs. (5)-(6) as printed, both needed for energy conservation:
    point, r_m - r_b cos β. A force normal to the helicoid at radius r has tangential/axial ratio
    tan α_r = r_m tan α / r, so the torque/axial-force ratio is r_m tan α at every radius. With the
    printed form a frictionless screw would have η = 1 - r_b cos β / r_m ≈ 0.89: energy lost
-   without friction. We use the lever arm r_m (equivalently r_B with α_B), which gives η = 1
+   without friction. The lever arm here is r_m (equivalently r_B with α_B), which gives η = 1
    at zero friction.
-2. The sign of the γ_B term in Eq. (6) depends on how γ_B is oriented. We take γ_B ≥ 0 as the
-   magnitude of the slip angle and orient every friction term against the motion, so friction
-   only ever reduces the transmitted torque (dissipation ≥ 0) and η falls as friction rises.
+2. The sign of the γ_B term in Eq. (6) depends on how γ_B is oriented. γ_B ≥ 0 is taken as the
+   magnitude of the slip angle and every friction term is oriented against the motion, so
+   friction only ever reduces the transmitted torque (dissipation ≥ 0) and η falls as friction
+   rises.
 
-In indirect (back-driving) mode, nut → screw:
+In indirect (back-driving) mode, nut → screw::
+
     F_ball = Q {cos ρ [sin β cos α + f cos β cos α] + sin ρ sin α}                       (5)
     M_scr = r_m Q {cos ρ [sin β sin α - f_B (cos γ_B cos β sin α + sin γ_B cos α)]
                    - sin ρ cos α}                                                     (6)
     η = M_scr ω / (F_ball v) = M_scr / (F_ball r_m tan α)   (ω = v / (r_m tan α))       (4)
+
 With β = 90°, f = f_B = 0 this is the classic tan(α - ρ)/tan α. In direct mode (screw → nut,
 e.g. while the rotor's inertia drives the nut) all friction terms change sign and
 η_d = F_ball r_m tan α / M_scr = tan α / tan(α + ρ) in the classic case.
@@ -48,24 +52,67 @@ from flumekit.errors import GeometryError
 class BallScrew:
     """Geometry, materials and surfaces of the recirculating ball screw.
 
-    Defaults: a large ground ball screw (80 mm x 20 mm lead, 1/2" balls) in the size class
-    of the UMBRA actuators; each value with its reason.
+    Defaults: a large ground ball screw (80 mm x 20 mm lead, 1/2" balls) in the size class of
+    the UMBRA actuators; each parameter says its value's reason.
 
-    pitch_diameter : 0.080 m; lead : 0.020 m → α = 4.55°, ω ≈ 140 rad/s at 0.45 m/s.
-    ball_diameter : 12.7 mm (1/2"), standard for an 80 mm screw.
-    contact_angle : 45°, the usual gothic-arch groove.
-    conformity_screw, conformity_nut : 0.54, groove radius / ball diameter (0.52-0.56 usual).
-    loaded_balls : 60 effective balls (3 circuits x 2.5 turns x ~19 balls/turn ≈ 140 balls, of
-        which about half carry load in one direction of a preloaded double nut).
-    preload_per_ball : 50 N (about 2 % of the dynamic rating per ball), also keeps the EHL load
-        positive at the motion reversals.
-    slip_angle : 1°, a small constant slip direction at the ball-screw contact (paper:
-        "constant slip angle γ_B").
-    rolling_resistance : tan ρ = 2e-4, rolling resistance of a hardened steel ball on a hardened
-        raceway (textbook range 1e-4 to 5e-4 for hardened steel on steel); with the lubricant's
+    Parameters
+    ----------
+    pitch_diameter : float
+        Pitch (ball-centre) diameter d_m [m]; 0.080 m, with the 20 mm lead α = 4.55° and
+        ω ≈ 140 rad/s at 0.45 m/s.
+    lead : float
+        Lead [m]; 0.020 m.
+    ball_diameter : float
+        Ball diameter [m]; 12.7 mm (1/2"), standard for an 80 mm screw.
+    contact_angle : float
+        Contact angle β [rad]; 45°, the usual gothic-arch groove.
+    conformity_screw : float
+        Groove radius / ball diameter of the screw [-]; 0.54 (0.52-0.56 usual).
+    conformity_nut : float
+        The same for the nut [-].
+    loaded_balls : int
+        Effective loaded balls [-]; 60 (3 circuits x 2.5 turns x ~19 balls/turn ≈ 140 balls,
+        of which about half carry load in one direction of a preloaded double nut).
+    preload_per_ball : float
+        Preload per ball [N]; 50 N (about 2 % of the dynamic rating per ball), which also keeps
+        the EHL load positive at the motion reversals.
+    slip_angle : float
+        Slip angle γ_B at the ball-screw contact [rad]; 1°, a small constant slip direction
+        (the paper: "constant slip angle γ_B").
+    rolling_resistance : float
+        tan ρ [-]; 2e-4, rolling resistance of a hardened steel ball on a hardened raceway
+        (textbook range 1e-4 to 5e-4 for hardened steel on steel); with the lubricant's
         friction law it sets the top of the efficiency range, 97 % in the paper (§3.1).
-    roughness_* : RMS roughness [m]: balls 0.05 µm (grade G10), ground raceways 0.15 µm.
-    young_modulus, poisson_ratio : bearing steel.
+    roughness_ball : float
+        RMS roughness of the balls [m]; 0.05 µm (grade G10).
+    roughness_screw : float
+        RMS roughness of the ground screw raceway [m]; 0.15 µm.
+    roughness_nut : float
+        RMS roughness of the ground nut raceway [m]; 0.15 µm.
+    young_modulus : float
+        Young's modulus [Pa]; bearing steel.
+    poisson_ratio : float
+        Poisson's ratio [-]; bearing steel.
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a non-positive lead, a ball not smaller than the pitch diameter, a contact angle
+        outside (0, 90°), no loaded ball, a non-positive preload, a slip angle outside [0, 90°)
+        or a negative rolling resistance.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 2 and §3.1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import BallScrew
+    >>> round(float(np.degrees(BallScrew().lead_angle)), 2)
+    4.55
     """
 
     pitch_diameter: float = 0.080
@@ -85,6 +132,7 @@ class BallScrew:
     poisson_ratio: float = 0.3
 
     def __post_init__(self):
+        """Check the geometry (see the class's Raises)."""
         if not (self.lead > 0 and self.pitch_diameter > self.ball_diameter > 0):
             raise GeometryError("ball screw: need lead > 0 and pitch diameter > ball diameter > 0")
         if not 0 < self.contact_angle < np.pi / 2:
@@ -111,19 +159,38 @@ class BallScrew:
 class Lubricant:
     """Lubricant and friction law.
 
-    viscosity : 0.07 Pa s, base oil of an ISO VG 100 grease near 45 °C (the paper's nut runs
-        up to ≈ 20 + 40 °C; the thermal model is standalone, as in the paper, so η0 is not
-        updated). With the default surfaces λ peaks near 3 at full speed: mostly mixed.
-    pressure_viscosity : 2.0e-8 Pa-1, mineral oil.
-    friction_boundary : 0.13, lubricated steel in boundary lubrication (textbook range
-        0.1-0.15); it sets the bottom of the efficiency range at the motion reversals, 73 % in
-        the paper (§3.1).
-    friction_full_film : 0.002, EHL traction of a full film at the small slide-to-roll ratios
-        of a ball screw (measured traction curves start at 0.001-0.01 near pure rolling).
-
-    With these values the reference scenario gives η from 73 % to 97 % with the screw contact
-    mixed 89 % of the time, the three statements of Senatore & De Simone (2022) §3.1
+    With the default values the reference scenario gives η from 73 % to 97 % with the screw
+    contact mixed 89 % of the time, the three statements of Senatore & De Simone (2022) §3.1
     (``flumekit bench ballscrew`` prints the table).
+
+    Parameters
+    ----------
+    viscosity : float
+        Dynamic viscosity at ambient pressure η0 [Pa s]; 0.07, the base oil of an ISO VG 100
+        grease near 45 °C (the paper's nut runs up to ≈ 20 + 40 °C; the thermal model is
+        standalone, as in the paper, so η0 is not updated). With the default surfaces λ peaks
+        near 3 at full speed: mostly mixed.
+    pressure_viscosity : float
+        Pressure-viscosity coefficient α [Pa-1]; 2.0e-8, mineral oil.
+    friction_boundary : float
+        Friction coefficient of boundary lubrication [-]; 0.13, lubricated steel (textbook
+        range 0.1-0.15); it sets the bottom of the efficiency range at the motion reversals,
+        73 % in the paper (§3.1).
+    friction_full_film : float
+        EHL traction coefficient of a full film [-]; 0.002, at the small slide-to-roll ratios of
+        a ball screw (measured traction curves start at 0.001-0.01 near pure rolling).
+
+    Raises
+    ------
+    ValueError
+        For a non-positive viscosity or pressure-viscosity coefficient, or unless
+        0 ≤ ``friction_full_film`` ≤ ``friction_boundary``.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Fig. 8 and §3.1.
     """
 
     viscosity: float = 0.07
@@ -132,6 +199,7 @@ class Lubricant:
     friction_full_film: float = 0.002
 
     def __post_init__(self):
+        """Check the values (see the class's Raises)."""
         if not (self.viscosity > 0 and self.pressure_viscosity > 0):
             raise ValueError("lubricant: viscosity and pressure-viscosity coefficient must be > 0")
         if not 0 <= self.friction_full_film <= self.friction_boundary:
@@ -142,14 +210,31 @@ class Lubricant:
 class PTOCoefficients:
     """Coefficients of Eq. (3) in physical form.
 
-    damping : K_damp [N s m-1], the generator's electromagnetic damping reflected to the nut.
-        60 kN s/m gives a mean generator power of ≈ 4.6 kW in the reference scenario, the order
-        of the wave energy brought to the 5 m float by T = 3.8 s, H ≈ 1.5 m waves (the energy
-        balance algorithm gives h ≈ 1 m for H = 1.5 m with these defaults).
-    viscous : K_visc [N s m-1], viscous losses of seals and grease churning (≈ 1 % of K_damp).
-    rotor_inertia : J [kg m2] of the EMRG rotor and screw shaft; reflected to the nut as
-        J (2π/lead)² (≈ 1000 kg for 0.01 kg m², lead 20 mm).
-    nut_mass : [kg] of the nut and its carriage.
+    Parameters
+    ----------
+    damping : float
+        K_damp [N s m-1], the generator's electromagnetic damping reflected to the nut. 60 kN s/m
+        gives a mean generator power of ≈ 4.6 kW in the reference scenario, the order of the
+        wave energy brought to the 5 m float by T = 3.8 s, H ≈ 1.5 m waves (the energy balance
+        algorithm gives h ≈ 1 m for H = 1.5 m with these defaults).
+    viscous : float
+        K_visc [N s m-1], viscous losses of seals and grease churning (≈ 1 % of K_damp).
+    rotor_inertia : float
+        J [kg m2] of the EMRG rotor and screw shaft; reflected to the nut as J (2π/lead)²
+        (≈ 1000 kg for 0.01 kg m², lead 20 mm).
+    nut_mass : float
+        Mass of the nut and its carriage [kg].
+
+    Raises
+    ------
+    ValueError
+        For a negative coefficient.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eq. (3).
     """
 
     damping: float = 6.0e4
@@ -158,18 +243,60 @@ class PTOCoefficients:
     nut_mass: float = 30.0
 
     def __post_init__(self):
+        """Check the coefficients (see the class's Raises)."""
         if min(self.damping, self.viscous, self.rotor_inertia, self.nut_mass) < 0:
             raise ValueError("PTO coefficients must be >= 0")
 
     def inertia(self, lead: float) -> float:
-        """K_inert of Eq. (3): J (2π/lead)² + m_nut [kg]."""
+        """Return K_inert of Eq. (3), J (2π/lead)² + m_nut.
+
+        Parameters
+        ----------
+        lead : float
+            Screw lead [m].
+
+        Returns
+        -------
+        float
+            Equivalent inertia on the nut [kg].
+
+        Examples
+        --------
+        >>> from flumekit.ballscrew.screw import PTOCoefficients
+        >>> round(PTOCoefficients().inertia(0.02), 1)
+        1017.0
+        """
         return self.rotor_inertia * (2 * np.pi / lead) ** 2 + self.nut_mass
 
 
 # --- geometry and kinematics -------------------------------------------------------------------
 
 def lead_angle(lead: float, pitch_diameter: float) -> float:
-    """Lead angle α = atan(lead / (π d_m)) [rad] at the pitch diameter."""
+    """Return the lead angle α = atan(lead / (π d_m)) at the pitch diameter.
+
+    Parameters
+    ----------
+    lead : float
+        Screw lead [m].
+    pitch_diameter : float
+        Pitch diameter d_m [m].
+
+    Returns
+    -------
+    float
+        Lead angle [rad].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a non-positive lead or pitch diameter.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.screw import lead_angle
+    >>> round(lead_angle(0.020, 0.080), 6)
+    0.07941
+    """
     if not (lead > 0 and pitch_diameter > 0):
         raise GeometryError(f"lead and pitch diameter must be positive, "
                             f"got {lead}, {pitch_diameter}")
@@ -177,12 +304,30 @@ def lead_angle(lead: float, pitch_diameter: float) -> float:
 
 
 def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
-    """Mean entrainment (rolling) speed of the ball-groove contacts [m s-1].
+    """Return the mean entrainment (rolling) speed of the ball-groove contacts.
 
     Ball-bearing kinematics with the screw as inner race turning at ω relative to the
-    non-rotating nut: u = |ω| d_m/4 (1 - γ²), γ = d cos β / d_m, stretched by 1/cos α along the
-    helical path. Pure rolling on the nut (paper's assumption), so u is the same at both
+    non-rotating nut: u = ``|ω|`` d_m/4 (1 - γ²), γ = d cos β / d_m, stretched by 1/cos α along the
+    helical path. Pure rolling on the nut (the paper's assumption), so u is the same at both
     contacts.
+
+    Parameters
+    ----------
+    screw_speed : float or array_like
+        Screw angular speed ω [rad s-1].
+    screw : BallScrew
+        The ball screw.
+
+    Returns
+    -------
+    numpy.ndarray
+        Entrainment speed [m s-1].
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.screw import BallScrew, entrainment_speed
+    >>> round(float(entrainment_speed(100.0, BallScrew())), 4)
+    1.981
     """
     gam = screw.ball_diameter * np.cos(screw.contact_angle) / screw.pitch_diameter
     return (np.abs(np.asarray(screw_speed, float)) * screw.pitch_diameter / 4.0
@@ -194,22 +339,56 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
 def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_nut,
                 friction_screw, rho, slip_angle: float, pitch_radius: float,
                 mode: str = "indirect") -> tuple[np.ndarray, np.ndarray]:
-    """Axial force and screw torque of one loaded ball, Eqs. (5)-(6) (corrected, see module).
+    """Return the axial force and screw torque of one loaded ball, Eqs. (5)-(6).
+
+    As corrected in the module's description (lever arm r_m, friction against the motion).
 
     Parameters
     ----------
-    normal_load : Closing force Q = Q_A = Q_B [N].
-    lead_angle_ : α [rad].
-    contact_angle : β [rad].
-    friction_nut, friction_screw : f (ball-nut) and f_B (ball-screw) [1].
-    rho : Rolling-friction angle ρ [rad].
-    slip_angle : γ_B [rad].
-    pitch_radius : r_m [m].
-    mode : 'indirect' (nut drives the screw) or 'direct' (screw drives the nut).
+    normal_load : float or array_like
+        Closing force Q = Q_A = Q_B [N].
+    lead_angle_ : float
+        Lead angle α [rad].
+    contact_angle : float
+        Contact angle β [rad].
+    friction_nut : float or array_like
+        Ball-nut friction coefficient f [-], finite and ≥ 0.
+    friction_screw : float or array_like
+        Ball-screw friction coefficient f_B [-], finite and ≥ 0.
+    rho : float or array_like
+        Rolling-friction angle ρ [rad], finite and ≥ 0.
+    slip_angle : float
+        Slip angle γ_B [rad].
+    pitch_radius : float
+        Pitch radius r_m [m].
+    mode : {"indirect", "direct"}
+        'indirect' (nut drives the screw) or 'direct' (screw drives the nut).
 
     Returns
     -------
-    (F_ball [N], M_scr [N m]).
+    force : numpy.ndarray
+        Axial ball force F_ball [N].
+    torque : numpy.ndarray
+        Screw torque M_scr [N m].
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``mode`` or a negative or non-finite friction coefficient or angle.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eqs. (5)-(6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import ball_forces
+    >>> f, m = ball_forces(100.0, 0.1, np.pi / 2, 0.0, 0.0, 0.0, 0.0, 0.04)
+    >>> round(float(f), 4), round(float(m), 4)  # frictionless: Q cos α, r_m Q sin α
+    (99.5004, 0.3993)
     """
     s = {"indirect": 1.0, "direct": -1.0}.get(mode)
     if s is None:
@@ -235,11 +414,54 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
 
 def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                         rho=0.0, slip_angle: float = 0.0, strict: bool = False) -> np.ndarray:
-    """Indirect (back-driving) efficiency η = M ω / (F v), Eqs. (4)-(6).
+    """Return the indirect (back-driving) efficiency η = M ω / (F v), Eqs. (4)-(6).
 
-    Independent of Q and of the pitch radius. Where the ball-screw is self-locking (M ≤ 0:
+    Independent of Q and of the pitch radius. Where the ball screw is self-locking (M ≤ 0:
     the friction exceeds what the lead angle can overcome) η = 0, or ``ValueError`` if
     ``strict``.
+
+    Parameters
+    ----------
+    lead_angle_ : float
+        Lead angle α [rad], in (0, 90°).
+    contact_angle : float
+        Contact angle β [rad].
+    friction_nut : float or array_like
+        Ball-nut friction coefficient f [-].
+    friction_screw : float or array_like
+        Ball-screw friction coefficient f_B [-].
+    rho : float or array_like
+        Rolling-friction angle ρ [rad].
+    slip_angle : float
+        Slip angle γ_B [rad].
+    strict : bool
+        Raise instead of returning 0 where the screw self-locks.
+
+    Returns
+    -------
+    numpy.ndarray
+        η [-].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a lead angle outside (0, 90°).
+    ValueError
+        With ``strict``, where the screw self-locks.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import indirect_efficiency
+    >>> a, rho = np.radians(5.0), np.arctan(0.01)
+    >>> round(float(indirect_efficiency(a, np.pi / 2, 0.0, 0.0, rho)), 6)  # tan(α - ρ) / tan α
+    0.884925
     """
     if not 0 < lead_angle_ < np.pi / 2:
         raise GeometryError(f"lead angle must lie in (0, 90°), got {lead_angle_}")
@@ -254,7 +476,42 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
 
 def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                       rho=0.0, slip_angle: float = 0.0) -> np.ndarray:
-    """Direct efficiency η_d = F v / (M ω) (screw drives the nut), Eqs. (4)-(6) reversed."""
+    """Return the direct efficiency η_d = F v / (M ω) (screw drives the nut), Eqs. (4)-(6) reversed.
+
+    Parameters
+    ----------
+    lead_angle_ : float
+        Lead angle α [rad].
+    contact_angle : float
+        Contact angle β [rad].
+    friction_nut : float or array_like
+        Ball-nut friction coefficient f [-].
+    friction_screw : float or array_like
+        Ball-screw friction coefficient f_B [-].
+    rho : float or array_like
+        Rolling-friction angle ρ [rad].
+    slip_angle : float
+        Slip angle γ_B [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        η_d [-], clipped to [0, 1].
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import direct_efficiency
+    >>> a, rho = np.radians(5.0), np.arctan(0.01)
+    >>> round(float(direct_efficiency(a, np.pi / 2, 0.0, 0.0, rho)), 6)  # tan α / tan(α + ρ)
+    0.896639
+    """
     f, m = ball_forces(1.0, lead_angle_, contact_angle, friction_nut, friction_screw, rho,
                        slip_angle, 1.0, "direct")
     return np.clip(f * np.tan(lead_angle_) / m, 0.0, 1.0)
@@ -264,16 +521,46 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
 
 def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, viscous: float,
               inertia: float) -> np.ndarray:
-    """Axial PTO force on the nut, Eq. (3) in Senatore & De Simone 2022 [N].
+    """Return the axial PTO force on the nut, Eq. (3) in Senatore & De Simone 2022.
 
     F_PTO = -K_damp v - F_friction sign(v) - K_visc v - K_inert a.
 
     Parameters
     ----------
-    nut_velocity, nut_acceleration : v [m s-1], a [m s-2].
-    friction_force : F_friction ≥ 0 [N] (from the lubrication model).
-    damping, viscous : K_damp, K_visc [N s m-1].
-    inertia : K_inert [kg].
+    nut_velocity : float or array_like
+        Nut velocity v [m s-1].
+    nut_acceleration : float or array_like
+        Nut acceleration a [m s-2].
+    friction_force : float or array_like
+        Friction force magnitude F_friction ≥ 0 [N] (from the lubrication model).
+    damping : float
+        K_damp [N s m-1].
+    viscous : float
+        K_visc [N s m-1].
+    inertia : float
+        K_inert [kg].
+
+    Returns
+    -------
+    numpy.ndarray
+        F_PTO [N], positive extending the actuator.
+
+    Raises
+    ------
+    ValueError
+        For a negative or non-finite friction force.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eq. (3).
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.screw import pto_force
+    >>> pto_force([0.1, -0.1], [0.0, 0.0], 50.0, 1000.0, 10.0, 5.0).tolist()
+    [-151.0, 151.0]
     """
     v = np.asarray(nut_velocity, float)
     fr = np.asarray(friction_force, float)
@@ -309,24 +596,63 @@ def _contacts(screw: BallScrew) -> _Contacts:
 def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
               lubricant: Lubricant = Lubricant(), pto: PTOCoefficients = PTOCoefficients(),
               iterations: int = 8, tolerance: float = 1e-10) -> dict[str, np.ndarray]:
-    """Ball-screw state at every time step: EHL of both contacts, friction, efficiency, Eq. (3).
+    """Compute the ball-screw state at every time step: EHL of both contacts, friction, efficiency.
 
     The load transmitted through the balls to the screw is F_t = K_damp v + J (2π/l)² a
     (generator and rotor inertia). When F_t v ≥ 0 the nut drives the screw (indirect mode) and
-    the nut must push F_t/η: the friction force is F_fr = |F_t| (1/η - 1); otherwise the rotor
-    drives the nut (direct mode) and F_fr = |F_t| (1 - η_d). The ball load
+    the nut must push F_t/η: the friction force is F_fr = ``|F_t|`` (1/η - 1); otherwise the rotor
+    drives the nut (direct mode) and F_fr = ``|F_t|`` (1 - η_d). The ball load
     Q = Q_preload + F_balls / (z sin β cos α) depends on η, so η, Q and the EHL state are
     iterated to a fixed point (a handful of vectorised iterations; η depends on Q only through
     the film thickness, W^-0.073).
 
+    Parameters
+    ----------
+    nut_velocity : array_like
+        Nut velocity v [m s-1].
+    nut_acceleration : array_like
+        Nut acceleration a [m s-2], of the shape of ``nut_velocity``.
+    screw : BallScrew
+        The ball screw.
+    lubricant : Lubricant
+        The lubricant and friction law.
+    pto : PTOCoefficients
+        The coefficients of Eq. (3).
+    iterations : int
+        Fixed-point iterations at most.
+    tolerance : float
+        Largest change of η that ends the iterations [-].
+
     Returns
     -------
-    dict of arrays: screw_speed, entrainment_speed, ball_load, min_film_thickness_{screw,nut},
-    film_parameter_{screw,nut}, lubrication_regime_{screw,nut},
-    friction_coefficient_{screw,nut}, ballscrew_efficiency (indirect, Fig. 15),
-    direct_efficiency, power_flow_direction (+1 indirect, -1 direct), friction_force,
-    pto_force (Eq. 3), screw_torque, input_power, output_power, generator_power,
-    mechanical_power_loss.
+    dict of str to numpy.ndarray
+        screw_speed [rad s-1], entrainment_speed [m s-1], ball_load [N],
+        min_film_thickness_{screw,nut} [m], film_parameter_{screw,nut} [-],
+        lubrication_regime_{screw,nut}, friction_coefficient_{screw,nut} [-],
+        ballscrew_efficiency (indirect, Fig. 15) [-], direct_efficiency [-],
+        power_flow_direction (+1 indirect, -1 direct), friction_force [N], pto_force (Eq. 3)
+        [N], screw_torque [N m], input_power, output_power, generator_power,
+        mechanical_power_loss [W].
+
+    Raises
+    ------
+    ValueError
+        For velocity and acceleration not finite or of different shapes, or a motion in which
+        the screw self-locks.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eqs. (3)-(7), Figs. 6 and 15.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import pto_state
+    >>> s = pto_state(np.array([0.2, 0.4]), np.zeros(2))
+    >>> s["ballscrew_efficiency"].round(4).tolist(), s["lubrication_regime_screw"].tolist()
+    ([0.8962, 0.9674], [1, 2])
     """
     v = np.asarray(nut_velocity, float)
     a = np.asarray(nut_acceleration, float)
@@ -384,7 +710,32 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
 
 def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                        pto: PTOCoefficients = PTOCoefficients()):
-    """Callable (v, a) -> F_PTO [N] of the full model, for :func:`buoy.lift_from_energy_balance`."""
+    """Return the callable (v, a) -> F_PTO of the full model.
+
+    For :func:`flumekit.ballscrew.buoy.lift_from_energy_balance`: :func:`pto_state`'s
+    ``pto_force``.
+
+    Parameters
+    ----------
+    screw : BallScrew
+        The ball screw.
+    lubricant : Lubricant
+        The lubricant and friction law.
+    pto : PTOCoefficients
+        The coefficients of Eq. (3).
+
+    Returns
+    -------
+    callable
+        (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.ballscrew.screw import pto_force_function
+    >>> round(float(pto_force_function()(np.array([0.2]), np.zeros(1))[0]), 1)
+    -13509.4
+    """
     def force(v, a):
         return pto_state(v, a, screw, lubricant, pto)["pto_force"]
     return force
@@ -392,18 +743,48 @@ def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lu
 
 def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                pto: PTOCoefficients = PTOCoefficients()) -> xr.Dataset:
-    """Scenario step 2: PTO force, EHL state and ball-screw efficiency at every time step.
+    """Compute the PTO force, EHL state and ball-screw efficiency at every time step.
+
+    Step 2 of the scenario: :func:`pto_state` on the nut motion of ``kin``, then the
+    inverse dynamics of the buoy (:func:`flumekit.ballscrew.buoy.inverse_dynamics`). Cheap (no
+    thermal model): the efficiency-only scene stops here.
 
     Parameters
     ----------
-    kin : Output of :func:`flumekit.ballscrew.buoy.kinematics` (its lead must match ``screw``).
-    screw, lubricant, pto : Ball screw, lubricant and Eq. (3) coefficients.
+    kin : xarray.Dataset
+        Output of :func:`flumekit.ballscrew.buoy.kinematics` (its lead must match ``screw``).
+    screw : BallScrew
+        The ball screw.
+    lubricant : Lubricant
+        The lubricant and friction law.
+    pto : PTOCoefficients
+        The coefficients of Eq. (3).
 
     Returns
     -------
-    Dataset over ``time`` with the variables of :func:`pto_state`, nut_velocity, the
-    inverse-dynamics ``wave_force`` and ``net_vertical_force``; attrs hold the parameters and
-    ``wave_period``. Cheap (no thermal model): the efficiency-only scene stops here.
+    xarray.Dataset
+        Over ``time``: the variables of :func:`pto_state`, nut_velocity, nut_acceleration, the
+        inverse-dynamics ``wave_force`` and ``net_vertical_force`` [N]; attributes hold the
+        parameters and ``wave_period``.
+
+    Raises
+    ------
+    ValueError
+        When ``kin`` was computed for another lead.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Sect. 3.1 and Fig. 15.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew import efficiency, kinematics
+    >>> from flumekit.ballscrew.buoy import reference_motion
+    >>> eta = efficiency(kinematics(reference_motion())).ballscrew_efficiency
+    >>> round(float(eta.min()), 2), round(float(eta.max()), 2)  # the paper: 73 % to 97 %
+    (0.73, 0.97)
     """
     if abs(float(kin.attrs.get("lead", screw.lead)) - screw.lead) > 1e-12:
         raise ValueError(f"kinematics were computed for lead {kin.attrs['lead']} m, the ball "
@@ -435,10 +816,48 @@ def sea_state_motion(wave_height: float, wave_period: float,
                      screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                      pto: PTOCoefficients = PTOCoefficients(), n_periods: int = 1,
                      samples_per_period: int = 760) -> xr.Dataset:
-    """Scenario step 0 from a sea state: kinematic input z(t) = h sin(2π t/T) with the lift h of
-    the energy balance algorithm (Fig. 4) and the full PTO model of this module.
+    """Return the kinematic input z(t) = h sin(2π t/T) of a sea state (scenario step 0).
 
-    Returns the :func:`buoy.reference_motion` dataset with attrs ``wave_height`` and ``lift``.
+    The lift h comes from the energy balance algorithm (Fig. 4,
+    :func:`flumekit.ballscrew.buoy.lift_from_energy_balance`) with the full PTO model of this
+    module.
+
+    Parameters
+    ----------
+    wave_height : float
+        Wave height H [m].
+    wave_period : float
+        Wave period T [s].
+    geometry : flumekit.ballscrew.buoy.BuoyGeometry
+        The buoy.
+    screw : BallScrew
+        The ball screw.
+    lubricant : Lubricant
+        The lubricant and friction law.
+    pto : PTOCoefficients
+        The coefficients of Eq. (3).
+    n_periods : int
+        Periods of motion.
+    samples_per_period : int
+        Samples per period.
+
+    Returns
+    -------
+    xarray.Dataset
+        The :func:`flumekit.ballscrew.buoy.reference_motion` dataset with attributes
+        ``wave_height`` [m] and ``lift`` [m].
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+    9358. doi:10.3390/en15249358, Eq. (2) and Fig. 4.
+
+    Examples
+    --------
+    >>> from flumekit.ballscrew.screw import sea_state_motion
+    >>> round(sea_state_motion(1.5, 3.8, samples_per_period=380).attrs["lift"], 2)
+    1.0
     """
     h = buoy.lift_from_energy_balance(wave_height, wave_period, geometry,
                                       pto_force_function(screw, lubricant, pto), screw.lead)

@@ -31,6 +31,18 @@ def _state(samples: int, iterations: int):
 
 
 def run(quick: bool = False) -> str:
+    """Run the benchmark and return its tables as text.
+
+    Parameters
+    ----------
+    quick : bool
+        A short version (fewer knob values), for a quick look.
+
+    Returns
+    -------
+    str
+        The printed report.
+    """
     ref = _state(16384, 100)
     loss_ref = ref["mechanical_power_loss"].mean()
     eta_ref = ref["ballscrew_efficiency"].mean()

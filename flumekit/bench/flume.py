@@ -1,13 +1,12 @@
-"""Calibration of the virtual flume against what Brito et al. (2020) state (issue 16).
+"""Calibration of the virtual flume against what Brito et al. (2020) state.
 
 ``flumekit bench flume`` builds the pipeline's waves, flap and comparison stages on the default
 campaign (27 wave runs of Table 1 with H = 0.15, 0.2, 0.25 m and 14 repeats of T = 3.5 s,
 H = 0.25 m for the UVP), synthesised run by run as the build needs them, and prints each
 number the paper states next to the virtual flume's, as the pipeline's own analysis measures
 it. ``quick`` builds only the runs of the main rows (T = 3.5 s, H = 0.25 m and T = 2.5 s,
-H = 0.2 m: about 25 s on 2 loaded cores), for calibration loops; the repeat statistics and
-the Table 1 trends need the whole campaign (80 s to 4 min, as loaded).
-``python -m flumekit.bench.flume --rows main repeats trend`` chooses the row groups
+H = 0.2 m), for calibration loops; the repeat statistics and the Table 1 trends need the whole
+campaign. ``python -m flumekit.bench.flume --rows main repeats trend`` chooses the row groups
 (:data:`ROWS`).
 
 The calibrated coefficients are the defaults of :class:`flumekit.synth.flume.FlumeLosses`,
@@ -32,8 +31,25 @@ ROWS = ("main", "repeats", "trend")
 
 
 def targets(rows: tuple[str, ...]) -> list[str]:
-    """The build targets the row groups need: ``main`` (the main condition and Fig. 7b's run),
-    ``repeats`` (the UVP repeats of the main condition), ``trend`` (Table 1's r0 runs)."""
+    """Return the build targets the row groups need.
+
+    Parameters
+    ----------
+    rows : tuple of str
+        Row groups (:data:`ROWS`): ``main`` (the main condition and Fig. 7b's run), ``repeats``
+        (the UVP repeats of the main condition), ``trend`` (Table 1's r0 runs).
+
+    Returns
+    -------
+    list of str
+        Targets of ``flumekit make``, without duplicates.
+
+    Examples
+    --------
+    >>> from flumekit.bench.flume import targets
+    >>> targets(("main",))
+    ['comparison/T3.50_H0.250_r0', 'flap/T2.50_H0.200_r0']
+    """
     from flumekit.synth.campaign import plan_runs
 
     plan = plan_runs("default")
@@ -60,7 +76,19 @@ def _build(project: Path, rows: tuple[str, ...], jobs: int = 2) -> Path:
 
 
 def built_runs(processed: Path) -> dict:
-    """Every built run: its flap summary, waves summary and (where built) comparison."""
+    """Return every built run: its flap summary, waves summary and (where built) comparison.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+
+    Returns
+    -------
+    dict
+        Run id -> {"flap": dataset, "waves": dataset, "cmp": dataset}, the time dimensions
+        dropped (a run without a waves or comparison product lacks that key).
+    """
     from flumekit.io.netcdf import read_dataset
 
     out = {}
@@ -108,8 +136,29 @@ STATED = {
 
 
 def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
-    """The virtual flume's value of every :data:`STATED` number the built runs allow, and
-    notes (extra rows: the simulator's curve, the Table 1 trends, the linear model's ν_pto)."""
+    """Return the virtual flume's value of every :data:`STATED` number the built runs allow.
+
+    With notes: extra rows for the Table 1 trends (:func:`trends`) and the linear model's ν_pto
+    (:func:`linear_pair`).
+
+    Parameters
+    ----------
+    runs : dict
+        The built runs (:func:`built_runs`).
+
+    Returns
+    -------
+    values : dict of str to float
+        Key of :data:`STATED` -> value.
+    notes : dict of str to str
+        Row label -> text.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
+    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
+    converter. J. Mar. Sci. Eng. 8, §3.3.
+    """
     v: dict[str, float] = {}
     notes: dict[str, str] = {}
     main = runs.get(MAIN_RUN)
@@ -163,10 +212,32 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
 
 
 def linear_pair(runs: dict) -> dict[str, str]:
-    """What PTO damping ν the linear model (Eq. A1, Renzi-Dias coefficients of the campaign's
-    flap in the flume) needs for each of the paper's two linear-model numbers at the main
-    condition, and what the other one is then: §3.3's max ⟨θ⟩ 37 % below the linear model's
-    and C_f = 0.33 cannot both hold with one ν for this geometry (issue 16)."""
+    """Return the PTO damping the linear model needs for each of the paper's linear-model numbers.
+
+    The linear model (Eq. A1, Renzi-Dias coefficients of the campaign's flap in the flume) at the
+    main condition: the ν that gives each number and the other one at that ν. §3.3's max ⟨θ⟩
+    37 % below the linear model's and C_f = 0.33 cannot both hold with one ν for this geometry;
+    the channel width in which they can is reported too.
+
+    Parameters
+    ----------
+    runs : dict
+        The built runs (:func:`built_runs`).
+
+    Returns
+    -------
+    dict of str to str
+        Row label -> text; empty without the main run's waves.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
+    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
+    converter. J. Mar. Sci. Eng. 8, §3.3 and Eq. A1.
+
+    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510.
+    """
     import tempfile
 
     from scipy.optimize import brentq
@@ -208,8 +279,27 @@ def linear_pair(runs: dict) -> dict[str, str]:
 
 
 def trends(runs: dict) -> dict[str, str]:
-    """Linear/measured ratios of T_h, θ and C_f over Table 1 (Figs. 8-9: the discrepancy grows
-    with T and H), with Spearman's ρ over T for each H and over H of the mean over T."""
+    """Return the linear/measured ratios of T_h, θ and C_f over Table 1, with their trends.
+
+    Figs. 8-9 of the paper: the discrepancy grows with T and H. Spearman's ρ over T for each H,
+    and over H of the mean over T.
+
+    Parameters
+    ----------
+    runs : dict
+        The built runs (:func:`built_runs`).
+
+    Returns
+    -------
+    dict of str to str
+        Row label -> ratios and ρ; empty with fewer than three periods built.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
+    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
+    converter. J. Mar. Sci. Eng. 8, Table 1 and Figs. 8-9.
+    """
     grid = {_condition(k): r for k, r in runs.items()
             if _condition(k) and k.endswith("_r0") and "cmp" in r}
     periods = sorted({t for t, _ in grid})
@@ -254,8 +344,20 @@ def _fmt(key: str, x: float) -> str:
 
 
 def table(runs: dict) -> list[tuple[str, str, str, str]]:
-    """The paper's stated numbers against the virtual flume's (rows of text); the last
-    column says whether the value is within the paper's precision."""
+    """Return the paper's stated numbers against the virtual flume's, as rows of text.
+
+    Parameters
+    ----------
+    runs : dict
+        The built runs (:func:`built_runs`).
+
+    Returns
+    -------
+    list of tuple of str
+        (quantity, paper, virtual flume, within precision and where); the last column says
+        whether the value is within the paper's precision. Notes follow with "-" as the paper's
+        value.
+    """
     v, notes = measure(runs)
     rows = []
     for key, (quantity, paper, (lo, hi), where) in STATED.items():
@@ -276,7 +378,25 @@ def _format(rows, header) -> str:
 
 
 def report(rows: tuple[str, ...] = ROWS, jobs: int = 2) -> str:
-    """Build ``rows``' runs of the default campaign in a temporary project; the table."""
+    """Build the runs of ``rows`` of the default campaign in a temporary project; return the table.
+
+    Parameters
+    ----------
+    rows : tuple of str
+        Row groups (:data:`ROWS`).
+    jobs : int
+        Parallel build processes.
+
+    Returns
+    -------
+    str
+        The printed table, headed by the build's duration.
+
+    Raises
+    ------
+    RuntimeError
+        When the build fails (its standard error).
+    """
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
         processed = _build(Path(tmp), rows, jobs)
@@ -288,10 +408,34 @@ def report(rows: tuple[str, ...] = ROWS, jobs: int = 2) -> str:
 
 
 def run(quick: bool = False) -> str:
+    """Run the benchmark and return its table as text.
+
+    Parameters
+    ----------
+    quick : bool
+        Build the main rows only.
+
+    Returns
+    -------
+    str
+        The printed report.
+    """
     return report(("main",) if quick else ROWS)
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the benchmark from the command line (``python -m flumekit.bench.flume``).
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        Arguments (``--rows``, ``-j``); default those of the process.
+
+    Returns
+    -------
+    int
+        Exit status 0.
+    """
     import argparse
 
     a = argparse.ArgumentParser(prog="python -m flumekit.bench.flume", description=__doc__)

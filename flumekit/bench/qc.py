@@ -23,7 +23,7 @@ each rule executed on its own):
 * probes and flap: the qc/probes and qc/flap rules against the stages that consume them
   (eta, waves, flap, comparison);
 * UVP: the uvp rule checks the beams it reads before analysing them
-  (flumekit.stages.qc.check_beams), over the samples its average reads: its QC is the
+  (flumekit.stages.uvp_run.beam_checker), over the samples its average reads: its QC is the
   computation of the flags (flumekit.qc.record.beam_flags), the writing of the flag product and
   the masking and filling of the beams (flumekit.stages.uvp.clean_beam), each timed on its own
   on the rule's inputs; its analysis is the rest of the rule (the rule's time minus that QC).
@@ -66,7 +66,25 @@ def _spikes(rng, n, count, margin=5):
 
 
 def inject(raw: Path, rng: np.random.Generator) -> dict:
-    """Write faults into the raw files of a campaign; return {(run, file, channel): bad mask}."""
+    """Write faults into the raw files of a campaign and return which samples are bad.
+
+    The faults of the module's description (spikes, a dropout and a flat line on the probes,
+    spikes on the flap channels, a clock offset of one flap record), at random times, into the
+    regular runs only (the irregular runs stay clean: their truth is what the benchmark
+    measures).
+
+    Parameters
+    ----------
+    raw : pathlib.Path
+        The raw campaign folder (a temporary copy: its files are rewritten).
+    rng : numpy.random.Generator
+        Random generator of the fault times and sizes.
+
+    Returns
+    -------
+    dict
+        (run, file, channel) -> boolean mask of the bad samples.
+    """
     from flumekit.io.tables import read_text, write_table
 
     truth = {}
@@ -167,8 +185,11 @@ def _recall(processed: Path, truth: dict) -> tuple[dict, float, int]:
 
 
 def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
-    """Recall of spikes injected in memory into every beam of the UVP runs, and the false flags
-    of the clean beams, over the span the qc stage checks (the quasi-steady part of the run)."""
+    """Return the recall of spikes injected in memory into every beam of the UVP runs.
+
+    With the false flags of the clean beams, over the span the qc stage checks (the
+    quasi-steady part of the run).
+    """
     from flumekit.io.mfprof import read_mfprof
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc.record import Thresholds, check_beam
@@ -200,8 +221,10 @@ def _uvp_recall(raw: Path, processed: Path, rng) -> tuple[float, float]:
 
 
 def _compute_probes_flap(p: dict, f: dict, run) -> float:
-    """Best time of the QC computations alone (tests, flags, masking, filling) of a run's probe
-    and flap records, read beforehand [s]."""
+    """Return the best time of the QC computations alone of a run's probe and flap records [s].
+
+    The tests, flags, masking and filling, on records read beforehand.
+    """
     from flumekit.bench import best_time
     from flumekit.qc.record import Thresholds, qc_dataset
     from flumekit.stages.qc import read_raw
@@ -217,8 +240,10 @@ def _compute_probes_flap(p: dict, f: dict, run) -> float:
 
 
 def _compute_uvp(beams: dict, span, time_offset: float, repeat: int = REPEAT) -> float:
-    """Best time of the UVP QC computations of the uvp rule on beams read beforehand: the flags
-    (:func:`flumekit.qc.record.beam_flags`) and the masking and filling of the beams [s]."""
+    """Return the best time of the UVP QC computations of the uvp rule on beams read beforehand [s].
+
+    The flags (:func:`flumekit.qc.record.beam_flags`) and the masking and filling of the beams.
+    """
     from flumekit.bench import best_time
     from flumekit.qc.record import Thresholds, beam_flags
     from flumekit.stages.uvp import clean_beam
@@ -245,8 +270,11 @@ CONSUMERS = {"probes+flap": ("eta", "waves", "flap", "comparison"), "uvp": ("uvp
 
 
 def _write_time(paths: list[Path], compress: bool, repeat: int = REPEAT) -> float:
-    """Best time of writing the QC rule's products again (flumekit.io.netcdf.write_dataset, as
-    the rule does: CF checks, provenance, compression or not) [s]."""
+    """Return the best time of writing the QC rule's products again [s].
+
+    As the rule does (flumekit.io.netcdf.write_dataset: CF checks, provenance, compression or
+    not).
+    """
     from flumekit.bench import best_time
     from flumekit.io.netcdf import read_dataset, write_dataset
 
@@ -279,9 +307,12 @@ print((t2 - t1) - (t3 - t2))
 
 
 def _kernel_load(beams: list[Path]) -> float:
-    """Seconds a fresh process that analyses UVP runs spends once, before its first UVP
-    check, importing numba and loading the compiled kernels (flumekit.qc.kernels) from their
-    cache: its first check of ``beams`` less its second [s]."""
+    """Return the seconds a fresh process spends once loading the compiled QC kernels.
+
+    A process that analyses UVP runs imports numba and loads the compiled kernels
+    (flumekit.qc.kernels) from their cache before its first UVP check: its first check of
+    ``beams`` less its second [s].
+    """
     import subprocess
     import sys
 
@@ -291,9 +322,12 @@ def _kernel_load(beams: list[Path]) -> float:
 
 
 def _timings(processed: Path, raw: Path) -> list[tuple]:
-    """Per run and instrument: QC rule time, of which reading the raw files, the QC
-    computations alone and writing the products, and the time of the rules that consume the
-    QC product (best of REPEAT, the UVP's of REPEAT_UVP) [s]."""
+    """Return the QC and analysis times per run and instrument [s].
+
+    QC rule time, of which reading the raw files, the QC computations alone and writing the
+    products, and the time of the rules that consume the QC product (best of REPEAT, the UVP's
+    of REPEAT_UVP).
+    """
     from flumekit.bench import best_time
     from flumekit.campaign import load_campaign
     from flumekit.io.mfprof import read_mfprof
@@ -346,7 +380,19 @@ def _timings(processed: Path, raw: Path) -> list[tuple]:
 
 
 def run(quick: bool = False) -> str:
-    """Run the benchmark and return its report as text."""
+    """Run the benchmark and return its report as text.
+
+    Parameters
+    ----------
+    quick : bool
+        Leave out the timings (recall, clock and truth only).
+
+    Returns
+    -------
+    str
+        The printed report: recall and false flags, the clock offset found, the analysis after
+        QC against the truth, and the cost of QC against the analysis.
+    """
     from flumekit.bench.truth import failures as truth_failures
     from flumekit.synth.campaign import write_campaign
 

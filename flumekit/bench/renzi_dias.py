@@ -2,7 +2,7 @@
 
 The flume of Brito et al. (2020): h = 0.825 m, flap w = 1.31 m hinged at c = 0.10 m, channel
 b = 1.5 m, the 9 periods of Table 1 (T = 2–4 s). Errors are the largest relative deviation of
-μ, ν and |F| over the periods from a reference with every order raised; "next" is the change to
+μ, ν and ``|F|`` over the periods from a reference with every order raised; "next" is the change to
 the next order in the table. Run times are the best of several calls of
 :func:`flumekit.flap.renzi_dias.model.coefficients` (dataset construction included).
 """
@@ -43,7 +43,24 @@ def _knob_table(title, channel, ref_opts, knob, values, repeat) -> list[str]:
 
 
 def run(quick: bool = False) -> str:
-    """Print-ready tables: default accuracy and speed, then error and time per truncation order."""
+    """Run the benchmark and return its tables: default accuracy and speed, then per order.
+
+    Parameters
+    ----------
+    quick : bool
+        Fewer truncation orders and repeats.
+
+    Returns
+    -------
+    str
+        The printed tables: error and time of the defaults in the channel and in open water, then
+        error, change to the next order and time per truncation order.
+
+    References
+    ----------
+    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510.
+    """
     repeat = 3 if quick else 10
     out = ["Renzi-Dias thin-flap model, flume of Brito et al. 2020, Table 1 periods (9)"]
     ds, t_def = _timed(repeat, channel_width=B)

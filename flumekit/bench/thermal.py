@@ -3,9 +3,9 @@
 The 600 s operating cycle of the reference scenario (sinusoidal z(t), A = 1 m, T = 3.8 s) is
 solved on a range of meshes and steps; the error is the largest deviation of the control-point
 temperatures from a fine reference (Q2, 1.25 mm x 5 mm, Δt = 1 s; 2.5 x 10 mm when quick),
-every 60 s, relative to the largest temperature rise of the reference. Target (issue 8): 1 %
-error in ≤ 1 s. Measured (2 shared cores): every mesh meets it; Q1 10 x 40 mm, Δt = 60 s gives
-0.3 % in 0.04 s; the error floor ≈ 0.03 % comes from the step-mean source timing.
+every 60 s, relative to the largest temperature rise of the reference. Target: 1 % error in
+≤ 1 s; the error floor (a few hundredths of a per cent) comes from the step-mean source
+timing.
 
 A second table shows the effect of factorising the system matrix once (splu, one triangular
 solve per step) against a sparse direct solve at every step.
@@ -40,7 +40,7 @@ def _error(fe, ref, t0: float) -> float:
 
 
 def _naive(lumped, time_step, cell_r, cell_z):
-    """BDF2 with a sparse direct solve at every step (the 'before' of the factorisation)."""
+    """Run BDF2 with a sparse direct solve at every step (the comparison for the factorisation)."""
     system, _ = thermal_fem.assemble_pto(thermal_fem.PTOGeometry(), cell_r, cell_z, 1)
     factor = int(round(time_step))
     powers = thermal_fem.source_powers(lumped, factor)
@@ -55,6 +55,18 @@ def _naive(lumped, time_step, cell_r, cell_z):
 
 
 def run(quick: bool = False) -> str:
+    """Run the benchmark and return its tables as text.
+
+    Parameters
+    ----------
+    quick : bool
+        A short version (fewer knob values), for a quick look.
+
+    Returns
+    -------
+    str
+        The printed report.
+    """
     lumped = _scenario()
     t0 = float(lumped.attrs["initial_temperature"])
     ref_cell = (0.0025, 0.01) if quick else (0.00125, 0.005)

@@ -1,12 +1,14 @@
-"""A built virtual campaign against the virtual flume's truth: the errors and tolerances shared
-by tests/test_virtual_flume_truth.py and the benchmarks (``flumekit bench qc``).
+"""A built virtual campaign against the virtual flume's truth: errors and tolerances.
 
-Tolerances (:data:`TOLERANCE`) are the acceptance points of issues 2-5: probe gains and offsets
-0.1 %; Kr ±0.005 and H_I 0.5 %; theta 0.05° RMS over the quasi-steady window, C_f 2 %; UVP <u>,
-<w> within 2 % of U0 RMS over the field, with more than 30 % of it not masked. Irregular runs
-(:func:`irregular_errors`): incident Hm0 and Te within 2 %, Tp 5 %, bulk Kr ±0.02, Kr(f)
-±0.05 over the band of 90 % of the incident energy, mean absorbed power and capture width ratio
-5 %, against the truth of the span the pipeline analysed.
+Shared by tests/test_virtual_flume_truth.py and the benchmarks (``flumekit bench qc``).
+
+Tolerances (:data:`TOLERANCE`) are the acceptance points of the virtual-flume truth test:
+probe gains and offsets 0.1 %; Kr ±0.005 and H_I 0.5 %; theta 0.05° RMS over the
+quasi-steady window, C_f 2 %; UVP <u>, <w> within 2 % of U0 RMS over the field, with more
+than 30 % of it not masked. Irregular runs (:func:`irregular_errors`): incident Hm0 and Te
+within 2 %, Tp 5 %, bulk Kr ±0.02, Kr(f) ±0.05 over the band of 90 % of the incident energy,
+mean absorbed power and capture width ratio 5 %, against the truth of the span the pipeline
+analysed.
 """
 
 from __future__ import annotations
@@ -29,18 +31,61 @@ INCLUSIVE = {"gain", "offset", "incident_height", "capture_factor", "hm0", "ener
 
 
 def within(name: str, error: float) -> bool:
-    """Whether ``error`` is within the tolerance of check ``name``."""
+    """Return whether ``error`` is within the tolerance of check ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`TOLERANCE`.
+    error : float
+        The error [unit of the check].
+
+    Returns
+    -------
+    bool
+        ``error`` below the tolerance (or at most it, for the checks in :data:`INCLUSIVE`).
+
+    Examples
+    --------
+    >>> from flumekit.bench.truth import within
+    >>> within("gain", 1e-3), within("reflection", 5e-3)
+    (True, False)
+    """
     tol = TOLERANCE[name]
     return error <= tol if name in INCLUSIVE else error < tol
 
 
 def runs(truth: Path) -> list[str]:
-    """The runs the truth folder describes."""
+    """Return the runs the truth folder describes.
+
+    Parameters
+    ----------
+    truth : pathlib.Path
+        The truth folder of a virtual campaign.
+
+    Returns
+    -------
+    list of str
+        Run ids, sorted.
+    """
     return sorted(p.name for p in Path(truth).iterdir() if p.is_dir())
 
 
 def irregular(truth: Path, run: str) -> bool:
-    """Whether a run of the truth folder is an irregular sea state."""
+    """Return whether a run of the truth folder is an irregular sea state.
+
+    Parameters
+    ----------
+    truth : pathlib.Path
+        The truth folder.
+    run : str
+        Run id.
+
+    Returns
+    -------
+    bool
+        True for an irregular run.
+    """
     with _open(Path(truth) / run / "waves.nc") as t:
         return t.attrs.get("kind") == "irregular"
 
@@ -52,7 +97,20 @@ def _open(path: Path):
 
 
 def calibration_errors(processed: Path, truth: Path) -> dict[str, float]:
-    """Largest relative error of the probes' calibration gains and offsets [-]."""
+    """Return the largest relative error of the probes' calibration gains and offsets.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+
+    Returns
+    -------
+    dict of str to float
+        ``gain`` and ``offset`` [-].
+    """
     with _open(Path(processed) / "calibration.nc") as cal, \
             _open(Path(truth) / "calibration.nc") as true:
         return {k: float(np.max(np.abs(cal[k].values - true[k].values)
@@ -60,8 +118,22 @@ def calibration_errors(processed: Path, truth: Path) -> dict[str, float]:
 
 
 def waves_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
-    """Absolute error of the reflection coefficient [-] and relative error of the incident
-    height [-] of one run."""
+    """Return the errors of the reflection coefficient and the incident height of one run.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+    run : str
+        Run id.
+
+    Returns
+    -------
+    dict of str to float
+        ``reflection``: absolute error of Kr [-]; ``incident_height``: relative error of H_I [-].
+    """
     with _open(Path(processed) / "waves" / f"{run}.nc") as w, \
             _open(Path(truth) / run / "waves.nc") as t:
         return {"reflection": abs(float(w.reflection_coefficient)
@@ -70,15 +142,43 @@ def waves_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
 
 
 def steady_window(flap) -> np.ndarray:
-    """The quasi-steady samples of a flap dataset (its ``steady_start``-``steady_end``)."""
+    """Return the quasi-steady samples of a flap dataset (its ``steady_start``-``steady_end``).
+
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        A flap product (``time`` [s], ``steady_start`` and ``steady_end`` [s]).
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean mask over ``time``.
+    """
     t = flap.time.values
     return (t >= float(flap.steady_start)) & (t <= float(flap.steady_end))
 
 
 def flap_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
-    """RMS error of theta over the quasi-steady window [deg] and relative error of the capture
-    factor [-] of one run, C_f against the true mean power over the same window and W_I from
-    the true height (Eq. A2)."""
+    """Return the errors of theta and the capture factor of one run.
+
+    C_f is compared with the true mean power over the same quasi-steady window over W_I from
+    the true height (Eq. A2 of Brito et al. 2020).
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+    run : str
+        Run id.
+
+    Returns
+    -------
+    dict of str to float
+        ``theta_rms_deg``: RMS error of theta over the quasi-steady window [deg];
+        ``capture_factor``: relative error of C_f [-].
+    """
     from flumekit.flap.power import incident_power
 
     with _open(Path(processed) / "flap" / f"{run}.nc") as f, \
@@ -93,8 +193,21 @@ def flap_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
 
 
 def uvp_field_errors(processed: Path, truth: Path) -> dict[str, dict[str, float]]:
-    """Per velocity component (u, w) of the UVP field: the share of the field not masked
-    (``uvp_coverage``) [-] and the RMS error over it relative to U0 (``uvp_rms``) [-]."""
+    """Return the coverage and RMS error of each velocity component of the UVP field.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+
+    Returns
+    -------
+    dict
+        Component (``u``, ``w``) -> {``uvp_coverage``: share of the field not masked [-],
+        ``uvp_rms``: RMS error over it relative to U0 [-]}.
+    """
     with _open(Path(processed) / "uvp_field.nc") as f, _open(Path(truth) / "uvp_field.nc") as t:
         true = t.interp(z=f.z, x=f.x)
         u0 = float(t.velocity_scale)
@@ -108,9 +221,26 @@ def uvp_field_errors(processed: Path, truth: Path) -> dict[str, dict[str, float]
 
 
 def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
-    """Every check of this module the campaign built in ``processed`` fails: calibration gains,
-    Kr and H_I of every regular run, theta and C_f of every regular run not in ``skip_flap``,
-    the sea state, Kr, power and capture width ratio of every irregular run, the UVP field."""
+    """Return every check of this module that the campaign built in ``processed`` fails.
+
+    Calibration gains, Kr and H_I of every regular run, theta and C_f of every regular run not
+    in ``skip_flap``, the sea state, Kr, power and capture width ratio of every irregular run,
+    the UVP field.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+    skip_flap : collection of str
+        Runs whose flap is not checked (e.g. one with an injected clock offset).
+
+    Returns
+    -------
+    list of str
+        One message per failed check; empty when all pass.
+    """
     fails = []
     gain = calibration_errors(processed, truth)["gain"]
     if not within("gain", gain):
@@ -142,15 +272,30 @@ def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
 
 def irregular_truth(truth: Path, run: str, span: tuple[float, float],
                     power_span: tuple[float, float] | None = None) -> dict:
-    """The truth of an irregular run over the span [start, end) [s] a pipeline analysed.
+    """Return the truth of an irregular run over the span a pipeline analysed.
 
     The realised sea state at the flap is recomputed from the truth's series at x = 0
     (``flap.nc``) over that span (:func:`flumekit.synth.irregular.sea_state_truth`): over a
     span other than the truth's own (``analysis_start`` to the record's end, one repeat period
     of the wavemaker) the realised Hm0 differs by up to a few per cent. The mean power is the
-    flap's p Q over ``power_span`` (default ``span``). Returns the attributes of
-    ``sea_state_truth`` with ``frequency``, ``spectrum_incident``, ``spectrum_reflected``
-    [Hz], [m2 s], ``mean_power`` [W] and ``capture_width_ratio`` [-].
+    flap's p Q over ``power_span``.
+
+    Parameters
+    ----------
+    truth : pathlib.Path
+        The truth folder.
+    run : str
+        Run id.
+    span : tuple of float
+        [start, end) of the analysis [s].
+    power_span : tuple of float, optional
+        [start, end) of the mean power [s]; default ``span``.
+
+    Returns
+    -------
+    dict
+        The attributes of ``sea_state_truth`` with ``frequency`` [Hz], ``spectrum_incident`` and
+        ``spectrum_reflected`` [m2 s], ``mean_power`` [W] and ``capture_width_ratio`` [-].
     """
     from flumekit.synth.irregular import sea_state_truth
 
@@ -171,12 +316,29 @@ def irregular_truth(truth: Path, run: str, span: tuple[float, float],
 
 
 def irregular_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
-    """Errors of an irregular run against its truth over the span the pipeline analysed:
-    relative errors of the incident Hm0, Te and Tp (against the generated peak) at the flap, of
-    the mean absorbed power and of the capture width ratio [-]; absolute errors of the bulk Kr
-    and the largest of Kr(f) over
-    the band holding the central 90 % of the incident energy, each band of the product against
-    sqrt(Σ S_R / Σ S_I) of the truth's periodogram over the same band [-]."""
+    """Return the errors of an irregular run against its truth over the span the pipeline analysed.
+
+    Relative errors of the incident Hm0, Te and Tp (against the generated peak) at the flap, of
+    the mean absorbed power and of the capture width ratio; absolute errors of the bulk Kr and
+    the largest of Kr(f) over the band holding the central 90 % of the incident energy, each
+    band of the product against sqrt(Σ S_R / Σ S_I) of the truth's periodogram over the same
+    band.
+
+    Parameters
+    ----------
+    processed : pathlib.Path
+        The processed folder of the build.
+    truth : pathlib.Path
+        The truth folder.
+    run : str
+        Run id.
+
+    Returns
+    -------
+    dict of str to float
+        ``hm0``, ``energy_period``, ``peak_period``, ``bulk_reflection``,
+        ``reflection_spectrum``, ``mean_power``, ``capture_width_ratio`` [-].
+    """
     with _open(Path(processed) / "waves" / f"{run}.nc") as w, \
             _open(Path(processed) / "flap" / f"{run}.nc") as fl:
         span = (float(w.analysis_start), float(w.analysis_end))

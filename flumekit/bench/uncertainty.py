@@ -41,11 +41,32 @@ def _setup():
 
 
 def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
-    """One virtual repeat of the condition: what the pipeline would read and the truth.
+    """Synthesise one virtual repeat of the condition: what the pipeline would read, and the truth.
 
-    Returns (eta [m] as the eta stage makes it, calibration dataset, flap record dict,
-    truth dict with the generated height, the effective Kr at the hinge, and the flap truth
-    dataset).
+    Parameters
+    ----------
+    index : int
+        Index of the repeat (with ``seed``, its random stream).
+    seed : int
+        Seed of the repeats.
+    campaign : flumekit.campaign.Campaign
+        The bench campaign.
+    hydro : object
+        The flap's hydrodynamics in the flume (:func:`flumekit.synth.flap.flume_hydrodynamics`).
+    n_steady : int
+        Waves of the quasi-steady part of the record.
+
+    Returns
+    -------
+    eta : xarray.DataArray
+        Calibrated elevation (probe, time) [m], as the eta stage makes it.
+    calibration : xarray.Dataset
+        The repeat's calibration dataset.
+    record : dict
+        The flap record: ``time`` [s], ``encoder_counts`` [-], ``chamber_pressure`` [Pa].
+    truth : dict
+        ``height`` (generated) [m], ``reflection`` (effective Kr at the hinge) [-] and ``flap``
+        (the flap truth dataset).
     """
     import dataclasses
 
@@ -113,11 +134,29 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
 
 
 def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str, float]:
-    """The true H_I, Kr, θ amplitude and C_f of a repeat, by the definitions of the analysis:
+    """Return the true H_I, Kr, θ amplitude and C_f of a repeat, by the analysis' definitions.
+
     θ amplitude by :func:`flumekit.signal.cycle_amplitude` of the true θ over the analysed
     window (``theta_amplitude_lowpass``: of the true θ through the analysis' low-pass at
-    ``cutoff`` [Hz]), C_f as the true mean power over that window over W_I of the true
-    height."""
+    ``cutoff``), C_f as the true mean power over that window over W_I of the true height.
+
+    Parameters
+    ----------
+    truth : dict
+        The truth of :func:`virtual_repeat`.
+    result : dict
+        The analysed window: ``flap_period`` [s], ``flap_start`` [s], ``flap_cycles``.
+    campaign : flumekit.campaign.Campaign
+        The bench campaign (water depth, flap width).
+    cutoff : float
+        The analysis' low-pass cut-off [Hz].
+
+    Returns
+    -------
+    dict of str to float
+        ``incident_height`` [m], ``reflection_coefficient`` [-], ``theta_amplitude`` and
+        ``theta_amplitude_lowpass`` [rad], ``capture_factor`` [-].
+    """
     from flumekit.flap.power import incident_power
     from flumekit.signal import cycle_amplitude, smooth_derivatives
 
@@ -164,7 +203,7 @@ def _model(eta, cal, record, campaign, components=None):
 
 
 def _flap_window(model) -> dict:
-    """The flap analysis' window of the unperturbed run."""
+    """Return the flap analysis' window of the unperturbed run."""
     import warnings
 
     from flumekit.flap import analyse_run
@@ -181,12 +220,31 @@ def _flap_window(model) -> dict:
 
 
 def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
-    """Coverage of the expanded intervals over ``n_repeats`` virtual repeats, with the
-    campaign's default components ("defaults") and with the virtual flume's own errors
+    """Return the coverage of the expanded intervals over ``n_repeats`` virtual repeats.
+
+    With the campaign's default components ("defaults") and with the virtual flume's own errors
     (:data:`VIRTUAL_ERRORS`, "virtual").
 
-    Returns a dict: set -> quantity -> (share covered, RMS error / RMS u, RMS error, RMS u),
-    set -> "bias" -> quantity -> mean error, and "seconds" per repeat.
+    Parameters
+    ----------
+    n_repeats : int
+        Virtual repeats.
+    draws : int
+        Monte Carlo draws per repeat.
+    seed : int
+        Seed of the repeats and draws.
+    progress : callable, optional
+        Called with the index of each finished repeat.
+
+    Returns
+    -------
+    dict
+        set -> quantity -> (share covered, RMS error / RMS u, RMS error, RMS u), set -> "bias"
+        -> quantity -> mean error, and "seconds" per repeat.
+
+    References
+    ----------
+    JCGM 101:2008, §8 (validation of the GUM uncertainty framework by coverage).
     """
     from flumekit.campaign import uncertainty_components
     from flumekit.uncertainty.propagation import propagate
@@ -225,8 +283,24 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
 
 
 def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
-    """On one repeat: Monte Carlo with ``draws`` and 2 ``draws`` against the linear
-    propagation; quantity -> (u_MC(n), u_MC(2n), u_linear)."""
+    """Compare Monte Carlo with ``draws`` and 2 ``draws`` against the linear propagation.
+
+    On one repeat.
+
+    Parameters
+    ----------
+    draws : int
+        Monte Carlo draws n.
+    directions : int
+        Random directions of the per-sample inputs in the linear propagation.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    dict
+        Quantity -> (u_MC(n), u_MC(2n), u_linear) [unit of the quantity].
+    """
     from flumekit.uncertainty.propagation import linear, monte_carlo
 
     campaign, hydro = _setup()
@@ -243,8 +317,22 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
 
 
 def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
-    """Seconds of the propagation of one run against the number of draws, and of the linear
-    budget at the stage's default directions."""
+    """Return the run time of the propagation of one run against the number of draws.
+
+    And of the linear budget at the stage's default directions.
+
+    Parameters
+    ----------
+    draws_list : sequence of int
+        Numbers of draws.
+    seed : int
+        Seed.
+
+    Returns
+    -------
+    dict
+        Draws -> seconds, and "linear" -> seconds [s].
+    """
     from flumekit.stages.uncertainty import DEFAULTS
     from flumekit.uncertainty.propagation import linear, monte_carlo
 
@@ -263,6 +351,18 @@ def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
 
 
 def run(quick: bool = False) -> str:
+    """Run the benchmark and return its report as text.
+
+    Parameters
+    ----------
+    quick : bool
+        Fewer repeats (20 instead of 100) and draws in the comparisons.
+
+    Returns
+    -------
+    str
+        The printed report: cost, Monte Carlo against linear, coverage.
+    """
     from flumekit.stages.uncertainty import DEFAULTS
     from flumekit.synth.campaign import plan_runs
 

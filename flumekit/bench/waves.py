@@ -38,7 +38,27 @@ def _time(fn, repeats: int) -> tuple[float, float]:
 
 
 def run(quick: bool = False) -> str:
-    """Run the benchmark and return the table as text."""
+    """Run the benchmark and return the tables as text.
+
+    Parameters
+    ----------
+    quick : bool
+        Fewer record lengths, seeds and repeats.
+
+    Returns
+    -------
+    str
+        The printed report: the separation's knobs, the irregular-run analysis, the comparison
+        with the Deltares wave toolbox and the stream-function solve.
+
+    References
+    ----------
+    Mansard, E. P. D. and Funke, E. R. (1980). The measurement of incident and reflected spectra
+    using a least squares method. Proc. 17th Int. Conf. Coastal Eng., 154-172.
+
+    Zelt, J. A. and Skjelbreia, J. E. (1992). Estimating incident and reflected wave fields
+    using an arbitrary number of wave gauges. Proc. 23rd Int. Conf. Coastal Eng., 777-789.
+    """
     repeats = 5 if quick else 25
     seeds = [3] if quick else [3, 4, 5, 6]
     tp, hm0, kr = 2.5, 0.12, 0.25
@@ -113,9 +133,11 @@ def run(quick: bool = False) -> str:
 
 
 def _irregular_table(quick: bool) -> str:
-    """The irregular-run analysis (:func:`flumekit.waves.analyse_irregular_run`): errors of
-    Hm0, Te, Tp and the bulk Kr against the record length, the smoothing (bins per band) and
-    the number of probes, with its run time; and the separation's cost in FFTs of the record.
+    """Return the errors and run time of the irregular-run analysis against its knobs.
+
+    :func:`flumekit.waves.analyse_irregular_run`: errors of Hm0, Te, Tp and the bulk Kr against
+    the record length, the smoothing (bins per band) and the number of probes, with its run
+    time; and the separation's cost in FFTs of the record.
 
     Records: linear JONSWAP seas (Hm0 0.12 m, Tp 2.5 s, gamma 3.3, Kr 0.25) at probes 6 m
     before the reflector, 25 Hz, 0.5 mm noise. The truth is the incident wave's exact
@@ -179,9 +201,11 @@ def _irregular_table(quick: bool) -> str:
 
 
 def _toolbox_table(repeats: int) -> str:
-    """``separate`` with its defaults against the Deltares wave toolbox's Zelt & Skjelbreia
-    separation (``decompose_linear_ZS``, the Mansard-Funke least squares with three probes) on
-    the same 10-minute, 3-probe, 25 Hz regular record, timed in the same run.
+    """Time ``separate`` against the Deltares wave toolbox's Zelt & Skjelbreia separation.
+
+    ``separate`` with its defaults against ``decompose_linear_ZS`` (the Mansard-Funke least
+    squares with three probes) on the same 10-minute, 3-probe, 25 Hz regular record, timed in
+    the same run.
 
     The toolbox is not a dependency of flumekit: install it for the bench only
     (``pip install deltares-wave-toolbox``); without it the row says so.
@@ -218,8 +242,10 @@ def _toolbox_table(repeats: int) -> str:
 
 
 def _stream_function_table(repeats: int) -> str:
-    """The stream-function solve: run time against the number of modes N, errors against
-    N = 40, for the flume's most nonlinear wave (T = 4 s, H = 0.3 m, Ursell 72)."""
+    """Return the run time of the stream-function solve against the number of modes N.
+
+    Errors against N = 40, for the flume's most nonlinear wave (T = 4 s, H = 0.3 m, Ursell 72).
+    """
     from flumekit.waves.stream_function import stream_function_wave
 
     ref = stream_function_wave(4.0, 0.3, DEPTH, n_modes=40)

@@ -1,5 +1,8 @@
-"""Quality control of instrument records: QARTOD-style tests, Goring-Nikora despiking, flags,
-masking and gap filling, and checks of the metadata against the records."""
+"""Quality control of instrument records.
+
+QARTOD-style tests, Goring-Nikora despiking, flags, masking and gap filling, and checks of
+the metadata against the records.
+"""
 
 
 from flumekit.lazy import lazy_names
@@ -19,6 +22,17 @@ _LAZY = {
     "goring_nikora": "despike",
     "fill_gaps": "fill",
     "probe_flap_lag": "clock",
+    "clock_departures": "clock",
+    "check_beam": "record",
+    "beam_flags": "record",
+    "unfilled_gaps": "record",
+    "level_test": "qartod",
+    "dropout_test": "qartod",
+    "gap_test": "qartod",
+    "noise_test": "qartod",
+    "despike_flags": "despike",
+    "flag_attrs": "flags",
+    "aggregate": "flags",
 }
 
 __all__ = sorted(_LAZY)

@@ -1,6 +1,9 @@
-"""Metadata checked against the records: declared period and height, calibration quality,
-dead channels. Each check raises :class:`~flumekit.errors.InputError` naming the file and the
-key or channel, or returns a warning (text) where a user may knowingly proceed."""
+"""Metadata checked against the records.
+
+The declared period and height, the calibration quality and dead channels. Each check raises
+:class:`~flumekit.errors.InputError` naming the file and the key or channel, or returns a
+warning (text) where a user may knowingly proceed.
+"""
 
 from __future__ import annotations
 
@@ -12,11 +15,32 @@ from flumekit.errors import InputError
 
 
 def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
-    """Period of the spectral peak of a (channel, time) record, channels' spectra averaged [s].
+    """Return the period of the spectral peak of a record, its channels' spectra averaged.
 
     Each channel is detrended (mean removed) and Hann-windowed; the peak of the mean periodogram
     (bins above the lowest two) is refined by a parabola through the logarithm of the three
     bins around it (exact for a Gaussian peak, the Hann window's main lobe nearly is).
+    Non-finite samples count as the channel's mean.
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis; 1-D (one channel) or (channel, time) [any unit].
+    sampling_rate : float
+        Sampling rate [Hz].
+
+    Returns
+    -------
+    float
+        Period of the peak [s].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.checks import dominant_period
+    >>> t = np.arange(2000) / 50.0
+    >>> round(dominant_period(np.sin(2 * np.pi * t / 2.0), 50.0), 2)
+    2.0
     """
     x = np.atleast_2d(np.asarray(x, dtype=float))
     x = np.where(np.isfinite(x), x, np.nan)
@@ -34,9 +58,29 @@ def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
 
 def check_period(declared: float, measured: float, tolerance: float, run_file: Path,
                  record: Path) -> None:
-    """Error when the declared period differs from the record's by more than ``tolerance``
-    (relative). The period steers the analysis (cycle detection, separation band), so a wrong
-    one gives wrong results silently (3.5 s declared on a 2 s record: Kr 0.82 instead of 0.2)."""
+    """Refuse a run whose declared period differs from its record's dominant period.
+
+    The period steers the analysis (cycle detection, separation band), so a wrong one gives
+    wrong results silently (3.5 s declared on a 2 s record: Kr 0.82 instead of 0.2).
+
+    Parameters
+    ----------
+    declared : float
+        The period declared in run.toml [s].
+    measured : float
+        The dominant period of the record (:func:`dominant_period`) [s].
+    tolerance : float
+        Largest relative difference accepted [-].
+    run_file : pathlib.Path
+        The run.toml, named in the message.
+    record : pathlib.Path
+        The record the period was measured on, named in the message.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When ``|measured / declared - 1|`` exceeds ``tolerance`` (or is NaN), on ``run.period``.
+    """
     rel = abs(measured / declared - 1.0)
     if not rel <= tolerance:
         raise InputError(run_file, f"declared period {declared:g} s disagrees with the record: "
@@ -47,12 +91,30 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
 
 def check_record_period(declared: float, periods: dict[str, float], tolerance: float,
                         record: Path, run_file: Path) -> None:
-    """Error naming ``record`` when the dominant period of any of its channels (``periods``:
-    channel -> period [s], :func:`dominant_period`) differs from the run's declared period by
-    more than ``tolerance`` (relative), as :func:`check_period` does for the probes: a record
-    of another run (a copied file, a [files] entry pointing into another run folder) would be
-    analysed as this run's (a 3.5 s flap record in a 2.0 s run: capture factor 0.43 instead of
-    0.22)."""
+    """Refuse a record whose channels' dominant period is not the run's declared one.
+
+    As :func:`check_period` does for the probes: a record of another run (a copied file, a
+    ``[files]`` entry pointing into another run folder) would be analysed as this run's (a 3.5 s
+    flap record in a 2.0 s run: capture factor 0.43 instead of 0.22).
+
+    Parameters
+    ----------
+    declared : float
+        The run's declared period [s].
+    periods : dict of str to float
+        Channel -> its dominant period (:func:`dominant_period`) [s].
+    tolerance : float
+        Largest relative difference accepted [-].
+    record : pathlib.Path
+        The record, named as the file at fault.
+    run_file : pathlib.Path
+        The run.toml, named in the message.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming ``record`` and the channels whose period is off by more than ``tolerance``.
+    """
     off = {k: p for k, p in periods.items() if not abs(p / declared - 1.0) <= tolerance}
     if off:
         raise InputError(record, "dominant period " + ", ".join(
@@ -63,11 +125,27 @@ def check_record_period(declared: float, periods: dict[str, float], tolerance: f
 
 def check_durations(durations: dict[str, float], files: dict[str, object], tolerance: float
                     ) -> None:
-    """Error naming the shorter record when a run's records (``durations``: instrument ->
-    duration [s], ``files``: instrument -> its file, for the message) differ in duration by more
-    than ``tolerance`` of the longer one: one run's instruments record the same waves, so a
-    record much shorter than the others was cut (a TDMS file truncated at a segment boundary
-    reads without complaint) or is another run's."""
+    """Refuse a run whose records differ in duration by more than ``tolerance``.
+
+    One run's instruments record the same waves, so a record much shorter than the others was
+    cut (a TDMS file truncated at a segment boundary reads without complaint) or is another
+    run's.
+
+    Parameters
+    ----------
+    durations : dict of str to float
+        Instrument -> duration of its record [s].
+    files : dict of str to object
+        Instrument -> its file, named in the message.
+    tolerance : float
+        Largest shortfall accepted, as a fraction of the longest record [-].
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file of the shortest record among those more than ``tolerance`` shorter
+        than the longest.
+    """
     longest = max(durations.values())
     short = {k: d for k, d in durations.items() if d < (1.0 - tolerance) * longest}
     if short:
@@ -80,27 +158,61 @@ def check_durations(durations: dict[str, float], files: dict[str, object], toler
 
 def check_height(declared: float, measured: float, tolerance: float, warning: float,
                  run_file: Path, what: str) -> str | None:
-    """Error beyond ``tolerance``, warning text beyond ``warning`` (relative differences of the
-    declared height and the measured one)."""
+    """Check a declared wave height against the measured one.
+
+    :func:`check_declared` for the key ``height`` [m], tolerance from the ``[stages.waves]``
+    parameter ``height_tolerance``.
+
+    Parameters
+    ----------
+    declared : float
+        The height declared in run.toml [m].
+    measured : float
+        The measured height [m].
+    tolerance : float
+        Relative difference beyond which the run is refused [-].
+    warning : float
+        Relative difference beyond which a warning is returned [-].
+    run_file : pathlib.Path
+        The run.toml, named in the message.
+    what : str
+        What was measured (e.g. "incident height at the flap").
+
+    Returns
+    -------
+    str or None
+        The warning, or None.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Beyond ``tolerance``, on ``run.height``.
+    """
     return check_declared("height", declared, measured, "m", tolerance, warning, run_file,
                           what, "height_tolerance")
 
 
 def check_declared(key: str, declared: float, measured: float, unit: str, tolerance: float,
                    warning: float, run_file: Path, what: str, parameter: str) -> str | None:
-    """A declared run value against the measured one: an error beyond ``tolerance``, a
-    warning (returned text) beyond ``warning`` (relative differences).
+    """Check a declared run value against the measured one.
+
+    An error beyond ``tolerance``, a warning (returned text) beyond ``warning`` (relative
+    differences ``|measured / declared - 1|``).
 
     Parameters
     ----------
     key : str
         The key of ``[run]`` in run.toml (``height``, ``hm0``, ``tp``, ``te``).
-    declared, measured : float
-        The declared and the measured value [``unit``].
+    declared : float
+        The declared value [``unit``].
+    measured : float
+        The measured value [``unit``].
     unit : str
         Their unit, for the message.
-    tolerance, warning : float
-        Relative differences beyond which the run is refused, or a warning recorded [-].
+    tolerance : float
+        Relative difference beyond which the run is refused [-].
+    warning : float
+        Relative difference beyond which a warning is returned [-].
     run_file : pathlib.Path
         The run.toml, named in the message.
     what : str
@@ -112,6 +224,19 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
     -------
     str or None
         The warning, or None.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Beyond ``tolerance`` (or for a NaN difference), on ``run.<key>``.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> from flumekit.qc.checks import check_declared
+    >>> check_declared("height", 0.10, 0.104, "m", 0.25, 0.10, Path("run.toml"), "height", "t")
+    >>> check_declared("height", 0.10, 0.115, "m", 0.25, 0.10, Path("run.toml"), "height", "t")
+    'run.toml: run.height: declared height 0.1 m differs from the measured height 0.115 m by 15%'
     """
     rel = abs(measured / declared - 1.0)
     msg = (f"declared {key} {declared:g} {unit} differs from the measured {what} "
@@ -126,13 +251,13 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
 
 def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction: float,
                run_file: Path, record: Path) -> None:
-    """Error when the records contradict the run's declared kind: a regular run whose records
-    are an irregular sea, or an irregular run whose records are a regular wave train.
+    """Refuse records that contradict the run's declared kind.
 
-    The detection is the one :func:`flumekit.waves.separate` uses: a record holding at least
-    ``regular_fraction`` of its variance at its peak frequency and the harmonics of it
-    (:func:`flumekit.waves.harmonic_energy_fraction`) is regular. Analysed as the other kind,
-    a record gives a confident wrong answer (an irregular sea read as a regular wave: the
+    A regular run whose records are an irregular sea, or an irregular run whose records are a
+    regular wave train. The detection is the one :func:`flumekit.waves.separate` uses: a record
+    holding at least ``regular_fraction`` of its variance at its peak frequency and the harmonics
+    of it (:func:`flumekit.waves.harmonic_energy_fraction`) is regular. Analysed as the other
+    kind, a record gives a confident wrong answer (an irregular sea read as a regular wave: the
     first-harmonic Kr of one random bin).
 
     Parameters
@@ -146,8 +271,15 @@ def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction:
     regular_fraction : float
         The share from which a record is regular [-]
         (:data:`flumekit.waves.REGULAR_FRACTION`).
-    run_file, record : pathlib.Path
-        The run.toml and the probe file, named in the message.
+    run_file : pathlib.Path
+        The run.toml, named in the message.
+    record : pathlib.Path
+        The probe file, named in the message.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        On ``run.kind`` when the declared kind and the records disagree.
     """
     regular = share >= regular_fraction
     looks = (f"{share:.1%} of the variance of {record} lies at its peak {peak_frequency:.4g} Hz "
@@ -166,8 +298,34 @@ def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction:
 
 def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,
                       min_r2: float, warn_r2: float) -> list[str]:
-    """Errors for probes whose calibration fit has R² below ``min_r2`` or is not monotonic over
-    the calibrated voltages; warnings (returned) for R² below ``warn_r2``."""
+    """Refuse a probe calibration that does not describe the probes; warn about a poor one.
+
+    Parameters
+    ----------
+    r2 : numpy.ndarray
+        Coefficient of determination of each probe's calibration fit [-].
+    monotonic : numpy.ndarray
+        Whether each probe's fitted polynomial is monotonic over the calibrated voltages (bool).
+    probes : sequence of str
+        Probe names, in the order of ``r2``.
+    path : pathlib.Path
+        The calibration file, named in the message.
+    min_r2 : float
+        R² below which a fit is refused [-] (``[stages.calibration] min_r2``).
+    warn_r2 : float
+        R² below which a warning is returned [-].
+
+    Returns
+    -------
+    list of str
+        One warning per probe whose R² is below ``warn_r2``.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming ``path`` and every probe whose R² is below ``min_r2`` or whose polynomial is not
+        monotonic (a voltage would map to two levels).
+    """
     errors = [f"probe {p}: calibration R² = {r:.4f} is below {min_r2:g} "
               "([stages.calibration] min_r2): the fit does not describe the probe"
               for p, r in zip(probes, r2, strict=True) if not r >= min_r2]
@@ -183,9 +341,34 @@ def check_calibration(r2: np.ndarray, monotonic: np.ndarray, probes, path: Path,
 def check_alive(x: np.ndarray, channels, path: Path, flat_fraction: np.ndarray | None = None,
                 max_flat_fraction: float = 0.5, unit: str = "",
                 noise_fraction: np.ndarray | None = None) -> None:
-    """Error naming the file and channel(s) that are dead (constant over the whole record),
-    stuck (flat lines over more than ``max_flat_fraction`` of the record) or noise (failing
-    the noise test, :func:`flumekit.qc.qartod.noise_test`, over more than that fraction)."""
+    """Refuse a record with dead, stuck or noise channels.
+
+    Dead: constant over the whole record (or without a finite sample); stuck: flat lines over
+    more than ``max_flat_fraction`` of the record; noise: failing the noise test
+    (:func:`flumekit.qc.qartod.noise_test`) over more than that fraction.
+
+    Parameters
+    ----------
+    x : array_like
+        Record, (channel, time) or 1-D [any unit].
+    channels : sequence of str
+        Channel names, in the order of ``x``.
+    path : pathlib.Path
+        The record's file, named in the message.
+    flat_fraction : numpy.ndarray, optional
+        Fraction of each channel's record in flat lines [-]; None: not checked.
+    max_flat_fraction : float
+        Largest fraction of flat line or noise accepted [-].
+    unit : str
+        Unit of ``x``, for the message.
+    noise_fraction : numpy.ndarray, optional
+        Fraction of each channel's record failing the noise test [-]; None: not checked.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming ``path`` and every channel at fault.
+    """
     x = np.atleast_2d(np.asarray(x, dtype=float))
     problems = []
     for i, name in enumerate(channels):

@@ -1,5 +1,4 @@
-"""Clock check between instruments: the lag between a probe and the flap, against what the
-campaign's other runs say it should be.
+"""Clock check between instruments: the probe-to-flap lag against the campaign's other runs.
 
 Instruments on separate clocks (probes, flap, UVP) can be offset by a fraction of a second, and
 nothing in one run tells an offset from the physical lag between the wave at a probe and the
@@ -30,18 +29,40 @@ from flumekit.signal import estimate_time_offset
 
 def probe_flap_lag(eta: np.ndarray, eta_time: np.ndarray, flap: np.ndarray,
                    flap_time: np.ndarray, period: float) -> float:
-    """Cross-correlation offset of a flap channel from a probe record, within ±T/2 [s].
+    """Return the cross-correlation offset of a flap channel from a probe record, within ±T/2.
 
     The offset to add to the flap's time stamps that best aligns the flap channel with the
     probe record (:func:`flumekit.signal.estimate_time_offset`): minus the physical lag of the
     flap behind the wave at the probe, modulo a period, plus any clock offset of the flap.
+    Non-finite samples are left out.
 
     Parameters
     ----------
-    eta, eta_time : Probe record (any unit) and its times [s].
-    flap, flap_time : Flap channel (encoder counts or angle) and its times [s].
-    period : Wave period [s]; a regular wave's correlation repeats every period, so the offset
-        is sought within half of it.
+    eta : numpy.ndarray
+        Probe record [any unit].
+    eta_time : numpy.ndarray
+        Its times [s].
+    flap : numpy.ndarray
+        Flap channel (encoder counts or angle) [any unit].
+    flap_time : numpy.ndarray
+        Its times [s].
+    period : float
+        Wave period [s]; a regular wave's correlation repeats every period, so the offset is
+        sought within half of it.
+
+    Returns
+    -------
+    float
+        Offset [s].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import probe_flap_lag
+    >>> t = np.arange(0.0, 40.0, 0.02)
+    >>> eta = np.sin(2 * np.pi * t / 2.0)
+    >>> round(probe_flap_lag(eta, t, np.sin(2 * np.pi * (t - 0.3) / 2.0), t, 2.0), 2)
+    -0.3
     """
     ok_e, ok_f = np.isfinite(eta), np.isfinite(flap)
     return estimate_time_offset(eta[ok_e], eta_time[ok_e], flap[ok_f], flap_time[ok_f],
@@ -54,8 +75,7 @@ NEIGHBOURS = 1
 
 def clock_departures(lags: np.ndarray, periods: np.ndarray, heights: np.ndarray
                      ) -> tuple[np.ndarray, list[str]]:
-    """Departure of each run's lag from the lag its wave condition should have [s], and how
-    that reference was found.
+    """Return each run's departure from the lag its wave condition should have, and its basis.
 
     * Three runs or more of the same (period, height): the median lag of those runs.
     * Otherwise the runs of the other conditions whose period is the nearest distinct period
@@ -71,12 +91,27 @@ def clock_departures(lags: np.ndarray, periods: np.ndarray, heights: np.ndarray
 
     Parameters
     ----------
-    lags : Probe-to-flap lag of each run [s].
-    periods, heights : Wave condition of each run [s], [m].
+    lags : numpy.ndarray
+        Probe-to-flap lag of each run (:func:`probe_flap_lag`) [s].
+    periods : numpy.ndarray
+        Wave period of each run [s].
+    heights : numpy.ndarray
+        Wave height of each run [m].
 
     Returns
     -------
-    (departures [s], basis of each run's reference as text)
+    departures : numpy.ndarray
+        Departure of each run's lag from its reference [s], NaN without a reference.
+    basis : list of str
+        How each run's reference was found (or why there is none).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.clock import clock_departures
+    >>> d, basis = clock_departures(np.array([0.50, 0.52, 0.81]), np.full(3, 2.0), np.full(3, 0.1))
+    >>> np.round(d, 2).tolist(), basis[0]
+    ([-0.02, 0.0, 0.29], 'median of the 3 runs of its condition')
     """
     lags = np.asarray(lags, dtype=float)
     periods = np.asarray(periods, dtype=float)

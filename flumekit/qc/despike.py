@@ -13,7 +13,7 @@ from flumekit.qc.flags import FAIL
 
 def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 20,
                   exclude: np.ndarray | None = None) -> np.ndarray:
-    """Spikes of velocity records by the phase-space thresholding method, per channel.
+    """Find the spikes of velocity records by phase-space thresholding, per channel.
 
     Vectorised over all leading axes (profiles' channels, beams); time along the last axis. Each
     iteration: fluctuation u about the channel's median, its central differences Δu and Δ²u
@@ -26,15 +26,37 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
 
     Parameters
     ----------
-    u : Velocity [m s-1], time along the last axis; NaN samples are ignored.
-    floor : Lower bound of each standard deviation [m s-1] (the velocity resolution of a
-        quantised instrument), so a channel in still water is not all spikes.
-    max_iterations : Iterations at most.
-    exclude : Samples ignored as NaN ones are (True), of u's shape; None: none.
+    u : numpy.ndarray
+        Velocity [m s-1], time along the last axis; NaN samples are ignored.
+    floor : float or numpy.ndarray
+        Lower bound of each standard deviation [m s-1] (the velocity resolution of a quantised
+        instrument), so a channel in still water is not all spikes; one or one per channel.
+    max_iterations : int
+        Iterations at most.
+    exclude : numpy.ndarray, optional
+        Samples ignored as NaN ones are (True), of u's shape; None: none.
 
     Returns
     -------
-    Boolean array of u's shape, True at spikes.
+    numpy.ndarray
+        Boolean array of u's shape, True at spikes.
+
+    References
+    ----------
+    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
+    J. Hydraul. Eng. 128(1), 117-126.
+
+    Wahl, T. L. (2003). Discussion of "Despiking acoustic Doppler velocimeter data".
+    J. Hydraul. Eng. 129(6), 484-487.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import goring_nikora
+    >>> u = 0.01 * np.random.default_rng(0).standard_normal(1000)
+    >>> u[200] = 0.5
+    >>> np.flatnonzero(goring_nikora(u, max_iterations=1)).tolist()  # and its neighbours
+    [198, 199, 200, 201, 202]
     """
     u = np.asarray(u, dtype=float)
     shape = u.shape
@@ -46,20 +68,52 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
 
 def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 1,
                   exclude: np.ndarray | None = None) -> np.ndarray:
-    """QARTOD flags of the despiking (:func:`goring_nikora`) of velocity records (channel,
-    time; any layout), as bytes: FAIL at the spikes whose departure from their neighbours'
-    mean, |u_n - (u_(n-1) + u_(n+1))/2|, is at least that of both neighbours (a spike moves
-    the derivatives of its two neighbours too, which the method then flags with it: GN 2002,
-    §4), MISSING where not finite, NOT_EVALUATED where finite and ``exclude``, else GOOD.
+    """Return the QARTOD flags of the despiking of velocity records, as bytes.
 
-    Parameters are those of :func:`goring_nikora`; ``u`` is 2-D.
+    :func:`goring_nikora` on (channel, time) records in any memory layout: FAIL at the spikes
+    whose departure from their neighbours' mean, ``|u_n - (u_(n-1) + u_(n+1))/2|``, is at least that
+    of both neighbours (a spike moves the derivatives of its two neighbours too, which the method
+    then flags with it: GN 2002, §4), MISSING where not finite, NOT_EVALUATED where finite and
+    ``exclude``, else GOOD.
+
+    Parameters
+    ----------
+    u : numpy.ndarray
+        Velocity [m s-1], (channel, time).
+    floor : float or numpy.ndarray
+        Lower bound of each standard deviation [m s-1]; one or one per channel.
+    max_iterations : int
+        Iterations at most.
+    exclude : numpy.ndarray, optional
+        Samples not evaluated (True), of u's shape; None: none.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of u's shape (:mod:`flumekit.qc.flags`).
+
+    References
+    ----------
+    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
+    J. Hydraul. Eng. 128(1), 117-126.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.despike import despike_flags
+    >>> u = 0.01 * np.random.default_rng(0).standard_normal((1, 1000))
+    >>> u[0, 200] = 0.5
+    >>> np.flatnonzero(despike_flags(u) == 4).tolist()  # FAIL at the spike only
+    [200]
     """
     return _flags(np.asarray(u, dtype=float), floor, max_iterations, exclude, peaks=True)
 
 
 def _flags(u: np.ndarray, floor, max_iterations: int, exclude, peaks: bool) -> np.ndarray:
-    """:func:`flumekit.qc.kernels.despike_flags_rows` on the 2-D ``u``; ``floor`` one or one
-    per channel [m s-1]."""
+    """Run :func:`flumekit.qc.kernels.despike_flags_rows` on the 2-D ``u``.
+
+    ``floor`` is one or one per channel [m s-1].
+    """
     from flumekit.qc.kernels import despike_flags_rows
 
     exclude = np.zeros(u.shape, dtype=bool) if exclude is None else np.asarray(exclude, bool)

@@ -9,12 +9,34 @@ SPARSE = 0.02
 
 
 def runs(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Runs of True along the last axis of a 2-D mask: (row, first index, length), in order.
+    """Find the runs of True along the last axis of a 2-D mask.
 
     O(n) in the mask and vectorised: the edges of the runs in the flattened mask padded with a
-    False column on each side; or, for a sparse mask (flagged samples), the flat indices of
-    its True samples split where they stop following each other or change rows (one pass to
-    find them, the rest on those only: 0.3 against 3 ms a UVP beam)."""
+    False column on each side; or, for a sparse mask (flagged samples, fewer than ``SPARSE`` of
+    the mask), the flat indices of its True samples split where they stop following each other
+    or change rows, so that the work after one pass over the mask is on those samples only.
+
+    Parameters
+    ----------
+    mask : numpy.ndarray
+        Boolean (row, sample) array.
+
+    Returns
+    -------
+    row : numpy.ndarray
+        Row of each run.
+    first : numpy.ndarray
+        Index of its first sample.
+    length : numpy.ndarray
+        Its number of samples; runs in row-major order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.fill import runs
+    >>> [a.tolist() for a in runs(np.array([[0, 1, 1, 0, 1], [1, 0, 0, 0, 0]], dtype=bool))]
+    [[0, 0, 1], [1, 4, 0], [2, 1, 1]]
+    """
     m, n = mask.shape
     if np.count_nonzero(mask) < SPARSE * mask.size:
         idx = np.flatnonzero(np.ascontiguousarray(mask))
@@ -38,14 +60,39 @@ def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None,
     """Replace invalid samples by linear interpolation between the valid ones around them.
 
     Vectorised over channels (time along the last axis). Before the first or after the last
-    valid sample the nearest valid value is held. With ``max_gap`` (samples), only gaps of at
-    most that many consecutive invalid samples are filled; longer ones (and held ends longer than
-    that) become NaN. Without it every gap is filled and a channel with no valid sample
-    becomes 0.
+    valid sample the nearest valid value is held. With ``max_gap``, only gaps of at most that
+    many consecutive invalid samples are filled; longer ones (and held ends longer than that)
+    become NaN. Without it every gap is filled and a channel with no valid sample becomes 0.
+    Non-finite values count as invalid.
 
-    The work is per run of invalid samples (found in O(n)), so a record with a few flagged
-    samples costs little more than a copy; ``copy=False`` spares the copy: ``values`` may be
-    overwritten (the result may share its memory).
+    The work is per run of invalid samples (found in O(n), :func:`runs`), so a record with a few
+    flagged samples costs little more than a copy.
+
+    Parameters
+    ----------
+    values : array_like
+        Record, time along the last axis [any unit].
+    valid : array_like
+        Boolean, of the shape of ``values``: True where a sample is valid.
+    max_gap : int, optional
+        Longest run of invalid samples filled [samples]; None: every run.
+    copy : bool
+        False: ``values`` may be overwritten (the result may share its memory).
+
+    Returns
+    -------
+    numpy.ndarray
+        The record with its invalid samples filled, of the shape of ``values`` [unit of values].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import fill_gaps
+    >>> x = np.array([0.0, 9.0, 2.0, 9.0, 9.0, 9.0, 6.0])
+    >>> fill_gaps(x, x != 9.0).tolist()
+    [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]
+    >>> fill_gaps(x, x != 9.0, max_gap=2).tolist()
+    [0.0, 1.0, 2.0, nan, nan, nan, 6.0]
     """
     values = np.asarray(values, dtype=float)
     valid = np.asarray(valid, dtype=bool)
@@ -83,8 +130,27 @@ def fill_gaps(values: np.ndarray, valid: np.ndarray, max_gap: int | None = None,
 
 
 def gap_spans(invalid: np.ndarray, time: np.ndarray) -> list[tuple[int, float, float]]:
-    """Runs of invalid samples along the last axis of a 1-D or 2-D mask:
-    (row, first time, last time) [s], in order."""
+    """Return the runs of invalid samples along the last axis of a 1-D or 2-D mask, as times.
+
+    Parameters
+    ----------
+    invalid : array_like
+        Boolean mask, (row, sample) or 1-D: True where a sample is invalid.
+    time : numpy.ndarray
+        Time of each sample [s].
+
+    Returns
+    -------
+    list of tuple of (int, float, float)
+        (row, time of the first sample, time of the last sample) [s] of each run, in order.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.fill import gap_spans
+    >>> gap_spans(np.array([False, True, True, False]), np.array([0.0, 0.1, 0.2, 0.3]))
+    [(0, 0.1, 0.2)]
+    """
     m = np.atleast_2d(np.asarray(invalid, dtype=bool))
     row, first, length = runs(m)
     last = first + length - 1

@@ -29,7 +29,34 @@ MAD_TO_STD = 1.4826
 
 
 def flag_attrs(variable: str, long_name: str | None = None) -> dict:
-    """CF attributes of the flag variable of ``variable`` (QARTOD values and meanings)."""
+    """Return the CF attributes of the flag variable of ``variable`` (QARTOD values and meanings).
+
+    Parameters
+    ----------
+    variable : str
+        Name of the flagged variable.
+    long_name : str, optional
+        The flag variable's ``long_name``; default "QARTOD quality flag of <variable>".
+
+    Returns
+    -------
+    dict
+        ``units``, ``long_name``, ``standard_name`` (quality_flag), ``flag_values``,
+        ``flag_meanings`` and ``references``.
+
+    References
+    ----------
+    U.S. IOOS (2020). Manual for the use of real-time oceanographic data quality control flags,
+    v1.2, Table 2.
+
+    CF conventions, §3.5 Flags.
+
+    Examples
+    --------
+    >>> from flumekit.qc.flags import flag_attrs
+    >>> flag_attrs("eta")["flag_meanings"]
+    'pass not_evaluated suspect fail missing_data'
+    """
     return {"units": "1", "long_name": long_name or f"QARTOD quality flag of {variable}",
             "standard_name": "quality_flag", "flag_values": FLAG_VALUES,
             "flag_meanings": FLAG_MEANINGS,
@@ -38,13 +65,31 @@ def flag_attrs(variable: str, long_name: str | None = None) -> dict:
 
 
 def aggregate(*flags: np.ndarray) -> np.ndarray:
-    """Worst flag per sample over several tests' flags of the same shape.
+    """Return the worst flag per sample over several tests' flags of the same shape.
 
-    ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1.
+    ``NOT_EVALUATED`` (2) ranks below ``GOOD`` so that a sample any test passed reads 1;
+    ``MISSING`` (9) ranks above ``FAIL`` (4).
+
+    Parameters
+    ----------
+    *flags : numpy.ndarray
+        QARTOD flags of each test (int8 or uint8), all of one shape.
+
+    Returns
+    -------
+    numpy.ndarray
+        Aggregate flags (int8), of that shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.flags import aggregate
+    >>> aggregate(np.array([1, 2, 2, 3], np.int8), np.array([2, 1, 2, 4], np.int8)).tolist()
+    [1, 1, 2, 4]
     """
     # the flag values are their order of severity but for NOT_EVALUATED, which is taken as 0
-    # for the maximum and restored after: byte arithmetic, a third of the cost of a table
-    # lookup (np.take) per test on a UVP beam
+    # for the maximum and restored after: byte arithmetic, cheaper than a table lookup
+    # (np.take) per test on a UVP beam
     worst = None
     for f in flags:
         f = np.asarray(f)
@@ -56,11 +101,33 @@ def aggregate(*flags: np.ndarray) -> np.ndarray:
 
 
 def choose(condition: np.ndarray, yes: int, no: int) -> np.ndarray:
-    """Flag ``yes`` where ``condition``, else ``no``, as bytes (uint8).
+    """Return flag ``yes`` where ``condition``, else ``no``, as bytes (uint8).
 
-    Byte arithmetic on the condition (``no + condition * (yes - no)``, modulo 256): numpy's
-    ``where`` with two scalars, or a masked assignment, costs 10-15 times as much on an
-    irregular condition (measured on a UVP beam's block: 6.6 against 100 us)."""
+    Byte arithmetic on the condition (``no + condition * (yes - no)``, modulo 256), which costs
+    much less than numpy's ``where`` with two scalars or a masked assignment on an irregular
+    condition.
+
+    Parameters
+    ----------
+    condition : array_like
+        Boolean condition.
+    yes : int
+        Flag where ``condition``.
+    no : int
+        Flag elsewhere.
+
+    Returns
+    -------
+    numpy.ndarray
+        Flags (uint8) of the shape of ``condition``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.flags import choose
+    >>> choose(np.array([True, False]), 4, 1).tolist()
+    [4, 1]
+    """
     f = np.asarray(condition, dtype=bool).view(np.uint8) * np.uint8((yes - no) % 256)
     f += np.uint8(no)
     return f

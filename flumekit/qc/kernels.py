@@ -1,20 +1,18 @@
-"""The per-sample loops of the UVP tests, compiled (numba): Goring-Nikora despiking and the
-echo-level test, channel by channel.
+"""The per-sample loops of the UVP tests, compiled (numba): despiking and the echo-level test.
 
-Both make a handful of passes over each channel's record and keep per-channel statistics
-(medians, sums); written with numpy, every pass was a temporary array, and a UVP beam (360
-channels x 2100-2900 profiles) took 13-21 ms to despike and 5.5 ms for the echo level.
-Compiled, one channel's record stays in the CPU's cache through all passes, and a quantised
-record is worked in integers: 3-4.5 and 1.5 ms (``flumekit bench qc``). The definitions they
-must equal, written with numpy, are in tests/qc/test_qartod.py.
+Goring-Nikora despiking and the echo-level test, channel by channel. Both make a handful of
+passes over each channel's record and keep per-channel statistics (medians, sums); written
+with numpy, every pass is a temporary array. Compiled, one channel's record stays in the
+CPU's cache through all passes, and a quantised record is worked in integers
+(``flumekit bench qc`` measures them). The definitions they must equal, written with numpy,
+are in tests/qc/test_qartod.py.
 
-Imported only by the UVP tests, so that the probe and flap QC and the other stages do not load
-numba: a process pays 0.4-0.5 s once for it (import, and the first use, which loads the
-kernels from their cache). ``cache=True``: compiled once per installation (5-8 s on a loaded
-2-core machine; no generic ``np.median`` or ``np.sort``, whose compilation alone took seconds:
-:func:`_middle` selects instead), into this
-package's ``__pycache__`` (numba falls back to a user cache directory when that is not
-writable).
+Imported only by the UVP tests, so that the probe and flap QC and the other stages do not
+load numba (its import and the loading of the cached kernels cost a process a noticeable
+fraction of a second). ``cache=True``: compiled once per installation into this package's
+``__pycache__`` (numba falls back to a user cache directory when that is not writable); no
+generic ``np.median`` or ``np.sort``, whose compilation is slow: :func:`_middle` selects
+instead.
 """
 
 from __future__ import annotations
@@ -38,8 +36,11 @@ _NO_STEP = np.int64(2) ** 62
 
 @njit(cache=True)
 def _ranked(hist, span, n):
-    """(a, b): the bins of the values of ranks (n - 1) // 2 and n // 2 (0-based) in the
-    histogram ``hist[:span]`` of n values; their mean is the median."""
+    """Return the bins of the values of ranks (n - 1) // 2 and n // 2 in a histogram.
+
+    (a, b), 0-based ranks, in the histogram ``hist[:span]`` of n values; their mean is the
+    median.
+    """
     r1, r2 = (n - 1) // 2, n // 2
     cum = 0
     a = -1
@@ -54,11 +55,13 @@ def _ranked(hist, span, n):
 
 @njit(cache=True)
 def _middle(x):
-    """(a, b): the values of ranks (n - 1) // 2 and n // 2 (0-based) of ``x``, reordered in
-    place; their mean is the median. Quickselect (Hoare partition about the middle element,
-    which keeps sorted and constant records linear), then the least value above rank
-    (n - 1) // 2. Written out rather than ``np.median`` or ``np.sort``, whose generic
-    implementations take seconds of each fresh installation's first run to compile."""
+    """Return the values of ranks (n - 1) // 2 and n // 2 (0-based) of ``x``.
+
+    ``x`` is reordered in place; the mean of the two is the median. Quickselect (Hoare partition
+    about the middle element, which keeps sorted and constant records linear), then the least
+    value above rank (n - 1) // 2. Written out rather than ``np.median`` or ``np.sort``, whose
+    generic implementations are slow to compile on each fresh installation's first run.
+    """
     n = x.size
     k = (n - 1) // 2
     lo, hi = 0, n - 1
@@ -94,9 +97,11 @@ def _middle(x):
 
 @njit(cache=True)
 def _fill(src, ok, unit, w):
-    """w = src / unit, the samples not ``ok`` linearly interpolated between the ok ones around
-    them, the nearest held before the first and after the last, 0 where none is ok
-    (:func:`flumekit.qc.fill.fill_gaps` without a limit)."""
+    """Set w = src / unit, the samples not ``ok`` linearly interpolated between the ok ones.
+
+    The nearest ok value is held before the first and after the last, 0 where none is ok
+    (:func:`flumekit.qc.fill.fill_gaps` without a limit).
+    """
     n = src.size
     prev = -1
     for i in range(n):
@@ -119,9 +124,11 @@ def _fill(src, ok, unit, w):
 
 @njit(cache=True)
 def _fill_quantised(src, ok, unit, w):
-    """:func:`_fill`, the filled samples rounded to whole numbers where the ok ones are whole
-    (a quantised record in units of its step): the placeholders stay on the instrument's grid,
-    and the record is worked in integers (:func:`_outside`)."""
+    """Run :func:`_fill`, the filled samples rounded to whole numbers where the ok ones are whole.
+
+    For a quantised record in units of its step: the placeholders stay on the instrument's grid,
+    and the record is worked in integers (:func:`_outside`).
+    """
     _fill(src, ok, unit, w)
     for i in range(w.size):
         if ok[i] and abs(w[i] - np.rint(w[i])) > 1e-6:
@@ -132,9 +139,11 @@ def _fill_quantised(src, ok, unit, w):
 
 @njit(cache=True)
 def _whole(w, k):
-    """Whether every value of ``w`` lies within 1e-6 of a whole number (a quantised record in
-    units of its step, up to the rounding of the division) of at most 2^30; then those
-    numbers in ``k`` (int32) and their extremes."""
+    """Test whether every value of ``w`` lies within 1e-6 of a whole number of at most 2^30.
+
+    A quantised record in units of its step, up to the rounding of the division; those numbers
+    are written in ``k`` (int32) and returned with their extremes.
+    """
     bad = False
     lo = hi = np.int32(0)
     for i in range(w.size):
@@ -148,9 +157,11 @@ def _whole(w, k):
 
 @njit(cache=True)
 def _differences(C, D, E):
-    """D = 4Δu and E = 8Δ²u from C = 2u (any numeric type): central differences, one-sided at
-    the ends as np.gradient's (GN 2002, Eqs. 6-7), in units where each is an integer when u
-    is a whole or half number."""
+    """Set D = 4Δu and E = 8Δ²u from C = 2u (any numeric type).
+
+    Central differences, one-sided at the ends as np.gradient's (GN 2002, Eqs. 6-7), in units
+    where each is an integer when u is a whole or half number.
+    """
     n = C.size
     D[0], D[n - 1] = 2 * (C[1] - C[0]), 2 * (C[n - 1] - C[n - 2])
     for i in range(1, n - 1):
@@ -162,8 +173,11 @@ def _differences(C, D, E):
 
 @njit(cache=True)
 def _sums(X, D, E, zero):
-    """(ΣX, ΣX², ΣD, ΣD², ΣE, ΣE², ΣXE), accumulated from ``zero`` (int64: exact, whatever the
-    order; float64: in order, no reassociation, the same bits on every CPU)."""
+    """Return (ΣX, ΣX², ΣD, ΣD², ΣE, ΣE², ΣXE), accumulated from ``zero``.
+
+    int64 ``zero``: exact, whatever the order; float64: in order, no reassociation, the same
+    bits on every CPU.
+    """
     s1 = s2 = t1 = t2 = q1 = q2 = sxe = zero
     for i in range(X.size):
         x, y, z = X[i] + zero, D[i] + zero, E[i] + zero
@@ -179,9 +193,11 @@ def _sums(X, D, E, zero):
 
 @njit(cache=True)
 def _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl):
-    """The coefficients of the three ellipse tests (GN 2002, Eqs. 2, 9-11) from the sums of
-    C = 2u, D = 4Δu, E = 8Δ²u, of their squares and of C E; ``fl``: floor of the standard
-    deviations, in the units of u."""
+    """Return the coefficients of the three ellipse tests (GN 2002, Eqs. 2, 9-11).
+
+    From the sums of C = 2u, D = 4Δu, E = 8Δ²u, of their squares and of C E; ``fl``: floor of
+    the standard deviations, in the units of u.
+    """
     f2 = fl * fl
     su2 = max(s2 / (4.0 * n) - (s1 / (2.0 * n)) ** 2, f2)
     sdu2 = max(t2 / (16.0 * n) - (t1 / (4.0 * n)) ** 2, f2)
@@ -207,8 +223,11 @@ def _coefficients(n, s1, s2, t1, t2, q1, q2, sce, lam2, fl):
 
 @njit(cache=True)
 def _test(X, xs, shift, D, ds, E, es, coefficients, out):
-    """out[i]: sample i lies outside one of the three ellipses, u = xs X - shift,
-    Δu = ds D, Δ²u = es E (each exact: whole and half numbers, scaled by powers of 2)."""
+    """Set out[i]: sample i lies outside one of the three ellipses.
+
+    u = xs X - shift, Δu = ds D, Δ²u = es E (each exact: whole and half numbers, scaled by
+    powers of 2).
+    """
     k_du, k_u1, k_d1, k_u3, k_d3, k_c3 = coefficients
     for i in range(X.size):
         x, y, z = xs * X[i] - shift, ds * D[i], es * E[i]
@@ -221,17 +240,19 @@ def _test(X, xs, shift, D, ds, E, es, coefficients, out):
 
 @njit(cache=True)
 def _outside(w, lam2, fl, work, out):
-    """out[i]: sample i of the record ``w`` (units of the floor) lies outside one of the three
-    ellipses (Goring and Nikora 2002; see :func:`flumekit.qc.despike.goring_nikora`), about
-    its median.
+    """Set out[i]: sample i of the record ``w`` lies outside one of the three ellipses.
+
+    Goring and Nikora (2002), see :func:`flumekit.qc.despike.goring_nikora`; ``w`` in units of
+    the floor, about its median.
 
     A record of whole numbers (a quantised one) of modest size is worked in integers: its
     median from its histogram (O(n)), C = 2u, D = 4Δu, E = 8Δ²u and their sums exact, those
     of C from those of the record itself (C = 2k - 2M: D and E do not depend on the median,
-    so no pass waits for it). Other records: the median by
-    selection, the sums in double precision, in order (no reassociation: the same bits on
-    every CPU). Both forms give a whole-number record the same statistics and flags bit for
-    bit (scaling by a power of 2 is exact in floating point)."""
+    so no pass waits for it). Other records: the median by selection, the sums in double
+    precision, in order (no reassociation: the same bits on every CPU). Both forms give a
+    whole-number record the same statistics and flags bit for bit (scaling by a power of 2 is
+    exact in floating point).
+    """
     k, D, E, hist, Cf, Df, Ef = work
     n = w.size
     whole, lo, hi = _whole(w, k)
@@ -265,8 +286,10 @@ def _outside(w, lam2, fl, work, out):
 
 @njit(cache=True)
 def _buffers(n):
-    """Work arrays of one row of n samples: (record as read, record worked, outside, ok) and
-    those of :func:`_outside`."""
+    """Return the work arrays of one row of n samples.
+
+    (record as read, record worked, outside, ok) and those of :func:`_outside`.
+    """
     return (np.empty(n), np.empty(n), np.empty(n, dtype=np.bool_), np.empty(n, dtype=np.bool_),
             (np.empty(n, dtype=np.int32), np.empty(n, dtype=np.int32),
              np.empty(n, dtype=np.int32), np.empty(HIST_BINS, dtype=np.int64),
@@ -275,12 +298,14 @@ def _buffers(n):
 
 @njit(cache=True)
 def _spikes_row(src, ok, every, floor, lam2, max_iterations, sp, buffers):
-    """Goring-Nikora on one row ``src`` with its valid samples ``ok`` (all valid: ``every``;
-    updated: the spikes leave it), iterated: a spike is replaced by linear interpolation (on
-    the record's grid when it is quantised) and the row tested again until no new spike is
-    found, ``max_iterations`` at most. The spikes are set in ``sp``. The row is worked in
+    """Run Goring-Nikora on one row ``src``, iterated, setting its spikes in ``sp``.
+
+    ``ok``: its valid samples (all valid: ``every``; updated: the spikes leave it). A spike is
+    replaced by linear interpolation (on the record's grid when it is quantised) and the row
+    tested again until no new spike is found, ``max_iterations`` at most. The row is worked in
     units of its ``floor`` (the velocity resolution), where a quantised record's values are
-    whole numbers; ``buffers[1]`` holds it so when ``every`` (the caller's copy)."""
+    whole numbers; ``buffers[1]`` holds it so when ``every`` (the caller's copy).
+    """
     _, w, out, _, work = buffers
     n = src.size
     unit = floor if floor > 0.0 else 1.0
@@ -302,10 +327,12 @@ def _spikes_row(src, ok, every, floor, lam2, max_iterations, sp, buffers):
 
 @njit(cache=True)
 def _universal(u, exclude):
-    """λ² = 2 ln n (Goring and Nikora 2002, Eq. 2) of the longest row of samples tested, the
-    finite ones of ``u`` not ``exclude``-d (channel x time), the same for every row; 0 below 5
-    samples (nothing is evaluated). A row tested whole ends the search (the usual case: the
-    first)."""
+    """Return λ² = 2 ln n (Goring and Nikora 2002, Eq. 2) of the longest row of samples tested.
+
+    The finite samples of ``u`` not ``exclude``-d (channel x time) count; the same λ serves
+    every row; 0 below 5 samples (nothing is evaluated). A row tested whole ends the search
+    (the usual case: the first).
+    """
     m, n = u.shape
     longest = 0
     for r in range(m):
@@ -320,7 +347,7 @@ def _universal(u, exclude):
 
 @njit(cache=True)
 def _departure(x, k):
-    """|x_k - (x_(k-1) + x_(k+1))/2|, 0 at the first and last samples."""
+    """Return ``|x_k - (x_(k-1) + x_(k+1))/2|``, 0 at the first and last samples."""
     if k < 1 or k > x.size - 2:
         return 0.0
     return abs(x[k] - 0.5 * (x[k - 1] + x[k + 1]))
@@ -328,13 +355,38 @@ def _departure(x, k):
 
 @njit(cache=True)
 def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
-    """QARTOD flags of the Goring-Nikora despiking of each row of ``u`` (channel, time; any
-    layout), its finite samples not ``exclude``-d only (λ of :func:`_universal`; per-row
+    """Return the QARTOD flags of the Goring-Nikora despiking of each row of ``u``.
+
+    Only the finite samples not ``exclude``-d are tested (λ of :func:`_universal`; per-row
     ``floor``): FAIL at the spikes (``peaks``: at those only whose departure from their
     neighbours' mean is the local largest, since a spike moves the derivatives of its two
-    neighbours, which the method then flags with it), MISSING where not finite,
-    NOT_EVALUATED where finite and excluded, else GOOD. The others are interpolated over
-    (:func:`_spikes_row`)."""
+    neighbours, which the method then flags with it), MISSING where not finite, NOT_EVALUATED
+    where finite and excluded, else GOOD. The others are interpolated over
+    (:func:`_spikes_row`).
+
+    Parameters
+    ----------
+    u : numpy.ndarray
+        Velocity [m s-1], (channel, time), any memory layout.
+    exclude : numpy.ndarray
+        Boolean, of u's shape: samples not evaluated.
+    floor : numpy.ndarray
+        Lower bound of the standard deviations of each row [m s-1] (its velocity resolution).
+    max_iterations : int
+        Iterations at most.
+    peaks : bool
+        Flag only the spikes that are the local largest departure.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of u's shape.
+
+    References
+    ----------
+    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
+    J. Hydraul. Eng. 128(1), 117-126.
+    """
     m, n = u.shape
     lam2 = _universal(u, exclude)
     flags = np.empty((m, n), dtype=np.uint8)
@@ -368,14 +420,26 @@ def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
 
 @njit(cache=True)
 def level_fail_rows(x, threshold):
-    """FAIL (True) where |x - median(x)| exceeds ``threshold`` robust standard deviations
-    (1.4826 MAD, at least the channel's resolution: its smallest non-zero step) per row of the
-    integer array ``x`` (channel, time; any layout); exact: in half steps, |2x - 2M| against
-    the floor of twice the bound.
+    """Return where ``|x - median(x)|`` exceeds ``threshold`` robust standard deviations, per row.
 
-    The median and the MAD are read from the row's histogram (the deviations' histogram from
-    the values'), O(n); a row spanning more values than ``HIST_BINS`` by selection instead
-    (:func:`_middle`)."""
+    The robust standard deviation is 1.4826 MAD, at least the channel's resolution (its
+    smallest non-zero step); exact: in half steps, ``|2x - 2M|`` against the floor of twice the
+    bound. The median and the MAD are read from the row's histogram (the deviations' histogram
+    from the values'), O(n); a row spanning more values than ``HIST_BINS`` by selection instead
+    (:func:`_middle`).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        Integer record (channel, time), any memory layout (echo amplitudes [counts]).
+    threshold : float
+        Robust standard deviations beyond which a sample fails [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, of x's shape: True where the sample fails.
+    """
     m, n = x.shape
     fail = np.empty((m, n), dtype=np.bool_)
     row = np.empty(n, dtype=np.int64)

@@ -31,7 +31,25 @@ from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SU
 
 
 def resolution(x: np.ndarray) -> np.ndarray:
-    """Smallest non-zero step between consecutive samples per channel (quantisation) [x]."""
+    """Return the smallest non-zero step between consecutive samples per channel (quantisation).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit]; integer records are scanned as integers.
+
+    Returns
+    -------
+    numpy.ndarray
+        Resolution per channel [unit of x], 0 for a channel without a non-zero step.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import resolution
+    >>> resolution(np.array([[0.0, 0.5, 0.5, 1.5], [1.0, 1.0, 1.0, 1.0]])).tolist()
+    [0.5, 0.0]
+    """
     x = np.asarray(x)
     if x.dtype.kind in "iu":  # integers: no NaN, and a smaller type to scan
         if not x.shape[-1]:
@@ -51,11 +69,25 @@ def resolution(x: np.ndarray) -> np.ndarray:
 
 
 def local_scale(stat: np.ndarray, block: int, floor: np.ndarray | float = 0.0) -> np.ndarray:
-    """Robust local standard deviation of ``stat`` along the last axis, per sample.
+    """Return the robust local standard deviation of ``stat`` along the last axis, per sample.
 
-    1.4826 x median |stat| per block of ``block`` samples (NaN ignored), the largest of each
+    1.4826 x median ``|stat|`` per block of ``block`` samples (NaN ignored), the largest of each
     block and its two neighbours (so a block at the arrival of the waves is judged with the
-    scale of the waves), at least ``floor`` (per channel or scalar).
+    scale of the waves), at least ``floor``.
+
+    Parameters
+    ----------
+    stat : array_like
+        The tested statistic, time along the last axis [any unit].
+    block : int
+        Samples per block.
+    floor : float or numpy.ndarray
+        Lower bound [unit of stat], scalar or one per channel.
+
+    Returns
+    -------
+    numpy.ndarray
+        Scale per sample, of the shape of ``stat`` [unit of stat].
     """
     s = np.abs(np.asarray(stat, dtype=float))
     n = s.shape[-1]
@@ -84,8 +116,11 @@ def _empty_flags(x: np.ndarray) -> np.ndarray:
 
 
 def _local_test_start(x, min_samples: int, floor):
-    """Flags, values and noise floor of a local test; flags all NOT_EVALUATED (2) when the
-    record is shorter than the test's stencil."""
+    """Return the values, flags and noise floor of a local test.
+
+    The flags are all NOT_EVALUATED (2) when the record is shorter than the test's stencil
+    (the floor is then None).
+    """
     x = np.asarray(x, dtype=float)
     f = _empty_flags(x)
     if x.shape[-1] < min_samples:
@@ -96,8 +131,37 @@ def _local_test_start(x, min_samples: int, floor):
 
 def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
                      suspect_span: tuple[float, float] | None = None) -> np.ndarray:
-    """QARTOD gross range: FAIL outside ``fail_span`` (sensor limits), SUSPECT outside
-    ``suspect_span`` (user limits) [units of x]. ``None``: not evaluated (2)."""
+    """Flag samples outside the sensor's and the user's limits (QARTOD gross range test).
+
+    FAIL outside ``fail_span`` (sensor limits), SUSPECT outside ``suspect_span`` (user
+    limits), MISSING where not finite. Without either span, nothing is evaluated (2).
+
+    Parameters
+    ----------
+    x : array_like
+        Record [any unit].
+    fail_span : tuple of float, optional
+        (min, max) of the sensor [unit of x]; None: not tested.
+    suspect_span : tuple of float, optional
+        (min, max) expected by the user [unit of x]; None: not tested.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1 (gross range test).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import gross_range_test
+    >>> gross_range_test(np.array([0.0, 0.3, 0.6, np.nan]), (-0.5, 0.5), (-0.2, 0.2)).tolist()
+    [1, 3, 4, 9]
+    """
     x = np.asarray(x, dtype=float)
     if fail_span is None and suspect_span is None:
         return choose(np.isfinite(x), NOT_EVALUATED, MISSING)
@@ -115,14 +179,50 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
 
 def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: int = 250,
                floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
-    """QARTOD spike test (the "average" method), robust and local.
+    """Flag spikes (QARTOD spike test, the "average" method), robust and local.
 
-    The statistic is d_n = x_n - (x_(n-1) + x_(n+1))/2. A sample is a spike where abs(d_n) exceeds
-    ``suspect`` (SUSPECT) or ``fail`` (FAIL) robust local standard deviations of d and is the
-    largest abs(d) of its three neighbours: a spike of size s also moves its neighbours' d by s/2,
-    and those neighbours are good data. After each pass the FAIL samples are replaced by the
-    mean of their neighbours and the test runs again (``passes``), which finds spikes hidden next
-    to larger ones. End samples are not evaluated (2).
+    The statistic is d_n = x_n - (x_(n-1) + x_(n+1))/2. A sample is a spike where abs(d_n)
+    exceeds ``suspect`` (SUSPECT) or ``fail`` (FAIL) robust local standard deviations of d
+    (:func:`local_scale`) and is the largest abs(d) of its three neighbours: a spike of size s
+    also moves its neighbours' d by s/2, and those neighbours are good data. After each pass the
+    FAIL samples are replaced by the mean of their neighbours and the test runs again
+    (``passes``), which finds spikes hidden next to larger ones. End samples are not evaluated
+    (2).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    suspect : float
+        Robust local standard deviations of d beyond which a spike is suspect [-].
+    fail : float
+        Robust local standard deviations of d beyond which a spike fails [-].
+    block : int
+        Samples per block of the local scale.
+    floor : float or numpy.ndarray, optional
+        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+    passes : int
+        Passes at most.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1 (spike test).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import spike_test
+    >>> x = np.sin(2 * np.pi * np.arange(400) / 40.0)
+    >>> x[100] += 1.0
+    >>> f = spike_test(x)
+    >>> np.flatnonzero(f == 4).tolist(), int(f[0])
+    ([100], 2)
     """
     x, f, floor = _local_test_start(x, 3, floor)
     if floor is None:
@@ -151,9 +251,42 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
 
 def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
                         floor: np.ndarray | float | None = None) -> np.ndarray:
-    """QARTOD rate of change: SUSPECT where abs(x_n - x_(n-1)) exceeds ``threshold`` robust local
-    standard deviations of the first difference (QARTOD's "N standard deviations" rule).
-    The first sample is not evaluated (2)."""
+    """Flag excessive rates of change (QARTOD rate of change test).
+
+    SUSPECT where abs(x_n - x_(n-1)) exceeds ``threshold`` robust local standard deviations of
+    the first difference (QARTOD's "N standard deviations" rule, :func:`local_scale`). The
+    first sample is not evaluated (2).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    threshold : float
+        Robust local standard deviations of the first difference [-].
+    block : int
+        Samples per block of the local scale.
+    floor : float or numpy.ndarray, optional
+        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1 (rate of change test).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import rate_of_change_test
+    >>> x = np.sin(2 * np.pi * np.arange(400) / 40.0)
+    >>> x[200:] += 2.0
+    >>> np.flatnonzero(rate_of_change_test(x) == 3).tolist()
+    [200]
+    """
     x, f, floor = _local_test_start(x, 2, floor)
     if floor is None:
         return f
@@ -167,7 +300,7 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
 
 
 def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
-    """Boolean (m, n) array, True over the given runs (vectorised with a cumulative sum)."""
+    """Return a boolean (m, n) array, True over the given runs (a cumulative sum)."""
     m, n = shape
     mark = np.zeros((m, n + 1), dtype=np.int64)
     np.add.at(mark, (row, first), 1)
@@ -178,11 +311,48 @@ def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
 def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float = 1.0,
                    fail_seconds: float = 2.0, tolerance: float = 0.0,
                    exempt_leading: bool = True) -> np.ndarray:
-    """QARTOD flat line: runs of samples within ``tolerance`` of their predecessor that last at
-    least ``suspect_seconds`` (SUSPECT) or ``fail_seconds`` (FAIL); every sample of the run is
+    """Flag flat lines (QARTOD flat line test).
+
+    Runs of samples within ``tolerance`` of their predecessor that last at least
+    ``suspect_seconds`` (SUSPECT) or ``fail_seconds`` (FAIL); every sample of the run is
     flagged. A run from the first sample that ends before the record does is the instrument at
     rest before the waves arrive (an encoder's count does not change then) and passes when
     ``exempt_leading``; a run over the whole record fails (a dead channel).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    sampling_rate : float
+        Sampling rate [Hz].
+    suspect_seconds : float
+        Shortest flat line that is suspect [s].
+    fail_seconds : float
+        Shortest flat line that fails [s].
+    tolerance : float
+        Largest step that counts as flat [unit of x].
+    exempt_leading : bool
+        Pass a flat line from the first sample that ends before the record does.
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1 (flat line test).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import flat_line_test
+    >>> x = np.sin(2 * np.pi * np.arange(200) / 20.0)
+    >>> x[50:80] = x[50]
+    >>> f = flat_line_test(x, 10.0, suspect_seconds=1.0, fail_seconds=2.0)
+    >>> np.flatnonzero(f == 4)[[0, -1]].tolist()
+    [50, 79]
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape
@@ -204,8 +374,27 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
 
 
 def robust_median(x: np.ndarray) -> np.ndarray:
-    """Median along the last axis ignoring NaN, vectorised over the other axes (numpy's
-    ``nanmedian`` loops over rows in Python for long rows); NaN where a row has no value."""
+    """Return the median along the last axis ignoring NaN, vectorised over the other axes.
+
+    numpy's ``nanmedian`` loops over rows in Python for long rows; this sorts once.
+
+    Parameters
+    ----------
+    x : array_like
+        Values, along the last axis [any unit].
+
+    Returns
+    -------
+    numpy.ndarray
+        Median per row [unit of x]; NaN where a row has no value.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import robust_median
+    >>> robust_median(np.array([[1.0, np.nan, 3.0, 10.0], [np.nan] * 4])).tolist()
+    [3.0, nan]
+    """
     x = np.asarray(x, dtype=float)
     nan = np.isnan(x)
     if not nan.any():
@@ -218,9 +407,33 @@ def robust_median(x: np.ndarray) -> np.ndarray:
 
 
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
-    """FAIL where |x - median(x)| exceeds ``threshold`` robust standard deviations of x over
-    the record (1.4826 MAD, at least the channel's resolution), per channel along the last
-    axis: the level form of :func:`dropout_test`."""
+    """Flag samples far from the record's median (the level form of :func:`dropout_test`).
+
+    FAIL where ``|x - median(x)|`` exceeds ``threshold`` robust standard deviations of x over the
+    record (1.4826 MAD, at least the channel's resolution), per channel along the last axis.
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit]; integer records are tested exactly
+        (:func:`level_fail`).
+    threshold : float
+        Robust standard deviations [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import level_test
+    >>> x = np.sin(2 * np.pi * np.arange(200) / 20.0)
+    >>> x[120] = -9.0
+    >>> np.flatnonzero(level_test(x) == 4).tolist()
+    [120]
+    """
     x = np.asarray(x)
     if x.dtype.kind in "iu" and x.size:
         return choose(level_fail(x, threshold), FAIL, GOOD)
@@ -228,8 +441,23 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
 
 
 def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
-    """Where :func:`level_test` fails (bool). Integer records (echo amplitudes) are tested
-    exactly, compiled (:func:`flumekit.qc.kernels.level_fail_rows`)."""
+    """Return where :func:`level_test` fails.
+
+    Integer records (echo amplitudes) are tested exactly, compiled
+    (:func:`flumekit.qc.kernels.level_fail_rows`).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    threshold : float
+        Robust standard deviations [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        Boolean, of x's shape: True where the sample fails.
+    """
     x = np.asarray(x)
     if x.dtype.kind in "iu" and x.size:
         from flumekit.qc.kernels import level_fail_rows
@@ -239,7 +467,7 @@ def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
 
 
 def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
-    """:func:`level_test` of the (channel, time) block ``x2`` of real numbers."""
+    """Run :func:`level_test` on the (channel, time) block ``x2`` of real numbers."""
     med = robust_median(x2)[:, None]
     x2 = x2.astype(float)
     f = _empty_flags(x2)
@@ -252,9 +480,9 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
 
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
                  hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
-    """Dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
+    """Flag dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
 
-    * Level: samples far outside the record's robust envelope, |x - median(x)| above
+    * Level: samples far outside the record's robust envelope, ``|x - median(x)|`` above
       ``threshold`` robust standard deviations of x over the record (1.4826 MAD; a sinusoid
       reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water
       lead-in of up to about half the record).
@@ -265,6 +493,33 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
       record. The lead-in (the instrument at rest before the waves arrive, until it first
       leaves its initial level by more than two quanta) is exempt, and so is a run that a
       quantised signal enters and leaves by one quantum (slow motion, not a hold).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    sampling_rate : float
+        Sampling rate [Hz].
+    threshold : float
+        Robust standard deviations of the level form [-].
+    hold_seconds : float
+        Shortest hold that can be a dropout [s].
+    hold_factor : float
+        Multiple of the channel's typical longest run of identical values [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import dropout_test
+    >>> x = np.sin(2 * np.pi * np.arange(1000) / 100.0)
+    >>> x[400:450] = 0.0  # a logger writing 0 for 0.5 s
+    >>> np.flatnonzero(dropout_test(x, 100.0) == 4)[[0, -1]].tolist()
+    [400, 449]
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape
@@ -315,9 +570,37 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
 
 
 def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:
-    """QARTOD gap (timing) test: FAIL on a sample that follows a time step longer than
-    (1 + ``tolerance``) / ``sampling_rate`` (samples are missing before it); MISSING where the
-    time is not finite."""
+    """Flag samples after a gap in time (QARTOD gap, or timing, test).
+
+    FAIL on a sample that follows a time step longer than (1 + ``tolerance``) /
+    ``sampling_rate`` (samples are missing before it); MISSING where the time is not finite.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s].
+    sampling_rate : float
+        Nominal sampling rate [Hz].
+    tolerance : float
+        Relative excess of a time step over 1 / ``sampling_rate`` that is a gap [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of time's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1 (timing/gap test).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import gap_test
+    >>> gap_test(np.array([0.0, 0.1, 0.2, 0.5, 0.6]), 10.0).tolist()
+    [1, 1, 1, 4, 1]
+    """
     t = np.asarray(time, dtype=float)
     f = _empty_flags(t)
     with np.errstate(invalid="ignore"):
@@ -328,7 +611,7 @@ def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> 
 
 def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
                min_share: float = 0.1) -> np.ndarray:
-    """Noise: blocks of a channel that hold more noise than signal (FAIL).
+    """Flag blocks of a channel that hold more noise than signal (FAIL).
 
     A physical signal sampled far above its band (waves of a period T at a rate fs with
     T fs >> 1) changes little from one sample to the next: its lag-one autocorrelation is
@@ -347,6 +630,31 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
     The second condition keeps the quiet still-water lead-in of a probe, which is noise but
     tiny beside the waves, from failing. A channel that is noise from end to end fails
     everywhere (its high-frequency energy is its variance).
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    block : int
+        Samples per block (at least 4).
+    max_autocorrelation : float
+        Lag-one autocorrelation below which a block can be noise [-].
+    min_share : float
+        Share of the channel's variance its high-frequency energy must exceed [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        QARTOD flags (uint8) of x's shape.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc.qartod import noise_test
+    >>> wave = np.sin(2 * np.pi * np.arange(1000) / 50.0)
+    >>> hiss = np.random.default_rng(0).standard_normal(1000)
+    >>> [int((noise_test(x, 100) == 4).sum()) for x in (wave, hiss)]
+    [0, 1000]
     """
     x = np.asarray(x, dtype=float)
     shape = x.shape

@@ -37,8 +37,50 @@ BOUNDARY_PROFILES = 1
 
 @dataclass(frozen=True)
 class Thresholds:
-    """Thresholds of the QC tests (the ``[stages.qc]`` parameters). Defaults pass clean
-    virtual-flume records untouched (measured in tests/qc)."""
+    """Thresholds of the QC tests (the ``[stages.qc]`` parameters).
+
+    The defaults pass clean virtual-flume records untouched (tests/qc measure it).
+
+    Parameters
+    ----------
+    spike_suspect : float
+        Robust local standard deviations of x_n - (x_(n-1) + x_(n+1))/2 beyond which a spike is
+        suspect [-] (:func:`~flumekit.qc.qartod.spike_test`).
+    spike_fail : float
+        The same, beyond which a spike fails [-].
+    rate_of_change : float
+        Robust local standard deviations of the first difference [-]
+        (:func:`~flumekit.qc.qartod.rate_of_change_test`).
+    flat_line_suspect : float
+        Shortest suspect flat line [s].
+    flat_line_fail : float
+        Shortest failing flat line [s].
+    flat_line_tolerance : float
+        Largest step that counts as flat [unit of the channel].
+    dropout : float
+        Robust standard deviations of the record about its median [-]
+        (:func:`~flumekit.qc.qartod.dropout_test`; also the echo-level test of a UVP beam).
+    hold : float
+        Shortest run of identical values that can be a dropout [s].
+    block : float
+        Length of the blocks of the local robust scale [s].
+    gap_tolerance : float
+        A time step longer than (1 + this) / rate is a gap [-].
+    max_gap : float
+        Longest run of failed samples interpolated [s].
+    despike_iterations : int
+        Goring-Nikora iterations at most [-].
+    noise_autocorrelation : float
+        Noise test: lag-one autocorrelation below this [-].
+    noise_share : float
+        Noise test: and high-frequency energy above this share of the variance [-].
+
+    Examples
+    --------
+    >>> from flumekit.qc import Thresholds
+    >>> Thresholds.from_params({"max_gap": "0.5", "despike_iterations": 2.0}).max_gap
+    0.5
+    """
 
     spike_suspect: float = 6.0  # robust local std of x_n - (x_(n-1) + x_(n+1))/2 [-]
     spike_fail: float = 8.0  # [-]
@@ -57,6 +99,19 @@ class Thresholds:
 
     @classmethod
     def from_params(cls, params: dict) -> Thresholds:
+        """Build the thresholds from ``[stages.qc]`` parameters, each cast to its field's type.
+
+        Parameters
+        ----------
+        params : dict
+            Parameter name -> value; names that are not fields are ignored, fields missing take
+            their defaults.
+
+        Returns
+        -------
+        Thresholds
+            The thresholds.
+        """
         cast = {"int": int, "float": float}
         return cls(**{f.name: cast[f.type](params[f.name]) for f in fields(cls)
                       if f.name in params})
@@ -65,11 +120,51 @@ class Thresholds:
 def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                  gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                  floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:
-    """Per-test QARTOD flags of a (channel, time) block of probe or flap records (time along
-    the last axis): gap, gross range, spike, rate of change, flat line, dropout, noise.
+    """Return the per-test QARTOD flags of a (channel, time) block of probe or flap records.
 
-    ``flat_line=False`` skips the flat-line test (a channel whose repeats are legitimate).
-    Velocity records take :func:`check_beam` instead.
+    The tests, time along the last axis: gap, gross range, spike, rate of change, flat line,
+    dropout, noise (:mod:`flumekit.qc.qartod`). The flat-line and dropout tests see the record
+    with its failed spikes interpolated over, since a spike would cut a run of repeated values
+    in two. Velocity records take :func:`check_beam` instead.
+
+    Parameters
+    ----------
+    x : array_like
+        Records (channel, time) or 1-D [any unit].
+    time : numpy.ndarray
+        Sample times [s].
+    sampling_rate : float
+        Sampling rate [Hz].
+    th : Thresholds
+        Thresholds of the tests.
+    gross_range : tuple of float, optional
+        (min, max) of the sensor [unit of x]; None: not evaluated.
+    flat_line : bool
+        False skips the flat-line test (a channel whose repeats are legitimate).
+    floor : float or numpy.ndarray, optional
+        Lower bound of the local scales [unit of x]; None: each channel's resolution.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Test name (``gap``, ``gross_range``, ``spike``, ``rate_of_change``, ``flat_line``,
+        ``dropout``, ``noise``) -> its flags, of x's shape.
+
+    References
+    ----------
+    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
+    v2.1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import Thresholds, check_series
+    >>> t = np.arange(2000) / 100.0
+    >>> x = np.sin(2 * np.pi * t / 2.0)[None]
+    >>> x[0, 700] += 1.0
+    >>> f = check_series(x, t, 100.0, Thresholds())
+    >>> sorted(f), np.flatnonzero(f["spike"] == 4).tolist()
+    (['dropout', 'flat_line', 'gap', 'gross_range', 'noise', 'rate_of_change', 'spike'], [700])
     """
     # time contiguous: every test runs along it
     x = np.ascontiguousarray(x, dtype=float)
@@ -98,15 +193,42 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
 def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                floor: np.ndarray | float = 0.0, amplitude: np.ndarray | None = None,
                gross_range: tuple[float, float] | None = None) -> dict[str, np.ndarray]:
-    """Per-test QARTOD flags of a UVP beam's (channel, time) velocities (quantised,
-    turbulent, partly without echo): the gap (timing) test of the profiles, broadcast
-    (read-only); the gross range test when a range is given; the Goring-Nikora phase-space
-    despiking (:func:`flumekit.qc.despike.despike_flags`, which flags the missing samples).
+    """Return the per-test QARTOD flags of a UVP beam's (channel, time) velocities.
 
-    ``amplitude`` (echo amplitude, same shape): samples whose echo is far above the channel's
-    usual one (:func:`~flumekit.qc.qartod.level_test` on the amplitude) see a solid boundary,
-    such as the flap crossing the channel, not the fluid; they are not evaluated (2) by the
-    despiking and do not enter its statistics, nor do the profiles next to them.
+    The velocities are quantised, turbulent and partly without echo: the gap (timing) test of
+    the profiles, broadcast (read-only); the gross range test when a range is given; the
+    Goring-Nikora phase-space despiking (:func:`flumekit.qc.despike.despike_flags`, which flags
+    the missing samples). Samples whose echo is far above the channel's usual one
+    (:func:`~flumekit.qc.qartod.level_test` on ``amplitude``) see a solid boundary, such as the
+    flap crossing the channel, not the fluid; they are not evaluated (2) by the despiking and do
+    not enter its statistics, nor do the ``BOUNDARY_PROFILES`` profiles next to them.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Velocities (channel, time) [m s-1].
+    time : numpy.ndarray
+        Profile times [s].
+    sampling_rate : float
+        Profile rate [Hz].
+    th : Thresholds
+        Thresholds (``gap_tolerance``, ``dropout``, ``despike_iterations``).
+    floor : float or numpy.ndarray
+        Velocity resolution [m s-1], one or one per channel.
+    amplitude : numpy.ndarray, optional
+        Echo amplitude, of v's shape [counts]; None: no boundary test.
+    gross_range : tuple of float, optional
+        (min, max) of the velocities [m s-1]; None: not evaluated.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        Test name (``gap``, ``gross_range`` when tested, ``goring_nikora``) -> its flags.
+
+    References
+    ----------
+    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
+    J. Hydraul. Eng. 128(1), 117-126.
     """
     gap = qartod.gap_test(time, sampling_rate, th.gap_tolerance)
     out = {"gap": np.broadcast_to(choose(gap == FAIL, FAIL, GOOD), v.shape)}
@@ -125,8 +247,10 @@ def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresh
 
 
 def _widen(mask: np.ndarray, k: int) -> np.ndarray:
-    """``mask`` (time along the last axis) with ``k`` samples either side of each True also
-    True (a maximum filter of width 2k + 1, by shifts: k is a few profiles)."""
+    """Return ``mask`` (time along the last axis) with ``k`` samples either side of each True set.
+
+    A maximum filter of width 2k + 1, by shifts: k is a few profiles.
+    """
     out = mask.copy()
     for s in range(1, k + 1):
         out[..., s:] |= mask[..., :-s]
@@ -136,9 +260,36 @@ def _widen(mask: np.ndarray, k: int) -> np.ndarray:
 
 def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float, *,
           copy: bool = True) -> np.ndarray:
-    """Values with FAIL and MISSING samples masked, then linearly interpolated across runs of
-    at most ``max_gap`` seconds; longer runs stay NaN. ``copy=False``: ``x`` may be overwritten
-    (a record read for the caller alone: no copy of it)."""
+    """Mask the FAIL and MISSING samples of a record and interpolate across short runs of them.
+
+    Runs of at most ``max_gap`` seconds are interpolated linearly
+    (:func:`~flumekit.qc.fill.fill_gaps`); longer runs stay NaN.
+
+    Parameters
+    ----------
+    x : array_like
+        Record, time along the last axis [any unit].
+    flags : numpy.ndarray
+        QARTOD flags, of x's shape.
+    sampling_rate : float
+        Sampling rate [Hz].
+    max_gap : float
+        Longest run interpolated [s].
+    copy : bool
+        False: ``x`` may be overwritten (a record read for the caller alone: no copy of it).
+
+    Returns
+    -------
+    numpy.ndarray
+        The cleaned record [unit of x].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import clean
+    >>> clean(np.array([0.0, 5.0, 2.0, 3.0]), np.array([1, 4, 1, 9]), 10.0, 0.1).tolist()
+    [0.0, 1.0, 2.0, 2.0]
+    """
     bad = (flags == FAIL) | (flags == MISSING)
     if not bad.any():
         return np.asarray(x, dtype=float)
@@ -148,15 +299,52 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
 def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
                gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                floor=None) -> xr.Dataset:
-    """QC of variable ``name`` of ``ds`` (dims (time,) or (channel_dim, time) in any order).
+    """Run the QC of variable ``name`` of ``ds``: flags, masking and filling.
 
-    Returns a dataset with ``name`` cleaned (:func:`clean`) and ``<name>_qc`` (aggregate
-    flags), whose attributes ``flagged_by_<test>`` count the samples each test flagged suspect
-    or fail, per channel (:func:`flag_counts` counts the aggregate flags). Attribute
-    ``<name>_unfilled_gaps`` lists the runs of masked samples longer than ``max_gap``.
+    :func:`check_series`, the flags aggregated (:func:`~flumekit.qc.flags.aggregate`), then
+    :func:`clean` with ``th.max_gap``. The values as read are not repeated (the raw file holds
+    them). Counts are attributes, not variables: every netCDF variable costs a fixed time to
+    write, whatever its size.
 
-    Counts are attributes, not variables: every netCDF variable costs 0.5-1 ms to write,
-    whatever its size, and these five would cost the product a quarter of its writing time.
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Dataset with ``name`` on (time,) or (channel_dim, time) in any order, coordinate
+        ``time`` [s] and optionally attribute ``sampling_rate`` [Hz] (else from the time axis).
+    name : str
+        The variable checked.
+    th : Thresholds
+        Thresholds of the tests.
+    channel_dim : str, optional
+        Channel dimension of ``name``; None: one channel.
+    gross_range : tuple of float, optional
+        (min, max) of the sensor [unit of the variable]; None: not evaluated.
+    flat_line : bool
+        False skips the flat-line test.
+    floor : float or numpy.ndarray, optional
+        Lower bound of the local scales [unit of the variable]; None: each channel's resolution.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``name`` cleaned and ``<name>_qc`` (aggregate flags, CF flag attributes), whose
+        attributes ``flagged_by_<test>`` count the samples each test flagged suspect or fail, per
+        channel (:func:`flag_counts` counts the aggregate flags). Attribute
+        ``<name>_unfilled_gaps`` lists the runs of masked samples longer than ``max_gap``
+        (:func:`unfilled_gaps`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.qc import Thresholds, qc_dataset
+    >>> t = np.arange(2000) / 100.0
+    >>> eta = np.sin(2 * np.pi * t / 2.0)
+    >>> eta[700] += 1.0
+    >>> out = qc_dataset(xr.Dataset({"eta": ("time", eta)}, coords={"time": t}), "eta",
+    ...                  Thresholds())
+    >>> int(out.eta_qc[700]), round(float(out.eta[700]), 6) == round(float(np.sin(7 * np.pi)), 6)
+    (4, True)
     """
     da = ds[name]
     dims = (channel_dim, "time") if channel_dim else ("time",)
@@ -171,7 +359,7 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     chans = list(da[channel_dim].values) if channel_dim else [name]
     shape = (lambda a: a) if channel_dim else (lambda a: a[0])
     attrs = {k: v for k, v in da.attrs.items()}
-    # count_nonzero, not sum: a bool array summed is converted to integers first (5x slower)
+    # count_nonzero, not sum: a bool array summed is converted to integers first
     by_test = {f"flagged_by_{k}": shape(np.count_nonzero((f == FAIL) | (f == SUSPECT),
                                                          axis=-1).astype(np.int32))
                for k, f in per_test.items()}
@@ -183,8 +371,7 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
                 "comment": "flagged_by_<test>: samples each QC test flagged suspect or fail"
                 + (f", per {channel_dim}" if channel_dim else "")})}
     coords = {"time": ds["time"], **({channel_dim: da[channel_dim]} if channel_dim else {})}
-    # built in one call: assigning variable by variable aligned and merged each time, which
-    # cost more than the tests themselves on a flap channel
+    # built in one call: assigning variable by variable aligns and merges each time
     out = xr.Dataset(data, coords=coords)
     still = np.isnan(cleaned) & ~np.isnan(x)
     spans = [f"{chans[r]} {a:.3f}-{b:.3f} s" for r, a, b in gap_spans(still, t)]
@@ -193,16 +380,48 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
 
 
 def flag_counts(flags: np.ndarray) -> np.ndarray:
-    """Samples per QARTOD flag (the order of FLAG_VALUES) along the last axis."""
-    # count_nonzero, not sum: a bool array summed is converted to integers first (5x slower);
-    # and without an axis where there is one (with one it sums: 3.7 against 0.5 ms a UVP beam)
+    """Count the samples per QARTOD flag along the last axis.
+
+    Parameters
+    ----------
+    flags : numpy.ndarray
+        QARTOD flags.
+
+    Returns
+    -------
+    numpy.ndarray
+        Counts, the flag along the last axis in the order of
+        :data:`~flumekit.qc.flags.FLAG_VALUES` (1, 2, 3, 4, 9).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.qc import flag_counts
+    >>> flag_counts(np.array([1, 1, 4, 9], np.int8)).tolist()
+    [2, 0, 0, 1, 1]
+    """
+    # count_nonzero, not sum: a bool array summed is converted to integers first; and
+    # without an axis where there is one (given an axis, count_nonzero sums)
     if np.ndim(flags) == 1:
         return np.array([np.count_nonzero(flags == v) for v in FLAG_VALUES])
     return np.stack([np.count_nonzero(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
 
 
 def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
-    """The runs of masked samples of ``name`` longer than the interpolation limit."""
+    """Return the runs of masked samples of ``name`` longer than the interpolation limit.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset written by :func:`qc_dataset`.
+    name : str
+        The variable checked.
+
+    Returns
+    -------
+    list of str
+        One text per run ("<channel> <start>-<end> s"), empty when every gap was filled.
+    """
     text = ds.attrs.get(f"{name}_unfilled_gaps", "")
     return [s for s in text.split("; ") if s]
 
@@ -210,30 +429,36 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
 def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thresholds, *,
                time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
                ) -> xr.Dataset:
-    """QC flags of UVP beam velocities: the aggregate of the tests of :func:`check_beam`, per
-    beam, over ``span`` only; the samples outside are neither evaluated nor stored.
+    """Return the QC flags of UVP beam velocities over ``span`` only.
 
-    The UVP average reads N waves and the filter's pad either side
-    (:func:`flumekit.stages.uvp.build`), so only those samples need checking: there the flow is
-    stationary, as the despiking's universal threshold assumes (the ramp-up and the decay are
+    The aggregate of the tests of :func:`check_beam`, per beam; the samples outside ``span``
+    are neither evaluated nor stored. The UVP average reads N waves and the filter's pad either
+    side (:mod:`flumekit.uvp.run_window`), so only those samples need checking: there the flow
+    is stationary, as the despiking's universal threshold assumes (the ramp-up and the decay are
     not).
 
     Parameters
     ----------
-    beams : Beam name -> beam record (``beam_velocity`` [m s-1] and optionally ``amplitude``
-        on (time, channel) or (channel, time), ``time`` [s], attribute
-        ``velocity_resolution`` [m s-1]), as read from the ``.mfprof`` files.
-    span : (start, end) of the samples checked, on the probes' clock [s].
-    th : Thresholds (``despike_iterations``, ``dropout`` for the echo level, ``gap_tolerance``).
-    time_offset : Clock offset of the UVP: beam time + offset is on the probes' clock [s].
-    gross_range : [min, max] of the velocities [m s-1]; None: not evaluated.
+    beams : dict of str to xarray.Dataset
+        Beam name -> beam record (``beam_velocity`` [m s-1] and optionally ``amplitude`` on
+        (time, channel) or (channel, time), ``time`` [s], attribute ``velocity_resolution``
+        [m s-1]), as read from the ``.mfprof`` files.
+    span : tuple of float
+        (start, end) of the samples checked, on the probes' clock [s].
+    th : Thresholds
+        Thresholds (``despike_iterations``, ``dropout`` for the echo level, ``gap_tolerance``).
+    time_offset : float
+        Clock offset of the UVP: beam time + offset is on the probes' clock [s].
+    gross_range : tuple of float, optional
+        (min, max) of the velocities [m s-1]; None: not evaluated.
 
     Returns
     -------
-    Dataset with ``beam_velocity_qc_<beam>`` on (channel, time_<beam>), the profiles of the
-    beam within ``span`` (each beam keeps its own time axis: beams may differ in profile
-    count), the samples per flag of each beam's evaluated span (``beam_velocity_qc_count``)
-    and the ``evaluated_span``.
+    xarray.Dataset
+        ``beam_velocity_qc_<beam>`` on (channel, time_<beam>), the profiles of the beam within
+        ``span`` (each beam keeps its own time axis: beams may differ in profile count), the
+        samples per flag of each beam's evaluated span (``beam_velocity_qc_count`` on (beam,
+        flag_meaning)) and the ``evaluated_span`` [s].
     """
     lo, hi = span
     names = sorted(beams)

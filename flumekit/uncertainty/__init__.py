@@ -8,6 +8,8 @@ coverage factor; ``report_section``: the HTML section of the report.
 """
 
 from flumekit.uncertainty.html import report_sections
+from flumekit.uncertainty.propagation import Input, RunModel, propagate, resolve_inputs
 from flumekit.uncertainty.repeats import CONDITION_COORDS, QUANTITIES, condition_statistics
 
-__all__ = ["CONDITION_COORDS", "QUANTITIES", "condition_statistics", "report_sections"]
+__all__ = ["CONDITION_COORDS", "QUANTITIES", "condition_statistics", "report_sections",
+           "Input", "RunModel", "propagate", "resolve_inputs"]

@@ -27,7 +27,7 @@ def _condition_of(runs: xr.Dataset, conditions: xr.Dataset) -> np.ndarray:
 
 
 def combine(conditions: xr.Dataset, runs: xr.Dataset) -> tuple[xr.Dataset, xr.Dataset]:
-    """Combined and expanded uncertainty of every condition result, and the budget.
+    """Combine the Type A and Type B uncertainty of every condition result, with the budget.
 
     Parameters
     ----------
@@ -56,7 +56,26 @@ def combine(conditions: xr.Dataset, runs: xr.Dataset) -> tuple[xr.Dataset, xr.Da
 
     Examples
     --------
-    See ``conditions.nc`` and ``budget.nc`` of ``flumekit make`` (the ``uncertainty`` scene).
+    Three repeats, u_A = s / sqrt(3) = 0.001 / sqrt(3), and a Type B of 0.001 m each:
+
+    >>> import xarray as xr
+    >>> from flumekit.uncertainty import condition_statistics
+    >>> from flumekit.uncertainty.combine import combine
+    >>> s = xr.Dataset({"incident_height": ("run", [0.150, 0.152, 0.151])},
+    ...                coords={"wave_period": ("run", [2.0] * 3),
+    ...                        "wave_height": ("run", [0.15] * 3)})
+    >>> runs = s.assign(incident_height_uncertainty_type_b=(
+    ...     "run", [0.001] * 3, {"degrees_of_freedom": 49}))
+    >>> runs = runs.assign_coords(uncertainty_component=["probe_noise"])
+    >>> c, budget = combine(condition_statistics(s), runs)
+    >>> round(float(c.incident_height_uncertainty[0]), 7)  # sqrt(u_A² + u_B²)
+    0.0011547
+    >>> k = c.incident_height_expanded_uncertainty.attrs["coverage_factor"]
+    >>> round(float(k[0]), 3)  # t_0.975 of ν_eff = 23.4
+    2.067
+
+    The pipeline writes the results as ``conditions.nc`` and ``budget.nc`` (the
+    ``uncertainty`` scene).
     """
     from scipy import stats
 

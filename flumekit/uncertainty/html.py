@@ -1,5 +1,7 @@
-"""The report's uncertainty sections: results with their uncertainties, full-scale values and
-the budgets, as HTML for :func:`flumekit.report.write_report`."""
+"""The report's uncertainty sections, as HTML for :func:`flumekit.report.write_report`.
+
+Results with their uncertainties, full-scale values and the budgets.
+"""
 
 from __future__ import annotations
 
@@ -63,8 +65,38 @@ def _value(ds: xr.Dataset, q: str, i: int) -> str:
 
 
 def results_section(conditions: xr.Dataset) -> str:
-    """The per-condition results with their expanded uncertainties (and full-scale values
-    when ``conditions`` carries a Froude scale)."""
+    """Render the per-condition results with their expanded uncertainties as HTML.
+
+    Each result is shown as mean ± expanded uncertainty (or ± twice the Type A uncertainty,
+    marked, where no Type B propagation was made), with a table of full-scale values when
+    ``conditions`` carries a Froude scale (attributes ``froude_scale``, ``model_density`` and
+    ``prototype_density``).
+
+    Parameters
+    ----------
+    conditions : xarray.Dataset
+        ``conditions.nc``: :func:`flumekit.uncertainty.condition_statistics` with the combined
+        uncertainties of :func:`flumekit.uncertainty.combine.combine`.
+
+    Returns
+    -------
+    str
+        An HTML fragment: a note and one or two tables.
+
+    References
+    ----------
+    JCGM 100:2008 (GUM), §6 (expanded uncertainty). JCGM 101:2008 (Monte Carlo propagation).
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.uncertainty.html import results_section
+    >>> c = xr.Dataset({"n_repeats": ("condition", [1]),
+    ...                 "incident_height": ("condition", [0.15], {"units": "m"})},
+    ...                coords={"wave_period": ("condition", [2.0])})
+    >>> "<td>0.15</td>" in results_section(c)
+    True
+    """
     shown = [(q, s) for q, s in RESULTS if q in conditions]
     header = ["condition", "repeats"] + [f"{s}{_units(conditions[q])}" for q, s in shown]
     rows = [[_e(_condition_name(conditions, i)), str(int(conditions.n_repeats.values[i]))]
@@ -111,8 +143,27 @@ def results_section(conditions: xr.Dataset) -> str:
 
 
 def budget_section(budget: xr.Dataset, figure: str | None = None) -> str:
-    """Per result: each component's type, input uncertainty, sensitivity, contribution c u
-    and share of the combined variance (median and largest over the conditions)."""
+    """Render the uncertainty budget of each result as HTML.
+
+    Per result: each component's type, input uncertainty, sensitivity, contribution c u and
+    share of the combined variance (median and largest over the conditions).
+
+    Parameters
+    ----------
+    budget : xarray.Dataset
+        ``budget.nc`` (:func:`flumekit.uncertainty.combine.combine`).
+    figure : str, optional
+        Relative path of the budget figure from the report page; None: no figure.
+
+    Returns
+    -------
+    str
+        An HTML fragment: a note, the figure and one table per result.
+
+    References
+    ----------
+    JCGM 100:2008 (GUM), §5.1.3 (sensitivity coefficients) and G.4.
+    """
     parts = []
     comps = [str(c) for c in budget.uncertainty_component.values]
     units = ([str(u) for u in budget.input_units.values] if "input_units" in budget
@@ -150,7 +201,7 @@ def budget_section(budget: xr.Dataset, figure: str | None = None) -> str:
 def report_sections(conditions: xr.Dataset, budget: xr.Dataset | None = None,
                     figure: str | None = "figures/uncertainty_budget.png"
                     ) -> list[tuple[str, str, str]]:
-    """The report's uncertainty sections as ``(anchor, heading, html)``.
+    """Return the report's uncertainty sections as ``(anchor, heading, html)``.
 
     Parameters
     ----------

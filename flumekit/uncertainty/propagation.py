@@ -47,6 +47,23 @@ class Input:
     ``u`` is the standard uncertainty in ``units`` (a scalar, or one value per probe for
     ``calibration``); ``distribution`` "normal" or "rectangular" (then the draws are uniform
     over ±sqrt(3) u); ``source`` says where the value comes from.
+
+    Parameters
+    ----------
+    name : str
+        Component name (a key of ``SHAPES``).
+    u : float or numpy.ndarray
+        Standard uncertainty [``units``]; one per probe for ``calibration``.
+    units : str
+        Units of ``u``.
+    distribution : str
+        "normal" or "rectangular".
+    source : str
+        Where the value comes from ("declared" or the default's origin).
+
+    References
+    ----------
+    JCGM 100:2008 (GUM), §4.3 (Type B evaluation of standard uncertainty).
     """
 
     name: str
@@ -57,12 +74,19 @@ class Input:
 
     @property
     def shape(self) -> str:
+        """Return what one draw of the component perturbs (its value in ``SHAPES``).
+
+        Returns
+        -------
+        str
+            "probe_time", "probe", "scalar" or "flap_time".
+        """
         return SHAPES[self.name]
 
 
 def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
                    counts_per_metre: float | None = None, flap: bool = True) -> list[Input]:
-    """The components of a campaign (``Campaign.uncertainty``) resolved for its runs.
+    """Resolve the uncertainty components of a campaign (``Campaign.uncertainty``) for its runs.
 
     Parameters
     ----------
@@ -75,7 +99,7 @@ def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
         gain (GUM H.3).
     counts_per_metre : float, optional
         The encoder's counts per metre of wire [m-1]: the default encoder resolution is half a
-        count.
+        count, as a rectangular distribution (standard uncertainty 0.5 / sqrt(3) counts).
     flap : bool
         Whether the campaign has the flap instruments (else their components are left out).
 
@@ -91,6 +115,11 @@ def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
         A component whose default needs data the campaign lacks (the noise and calibration of
         probes recorded in metres, without calibration.nc): it is left out, and the warning
         says so (declare ``[uncertainty.probe_noise] value``).
+
+    References
+    ----------
+    JCGM 100:2008 (GUM), §4.3 (Type B evaluation; 4.3.7 rectangular distribution) and H.3
+    (calibration of a linear fit).
     """
     from flumekit.campaign import UNCERTAINTY_COMPONENTS
 
@@ -143,8 +172,10 @@ class RunModel:
     ----------
     eta : xarray.DataArray
         Calibrated elevation (probe, time) [m] with ``x`` on ``probe``.
-    depth, period : float
-        Water depth [m] and target period [s].
+    depth : float
+        Water depth [m].
+    period : float
+        Target wave period [s].
     waves_kw : dict
         Keyword arguments of :func:`flumekit.waves.analyse_run` (x_ref, method, ...).
     flap_record : dict, optional
@@ -165,12 +196,35 @@ class RunModel:
         self._base_waves = None
 
     def size(self, inp: Input) -> tuple[int, ...]:
-        """Shape of one draw of ``inp``."""
+        """Return the shape of one draw of ``inp``.
+
+        Parameters
+        ----------
+        inp : Input
+            A resolved component.
+
+        Returns
+        -------
+        tuple of int
+            (probe, time), (probe,), () or (flap sample,).
+        """
         return {"probe_time": (self.n_probes, self.n_samples), "probe": (self.n_probes,),
                 "scalar": (), "flap_time": (self.n_flap,)}[inp.shape]
 
     def waves(self, d: dict) -> dict[str, float]:
-        """The waves results with the perturbations ``d`` (name -> array in input units)."""
+        """Return the waves results with the perturbations ``d``.
+
+        Parameters
+        ----------
+        d : dict
+            Component name -> its perturbation, in the component's input units, of the shape of
+            :meth:`size`.
+
+        Returns
+        -------
+        dict of str to float
+            ``WAVES_RESULTS`` of :func:`flumekit.waves.analyse_run` on the perturbed run.
+        """
         from flumekit.waves import analyse_run
 
         v = self.eta.values
@@ -189,7 +243,20 @@ class RunModel:
         return {k: float(ds[k]) for k in WAVES_RESULTS}
 
     def flap(self, d: dict, incident_height: float) -> dict[str, float]:
-        """The flap results with the perturbations ``d`` and the draw's incident height."""
+        """Return the flap results with the perturbations ``d`` and the draw's incident height.
+
+        Parameters
+        ----------
+        d : dict
+            Component name -> its perturbation, in the component's input units.
+        incident_height : float
+            The draw's incident wave height [m] (so that its uncertainty reaches C_f).
+
+        Returns
+        -------
+        dict of str to float
+            ``FLAP_RESULTS`` of :func:`flumekit.flap.analyse_run` on the perturbed run.
+        """
         import dataclasses
 
         from flumekit.flap import analyse_run
@@ -212,8 +279,20 @@ class RunModel:
         return {k: float(ds[k]) for k in FLAP_RESULTS}
 
     def __call__(self, d: dict) -> np.ndarray:
-        """All results (in the order of ``self.results``) with the perturbations ``d``; NaN
-        where the analysis refuses the perturbed run."""
+        """Return all results with the perturbations ``d``.
+
+        Parameters
+        ----------
+        d : dict
+            Component name -> its perturbation; empty: the unperturbed run (its waves results are
+            kept for the draws that perturb the flap only).
+
+        Returns
+        -------
+        numpy.ndarray
+            The results in the order of ``self.results``; NaN where the analysis refuses the
+            perturbed run.
+        """
         flap_only = all(k in FLAP_ONLY for k in d)
         try:
             if flap_only and self._base_waves is not None:
@@ -231,10 +310,33 @@ class RunModel:
 
 
 def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.ndarray:
-    """Results of ``draws`` Monte Carlo draws (draws, results), seeded.
+    """Return the results of ``draws`` seeded Monte Carlo draws.
 
-    Draw i uses its own generator (``SeedSequence(seed).spawn``), so the first n draws of a
-    larger sample are the n draws of a smaller one, and the same seed gives the same numbers.
+    Each draw perturbs every input by one sample of its distribution (normal, or rectangular
+    over ±sqrt(3) u) times its standard uncertainty. Draw i uses its own generator
+    (``SeedSequence(seed).spawn``), so the first n draws of a larger sample are the n draws of
+    a smaller one, and the same seed gives the same numbers.
+
+    Parameters
+    ----------
+    model : RunModel
+        The run's analysis.
+    inputs : list of Input
+        Resolved components (:func:`resolve_inputs`).
+    draws : int
+        Number of draws.
+    seed : int or sequence of int
+        Seed of the draws.
+
+    Returns
+    -------
+    numpy.ndarray
+        Results (draws, results) [units of each result]; a row of NaN for a draw the analysis
+        refused.
+
+    References
+    ----------
+    JCGM 101:2008, Propagation of distributions using a Monte Carlo method, §6-7.
     """
     model({})  # the unperturbed run, kept for the flap-only components
     children = np.random.SeedSequence(seed).spawn(draws)
@@ -249,10 +351,35 @@ def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.nd
 
 def linear(model: RunModel, inputs: list[Input], directions: int, seed
            ) -> tuple[np.ndarray, np.ndarray]:
-    """Linear (GUM §5.1) propagation: per input, the sensitivity coefficient (results per unit
-    of the input; for an input with one value per probe the root-sum-square over probes, for
-    one per sample the RMS over ``directions`` random directions) and the contribution c u
-    [unit of the result]; arrays (inputs, results)."""
+    """Propagate the inputs linearly (GUM §5.1): sensitivities and contributions.
+
+    Per input, the sensitivity coefficient by central differences of ±u (results per unit of the
+    input; for an input with one value per probe the root-sum-square over probes, for one per
+    sample the RMS over ``directions`` random unit-variance directions) and the contribution c u.
+
+    Parameters
+    ----------
+    model : RunModel
+        The run's analysis.
+    inputs : list of Input
+        Resolved components (:func:`resolve_inputs`).
+    directions : int
+        Random directions of each per-sample input.
+    seed : int or sequence of int
+        Seed of the directions.
+
+    Returns
+    -------
+    sensitivity : numpy.ndarray
+        (inputs, results) [unit of the result per unit of the input].
+    contribution : numpy.ndarray
+        (inputs, results), c u [unit of the result].
+
+    References
+    ----------
+    JCGM 100:2008 (GUM), §5.1.2-5.1.4 (law of propagation of uncertainty, sensitivity
+    coefficients).
+    """
     base = model({})
     rng = np.random.default_rng(np.random.SeedSequence(seed).spawn(1)[0])
     sens = np.zeros((len(inputs), base.size))
@@ -275,7 +402,7 @@ def linear(model: RunModel, inputs: list[Input], directions: int, seed
 
 def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
               directions: int = 4, linear_check: bool = True) -> xr.Dataset:
-    """Monte Carlo and linear propagation of ``inputs`` through the analysis of one run.
+    """Propagate ``inputs`` through the analysis of one run, by Monte Carlo and linearly.
 
     Parameters
     ----------
@@ -313,7 +440,7 @@ def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
 
     Examples
     --------
-    See :func:`flumekit.stages.uncertainty.run_uncertainty` for a run of the pipeline.
+    See :func:`flumekit.stages.uncertainty_run.run_uncertainty` for a run of the pipeline.
     """
     from scipy import stats
 

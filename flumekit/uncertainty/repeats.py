@@ -22,7 +22,9 @@ CONDITION_COORDS = ("wave_period", "wave_height", "wave_hm0", "wave_tp", "wave_t
 
 
 def condition_statistics(summary: xr.Dataset, quantities=None) -> xr.Dataset:
-    """Per test condition: the number of repeats and each quantity's mean, standard deviation,
+    """Compute the repeat statistics and Type A standard uncertainty of each test condition.
+
+    Per test condition: the number of repeats and each quantity's mean, standard deviation,
     standard error and Type A standard uncertainty.
 
     Parameters
@@ -43,6 +45,11 @@ def condition_statistics(summary: xr.Dataset, quantities=None) -> xr.Dataset:
         ``X_uncertainty_type_a`` = s / sqrt(n) (attribute ``degrees_of_freedom`` = n - 1 per
         condition in ``X_dof``), linked by ``ancillary_variables``. Runs whose value is NaN
         (a quantity that does not apply) are left out of that quantity's statistics.
+
+    Raises
+    ------
+    ValueError
+        When ``summary`` has no condition coordinate or lacks a requested quantity.
 
     References
     ----------
