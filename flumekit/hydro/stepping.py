@@ -64,7 +64,7 @@ def no_advance(s0, s1, th, om, th_new, om_new, params):
 
 @njit(EXTRA, cache=True)
 def no_extra(j, th, om, params, state, record):
-    """No extra torque."""
+    """Return no extra torque (0 N m)."""
     return 0.0
 
 
@@ -85,8 +85,10 @@ _SIG = types.Tuple((i8, i8, f8))(
 @njit(_SIG, cache=True)
 def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, accel, predict,
           advance, pto_params, extra, extra_params, extra_state, extra_record, has_extra, out):
-    """Steps ``first`` to ``last`` of a run: classical RK4 for (θ, θ̇) with the memory torque
-    at the four stages (module notes of :mod:`flumekit.hydro.memory`).
+    """Advance a run from step ``first`` to step ``last`` by classical RK4.
+
+    Classical fourth-order Runge-Kutta for (θ, θ̇) of the Cummins equation, with the memory
+    torque at the four stages (module notes of :mod:`flumekit.hydro.memory`).
 
     Parameters
     ----------
@@ -102,9 +104,20 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
         w21, w22, w32, w33, w41, w43, w44 [N m s rad-1] of the memory).
     final : bool
         The chunk ends the run (its last step has no later stages).
-    begin, finish, mem_c, mem_r : kernels and state of the memory model.
-    accel, predict, advance, pto_params : kernels and parameters of the PTO.
-    extra, extra_params, extra_state, extra_record, has_extra : the extra torque.
+    begin, finish : function
+        Kernels of the memory model (signatures ``BEGIN``, ``FINISH``).
+    mem_c, mem_r : ndarray
+        State of the memory model (complex and real), advanced in place.
+    accel, predict, advance : function
+        Kernels of the PTO (signatures ``ACCEL``, ``PREDICT``, ``ADVANCE``).
+    pto_params : ndarray
+        Parameters of the PTO kernels.
+    extra : function
+        Extra torque kernel (signature ``EXTRA``).
+    extra_params, extra_state, extra_record : ndarray
+        Its parameters, mutable state and per-step record.
+    has_extra : bool
+        Whether to call ``extra``.
     out : ndarray
         (9, last - first) output: θ, θ̇, θ̈, μ, out0, out1, s0, s1, extra torque per step.
 
@@ -174,5 +187,5 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
 
 @njit(ACCEL, cache=True)
 def linear_accel(t, th, om, rest, s0, s1, params):
-    """θ̈ [rad s-2] with a linear damper: params = (ν [N m s], 1/(I + A∞) [kg-1 m-2])."""
+    """Return θ̈ [rad s-2] with a linear damper: params = (ν [N m s], 1/(I + A∞) [kg-1 m-2])."""
     return (rest - params[0] * om) * params[1], 0.0, 0.0
