@@ -120,7 +120,11 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.waves.statistics",
                                     "flumekit.hydro.coefficients", "flumekit.hydro.excitation",
                                     "flumekit.hydro.radiation", "flumekit.hydro.rigid_body",
-                                    "flumekit.hydro.response", "flumekit.hydro.bem_layout"])
+                                    "flumekit.hydro.response", "flumekit.hydro.bem_layout",
+                                    "flumekit.flap.bem", "flumekit.flap.comparison",
+                                    "flumekit.flap.summary", "flumekit.flap.power",
+                                    "flumekit.flap.torque", "flumekit.flap.encoder",
+                                    "flumekit.flap.geometry", "flumekit.flap.pressure"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

@@ -10,6 +10,12 @@ signatures of :mod:`flumekit.hydro.stepping` and take their parameters as one fl
 
 This module imports numba; :mod:`flumekit.flap` imports it only inside the functions that run
 a loop.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Eqs. (12)-(14) and Appendix B.
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ __all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_pr
 
 @njit(cache=True)
 def lugre_step(z, h, v, dt, c):
-    """One exact frozen-velocity step of Eqs. (A4) and (A6).
+    """Take one exact frozen-velocity step of Eqs. (A4) and (A6).
 
     Parameters
     ----------
@@ -69,10 +75,28 @@ def lugre_step(z, h, v, dt, c):
 
 @njit(cache=True)
 def lugre_advance(z, h, v0, v1, dt, c):
-    """Advance the state for a velocity linear from ``v0`` to ``v1`` [m s-1] over ``dt`` [s].
+    """Advance the state for a velocity linear from ``v0`` to ``v1`` over ``dt``.
 
     The step is split at a velocity reversal, else taken at the mid-step velocity
-    (:func:`lugre_step`, same parameters and returns).
+    (:func:`lugre_step`).
+
+    Parameters
+    ----------
+    z : float
+        Bristle deflection [m].
+    h : float
+        Film thickness parameter [-].
+    v0, v1 : float
+        Rod velocity at the start and end of the step [m s-1].
+    dt : float
+        Step [s].
+    c : ndarray
+        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+
+    Returns
+    -------
+    z, h : float
+        The state at the end of the step ([m], [-]).
     """
     if v0 * v1 < 0.0:
         s = v0 / (v0 - v1)
@@ -83,8 +107,24 @@ def lugre_advance(z, h, v0, v1, dt, c):
 
 @njit(cache=True)
 def lugre_force(z, h, v, c):
-    """Friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3 with the corrected Eq. A5) at the
-    state (z [m], h [-]) and rod velocity v [m s-1]."""
+    """Return the friction force F = σ0 z + σ1 ż + σ2 v (Eq. A3 with the corrected Eq. A5).
+
+    Parameters
+    ----------
+    z : float
+        Bristle deflection [m].
+    h : float
+        Film thickness parameter [-].
+    v : float
+        Rod velocity [m s-1].
+    c : ndarray
+        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+
+    Returns
+    -------
+    float
+        F [N].
+    """
     s0, s1, s2, fc, fs, ivs, n = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     x = abs(v) * ivs
     g = fc + ((1.0 - h) * fs - fc) * math.exp(-(x if n == 1.0 else x ** n))  # Eq. (A5)
@@ -93,9 +133,28 @@ def lugre_force(z, h, v, c):
 
 @njit(cache=True)
 def friction_loop(v, dt, z, h, substeps, c, zs, hs):
-    """The state at every sample of a velocity series (:func:`flumekit.flap.friction.
-    friction_series`): ``substeps`` steps of :func:`lugre_advance` per interval, written into
-    ``zs`` and ``hs`` from the initial state (z, h)."""
+    """Integrate the LuGre state over a velocity series, into ``zs`` and ``hs``.
+
+    ``substeps`` steps of :func:`lugre_advance` per interval from the initial state (z, h);
+    the loop of :func:`flumekit.flap.friction.friction_series`.
+
+    Parameters
+    ----------
+    v : ndarray
+        Rod velocity at the samples [m s-1].
+    dt : float
+        Sampling interval [s].
+    z : float
+        Initial bristle deflection [m].
+    h : float
+        Initial film thickness parameter [-].
+    substeps : int
+        Steps per sampling interval.
+    c : ndarray
+        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+    zs, hs : ndarray
+        Outputs, the size of ``v``: deflection [m] and film parameter [-] at every sample.
+    """
     zs[0], hs[0] = z, h
     hsub = dt / substeps
     for k in range(1, v.size):
@@ -119,7 +178,7 @@ def cylinder_params(theta_lo: float, dtheta: float, lever: np.ndarray, bore_area
                     pressure_loss_coefficient: float, fluid_inertia: float, inertia: float,
                     cavitation_pressure: float, friction: np.ndarray | None,
                     dt: float) -> np.ndarray:
-    """The parameter array of the cylinder's kernels.
+    """Pack the parameter array of the cylinder's kernels.
 
     Parameters
     ----------
@@ -168,8 +227,34 @@ def _lever(th, p):
 
 @njit(ACCEL, cache=True)
 def cylinder_accel(t, th, om, rest, z, hl, p):
-    """θ̈ with the fluid inertia and the vapour clamp; out0 the chamber pressure [Pa], out1
-    the friction force [N]; NaN outside the lever-arm table."""
+    """Return θ̈ of the flap with the hydraulic cylinder (Eqs. 13-14), signature ``ACCEL``.
+
+    With the fluid inertia and the vapour clamp; NaN outside the lever-arm table.
+
+    Parameters
+    ----------
+    t : float
+        Time [s] (unused: the cylinder is autonomous).
+    th : float
+        θ [rad].
+    om : float
+        θ̇ [rad s-1].
+    rest : float
+        The torques other than the PTO's [N m].
+    z, hl : float
+        LuGre state: bristle deflection [m] and film parameter [-].
+    p : ndarray
+        Parameters of :func:`cylinder_params`.
+
+    Returns
+    -------
+    acc : float
+        θ̈ [rad s-2].
+    pressure : float
+        Chamber gauge pressure [Pa].
+    friction : float
+        Friction force [N].
+    """
     m = _lever(th, p)
     if m != m:
         return math.nan, math.nan, math.nan
@@ -190,8 +275,29 @@ def cylinder_accel(t, th, om, rest, z, hl, p):
 
 @njit(PREDICT, cache=True)
 def cylinder_predict(z, hl, th, om, a1, p):
-    """LuGre state at the stage times: exact frozen-velocity steps at the rod velocities
-    predicted at h/4 and 3h/4 from the first stage."""
+    """Predict the LuGre state at the Runge-Kutta stage times, signature ``PREDICT``.
+
+    Exact frozen-velocity steps at the rod velocities predicted at h/4 and 3h/4 from the first
+    stage.
+
+    Parameters
+    ----------
+    z, hl : float
+        LuGre state at the step's start: deflection [m] and film parameter [-].
+    th : float
+        θ [rad].
+    om : float
+        θ̇ [rad s-1].
+    a1 : float
+        θ̈ of the first stage [rad s-2].
+    p : ndarray
+        Parameters of :func:`cylinder_params`.
+
+    Returns
+    -------
+    zm, hm, ze, he : float
+        The state at mid-step and at the step's end ([m], [-]).
+    """
     dt = p[_DT]
     hh, hq = 0.5 * dt, 0.25 * dt
     c = p[_C:_TAB]
@@ -202,6 +308,25 @@ def cylinder_predict(z, hl, th, om, a1, p):
 
 @njit(ADVANCE, cache=True)
 def cylinder_advance(z, hl, th, om, th_new, om_new, p):
-    """Final LuGre state from the actual rod velocities (split at a reversal)."""
+    """Advance the LuGre state by the step's actual rod velocities, signature ``ADVANCE``.
+
+    Split at a velocity reversal (:func:`lugre_advance`).
+
+    Parameters
+    ----------
+    z, hl : float
+        LuGre state at the step's start: deflection [m] and film parameter [-].
+    th, om : float
+        θ [rad] and θ̇ [rad s-1] at the step's start.
+    th_new, om_new : float
+        θ [rad] and θ̇ [rad s-1] at the step's end.
+    p : ndarray
+        Parameters of :func:`cylinder_params`.
+
+    Returns
+    -------
+    z, h : float
+        The state at the step's end ([m], [-]).
+    """
     return lugre_advance(z, hl, _lever(th, p) * om, _lever(th_new, p) * om_new, p[_DT],
                          p[_C:_TAB])
