@@ -157,7 +157,7 @@ def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: f
 
     Examples
     --------
-    A wave at a frequency inside the band gives |F| a:
+    A wave at a frequency inside the band gives abs(F) a:
 
     >>> import numpy as np, xarray as xr
     >>> from flumekit.hydro.coefficients import hydro_dataset
