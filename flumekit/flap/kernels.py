@@ -107,23 +107,10 @@ def lugre_advance(z, h, v0, v1, dt, c):
 
 @njit(cache=True)
 def lugre_force(z, h, v, c):
-    """Return the friction force F = σ0 z + σ1 ż + σ2 v (Eq. A3 with the corrected Eq. A5).
+    """Compute the friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3, corrected Eq. A5).
 
-    Parameters
-    ----------
-    z : float
-        Bristle deflection [m].
-    h : float
-        Film thickness parameter [-].
-    v : float
-        Rod velocity [m s-1].
-    c : ndarray
-        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
-
-    Returns
-    -------
-    float
-        F [N].
+    At the state (z [m], h [-]) and rod velocity v [m s-1]; ``c`` the parameters of
+    :func:`flumekit.flap.friction.kernel_constants`.
     """
     s0, s1, s2, fc, fs, ivs, n = c[0], c[1], c[2], c[3], c[4], c[5], c[6]
     x = abs(v) * ivs
@@ -133,27 +120,10 @@ def lugre_force(z, h, v, c):
 
 @njit(cache=True)
 def friction_loop(v, dt, z, h, substeps, c, zs, hs):
-    """Integrate the LuGre state over a velocity series, into ``zs`` and ``hs``.
+    """Integrate the state over a velocity series (:func:`flumekit.flap.friction.friction_series`).
 
-    ``substeps`` steps of :func:`lugre_advance` per interval from the initial state (z, h);
-    the loop of :func:`flumekit.flap.friction.friction_series`.
-
-    Parameters
-    ----------
-    v : ndarray
-        Rod velocity at the samples [m s-1].
-    dt : float
-        Sampling interval [s].
-    z : float
-        Initial bristle deflection [m].
-    h : float
-        Initial film thickness parameter [-].
-    substeps : int
-        Steps per sampling interval.
-    c : ndarray
-        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
-    zs, hs : ndarray
-        Outputs, the size of ``v``: deflection [m] and film parameter [-] at every sample.
+    ``substeps`` steps of :func:`lugre_advance` per sampling interval ``dt`` [s] from the
+    initial state (z [m], h [-]); the state at every sample is written into ``zs`` and ``hs``.
     """
     zs[0], hs[0] = z, h
     hsub = dt / substeps
@@ -178,7 +148,7 @@ def cylinder_params(theta_lo: float, dtheta: float, lever: np.ndarray, bore_area
                     pressure_loss_coefficient: float, fluid_inertia: float, inertia: float,
                     cavitation_pressure: float, friction: np.ndarray | None,
                     dt: float) -> np.ndarray:
-    """Pack the parameter array of the cylinder's kernels.
+    """Pack the parameters of the cylinder's kernels into one array.
 
     Parameters
     ----------
@@ -227,33 +197,10 @@ def _lever(th, p):
 
 @njit(ACCEL, cache=True)
 def cylinder_accel(t, th, om, rest, z, hl, p):
-    """Return θ̈ of the flap with the hydraulic cylinder (Eqs. 13-14), signature ``ACCEL``.
+    """Compute θ̈ [rad s-2] with the fluid inertia and the vapour clamp (Eqs. 12-14).
 
-    With the fluid inertia and the vapour clamp; NaN outside the lever-arm table.
-
-    Parameters
-    ----------
-    t : float
-        Time [s] (unused: the cylinder is autonomous).
-    th : float
-        θ [rad].
-    om : float
-        θ̇ [rad s-1].
-    rest : float
-        The torques other than the PTO's [N m].
-    z, hl : float
-        LuGre state: bristle deflection [m] and film parameter [-].
-    p : ndarray
-        Parameters of :func:`cylinder_params`.
-
-    Returns
-    -------
-    acc : float
-        θ̈ [rad s-2].
-    pressure : float
-        Chamber gauge pressure [Pa].
-    friction : float
-        Friction force [N].
+    Returns (θ̈, the chamber pressure [Pa], the friction force [N]); NaN outside the lever-arm
+    table.
     """
     m = _lever(th, p)
     if m != m:
@@ -275,28 +222,10 @@ def cylinder_accel(t, th, om, rest, z, hl, p):
 
 @njit(PREDICT, cache=True)
 def cylinder_predict(z, hl, th, om, a1, p):
-    """Predict the LuGre state at the Runge-Kutta stage times, signature ``PREDICT``.
+    """Predict the LuGre state at the stage times (middle and end of the step).
 
     Exact frozen-velocity steps at the rod velocities predicted at h/4 and 3h/4 from the first
     stage.
-
-    Parameters
-    ----------
-    z, hl : float
-        LuGre state at the step's start: deflection [m] and film parameter [-].
-    th : float
-        θ [rad].
-    om : float
-        θ̇ [rad s-1].
-    a1 : float
-        θ̈ of the first stage [rad s-2].
-    p : ndarray
-        Parameters of :func:`cylinder_params`.
-
-    Returns
-    -------
-    zm, hm, ze, he : float
-        The state at mid-step and at the step's end ([m], [-]).
     """
     dt = p[_DT]
     hh, hq = 0.5 * dt, 0.25 * dt
@@ -308,25 +237,6 @@ def cylinder_predict(z, hl, th, om, a1, p):
 
 @njit(ADVANCE, cache=True)
 def cylinder_advance(z, hl, th, om, th_new, om_new, p):
-    """Advance the LuGre state by the step's actual rod velocities, signature ``ADVANCE``.
-
-    Split at a velocity reversal (:func:`lugre_advance`).
-
-    Parameters
-    ----------
-    z, hl : float
-        LuGre state at the step's start: deflection [m] and film parameter [-].
-    th, om : float
-        θ [rad] and θ̇ [rad s-1] at the step's start.
-    th_new, om_new : float
-        θ [rad] and θ̇ [rad s-1] at the step's end.
-    p : ndarray
-        Parameters of :func:`cylinder_params`.
-
-    Returns
-    -------
-    z, h : float
-        The state at the step's end ([m], [-]).
-    """
+    """Advance the LuGre state over the step from the rod velocities (split at a reversal)."""
     return lugre_advance(z, hl, _lever(th, p) * om, _lever(th_new, p) * om_new, p[_DT],
                          p[_C:_TAB])

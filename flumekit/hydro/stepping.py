@@ -85,10 +85,10 @@ _SIG = types.Tuple((i8, i8, f8))(
 @njit(_SIG, cache=True)
 def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, accel, predict,
           advance, pto_params, extra, extra_params, extra_state, extra_record, has_extra, out):
-    """Advance a run from step ``first`` to step ``last`` by classical RK4.
+    """Integrate steps ``first`` to ``last`` of a run.
 
-    Classical fourth-order Runge-Kutta for (θ, θ̇) of the Cummins equation, with the memory
-    torque at the four stages (module notes of :mod:`flumekit.hydro.memory`).
+    Classical RK4 for (θ, θ̇) with the memory torque at the four stages (module notes of
+    :mod:`flumekit.hydro.memory`).
 
     Parameters
     ----------
