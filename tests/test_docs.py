@@ -129,7 +129,17 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.ballscrew.screw",
                                     "flumekit.ballscrew.scenario",
                                     "flumekit.bench", "flumekit.bench.flume",
-                                    "flumekit.bench.truth"])
+                                    "flumekit.bench.truth",
+                                    "flumekit.hydro.coefficients", "flumekit.hydro.excitation",
+                                    "flumekit.hydro.radiation", "flumekit.hydro.rigid_body",
+                                    "flumekit.hydro.response", "flumekit.hydro.bem_layout",
+                                    "flumekit.flap.bem", "flumekit.flap.comparison",
+                                    "flumekit.flap.summary", "flumekit.flap.power",
+                                    "flumekit.flap.torque", "flumekit.flap.encoder",
+                                    "flumekit.flap.geometry", "flumekit.flap.pressure",
+                                    "flumekit.figures.style", "flumekit.figures.check",
+                                    "flumekit.figures.groups", "flumekit.figures.qc",
+                                    "flumekit.figures.simulator"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

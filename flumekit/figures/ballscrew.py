@@ -5,6 +5,12 @@ Each function takes the scenario dataset(s) and returns a matplotlib Figure (no 
 - efficiency dataset (:func:`flumekit.ballscrew.screw.efficiency`): Figs. 11-15;
 - lumped thermal dataset (:func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`): Figs. 9, 16;
 - FEM dataset (:func:`flumekit.ballscrew.thermal.fem.thermal_fem`): Figs. 10, 17, 18.
+
+References
+----------
+Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+9358.
 """
 
 from __future__ import annotations
@@ -36,7 +42,7 @@ _TEMPERATURE = label(text="Temperature", units="°C")
 
 
 def _scenario(ds: xr.Dataset, what: str) -> str:
-    """Figure title: what is shown and the operating condition of the ball-screw WEC."""
+    """Compose the figure title: what is shown and the operating condition of the WEC."""
     cond = []
     if "wave_period" in ds.attrs:
         cond.append(f"regular wave T = {float(ds.attrs['wave_period']):g} s")
@@ -60,20 +66,71 @@ def _time_series(ds: xr.Dataset, name: str, scale: float, ylabel: str, what: str
 
 
 def figure_11(eff: xr.Dataset):
-    """Fig. 11: axial force F_PTO on the nut as a function of time."""
+    """Draw Fig. 11: the axial force F_PTO on the nut as a function of time.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        F_PTO [kN] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 11.
+    """
     return _time_series(eff, "pto_force", 1e-3, label("pto_force", "$F_{PTO}$", units="kN",
                                                       text="Axial force"), "Axial force on the nut")
 
 
 def figure_12(eff: xr.Dataset):
-    """Fig. 12: screw rotation speed ω_screw (in rpm) as a function of time."""
+    """Draw Fig. 12: the screw rotation speed ω_screw as a function of time.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        ω_screw [rpm] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 12.
+    """
     return _time_series(eff, "screw_speed", 60 / (2 * np.pi),
                         label(text=r"Screw speed $\omega_{screw}$", units="rpm"),
                         "Screw rotation speed")
 
 
 def figure_13(eff: xr.Dataset):
-    """Fig. 13: nut velocity v_nut as a function of time."""
+    """Draw Fig. 13: the nut velocity v_nut as a function of time.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        v_nut [m s-1] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 13.
+    """
     return _time_series(eff, "nut_velocity", 1.0,
                         label("nut_velocity", "$v_{nut}$", text="Nut velocity"), "Nut velocity")
 
@@ -84,8 +141,27 @@ REGIMES = ((0.0, 1.0, "boundary", "tab:red"), (1.0, 3.0, "mixed", "tab:olive"),
 
 
 def figure_14(eff: xr.Dataset):
-    """Fig. 14: film parameters λ_nut, λ_screw (lubrication regimes shaded) and friction
-    coefficients f_ball-nut, f_ball-screw."""
+    """Draw Fig. 14: the film parameters and friction coefficients against time.
+
+    The film parameters λ_nut, λ_screw (lubrication regimes shaded) and the friction
+    coefficients f_ball-nut, f_ball-screw.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        λ [-] and f [-] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 14.
+    """
     from matplotlib.patches import Patch
 
     t = eff["time"].values
@@ -114,7 +190,24 @@ def figure_14(eff: xr.Dataset):
 
 
 def figure_15(eff: xr.Dataset):
-    """Fig. 15: indirect efficiency η of the ball screw as a function of time (in %)."""
+    """Draw Fig. 15: the indirect efficiency η of the ball screw as a function of time.
+
+    Parameters
+    ----------
+    eff : xarray.Dataset
+        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        η [%] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 15.
+    """
     eta = eff["ballscrew_efficiency"].values * 100
     return _time_series(eff, "ballscrew_efficiency", 100.0,
                         label(text=r"Indirect efficiency $\eta$", units="%"),
@@ -122,11 +215,29 @@ def figure_15(eff: xr.Dataset):
 
 
 def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
-    """Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle.
+    """Draw Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle.
 
     The operating cycle of the paper lasts 600 s (``cycle_duration``); (a) shows it whole,
-    (b) its first ``zoom`` seconds [s] with the samples of the model marked, where the
+    (b) its first ``zoom`` seconds with the samples of the model marked, where the
     instantaneous losses can be read.
+
+    Parameters
+    ----------
+    lumped : xarray.Dataset
+        Lumped thermal dataset of :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`.
+    zoom : float, optional
+        Duration shown in (b) [s].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Power losses [W] against time [s].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 9.
     """
     cycle = float(lumped.attrs.get("cycle_duration", 600.0))
     one = lumped.sel(time=slice(0.0, cycle))
@@ -151,7 +262,24 @@ def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
 
 
 def figure_16(lumped: xr.Dataset):
-    """Fig. 16: lumped thermal profiles (dashed) and their exponential fits (solid), in °C."""
+    """Draw Fig. 16: lumped thermal profiles (dashed) and their exponential fits (solid).
+
+    Parameters
+    ----------
+    lumped : xarray.Dataset
+        Lumped thermal dataset of :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Temperatures [°C] against time [min].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 16.
+    """
     t = lumped["time"].values
     t0 = float(lumped.attrs.get("initial_temperature", KELVIN + 20))
     fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
@@ -178,10 +306,26 @@ def _triangles(fem: xr.Dataset) -> np.ndarray:
 
 
 def figure_10(fem: xr.Dataset):
-    """Fig. 10: the axisymmetric section of the PTO with its material regions.
+    """Draw Fig. 10: the axisymmetric section of the PTO with its material regions.
 
     Drawn with the axis of symmetry horizontal (axial position along x, radius up), so the
     long, slender section fills a page-wide figure.
+
+    Parameters
+    ----------
+    fem : xarray.Dataset
+        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Radius [mm] against axial position [mm].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 10.
     """
     from matplotlib import colormaps
     from matplotlib.patches import Patch
@@ -219,8 +363,27 @@ def _generator_cells(fem: xr.Dataset) -> np.ndarray:
 
 
 def figure_17(fem: xr.Dataset):
-    """Fig. 17: temperature field of the EMRG (°C) at the snapshot times (641, 1840, 3225,
-    6000 s), the paper's most thermally stressed component."""
+    """Draw Fig. 17: the temperature field of the EMRG at the snapshot times.
+
+    The snapshots at 641, 1840, 3225 and 6000 s of the generator (EMRG), the paper's most
+    thermally stressed component.
+
+    Parameters
+    ----------
+    fem : xarray.Dataset
+        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Temperature [°C] over the section, axial position against r [mm].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 17.
+    """
     r, z = fem["radial_coordinate"].values * 1e3, fem["axial_coordinate"].values * 1e3
     q = fem["cell_nodes"].values[_generator_cells(fem)]
     tri = np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
@@ -245,7 +408,24 @@ def figure_17(fem: xr.Dataset):
 
 
 def figure_18(fem: xr.Dataset):
-    """Fig. 18: time evolution of the EMRG temperature at its control points (°C)."""
+    """Draw Fig. 18: the time evolution of the EMRG temperature at its control points.
+
+    Parameters
+    ----------
+    fem : xarray.Dataset
+        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Temperatures [°C] against time [min].
+
+    References
+    ----------
+    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358, Fig. 18.
+    """
     t = fem["time"].values
     inside = np.isin([str(x) for x in fem["control_region"].values], GENERATOR_REGIONS)
     fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)

@@ -21,8 +21,11 @@ MAX_HEIGHT = 9.0
 
 
 def _drawn(ax) -> bool:
-    """Something that shows data: a line, a collection (scatter, contour, mesh), an image or a
-    patch (bars, polygons) other than the axes background."""
+    """Tell whether ``ax`` shows data.
+
+    A line, a collection (scatter, contour, mesh), an image or a patch (bars, polygons) other
+    than the axes background.
+    """
     return bool(ax.lines or ax.collections or ax.images or ax.patches)
 
 
@@ -47,8 +50,10 @@ def _tick_labels_shown(axis) -> bool:
 
 
 def _labelled(ax, which: str) -> str:
-    """The label of ``ax``'s x or y axis, or of a sibling sharing it (a shared grid labels its
-    outer axes only)."""
+    """Return the label of ``ax``'s x or y axis, or of a sibling sharing it.
+
+    A shared grid labels its outer axes only.
+    """
     own = getattr(ax, f"get_{which}label")()
     if own:
         return own
@@ -58,7 +63,29 @@ def _labelled(ax, which: str) -> str:
 
 
 def problems(fig) -> list[str]:
-    """Everything that fails the figure test, as readable sentences (empty when it passes)."""
+    """List everything that fails the figure test, as readable sentences.
+
+    Checked at the saved resolution (on the PNG's drawing when the figure was just drawn
+    by :func:`flumekit.figures.style.save`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, at its saved size.
+
+    Returns
+    -------
+    list of str
+        The problems (module notes), empty when the figure passes.
+
+    Examples
+    --------
+    >>> from flumekit.figures.check import problems
+    >>> from flumekit.figures.style import new_figure
+    >>> fig, axes = new_figure(width=5.0)
+    >>> problems(fig)[0]
+    'width 5.00 in is neither one column (3.5 in) nor two (7.0 in)'
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     from flumekit.figures.style import STYLE
@@ -144,7 +171,20 @@ def _problems(fig, canvas) -> list[str]:
 
 
 def assert_passes(fig, what: str = "figure") -> None:
-    """Raise ``ValueError`` listing every problem of ``fig`` (see :func:`problems`)."""
+    """Raise ``ValueError`` listing every problem of ``fig`` (see :func:`problems`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure, at its saved size.
+    what : str, optional
+        Name of the figure in the message.
+
+    Raises
+    ------
+    ValueError
+        The figure fails the figure test.
+    """
     found = problems(fig)
     if found:
         raise ValueError(f"{what} fails the figure test: " + "; ".join(found))

@@ -5,6 +5,12 @@ per run, or several concatenated along ``run``) and returns a matplotlib Figure 
 pyplot. Runs are grouped by the ``wave_height`` coordinate that the pipeline attaches, or else
 by the incident height rounded to 5 mm. Figs. 8-10 take the model curves (linear model,
 simulator) as ``models``: ``{source: summaries}`` (see :mod:`flumekit.figures.simulator`).
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8.
 """
 
 from __future__ import annotations
@@ -49,8 +55,10 @@ def _sorted_runs(data, params) -> tuple[tuple, dict]:
 
 
 def _experiment_and_models(data, params) -> tuple[tuple, dict]:
-    """Arguments of Figs. 8-9 from the comparison datasets of every regular run: the
-    experiment's and, per model source, the model's, in input-name order."""
+    """Return the arguments of Figs. 8-9 from the comparison datasets of every regular run.
+
+    The experiment's and, per model source, the model's, in input-name order.
+    """
     comps = [data[k] for k in sorted(data)]
     models = {str(s): [c.sel(source=s) for c in comps]
               for s in comps[0]["source"].values if str(s) != "experiment"}
@@ -58,9 +66,12 @@ def _experiment_and_models(data, params) -> tuple[tuple, dict]:
 
 
 def _figure_10_data(data, params) -> tuple[tuple, dict]:
-    """Arguments of Fig. 10 from a run's flap, waves and comparison datasets: the measured
-    elevation at the probe nearest the flap over the whole record (the separated incident
-    wave exists only in the waves' own steady window) and every model of the comparison."""
+    """Return the arguments of Fig. 10 from a run's flap, waves and comparison datasets.
+
+    The measured elevation at the probe nearest the flap over the whole record (the separated
+    incident wave exists only in the waves' own steady window) and every model of the
+    comparison.
+    """
     eta = data["waves"]["eta"]
     comp = data["comparison"]
     models = {str(s): comp.sel(source=s) for s in comp["source"].values
@@ -87,9 +98,11 @@ def _window(ds: xr.Dataset, start: float, n_waves: int) -> tuple[np.ndarray, np.
 
 
 def _levels(phase_mean: np.ndarray, scale: float) -> tuple[float, float]:
-    """Crest and trough of the quasi-steady cycle (its phase average) over ``scale``: where
-    the normalised series peaks, whatever its mean (a flap leaning seaward, a clamped
-    suction side)."""
+    """Return the crest and trough of the quasi-steady cycle (its phase average) over ``scale``.
+
+    Where the normalised series peaks, whatever its mean (a flap leaning seaward, a clamped
+    suction side).
+    """
     return float(np.max(phase_mean)) / scale, float(np.min(phase_mean)) / scale
 
 
@@ -100,12 +113,30 @@ def _crest_trough(ax, levels, lab: str | None = "crest and trough of the steady 
 
 @register("fig05b")
 def figure_5b(flap: xr.Dataset, ax=None):
-    """Full time series of the normalised flap angle θ/θ_s against t/T (Fig. 5b).
+    """Draw the full time series of the normalised flap angle θ/θ_s against t/T (Fig. 5b).
 
     θ_s is the amplitude of θ over the quasi-steady window (half the mean crest-to-trough
     range); the dash-dotted lines mark the crest and trough of the steady cycle, θ/θ_s =
     (θ̄ ± θ_s)/θ_s with θ̄ its centre, so they meet the steady crests and troughs even when
     the flap oscillates about a leaning mean. The vertical line is the start of the window.
+
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new two-column figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        θ/θ_s [-] against t/T [-].
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 5b.
     """
     _require(flap, "theta", "theta_amplitude", "theta_phase_mean", "measured_period",
              "steady_start")
@@ -131,7 +162,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
 
 @register("fig06bcd")
 def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=None):
-    """Normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
+    """Draw normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
 
     Panels (a)-(c) of this figure are the paper's Fig. 6b-d. Each signal is divided by its
     amplitude scale (half the range of its phase average over the quasi-steady window; for
@@ -141,10 +172,25 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
 
     Parameters
     ----------
-    flap : Processed flap dataset of one run.
-    start : First t/T shown [-] (the paper: 65).
-    n_waves : Number of periods shown [-].
-    axes : Three axes to draw into; default a new figure.
+    flap : xarray.Dataset
+        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
+    start : float, optional
+        First t/T shown [-] (the paper: 65).
+    n_waves : int, optional
+        Number of periods shown [-].
+    axes : sequence of matplotlib.axes.Axes, optional
+        Three axes to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Normalised θ, P_int and θ̇ [-] against t/T [-].
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 6b-d.
     """
     _require(flap, "theta", "chamber_pressure", "theta_dot", "theta_phase_mean",
              "chamber_pressure_phase_mean", "theta_dot_phase_mean", "measured_period")
@@ -180,10 +226,30 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
 
 @register("fig07", prepare=_sorted_runs)
 def figure_7(flaps, n_waves: int = 3, axes=None):
-    """Measured and fitted torque of the cylinder pressure force (Fig. 7), one panel per run.
+    """Draw the measured and fitted torque of the cylinder pressure force (Fig. 7), per run.
 
     Shows ``n_waves`` periods from the start of each run's quasi-steady window, with the R² of
     the fit of Eq. (13). Two columns of panels when there are more than three runs.
+
+    Parameters
+    ----------
+    flaps : xarray.Dataset or sequence of xarray.Dataset
+        Processed flap datasets, one per run, or one stacked along ``run``.
+    n_waves : int, optional
+        Number of periods shown per run [-].
+    axes : sequence of matplotlib.axes.Axes, optional
+        One axes per run to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Pressure torque [N m] against t/T [-], one panel per run.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 7 and Eq. (13).
     """
     runs = runs_of(flaps)
     if axes is None:
@@ -246,11 +312,31 @@ def _heights(flaps, models) -> list[float]:
 
 @register("fig08", prepare=_experiment_and_models)
 def figure_8(flaps, models: dict | None = None, ax=None):
-    """Amplitude of the hydrodynamic torque against the wave period, per wave height (Fig. 8).
+    """Draw the amplitude of the hydrodynamic torque against the wave period (Fig. 8).
 
-    The amplitude is half the difference of the mean per-cycle maximum and minimum of T_h over
-    the quasi-steady window (``torque_amplitude``). Markers: the experiment; lines: the
-    ``models`` ({source: run summaries}), one line style per source, one colour per height.
+    One colour per wave height. The amplitude is half the difference of the mean per-cycle
+    maximum and minimum of T_h over the quasi-steady window (``torque_amplitude``). Markers:
+    the experiment; lines: the ``models``, one line style per source.
+
+    Parameters
+    ----------
+    flaps : xarray.Dataset or sequence of xarray.Dataset
+        Processed flap datasets of the regular runs, or one stacked along ``run``.
+    models : dict, optional
+        {source: run summaries} of the models (``"analytical"``, ``"simulator"``).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        T_h amplitude [N m] against T [s].
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 8.
     """
     groups = by_height(flaps, "torque_amplitude")
     heights = _heights(flaps, models)
@@ -271,9 +357,29 @@ def figure_8(flaps, models: dict | None = None, ax=None):
 
 @register("fig09", prepare=_experiment_and_models)
 def figure_9(flaps, models: dict | None = None, axes=None):
-    """(a) Amplitude of θ and (b) capture factor C_f against the wave period (Fig. 9).
+    """Draw (a) the amplitude of θ and (b) the capture factor C_f against the period (Fig. 9).
 
-    Markers: the experiment; lines: the ``models`` ({source: run summaries}).
+    Markers: the experiment; lines: the ``models``.
+
+    Parameters
+    ----------
+    flaps : xarray.Dataset or sequence of xarray.Dataset
+        Processed flap datasets of the regular runs, or one stacked along ``run``.
+    models : dict, optional
+        {source: run summaries} of the models (``"analytical"``, ``"simulator"``).
+    axes : sequence of matplotlib.axes.Axes, optional
+        Two axes to draw into; default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        (a) θ amplitude / π [-] and (b) C_f [-] against T [s].
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 9.
     """
     groups = by_height(flaps, "theta_amplitude", "capture_factor")
     heights = _heights(flaps, models)
@@ -300,7 +406,7 @@ def figure_9(flaps, models: dict | None = None, axes=None):
 @register("fig10", prepare=_figure_10_data)
 def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | None = None,
               axes=None):
-    """Normalised phase averages over the quasi-steady window (Fig. 10).
+    """Draw the normalised phase averages over the quasi-steady window (Fig. 10).
 
     Panels: ⟨η⟩/H (only with ``eta``), ⟨θ⟩/π, ⟨W_out⟩/W_I with its mean over the cycle
     dotted, ⟨θ̇⟩/(π ω), ω = 2π/T, lettered from (a) in the order shown; each panel's title
@@ -312,13 +418,28 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
 
     Parameters
     ----------
-    flap : Processed flap dataset of one run.
-    eta : Surface elevation [m] on a ``time`` coordinate of the same clock (e.g. the probe
+    flap : xarray.Dataset
+        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
+    eta : xarray.DataArray, optional
+        Surface elevation [m] on a ``time`` coordinate of the same clock (e.g. the probe
         nearest the flap from the waves dataset); phase-averaged here over the flap's window.
         Without it the figure has three panels.
-    models : {source: summary of that source for this run} (``"analytical"``,
-        ``"simulator"``), drawn with :func:`flumekit.figures.simulator.add_figure_10`.
-    axes : Four axes (a)-(d) to draw into (``None`` for (a) to skip it); default a new figure.
+    models : dict, optional
+        {source: summary of that source for this run} (``"analytical"``, ``"simulator"``),
+        drawn with :func:`flumekit.figures.simulator.add_figure_10`.
+    axes : sequence of matplotlib.axes.Axes, optional
+        Four axes (a)-(d) to draw into (``None`` for (a) to skip it); default a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The normalised phase averages [-] against t/T [-].
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 10.
     """
     _require(flap, "theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean",
              "incident_power", "mean_power", "incident_height", "steady_start",

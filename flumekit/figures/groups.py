@@ -7,7 +7,23 @@ import xarray as xr
 
 
 def runs_of(datasets) -> list[xr.Dataset]:
-    """Per-run datasets from a list of them or from one dataset stacked along ``run``."""
+    """Return the per-run datasets from a list of them or from one stacked along ``run``.
+
+    Parameters
+    ----------
+    datasets : xarray.Dataset or iterable of xarray.Dataset
+        One dataset (stacked along ``run``, or a single run) or a list of run datasets.
+
+    Returns
+    -------
+    list of xarray.Dataset
+        One dataset per run.
+
+    Raises
+    ------
+    ValueError
+        An empty list.
+    """
     if isinstance(datasets, xr.Dataset):
         if "run" in datasets.dims:
             return [datasets.isel(run=i) for i in range(datasets.sizes["run"])]
@@ -19,6 +35,32 @@ def runs_of(datasets) -> list[xr.Dataset]:
 
 
 def height_of(ds: xr.Dataset) -> float:
+    """Return the wave height [m] that groups a run.
+
+    The declared ``wave_height``, else the measured ``incident_height`` rounded to 5 mm.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run's dataset.
+
+    Returns
+    -------
+    float
+        The height [m].
+
+    Raises
+    ------
+    ValueError
+        Neither ``wave_height`` nor ``incident_height`` in the dataset.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.figures.groups import height_of
+    >>> round(height_of(xr.Dataset({"incident_height": 0.1234})), 3)
+    0.125
+    """
     if "wave_height" in ds.variables:
         return float(ds["wave_height"])
     if "incident_height" not in ds.variables:
@@ -27,11 +69,51 @@ def height_of(ds: xr.Dataset) -> float:
 
 
 def period_of(ds: xr.Dataset) -> float:
+    """Return the wave period [s] of a run: ``wave_period``, else ``measured_period``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run's dataset.
+
+    Returns
+    -------
+    float
+        The period [s].
+    """
     return float(ds["wave_period"]) if "wave_period" in ds.variables else float(ds.measured_period)
 
 
 def by_height(datasets, *names: str) -> dict[float, tuple[np.ndarray, dict[str, np.ndarray]]]:
-    """{wave height [m]: (periods [s], {name: values})}, each group sorted by period."""
+    """Group runs by wave height, each group sorted by period.
+
+    Parameters
+    ----------
+    datasets : xarray.Dataset or iterable of xarray.Dataset
+        The runs (:func:`runs_of`).
+    *names : str
+        Scalar variables to collect.
+
+    Returns
+    -------
+    dict
+        {wave height [m]: (periods [s], {name: values})}, heights ascending.
+
+    Raises
+    ------
+    ValueError
+        A run lacks one of ``names``, or has no height.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.figures.groups import by_height
+    >>> runs = [xr.Dataset({"wave_height": 0.1, "wave_period": t, "mean_power": p})
+    ...         for t, p in ((3.0, 2.0), (2.0, 1.0))]
+    >>> periods, values = by_height(runs, "mean_power")[0.1]
+    >>> periods.tolist(), values["mean_power"].tolist()
+    ([2.0, 3.0], [1.0, 2.0])
+    """
     groups: dict[float, list[xr.Dataset]] = {}
     for ds in runs_of(datasets):
         missing = [n for n in names if n not in ds.variables]

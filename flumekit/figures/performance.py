@@ -1,6 +1,15 @@
-"""Performance figures of the irregular runs: the power matrix and the capture width ratio
-against the energy period, from the power-matrix product (:mod:`flumekit.stages.performance`,
-:func:`flumekit.performance.power_matrix`)."""
+"""Performance figures of the irregular runs: the power matrix and the capture width ratio.
+
+The capture width ratio is drawn against the energy period; both figures read the power-matrix
+product (:mod:`flumekit.stages.performance`, :func:`flumekit.performance.power_matrix`).
+
+References
+----------
+IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
+Part 100: Electricity producing wave energy converters - Power performance assessment.
+Babarit, A. (2015). A database of capture width ratio of wave energy converters. Renewable
+Energy 80, 610-628.
+"""
 
 from __future__ import annotations
 
@@ -38,14 +47,28 @@ def _edges(bounds: xr.DataArray) -> np.ndarray:
 
 @register("power_matrix")
 def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
-    """The power matrix: cells coloured by the mean of ``quantity`` over their runs, the count
-    and the mean written in each cell, one panel per source (experiment and models).
+    """Draw the power matrix, one panel per source (experiment and models).
+
+    Cells are coloured by the mean of ``quantity`` over their runs, with the count and the
+    mean written in each cell.
 
     Parameters
     ----------
-    ds : Power-matrix dataset (``run_count``, ``<quantity>`` over ``hm0_bin``, ``te_bin`` and
-        ``source``, the bins' bounds).
-    quantity : ``capture_width_ratio`` (default), ``mean_power`` or ``capture_width``.
+    ds : xarray.Dataset
+        Power-matrix dataset (``run_count``, ``<quantity>`` over ``hm0_bin``, ``te_bin`` and
+        ``source``, the bins' bounds [m], [s]).
+    quantity : {"capture_width_ratio", "mean_power", "capture_width"}, optional
+        The quantity coloured: CWR [-], mean power [W] or capture width [m].
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Hm0 [m] against Te [s], one panel per source.
+
+    References
+    ----------
+    IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
+    Part 100: Electricity producing wave energy converters - Power performance assessment.
     """
     from flumekit.conventions import VARIABLES
 
@@ -84,13 +107,26 @@ def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
 
 @register("capture_width_ratio")
 def figure_capture_width_ratio(ds: xr.Dataset):
-    """Capture width ratio of each irregular run against its energy period Te, one colour per
-    Hm0 bin: the experiment as markers, the models as lines (per Hm0 bin, in order of Te).
+    """Draw the capture width ratio of each irregular run against its energy period Te.
+
+    One colour per Hm0 bin: the experiment as markers, the models as lines (per Hm0 bin, in
+    order of Te).
 
     Parameters
     ----------
-    ds : Power-matrix dataset with the per-run ``run_hm0``, ``run_te`` and
-        ``run_capture_width_ratio`` (over ``run`` and ``source``).
+    ds : xarray.Dataset
+        Power-matrix dataset with the per-run ``run_hm0`` [m], ``run_te`` [s] and
+        ``run_capture_width_ratio`` [-] (over ``run`` and ``source``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        CWR [-] against Te [s].
+
+    References
+    ----------
+    Babarit, A. (2015). A database of capture width ratio of wave energy converters.
+    Renewable Energy 80, 610-628.
     """
     _require(ds, "run_hm0", "run_te", "run_capture_width_ratio", "hm0_bin_bounds")
     he = _edges(ds.hm0_bin_bounds)

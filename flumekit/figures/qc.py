@@ -1,5 +1,13 @@
-"""The quality-control figure of one run: every probe and flap channel as read, as QC'd, and the
-samples each flag marks; for a UVP run, the beams' flags over time and per channel."""
+"""The quality-control figure of one run: every channel as read, as QC'd, and what each flag marks.
+
+Every probe and flap channel; for a UVP run, the beams' flags over time and per channel. The
+flags are those of QARTOD (U.S. IOOS, 2020): pass, not evaluated, suspect, fail, missing.
+
+References
+----------
+U.S. Integrated Ocean Observing System (2020). Manual for Real-Time Quality Control of In-situ
+Data: a guide to QARTOD, Version 1.0.
+"""
 
 from __future__ import annotations
 
@@ -28,9 +36,31 @@ TEST_MEANINGS = {
 
 
 def flag_summary(flags, index: int | None = None) -> str:
-    """``<test> <count> (<what it flags>), ...`` of a flag variable of the qc stage (its
-    ``flagged_by_<test>`` attributes, :data:`TEST_MEANINGS`; ``index``: the channel of a
-    per-channel count), the tests that flagged nothing left out."""
+    """Summarise a flag variable of the qc stage as ``<test> <count> (<what it flags>), ...``.
+
+    From its ``flagged_by_<test>`` attributes and :data:`TEST_MEANINGS`; the tests that
+    flagged nothing are left out.
+
+    Parameters
+    ----------
+    flags : xarray.DataArray
+        A flag variable of the qc stage.
+    index : int, optional
+        The channel of a per-channel count.
+
+    Returns
+    -------
+    str
+        The summary, empty when nothing was flagged.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.figures.qc import flag_summary
+    >>> flags = xr.DataArray([0], attrs={"flagged_by_gap": 3, "flagged_by_spike": 0})
+    >>> flag_summary(flags)
+    'gap 3 (time gap)'
+    """
     parts = []
     for key, v in flags.attrs.items():
         if key.startswith("flagged_by_"):
@@ -76,8 +106,11 @@ def _uvp_beams(uvp):
 
 
 def _draw_uvp(ax_time, ax_bin, uvp) -> None:
-    """Failed fraction of each beam's channels per profile (over time) and of each channel's
-    evaluated samples (per bin), from the flags of the qc stage."""
+    """Draw the failed fraction of each beam's channels per profile and per channel.
+
+    Over time (per profile) and per bin (of each channel's evaluated samples), from the flags
+    of the qc stage.
+    """
     totals = []
     for (name, t, f), colour in zip(_uvp_beams(uvp), BEAM_COLOURS, strict=False):
         failed = f == FAIL
@@ -99,30 +132,44 @@ def _draw_uvp(ax_time, ax_bin, uvp) -> None:
 
 
 def _figure_qc_data(data, params) -> tuple[tuple, dict]:
-    """Arguments of the QC figure: its datasets by keyword (QC products and raw records), the
-    probes' product labelled with the rule's run (the products carry no run coordinate)."""
+    """Return the arguments of the QC figure: its datasets by keyword.
+
+    QC products and raw records; the probes' product is labelled with the rule's run (the
+    products carry no run coordinate).
+    """
     return (), {**data, "probes": data["probes"].assign_coords(run=params["run"])}
 
 
 @register("qc", prepare=_figure_qc_data)
 def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
-    """Raw (grey) and QC'd (black) records of every probe and flap channel of a run, with the
-    suspect, failed and missing samples marked at their raw values and the tests that flagged
-    them (counts and what each flags in the channel's title); with ``uvp``, two panels
+    """Draw the raw (grey) and QC'd (black) records of every probe and flap channel of a run.
+
+    The suspect, failed and missing samples are marked at their raw values with the tests that
+    flagged them (counts and what each flags in the channel's title); with ``uvp``, two panels
     more: the share of each beam's channels that failed per profile, over time, and the share
     of each channel's evaluated samples that failed.
 
     Parameters
     ----------
-    probes : Dataset of the qc stage for the probes (``probe_voltage`` and ``_qc``).
-    flap : Dataset of the qc stage for the encoder and pressure, or None.
-    probes_raw, flap_raw : The raw records as read by the instrument readers (the QC products
-        do not repeat them); None: only the QC'd values are drawn.
-    uvp : Dataset of the qc stage for the UVP beams (``beam_velocity_qc_<beam>``), or None.
+    probes : xarray.Dataset
+        Dataset of the qc stage for the probes (``probe_voltage`` [V] and ``_qc``).
+    flap : xarray.Dataset, optional
+        Dataset of the qc stage for the encoder and pressure.
+    probes_raw, flap_raw : xarray.Dataset, optional
+        The raw records as read by the instrument readers (the QC products do not repeat
+        them); None: only the QC'd values are drawn.
+    uvp : xarray.Dataset, optional
+        Dataset of the qc stage for the UVP beams (``beam_velocity_qc_<beam>``).
 
     Returns
     -------
     matplotlib.figure.Figure
+        One panel per channel (in its units) against time [s].
+
+    References
+    ----------
+    U.S. Integrated Ocean Observing System (2020). Manual for Real-Time Quality Control of
+    In-situ Data: a guide to QARTOD, Version 1.0.
     """
     chans = _channels(probes, flap, probes_raw, flap_raw)
     rows = len(chans) + (2 if uvp is not None else 0)

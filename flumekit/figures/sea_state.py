@@ -30,7 +30,7 @@ _NEEDS = ("eta_incident", "eta_reflected", "spectrum_incident", "spectrum_reflec
 
 @register("separation_irregular")
 def separation(waves: xr.Dataset, n_waves: int = 12):
-    """The incident/reflected separation of one irregular run.
+    """Draw the incident/reflected separation of one irregular run.
 
     (a) Incident and reflected elevation at the device over ``n_waves`` peak periods from the
     start of the analysed span; (b) their variance density spectra, smoothed over frequency

@@ -1,5 +1,6 @@
-"""Model curves (linear model, simulator) beside the experimental ones in Figs. 8-10 of Brito et
-al. (2020).
+"""Model curves (linear model, simulator) beside the experimental ones in Figs. 8-10.
+
+The figures are those of Brito et al. (2020).
 
 Each function draws into given matplotlib Axes (object-oriented API, no pyplot) and returns
 them; :func:`flumekit.figures.flap.figure_8` (and 9, 10) call them for their ``models``
@@ -25,7 +26,24 @@ MARKERS = ("o", "s", "^", "D", "v", "P", "X")
 
 
 def height_colours(heights) -> dict[float, tuple]:
-    """One colour per wave height [m] (viridis, darkest for the lowest)."""
+    """Assign one colour per wave height (viridis, darkest for the lowest).
+
+    Parameters
+    ----------
+    heights : iterable of float
+        Wave heights [m] (duplicates ignored).
+
+    Returns
+    -------
+    dict
+        {height [m]: RGBA tuple}, heights ascending.
+
+    Examples
+    --------
+    >>> from flumekit.figures.simulator import height_colours
+    >>> list(height_colours([0.2, 0.1, 0.2]))
+    [0.1, 0.2]
+    """
     from matplotlib import colormaps
 
     heights = sorted(set(heights))
@@ -35,7 +53,7 @@ def height_colours(heights) -> dict[float, tuple]:
 
 
 def _colour(label: str) -> str:
-    """The role colour for a source ("simulator", "analytical", ...): one look in Fig. 10."""
+    """Return the role colour of a source ("simulator", "analytical", ...) in Fig. 10."""
     return COLOURS.get(label, COLOURS["simulator"])
 
 
@@ -48,14 +66,29 @@ def _by_height_lines(ax, groups, label, heights, value):
 
 
 def add_figure_8(ax, summaries, label: str = "simulator", heights=None):
-    """Model amplitude of the hydrodynamic torque |T_h| against T, per wave height (Fig. 8).
+    """Draw a model's amplitude of the hydrodynamic torque T_h against T, per height (Fig. 8).
 
     Parameters
     ----------
-    ax : Axes of :func:`flumekit.figures.flap.figure_8` (or any Axes).
-    summaries : Run summaries of the model (``torque_amplitude`` [N m]).
-    label : Source name ("analytical", "simulator"): its line style.
-    heights : Every wave height [m] of the figure, for consistent colours; default these.
+    ax : matplotlib.axes.Axes
+        Axes of :func:`flumekit.figures.flap.figure_8` (or any Axes).
+    summaries : xarray.Dataset or sequence of xarray.Dataset
+        Run summaries of the model (``torque_amplitude`` [N m]).
+    label : str, optional
+        Source name ("analytical", "simulator"): its line style.
+    heights : iterable of float, optional
+        Every wave height [m] of the figure, for consistent colours; default these.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+        ``ax``.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 8.
     """
     with style():
         _by_height_lines(ax, by_height(summaries, "torque_amplitude"), label, heights,
@@ -64,14 +97,29 @@ def add_figure_8(ax, summaries, label: str = "simulator", heights=None):
 
 
 def add_figure_9(axes, summaries, label: str = "simulator", heights=None):
-    """Model (a) |θ|/π and (b) capture factor C_f against T, per wave height (Fig. 9).
+    """Draw a model's (a) θ amplitude / π and (b) capture factor C_f against T (Fig. 9).
 
     Parameters
     ----------
-    axes : Two Axes, as returned in the figure of :func:`flumekit.figures.flap.figure_9`.
-    summaries : Run summaries of the model (``theta_amplitude`` [rad], ``capture_factor``).
-    label : Source name ("analytical", "simulator"): its line style.
-    heights : Every wave height [m] of the figure, for consistent colours; default these.
+    axes : sequence of matplotlib.axes.Axes
+        Two Axes, as in the figure of :func:`flumekit.figures.flap.figure_9`.
+    summaries : xarray.Dataset or sequence of xarray.Dataset
+        Run summaries of the model (``theta_amplitude`` [rad], ``capture_factor`` [-]).
+    label : str, optional
+        Source name ("analytical", "simulator"): its line style.
+    heights : iterable of float, optional
+        Every wave height [m] of the figure, for consistent colours; default these.
+
+    Returns
+    -------
+    sequence of matplotlib.axes.Axes
+        ``axes``.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 9.
     """
     if len(axes) != 2:
         raise ValueError("figure 9 needs two axes: (a) rotation, (b) capture factor")
@@ -84,7 +132,7 @@ def add_figure_9(axes, summaries, label: str = "simulator", heights=None):
 
 def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
                   label: str = "simulator"):
-    """Model phase averages in the normalisation of Fig. 10.
+    """Draw a model's phase averages in the normalisation of Fig. 10.
 
     Panels as :func:`flumekit.figures.flap.figure_10`: (a) ⟨η⟩/H of the incident elevation
     that drove the simulation (needs ``sim`` with ``eta_incident``), (b) ⟨θ⟩/π, (c)
@@ -94,11 +142,25 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
 
     Parameters
     ----------
-    axes : Four Axes (a)-(d); (a) may be None.
-    summary : Summary of one simulated run
-        (:func:`~flumekit.flap.summary.summarise_run`).
-    sim : The simulation itself, for panel (a).
-    label : Source name: its colour and legend label.
+    axes : sequence of matplotlib.axes.Axes
+        Four Axes (a)-(d); (a) may be None.
+    summary : xarray.Dataset
+        Summary of one simulated run (:func:`~flumekit.flap.summary.summarise_run`).
+    sim : xarray.Dataset, optional
+        The simulation itself, for panel (a) (``eta_incident`` [m]).
+    label : str, optional
+        Source name: its colour and legend label.
+
+    Returns
+    -------
+    sequence of matplotlib.axes.Axes
+        ``axes``.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 10.
     """
     from flumekit import signal as sig
 

@@ -59,7 +59,13 @@ COLOURS = {"experiment": "k", "analytical": "tab:blue", "simulator": "tab:red",
 
 @contextmanager
 def style():
-    """Context in which figures are built and saved with the package style."""
+    """Apply the package style (matplotlib rc parameters :data:`STYLE`) within the context.
+
+    Yields
+    ------
+    None
+        Figures are built and saved with the package style inside the ``with`` block.
+    """
     import matplotlib
 
     with matplotlib.rc_context(STYLE):
@@ -68,19 +74,35 @@ def style():
 
 def new_figure(nrows: int = 1, ncols: int = 1, width: float = TWO_COLUMNS,
                height: float | None = None, row_height: float = 2.2, **kw):
-    """A figure of ``nrows`` x ``ncols`` axes, not registered with pyplot.
+    """Create a figure of ``nrows`` x ``ncols`` axes, not registered with pyplot.
 
     Parameters
     ----------
-    nrows, ncols : Axes grid.
-    width : Figure width [in]: :data:`ONE_COLUMN` or :data:`TWO_COLUMNS`.
-    height : Figure height [in]; default ``row_height`` per row.
-    row_height : Height per row of axes [in], used when ``height`` is None.
-    **kw : Passed to :meth:`matplotlib.figure.Figure.subplots` (``sharex``, ...).
+    nrows, ncols : int, optional
+        Axes grid.
+    width : float, optional
+        Figure width [in]: :data:`ONE_COLUMN` or :data:`TWO_COLUMNS`.
+    height : float, optional
+        Figure height [in]; default ``row_height`` per row plus 0.5 in for the title and an
+        outside legend.
+    row_height : float, optional
+        Height per row of axes [in], used when ``height`` is None.
+    **kw
+        Passed to :meth:`matplotlib.figure.Figure.subplots` (``sharex``, ...).
 
     Returns
     -------
-    (Figure, 2-D array of Axes). No pyplot state: safe in worker processes.
+    fig : matplotlib.figure.Figure
+        The figure, constrained layout. No pyplot state: safe in worker processes.
+    axes : numpy.ndarray of matplotlib.axes.Axes
+        Shape (nrows, ncols).
+
+    Examples
+    --------
+    >>> from flumekit.figures.style import ONE_COLUMN, new_figure
+    >>> fig, axes = new_figure(2, 1, width=ONE_COLUMN)
+    >>> axes.shape, [round(float(v), 2) for v in fig.get_size_inches()]
+    ((2, 1), [3.5, 4.9])
     """
     from matplotlib.figure import Figure
 
@@ -93,7 +115,24 @@ def new_figure(nrows: int = 1, ncols: int = 1, width: float = TWO_COLUMNS,
 
 
 def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
-    """``(figure, axes)``: those of ``ax`` if given, else a new one-axes figure."""
+    """Return the figure and axes of ``ax`` if given, else of a new one-axes figure.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on.
+    width : float, optional
+        Width of a new figure [in].
+    height : float, optional
+        Height of a new figure [in].
+
+    Returns
+    -------
+    fig : matplotlib.figure.Figure
+        The figure.
+    ax : matplotlib.axes.Axes
+        The axes.
+    """
     if ax is not None:
         return ax.figure, ax
     fig, axes = new_figure(width=width, height=height)
@@ -101,7 +140,7 @@ def figure_axes(ax=None, width: float = TWO_COLUMNS, height: float = 2.4):
 
 
 def thin(x, y, width: float = TWO_COLUMNS) -> tuple:
-    """For drawing only: the samples of a dense line that a ``width``-inch axes can show.
+    """Thin a dense line, for drawing only, to the samples a ``width``-inch axes can show.
 
     At the PNG's resolution an axes at most ``width`` inches wide has ``width`` x 300 pixel
     columns; a line through more samples than four per column is drawn the same from, in each
@@ -111,13 +150,22 @@ def thin(x, y, width: float = TWO_COLUMNS) -> tuple:
 
     Parameters
     ----------
-    x : Increasing coordinates of the samples (time) [any units].
-    y : Values, NaN where missing.
-    width : Widest the axes can be [in].
+    x : array_like
+        Increasing coordinates of the samples (time) [any units].
+    y : array_like
+        Values, NaN where missing [any units].
+    width : float, optional
+        Widest the axes can be [in].
 
     Returns
     -------
-    (x, y) : The samples kept, in order.
+    x, y : numpy.ndarray
+        The samples kept, in order.
+
+    References
+    ----------
+    Jugel, U., Jerzak, Z., Hackenbroich, G. & Markl, V. (2014). M4: a visualization-oriented
+    time series data aggregation. Proc. VLDB Endowment 7(10), 797-808.
 
     Examples
     --------
@@ -167,7 +215,24 @@ VALUE_LABELS = {
 
 
 def value_label(value) -> str:
-    """A human label for a categorical value (an identifier with underscores otherwise)."""
+    """Return a human label for a categorical value.
+
+    Parameters
+    ----------
+    value : object
+        The value (e.g. a PTO configuration's identifier).
+
+    Returns
+    -------
+    str
+        Its label in :data:`VALUE_LABELS`, else the identifier with spaces for underscores.
+
+    Examples
+    --------
+    >>> from flumekit.figures.style import value_label
+    >>> value_label("no_pto")
+    'no pto'
+    """
     value = str(value)
     return VALUE_LABELS.get(value, value.replace("_", " "))
 
@@ -176,14 +241,42 @@ _POWER = re.compile(r"([A-Za-z]+)(-?\d+)")
 
 
 def units_text(units: str) -> str:
-    """UDUNITS spelling as axis text: ``"m s-1"`` -> ``"m s$^{-1}$"``, ``"1"`` -> ``"-"``."""
+    """Convert a UDUNITS spelling to axis text: ``"m s-1"`` -> ``"m s$^{-1}$"``, ``"1"`` -> ``"-"``.
+
+    Parameters
+    ----------
+    units : str
+        Units in UDUNITS spelling.
+
+    Returns
+    -------
+    str
+        Mathtext for an axis label.
+
+    Examples
+    --------
+    >>> from flumekit.figures.style import units_text
+    >>> units_text("kg m2"), units_text("1")
+    ('kg m$^{2}$', '-')
+    """
     if units in ("1", "", None):
         return "-"
     return _POWER.sub(lambda m: f"{m.group(1)}$^{{{m.group(2)}}}$", units)
 
 
 def long_name(name: str) -> str:
-    """The registry's long name of a variable, up to its first comma, capitalised."""
+    """Return the registry's long name of a variable, up to its first comma, capitalised.
+
+    Parameters
+    ----------
+    name : str
+        A variable of :mod:`flumekit.conventions`.
+
+    Returns
+    -------
+    str
+        The label text.
+    """
     from flumekit.conventions import VARIABLES
 
     text = VARIABLES[name].long_name.split(",")[0]
@@ -192,15 +285,35 @@ def long_name(name: str) -> str:
 
 def label(name: str | None = None, symbol: str | None = None, units: str | None = None,
           text: str | None = None) -> str:
-    """An axis label "Long name symbol [units]".
+    r"""Compose an axis label "Long name symbol [units]".
 
     Parameters
     ----------
-    name : Registered variable (:mod:`flumekit.conventions`): its long name and units.
-    symbol : Mathematical symbol appended to the name (``r"$\\theta$"``).
-    units : Units in UDUNITS spelling, overriding the registry's (e.g. ``"1"`` for a
-        normalised quantity, ``"kN"`` for a scaled one).
-    text : Description replacing the registry's long name.
+    name : str, optional
+        Registered variable (:mod:`flumekit.conventions`): its long name and units.
+    symbol : str, optional
+        Mathematical symbol appended to the name (``r"$\theta$"``).
+    units : str, optional
+        Units in UDUNITS spelling, overriding the registry's (e.g. ``"1"`` for a normalised
+        quantity, ``"kN"`` for a scaled one).
+    text : str, optional
+        Description replacing the registry's long name.
+
+    Returns
+    -------
+    str
+        The label.
+
+    Raises
+    ------
+    ValueError
+        Neither a registered name nor explicit units.
+
+    Examples
+    --------
+    >>> from flumekit.figures.style import label
+    >>> label(text="Capture factor", symbol="$C_f$", units="1")
+    'Capture factor $C_f$ [-]'
     """
     from flumekit.conventions import VARIABLES
 
@@ -215,8 +328,29 @@ def label(name: str | None = None, symbol: str | None = None, units: str | None 
 
 
 def condition(ds) -> str:
-    """"T = 3.5 s, H = 0.25 m" from a run dataset's ``wave_period``/``wave_height`` (an
-    irregular run's "Hm0 = 0.1 m, Tp = 2 s" from ``wave_hm0``, ``wave_tp``, ``wave_te``)."""
+    """Describe a run's wave condition, e.g. "T = 3.5 s, H = 0.25 m".
+
+    From a run dataset's ``wave_period``/``wave_height`` (an irregular run's
+    "Hm0 = 0.1 m, Tp = 2 s" from ``wave_hm0``, ``wave_tp``, ``wave_te``); undeclared (NaN)
+    values are left out.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run's dataset.
+
+    Returns
+    -------
+    str
+        The condition, empty if the dataset declares none.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.figures.style import condition
+    >>> condition(xr.Dataset(coords={"wave_period": 3.5, "wave_height": 0.25}))
+    'T = 3.5 s, H = 0.25 m'
+    """
     import math
 
     parts = []
@@ -230,7 +364,20 @@ def condition(ds) -> str:
 
 
 def run_title(ds, what: str = "") -> str:
-    """Figure title naming a run and its condition: "What: run T3.50_H0.250_r0 (T = 3.5 s, ...)"."""
+    """Compose a figure title naming a run and its condition.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A run's dataset (``run`` and the wave condition, :func:`condition`).
+    what : str, optional
+        What the figure shows.
+
+    Returns
+    -------
+    str
+        "What: run T3.50_H0.250_r0 (T = 3.5 s, ...)", capitalised.
+    """
     run = str(ds["run"].values) if "run" in ds.variables else ""
     cond = condition(ds)
     who = f"run {run} ({cond})" if run and cond else (f"run {run}" if run else cond)
@@ -239,7 +386,20 @@ def run_title(ds, what: str = "") -> str:
 
 
 def runs_title(datasets, what: str) -> str:
-    """Figure title of a campaign figure: how many runs and the span of periods and heights."""
+    """Compose the title of a campaign figure: the number of runs, the periods and heights.
+
+    Parameters
+    ----------
+    datasets : iterable of xarray.Dataset
+        The runs' datasets (:func:`flumekit.figures.groups.runs_of`).
+    what : str
+        What the figure shows.
+
+    Returns
+    -------
+    str
+        "What: n runs, T = ... s, H = ... m".
+    """
     from flumekit.figures.groups import height_of, period_of, runs_of
 
     runs = runs_of(datasets)
@@ -255,7 +415,15 @@ def runs_title(datasets, what: str) -> str:
 
 
 def title(fig, text: str) -> None:
-    """The figure's title (left-aligned above every panel, wrapped to the figure's width)."""
+    """Set the figure's title, left-aligned above every panel, wrapped to the figure's width.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    text : str
+        The title; "x = v unit" groups are kept on one line.
+    """
     import textwrap
 
     # about 13 characters per inch at 9 pt; "T = 3.8 s" stays on one line (no-break spaces
@@ -270,11 +438,26 @@ def title(fig, text: str) -> None:
 
 
 def legend(fig, handles=None, labels=None, ncols: int | None = None, where: str = "lower"):
-    """One legend for the figure, outside every axes (below them by default).
+    """Add one legend for the figure, outside every axes (below them by default).
 
-    Entries of all axes are collected (duplicates by label dropped) unless ``handles`` is
-    given; ``where`` is ``"lower"`` (below the axes), ``"right"`` or ``"upper"`` (above the
-    axes: only for a figure without a title, which takes that place).
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    handles : list of matplotlib.artist.Artist, optional
+        Entries; by default those of all axes (duplicates by label dropped).
+    labels : list of str, optional
+        Their labels; by default the handles' own.
+    ncols : int, optional
+        Columns of the legend; by default 1 on the right, else up to 3.
+    where : {"lower", "right", "upper"}, optional
+        Below the axes, right of them, or above them (only for a figure without a title,
+        which takes that place).
+
+    Returns
+    -------
+    matplotlib.legend.Legend or None
+        The legend, None when there is nothing to list.
     """
     if handles is None:
         seen: dict[str, object] = {}
@@ -311,13 +494,25 @@ def save(fig, *paths: str | Path, check=None, description: str | None = None) ->
     Parameters
     ----------
     fig : matplotlib.figure.Figure
-    *paths : Files to write, one per format.
+        The figure.
+    *paths : str or pathlib.Path
+        Files to write, one per format.
     check : callable, optional
         Called with the figure once it is drawn at the PNG's resolution, before any file is
         written (e.g. :func:`flumekit.figures.check.assert_passes`); it sees the drawn figure,
         so the check and the PNG share one drawing.
     description : str, optional
         What the figure shows, a sentence.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The paths written.
+
+    Raises
+    ------
+    ValueError
+        A suffix that is not a known format.
     """
     from flumekit.io.atomic import atomic_path
 
@@ -350,8 +545,11 @@ def save(fig, *paths: str | Path, check=None, description: str | None = None) ->
 
 
 def _drawn_png(fig, check=None, metadata=None) -> bytes:
-    """The figure drawn once at the PNG's resolution on an Agg canvas, ``check``-ed on that
-    drawing, and encoded as ``savefig`` would write it (same pixels, same metadata)."""
+    """Draw the figure once at the PNG's resolution on an Agg canvas, and encode it.
+
+    ``check`` runs on that drawing; the PNG is encoded as ``savefig`` would write it (same
+    pixels, same metadata).
+    """
     from io import BytesIO
 
     import matplotlib.image
@@ -374,9 +572,21 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
 
 @contextmanager
 def laid_out(fig):
-    """Context in which ``fig`` keeps one layout: its layout engine runs once (at the PNG's
-    resolution) on entry and not again in each draw (the figure check, every format saved),
-    where it is the costliest part of a small figure. The engine is restored on exit.
+    """Keep one layout of ``fig`` within the context.
+
+    Its layout engine runs once (at the PNG's resolution) on entry and not again in each draw
+    (the figure check, every format saved), where it is the costliest part of a small figure.
+    The engine is restored on exit.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+
+    Yields
+    ------
+    matplotlib.figure.Figure
+        ``fig``, laid out.
 
     Examples
     --------
@@ -391,8 +601,10 @@ def laid_out(fig):
 
 @contextmanager
 def _layout_once(fig):
-    """See :func:`laid_out`; nothing to do for a figure without a layout engine, or one whose
-    layout is already fixed."""
+    """Run the layout engine once; see :func:`laid_out`.
+
+    Nothing to do for a figure without a layout engine, or one whose layout is already fixed.
+    """
     engine = fig.get_layout_engine()
     if engine is None or not hasattr(engine, "execute") or type(engine).__name__ == \
             "PlaceHolderLayoutEngine":
@@ -435,12 +647,13 @@ def _common_glyphs(path: str, face: int) -> frozenset:
 
 @contextmanager
 def _font_subsets_cached():
-    """Within: matplotlib's TrueType subsetting for PDF (``pdf.fonttype`` 42) remembered per
-    font and glyph set for the life of the process.
+    """Remember matplotlib's TrueType subsetting for PDF within the context.
 
-    Every subset, computed or remembered, is embedded from its saved bytes, re-read: the PDF
-    has the same bytes whichever figure came first. Where matplotlib's private subsetting
-    helper is not the one expected (another matplotlib version), nothing is changed."""
+    Per font and glyph set (``pdf.fonttype`` 42), for the life of the process. Every subset,
+    computed or remembered, is embedded from its saved bytes, re-read: the PDF has the same
+    bytes whichever figure came first. Where matplotlib's private subsetting helper is not the
+    one expected (another matplotlib version), nothing is changed.
+    """
     try:
         from io import BytesIO
 

@@ -1,4 +1,10 @@
-"""Uncertainty figures: the budget of each result per test condition."""
+"""Uncertainty figures: the budget of each result per test condition.
+
+References
+----------
+JCGM 100:2008. Evaluation of measurement data - Guide to the expression of uncertainty in
+measurement (GUM).
+"""
 
 from __future__ import annotations
 
@@ -27,9 +33,11 @@ def _condition_labels(budget: xr.Dataset) -> list[str]:
 
 @register("uncertainty_budget")
 def figure_budget(budget: xr.Dataset, axes=None):
-    """Stacked bars: each component's share of the combined variance of H_I, Kr, θ amplitude
-    and C_f in every condition (the budget of ``budget.nc``), with the combined standard
-    uncertainty, relative to the result, above each bar.
+    """Draw the uncertainty budget as stacked bars, one panel per result.
+
+    Each component's share of the combined variance of H_I, Kr, θ amplitude and C_f in every
+    condition (the budget of ``budget.nc``), with the combined standard uncertainty, relative
+    to the result, above each bar.
 
     Parameters
     ----------
@@ -42,6 +50,12 @@ def figure_budget(budget: xr.Dataset, axes=None):
     Returns
     -------
     matplotlib.figure.Figure
+        Variance shares [%] per condition, four panels.
+
+    References
+    ----------
+    JCGM 100:2008. Evaluation of measurement data - Guide to the expression of uncertainty in
+    measurement (GUM), §5.1.
     """
     import matplotlib
 

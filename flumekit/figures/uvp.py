@@ -3,6 +3,12 @@
 Both take the field dataset of :func:`flumekit.uvp.velocity_field` (dims phase, z, x, with
 ``u_normalised``, ``w_normalised`` and the ``water_depth`` attribute) and return a matplotlib
 ``Figure`` built with the object-oriented API (no pyplot state).
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, §4, Figs. 11-12.
 """
 
 from __future__ import annotations
@@ -45,7 +51,7 @@ def _field_title(field: xr.Dataset, what: str) -> str:
 
 
 def _scales(field: xr.Dataset) -> str:
-    """The normalising scales: U0 = πH/T (Brito et al. 2020, §4) and the depth h."""
+    """Describe the normalising scales: U0 = πH/T (Brito et al. 2020, §4) and the depth h."""
     h = _depth(field)
     if "velocity_scale" not in field.coords and "velocity_scale" not in field:
         return "\n" + f"$h$ = {h:.3f} m"
@@ -54,8 +60,11 @@ def _scales(field: xr.Dataset) -> str:
 
 
 def _strides(x: np.ndarray, z: np.ndarray, n_arrows: int) -> tuple[int, int, float]:
-    """Strides in x and z that put about ``n_arrows`` arrows across the wider extent of the
-    field, on a near-square lattice, and the lattice spacing (in the units of x and z)."""
+    """Return the strides in x and z for about ``n_arrows`` arrows across the field.
+
+    Across the wider extent of the field, on a near-square lattice; also the lattice spacing
+    (in the units of x and z).
+    """
     dx = float(np.min(np.abs(np.diff(x)))) if x.size > 1 else 1.0
     dz = float(np.min(np.abs(np.diff(z)))) if z.size > 1 else 1.0
     extent = max(float(np.ptp(x)) if x.size > 1 else 0.0,
@@ -66,15 +75,17 @@ def _strides(x: np.ndarray, z: np.ndarray, n_arrows: int) -> tuple[int, int, flo
 
 
 def _nice_levels(lim: float, n: int = 10) -> np.ndarray:
-    """Symmetric contour levels on round numbers covering [-lim, lim] (colour-bar ticks at
-    values one can read, not at lim/10 multiples)."""
+    """Return symmetric contour levels on round numbers covering [-lim, lim].
+
+    Colour-bar ticks at values one can read, not at lim/10 multiples.
+    """
     from matplotlib.ticker import MaxNLocator
 
     return MaxNLocator(nbins=n, symmetric=True, steps=[1, 2, 2.5, 5, 10]).tick_values(-lim, lim)
 
 
 def _reference_length(vmax: float) -> float:
-    """A round reference vector no longer than the longest arrow."""
+    """Return a round reference vector length no longer than the longest arrow."""
     if not np.isfinite(vmax) or vmax <= 0:
         return 1.0
     mag = 10 ** np.floor(np.log10(vmax))
@@ -84,7 +95,7 @@ def _reference_length(vmax: float) -> float:
 @register("fig11")
 def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
           arrow: float = 0.9):
-    """Phase-averaged vector field (⟨u⟩, ⟨w⟩)/U0 and contours of ⟨u⟩/U0 (Fig. 11).
+    """Draw the phase-averaged vector field (⟨u⟩, ⟨w⟩)/U0 and contours of ⟨u⟩/U0 (Fig. 11).
 
     Legible at print size: about ``n_arrows`` arrows across each panel on a near-square
     lattice, the longest no longer than ``arrow`` lattice spacings so that arrows never run
@@ -93,16 +104,28 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
 
     Parameters
     ----------
-    field : Field dataset (phase, z, x).
-    phases : t/T of the panels (the nearest phase of the grid is shown).
-    levels : Contour levels of ⟨u⟩/U0; default symmetric, on round numbers covering the
+    field : xarray.Dataset
+        Field dataset (phase, z, x) of :func:`flumekit.uvp.velocity_field`.
+    phases : sequence of float, optional
+        t/T of the panels [-] (the nearest phase of the grid is shown).
+    levels : array_like, optional
+        Contour levels of ⟨u⟩/U0 [-]; default symmetric, on round numbers covering the
         largest magnitude of the shown phases (the colour-bar ticks).
-    n_arrows : Arrows across the wider extent of a panel [-].
-    arrow : Length of the longest arrow in lattice spacings [-] (below 1: no overlap).
+    n_arrows : int, optional
+        Arrows across the wider extent of a panel [-].
+    arrow : float, optional
+        Length of the longest arrow in lattice spacings [-] (below 1: no overlap).
 
     Returns
     -------
-    matplotlib.figure.Figure (two columns wide) with a reference arrow below the panels.
+    matplotlib.figure.Figure
+        Two columns wide, z/h against x/h [-], with a reference arrow below the panels.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 11.
     """
     h = _depth(field)
     x, z = field["x"].values / h, field["z"].values / h
@@ -163,8 +186,11 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
         title(fig, _field_title(field, "Phase-averaged velocity field in front of the flap"))
     return fig
 def _column(field: xr.Dataset, name: str, x: float):
-    """Values of ``name`` (phase, z) at x, linearly interpolated; where both neighbours are not
-    available, the nearest column with data is used and its x is returned."""
+    """Return the values of ``name`` (phase, z) at x, linearly interpolated, and that x.
+
+    Where both neighbours are not available, the nearest column with data is used and its x
+    is returned.
+    """
     da = field[name]
     col = da.interp(x=x)
     if np.any(np.isfinite(col.values)):
@@ -180,13 +206,34 @@ def _column(field: xr.Dataset, name: str, x: float):
 @register("fig12")
 def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
           truth: xr.Dataset | None = None):
-    """⟨u⟩/U0 and ⟨w⟩/U0 profiles at x/h = ``x_over_h`` (Fig. 12).
+    """Draw the ⟨u⟩/U0 and ⟨w⟩/U0 profiles at x/h = ``x_over_h`` (Fig. 12).
 
     Where the beams do not resolve a component at that section (with the default mounting the
     inclined beams end at x ≈ -0.12 m, so ⟨w⟩ is not measured at x/h = -0.11), the nearest
-    section with data is used and named in the legend. ``truth`` (a field on the same grid,
-    e.g. the virtual flume's) is drawn dashed. Phases at which neither component has data
-    at the section get no panel (the figure sizes itself to what it has).
+    section with data is used and named in the legend. Phases at which neither component has
+    data at the section get no panel (the figure sizes itself to what it has).
+
+    Parameters
+    ----------
+    field : xarray.Dataset
+        Field dataset (phase, z, x) of :func:`flumekit.uvp.velocity_field`.
+    x_over_h : float, optional
+        Section x/h [-] (negative: seaward of the hinge).
+    phases : sequence of float, optional
+        t/T of the profiles [-].
+    truth : xarray.Dataset, optional
+        A field on the same grid (e.g. the virtual flume's), drawn dashed.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        z/h against ⟨u⟩/U0 and ⟨w⟩/U0 [-], one panel per phase with data.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 12.
     """
     h = _depth(field)
     x = x_over_h * h

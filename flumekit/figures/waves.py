@@ -2,6 +2,12 @@
 
 All read the processed waves dataset of one run (:func:`flumekit.waves.analyse_run`); the
 separation figure also takes the output of :func:`flumekit.waves.separate`.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Figs. 5a and 6a.
 """
 
 from __future__ import annotations
@@ -47,7 +53,7 @@ def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, 
 
 
 def _scales(scale: float, period: float) -> str:
-    """The normalising scales of the elevation figures, for the title."""
+    """Describe the normalising scales of the elevation figures, for the title."""
     return f"$A_s$ = {scale:.3f} m, $T$ = {period:.2f} s"
 
 
@@ -57,18 +63,28 @@ def _probe_text(waves: xr.Dataset, p: str) -> str:
 
 @register("fig05a")
 def figure_5a(waves: xr.Dataset, probe=None, ax=None):
-    """Full time series of the normalised elevation η/A_s against t/T (Brito et al. 2020, Fig. 5a).
+    """Draw the full time series of the normalised elevation η/A_s against t/T (Fig. 5a).
 
     Parameters
     ----------
-    waves : Processed waves dataset of one run (output of ``analyse_run``).
-    probe : Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : Axes to draw into; default a new two-column figure.
+    waves : xarray.Dataset
+        Processed waves dataset of one run (output of :func:`flumekit.waves.analyse_run`).
+    probe : str, optional
+        Probe to show; default the probe closest to the dataset's ``x_ref``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new two-column figure.
 
     Returns
     -------
-    matplotlib.figure.Figure. The dash-dotted line is the amplitude scale A_s (η/A_s = 1), the
-    vertical line the start of the quasi-steady window.
+    matplotlib.figure.Figure
+        η/A_s [-] against t/T [-]. The dash-dotted line is the amplitude scale A_s
+        (η/A_s = 1), the vertical line the start of the quasi-steady window.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 5a.
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
@@ -89,19 +105,32 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
 
 @register("fig06a")
 def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=None, ax=None):
-    """Five consecutive waves of the normalised elevation (Brito et al. 2020, Fig. 6a).
+    """Draw five consecutive waves of the normalised elevation (Brito et al. 2020, Fig. 6a).
 
     Parameters
     ----------
-    waves : Processed waves dataset of one run (output of ``analyse_run``).
-    start : First t/T shown [-] (the paper: 65).
-    n_waves : Number of periods shown [-].
-    probe : Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : Axes to draw into; default a new two-column figure.
+    waves : xarray.Dataset
+        Processed waves dataset of one run (output of :func:`flumekit.waves.analyse_run`).
+    start : float, optional
+        First t/T shown [-] (the paper: 65).
+    n_waves : int, optional
+        Number of periods shown [-].
+    probe : str, optional
+        Probe to show; default the probe closest to the dataset's ``x_ref``.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; default a new two-column figure.
 
     Returns
     -------
-    matplotlib.figure.Figure with the amplitude scale as a dash-dotted line at η/A_s = 1.
+    matplotlib.figure.Figure
+        η/A_s [-] against t/T [-], with the amplitude scale as a dash-dotted line at
+        η/A_s = 1.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Fig. 6a.
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     stop = start + n_waves
@@ -123,14 +152,14 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
 
 
 def _spans(mask: np.ndarray) -> list[tuple[int, int]]:
-    """(first, last) indices of each run of True in ``mask``."""
+    """Return the (first, last) indices of each run of True in ``mask``."""
     edges = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
     return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
 
 
 @register("separation")
 def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
-    """The incident/reflected separation of one run: what a wave engineer checks first.
+    """Draw the incident/reflected separation of one run: what a wave engineer checks first.
 
     (a) Incident and reflected elevation at the reference point ``x_ref`` over ``n_waves``
     periods from the start of the separated window; (b) their variance density spectra
@@ -141,17 +170,25 @@ def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
 
     Parameters
     ----------
-    waves : Output of :func:`flumekit.waves.analyse_run` (a processed waves dataset) or of
-        :func:`flumekit.waves.separate`: ``eta_incident``, ``eta_reflected`` (time),
-        ``spectrum_incident``, ``spectrum_reflected``, ``masked`` (frequency),
-        ``reflection_coefficient``, ``incident_height``.
-    n_waves : Periods shown in (a) [-]; the whole separated series if the dataset gives no
-        period.
-    n_bins : Periodogram bins per band of the spectra in (b) [-]; 1 shows the periodogram.
+    waves : xarray.Dataset
+        Output of :func:`flumekit.waves.analyse_run` (a processed waves dataset) or of
+        :func:`flumekit.waves.separate`: ``eta_incident``, ``eta_reflected`` [m] over time,
+        ``spectrum_incident``, ``spectrum_reflected`` [m2 s], ``masked`` over frequency,
+        ``reflection_coefficient`` [-], ``incident_height`` [m].
+    n_waves : int, optional
+        Periods shown in (a) [-]; the whole separated series if the dataset gives no period.
+    n_bins : int, optional
+        Periodogram bins per band of the spectra in (b) [-]; 1 shows the periodogram.
 
     Returns
     -------
-    matplotlib.figure.Figure (two columns wide).
+    matplotlib.figure.Figure
+        Two columns wide.
+
+    References
+    ----------
+    Bendat, J. S. & Piersol, A. G. (2010). Random Data: Analysis and Measurement Procedures,
+    4th ed. Wiley, §11.5.
     """
     need = ("eta_incident", "eta_reflected", "spectrum_incident", "spectrum_reflected",
             "reflection_coefficient", "incident_height")

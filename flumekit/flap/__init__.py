@@ -6,6 +6,7 @@ gravity and PTO torques of Eq. (11) as resisting torques.
 """
 
 from flumekit.flap.analysis import DEFAULT_CUTOFF, analyse_irregular_run, analyse_run
+from flumekit.flap.comparison import compare_irregular_run, compare_run
 from flumekit.flap.encoder import (
     WireAngle,
     angle_from_wire,
@@ -40,6 +41,7 @@ from flumekit.flap.pressure import (
     pressure_force,
     thoma_coefficient,
 )
+from flumekit.flap.summary import steady_window, summarise_run
 from flumekit.flap.torque import (
     friction_torque,
     gravity_torque,
@@ -61,4 +63,5 @@ __all__ = [
     "thoma_coefficient",
     "friction_torque", "gravity_torque", "hydrodynamic_torque", "inertia_torque",
     "pressure_torque",
+    "compare_run", "compare_irregular_run", "steady_window", "summarise_run",
 ]

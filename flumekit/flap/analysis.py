@@ -223,6 +223,20 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         :mod:`flumekit.flap.torque`), T_h, flow and power time series; phase averages over
         the quasi-steady window of θ; scalars K_p, I_p, R², θ and T_h amplitudes, mean power,
         W_I, C_f and the window. Every name is in :mod:`flumekit.conventions`.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        More encoder samples outside the domain of Eq. (1) than ``max_flagged_fraction``.
+    ValueError
+        A non-positive period or incident height, fewer than two quasi-steady cycles, or a
+        pressure record the Eq. (13) fit cannot use.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
     """
     m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
                   cutoff=cutoff, zero_count=zero_count,

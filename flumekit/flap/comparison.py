@@ -15,7 +15,7 @@ The linear model's PTO damping ν_pto (``linear_pto_damping``, :data:`LINEAR_PTO
   :func:`flumekit.hydro.response.optimal_pto_damping`).
 
 Brito et al. (2020, App. A) say only that ν_PTO was "calculated following [14]" (Renzi & Dias
-2012). Tested on the virtual flume's T = 3.5 s, H = 0.25 m run (issue 16), the optimal damping
+2012). On the virtual flume's T = 3.5 s, H = 0.25 m run the optimal damping
 (≈ 150 N m s: the flap is near resonance, so ν_opt ≈ ν) gives C_f ≈ 0.57, the channel's bound
 b/(2w), and a linear θ 4.5 times the measured one (78 % below), far from the paper's 0.33 and
 37 %; the energy-equivalent damping (≈ 450 N m s: C_f 0.43, 54 % below) is closer, hence the
@@ -32,6 +32,14 @@ An irregular run (:func:`compare_irregular_run`) has no window or phase: the lin
 the spectral sum of Eq. (A1) over the incident spectrum (:func:`spectral_response`), the
 simulator is driven by the separated incident wave over the analysed span, and the three give
 the mean power, capture width and capture width ratio with the same J.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Appendix A.
+Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
+channel. J. Fluid Mech. 701, 482-510 (RD12).
 """
 
 from __future__ import annotations
@@ -60,7 +68,7 @@ _DAMPING_COMMENT = {
 def bem_container(depth: float, flap_width: float, hinge_height: float, thickness: float,
                   hydrostatic_stiffness: float, omega: tuple[float, float, int],
                   panel_size: float) -> xr.Dataset:
-    """Coefficient container of the real, thick flap on its foundation by BEM (Capytaine), A∞.
+    """Build the coefficient container of the thick flap on its foundation by BEM, with A∞.
 
     Open water: the channel walls are not modelled. Capytaine's finite-depth Green function
     needs kh above about 0.15: the low-frequency end is held constant by the impulse response
@@ -68,10 +76,32 @@ def bem_container(depth: float, flap_width: float, hinge_height: float, thicknes
 
     Parameters
     ----------
-    depth, flap_width, hinge_height, thickness : Geometry [m].
-    hydrostatic_stiffness : C [N m rad-1].
-    omega : (ω_min [rad s-1], ω_max [rad s-1], n) of evenly spaced angular frequencies.
-    panel_size : Panel size of the mesh [m].
+    depth : float
+        Water depth h [m].
+    flap_width : float
+        Flap width w [m].
+    hinge_height : float
+        Hinge height above the bed [m].
+    thickness : float
+        Flap thickness [m].
+    hydrostatic_stiffness : float
+        C [N m rad-1].
+    omega : tuple of (float, float, int)
+        (ω_min [rad s-1], ω_max [rad s-1], n) of evenly spaced angular frequencies.
+    panel_size : float
+        Panel size of the mesh [m].
+
+    Returns
+    -------
+    xarray.Dataset
+        The container of :func:`flumekit.hydro.coefficients.hydro_dataset` with
+        ``added_inertia_infinite`` [kg m2] from the Ogilvie relation (median, spread not
+        checked).
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        Capytaine is not installed.
     """
     from flumekit.errors import FlumekitError
     from flumekit.flap import bem
@@ -88,12 +118,26 @@ def bem_container(depth: float, flap_width: float, hinge_height: float, thicknes
 
 
 def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Dataset:
-    """The coefficient container as the comparison stores it: real and imaginary parts, and the
-    simulator's radiation model fitted once for every run.
+    """Return the coefficient container as the comparison stores it, with the radiation model.
 
-    The radiation kernel K(t) over ``irf_duration`` [s] (sampled at 0.01 s) is fitted by the
+    Real and imaginary parts, and the simulator's radiation model fitted once for every run:
+    the radiation kernel K(t) over ``irf_duration`` (sampled at 0.01 s) is fitted by the
     state-space model of :func:`flumekit.hydro.radiation.fit_state_space`, stored by
     :func:`flumekit.hydro.radiation.state_space_dataset` (read back by :func:`simulated`).
+
+    Parameters
+    ----------
+    container : xarray.Dataset
+        Coefficient container (:mod:`flumekit.hydro.coefficients`) with
+        ``added_inertia_infinite``.
+    irf_duration : float, optional
+        Length of the fitted impulse response [s].
+
+    Returns
+    -------
+    xarray.Dataset
+        The container with complex variables split and the state-space poles [s-1] and
+        residues [N m] over ``radiation_mode``.
     """
     from flumekit.hydro.coefficients import split_complex
     from flumekit.hydro.radiation import fit_state_space, impulse_response, state_space_dataset
@@ -104,16 +148,58 @@ def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Da
 
 
 def energy_equivalent_damping(flap: xr.Dataset) -> float:
-    """ν_pto [N m s] absorbing the measured mean power at the measured θ̇ (steady window)."""
+    """Return the PTO damping that absorbs the measured mean power at the measured θ̇.
+
+    ν_pto = W̄_out / mean(θ̇²) over the steady window.
+
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        A regular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
+        ``mean_power`` [W], ``steady_start`` and ``steady_end`` [s].
+
+    Returns
+    -------
+    float
+        ν_pto [N m s].
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.flap.comparison import energy_equivalent_damping
+    >>> t = np.arange(0.0, 10.0, 0.01)
+    >>> flap = xr.Dataset({"theta_dot": ("time", 0.2 * np.sin(2 * np.pi * t)),
+    ...                    "mean_power": 2.0, "steady_start": 0.0, "steady_end": 9.99},
+    ...                   coords={"time": t})
+    >>> round(energy_equivalent_damping(flap), 3)  # 2 W / (0.2² / 2)
+    100.0
+    """
     t = flap["time"].values
     inside = (t >= float(flap["steady_start"])) & (t <= float(flap["steady_end"]))
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
 def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
-    """The coefficient container (as written, real and imaginary parts) at one period or an
-    array of periods [s], in the layout of :func:`flumekit.hydro.response.response` (cubic
-    interpolation over the frequency grid)."""
+    """Interpolate the coefficient container to one period or an array of periods.
+
+    Cubic interpolation over the frequency grid, into the layout of
+    :func:`flumekit.hydro.response.response`.
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container as written (real and imaginary parts over
+        ``angular_frequency`` [rad s-1]).
+    period : float or array_like
+        Wave period(s) [s].
+
+    Returns
+    -------
+    xarray.Dataset
+        ``added_inertia`` [kg m2], ``radiation_damping`` [N m s] and
+        ``excitation_torque_real``/``_imag`` [N m m-1] over ``period`` [s], with the
+        container's attributes.
+    """
     names = ["added_inertia", "radiation_damping", "excitation_torque_real",
              "excitation_torque_imag"]
     periods = np.atleast_1d(np.asarray(period, dtype=float))
@@ -127,21 +213,44 @@ def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
                  stiffness: float, pto_damping: str = "energy_equivalent"
                  ) -> tuple[dict, xr.Dataset]:
-    """Eq. (A1) response at the run's period.
+    """Compute the linear model's response (Brito Eq. A1) at the run's period.
 
     Parameters
     ----------
-    flap, waves : The run's flap and waves datasets (measured period, incident height, steady
-        window, phase grid).
-    hydro : Coefficient container as written (real and imaginary parts).
-    inertia : Flap moment of inertia about the hinge [kg m2].
-    stiffness : Hydrostatic stiffness C [N m rad-1].
-    pto_damping : How ν_pto is set, one of :data:`LINEAR_PTO_DAMPING` (module notes).
+    flap : xarray.Dataset
+        The run's flap product (steady window, ``theta_dot``, ``mean_power``, phase grid).
+    waves : xarray.Dataset
+        The run's waves product (``measured_period`` [s], ``incident_height`` [m]).
+    hydro : xarray.Dataset
+        Coefficient container as written (real and imaginary parts).
+    inertia : float
+        Flap moment of inertia about the hinge [kg m2].
+    stiffness : float
+        Hydrostatic stiffness C [N m rad-1].
+    pto_damping : str, optional
+        How ν_pto is set, one of :data:`LINEAR_PTO_DAMPING` (module notes).
 
     Returns
     -------
-    The :data:`SCALARS` and :data:`PHASED` values, and a dataset with ``pto_damping`` (its
-    ``method`` attribute says how it was set).
+    values : dict
+        The :data:`SCALARS` (θ amplitude [rad], torque amplitude [N m], mean power [W],
+        capture factor [-]) and :data:`PHASED` phase averages (θ [rad], θ̇ [rad s-1],
+        power [W]) of the linear model.
+    extra : xarray.Dataset
+        ``pto_damping`` [N m s]; its ``method`` attribute says how it was set.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``pto_damping``.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (A1).
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
     """
     from flumekit.hydro.response import optimal_pto_damping, response
 
@@ -167,13 +276,39 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
 
 def periodic_extension(eta: xr.DataArray, period: float, before: int,
                        after: int) -> xr.DataArray:
-    """The steady incident wave continued periodically ``before``/``after`` periods [-].
+    """Continue the steady incident wave periodically by whole periods before and after.
 
     The separation defines the incident wave only in the quasi-steady window (NaN elsewhere);
     the simulator starts from rest, so the record is continued backwards under a half-cosine
     ramp (spin-up to the steady state before the window) and forwards unramped (so that the
     simulator's end taper falls after the window). Periodic continuation is exact for the
     regular waves of the window.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Incident elevation [m] over ``time`` [s], finite in the steady window, uniformly
+        sampled.
+    period : float
+        Wave period [s].
+    before : int
+        Number of periods added before the window (ramped from rest).
+    after : int
+        Number of periods added after the window.
+
+    Returns
+    -------
+    xarray.DataArray
+        ``eta_incident`` [m] over the extended ``time`` [s].
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.flap.comparison import periodic_extension
+    >>> t = np.arange(0.0, 4.0, 0.1)
+    >>> eta = xr.DataArray(np.cos(np.pi * t), dims="time", coords={"time": t})
+    >>> periodic_extension(eta, 2.0, before=1, after=1).sizes["time"]
+    80
     """
     ok = np.flatnonzero(np.isfinite(eta.values))
     t, v = eta["time"].values[ok], eta.values[ok]
@@ -189,8 +324,7 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
 
 
 class _Device(NamedTuple):
-    # simulate_run reads flap.inertia and pto only (its signature is being generalised to
-    # parameters in flumekit.hydro.simulation; until then it gets just these two)
+    # simulate_run reads flap.inertia and pto only, so it gets just these two
     flap: Flap
     pto: PTO
 
@@ -198,23 +332,36 @@ class _Device(NamedTuple):
 def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
               pto: PTO, depth: float, dt: float, friction: bool = True,
               spin_up_periods: int = 20) -> tuple[dict, float]:
-    """The simulator driven by the run's separated incident wave, summarised as the measured
-    run is.
+    """Run the simulator on the run's separated incident wave and summarise it as measured.
 
     Parameters
     ----------
-    flap, waves : The run's flap and waves datasets.
-    hydro : Coefficient container as stored (:func:`stored_container`).
-    flap_params : The flap (inertia, width).
-    pto : The PTO (anchors, bore, pressures, LuGre friction).
-    depth : Water depth [m].
-    dt : Simulator time step [s].
-    friction : Include the LuGre friction.
-    spin_up_periods : Periods of ramped spin-up before the steady incident wave.
+    flap : xarray.Dataset
+        The run's flap product (steady window, fitted hydraulic parameters, phase grid).
+    waves : xarray.Dataset
+        The run's waves product (``eta_incident`` [m], ``measured_period`` [s],
+        ``incident_height`` [m], steady window).
+    hydro : xarray.Dataset
+        Coefficient container as stored (:func:`stored_container`).
+    flap_params : flumekit.campaign.Flap
+        The flap (inertia, width).
+    pto : flumekit.campaign.PTO
+        The PTO (anchors, bore, pressures, LuGre friction).
+    depth : float
+        Water depth [m].
+    dt : float
+        Simulator time step [s].
+    friction : bool, optional
+        Include the LuGre friction.
+    spin_up_periods : int, optional
+        Periods of ramped spin-up before the steady incident wave.
 
     Returns
     -------
-    The :data:`SCALARS` and :data:`PHASED` values, and :func:`time_domain_difference`.
+    values : dict
+        The :data:`SCALARS` and :data:`PHASED` values of the simulation.
+    theta_difference : float
+        :func:`time_domain_difference` of the simulated and measured θ [-].
     """
     from flumekit.flap.simulator import simulate_run
     from flumekit.flap.summary import summarise_run
@@ -241,12 +388,37 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
 
 def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
                            window: tuple[float, float]) -> float:
-    """RMS of θ_sim(t) - θ(t) over ``window`` [s], as a fraction of the θ amplitude.
+    """Compute the RMS of θ_sim(t) − θ(t) over a window, as a fraction of the θ amplitude.
 
     Both are on the flume's clock (the simulator is driven by the separated incident wave), so
-    no phase reference is involved (issue 7's acceptance measure). The window is where both
-    the flap and the separated incident wave are quasi-steady: before the latter the simulator
-    still runs on the spin-up extension.
+    no phase reference is involved. The window is where both the flap and the separated
+    incident wave are quasi-steady: before the latter the simulator still runs on the spin-up
+    extension.
+
+    Parameters
+    ----------
+    theta_sim : xarray.DataArray
+        Simulated θ [rad] over ``time`` [s].
+    flap : xarray.Dataset
+        The measured run's ``theta`` [rad] over ``time`` [s] and ``theta_amplitude`` [rad].
+    window : tuple of float
+        (start, end) [s].
+
+    Returns
+    -------
+    float
+        The relative RMS difference [-].
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.flap.comparison import time_domain_difference
+    >>> t = np.linspace(0.0, 10.0, 1001)
+    >>> flap = xr.Dataset({"theta": ("time", 0.1 * np.sin(t)), "theta_amplitude": 0.1},
+    ...                   coords={"time": t})
+    >>> sim = xr.DataArray(0.1 * np.sin(t) + 0.01, dims="time", coords={"time": t})
+    >>> round(time_domain_difference(sim, flap, (0.0, 10.0)), 6)
+    0.1
     """
     t = flap["time"].values
     inside = (t >= window[0]) & (t <= window[1])
@@ -259,14 +431,53 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
                 friction: bool = True, spin_up_periods: int = 20,
                 linear_pto_damping: str = "energy_equivalent") -> xr.Dataset:
-    """The experiment, the linear model and (optionally) the simulator along ``source``.
+    """Compare a regular run with the linear model and (optionally) the simulator.
 
-    Arguments as in :func:`linear_model` (``linear_pto_damping`` is its ``pto_damping``) and
-    :func:`simulated` (``simulator=False`` leaves the simulator out). Returns the
-    :data:`SCALARS` over ``source``, the :data:`PHASED` over (``source``, ``phase``),
-    ``pto_damping`` of the linear model (its ``method`` attribute, and the dataset's
-    ``linear_pto_damping`` attribute, say how it was set) and, with the simulator,
-    ``theta_relative_rms_difference``.
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        The run's flap product (:func:`flumekit.flap.analysis.analyse_run`).
+    waves : xarray.Dataset
+        The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
+    hydro : xarray.Dataset
+        Coefficient container as stored (:func:`stored_container`).
+    flap_params : flumekit.campaign.Flap
+        The flap (inertia, buoyancy stiffness, width).
+    pto : flumekit.campaign.PTO
+        The PTO (anchors, bore, pressures, LuGre friction).
+    depth : float
+        Water depth [m].
+    dt : float, optional
+        Simulator time step [s].
+    simulator : bool, optional
+        Run the simulator (else experiment and linear model only).
+    friction : bool, optional
+        Include the LuGre friction in the simulator.
+    spin_up_periods : int, optional
+        Periods of ramped spin-up before the steady incident wave.
+    linear_pto_damping : str, optional
+        How the linear model's ν_pto is set, one of :data:`LINEAR_PTO_DAMPING`.
+
+    Returns
+    -------
+    xarray.Dataset
+        The :data:`SCALARS` over ``source`` (experiment, analytical, simulator), the
+        :data:`PHASED` over (``source``, ``phase``), ``pto_damping`` [N m s] of the linear
+        model (its ``method`` attribute, and the dataset's ``linear_pto_damping`` attribute,
+        say how it was set) and, with the simulator, ``theta_relative_rms_difference`` [-].
+
+    Raises
+    ------
+    ValueError
+        An unknown ``linear_pto_damping``.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (A1).
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
     """
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
     sources["analytical"], extra = linear_model(flap, waves, hydro, flap_params.inertia,
@@ -298,9 +509,38 @@ IRREGULAR_SCALARS = ("mean_power", "capture_width", "capture_width_ratio",
 
 
 def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Frequencies [Hz], widths Δf [Hz] and variance densities [m2 s] of a band-averaged
-    one-sided spectrum over ``frequency``: each bin reaches halfway to its neighbours (the
-    end bins as far outwards as inwards), so a uniform grid gets Δf = its step."""
+    """Return the frequencies, widths and variance densities of a band-averaged spectrum.
+
+    Each bin reaches halfway to its neighbours (the end bins as far outwards as inwards), so a
+    uniform grid gets Δf = its step.
+
+    Parameters
+    ----------
+    spectrum : xarray.DataArray
+        One-sided variance density [m2 s] over increasing ``frequency`` [Hz].
+
+    Returns
+    -------
+    frequency : numpy.ndarray
+        Bin centres [Hz].
+    width : numpy.ndarray
+        Bin widths Δf [Hz].
+    density : numpy.ndarray
+        Variance densities [m2 s], NaN as 0.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two frequencies, or frequencies not increasing.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.flap.comparison import spectral_bins
+    >>> s = xr.DataArray([1.0, 2.0, 4.0], dims="frequency", coords={"frequency": [0.1, 0.2, 0.4]})
+    >>> spectral_bins(s)[1].round(3).tolist()
+    [0.1, 0.15, 0.2]
+    """
     f = np.asarray(spectrum["frequency"].values, dtype=float)
     s = np.asarray(spectrum.values, dtype=float)
     if f.ndim != 1 or f.size < 2 or np.any(np.diff(f) <= 0):
@@ -312,8 +552,9 @@ def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nd
 
 def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
                       stiffness: float, pto_damping: float) -> dict:
-    """Linear flap response to an irregular sea as the sum of the regular-wave responses
-    (Eq. A1) over the incident spectrum.
+    """Compute the linear flap response to an irregular sea as a sum over its spectrum.
+
+    The regular-wave responses (Eq. A1) summed over the bins of the incident spectrum.
 
     Each bin of the one-sided spectrum S_I(f) is a regular component of amplitude
     a² = 2 S_I(f) Δf with random phase, so the mean power is Σ 2 S_I(f) Δf P_1(f), with
@@ -322,22 +563,38 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
 
     Parameters
     ----------
-    hydro : Coefficient container as written (real and imaginary parts over
+    hydro : xarray.Dataset
+        Coefficient container as written (real and imaginary parts over
         ``angular_frequency``, attributes ``depth``, ``flap_width``, ``rho``, ``g``).
-    spectrum : One-sided incident variance density at the flap over ``frequency`` [m2 s]
+    spectrum : xarray.DataArray
+        One-sided incident variance density at the flap [m2 s] over ``frequency`` [Hz]
         (band-averaged; bins as :func:`spectral_bins`).
-    inertia : Flap moment of inertia about the hinge [kg m2].
-    stiffness : Hydrostatic stiffness C [N m rad-1].
-    pto_damping : Linear PTO damping ν_pto [N m s].
+    inertia : float
+        Flap moment of inertia about the hinge [kg m2].
+    stiffness : float
+        Hydrostatic stiffness C [N m rad-1].
+    pto_damping : float
+        Linear PTO damping ν_pto [N m s].
 
     Returns
     -------
-    dict with ``mean_power`` [W], ``theta_significant_amplitude`` 2 sqrt(m0_θ) [rad],
-    ``torque_significant_amplitude`` [N m] (of the wave torque on the moving flap, as
-    :func:`flumekit.hydro.response.response`) and ``variance_outside`` (the fraction of the
-    incident variance at frequencies outside the coefficients' grid, left out) and
-    ``nan_bins`` (bins of the spectrum that are NaN, masked by the separation: counted as
-    empty, their number said).
+    dict
+        ``mean_power`` [W], ``theta_significant_amplitude`` 2 sqrt(m0_θ) [rad],
+        ``torque_significant_amplitude`` [N m] (of the wave torque on the moving flap, as
+        :func:`flumekit.hydro.response.response`), ``variance_outside`` [-] (the fraction of
+        the incident variance at frequencies outside the coefficients' grid, left out) and
+        ``nan_bins`` (bins of the spectrum that are NaN, masked by the separation: counted as
+        empty, their number said).
+
+    Raises
+    ------
+    ValueError
+        The spectrum holds no variance, or has fewer than two increasing frequencies.
+
+    References
+    ----------
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.37).
     """
     from flumekit.hydro.response import response
 
@@ -361,8 +618,21 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
 
 
 def span_equivalent_damping(flap: xr.Dataset) -> float:
-    """ν_pto [N m s] absorbing the measured mean power at the measured θ̇ over the analysed
-    span of an irregular run: P̄ / mean(θ̇²)."""
+    """Return the PTO damping that absorbs the measured mean power over an irregular run.
+
+    ν_pto = P̄ / mean(θ̇²) over the analysed span.
+
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        An irregular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
+        ``mean_power`` [W], ``analysis_start`` and ``analysis_end`` [s].
+
+    Returns
+    -------
+    float
+        ν_pto [N m s].
+    """
     t = flap["time"].values
     inside = (t >= float(flap["analysis_start"])) & (t <= float(flap["analysis_end"]))
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
@@ -371,14 +641,45 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
 def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset,
                            inertia: float, stiffness: float,
                            pto_damping: str = "energy_equivalent") -> tuple[dict, xr.Dataset]:
-    """The linear model (Eq. A1) of an irregular run: :func:`spectral_response` over the
-    waves product's ``spectrum_incident``.
+    """Compute the linear model (Eq. A1) of an irregular run, summed over its spectrum.
 
-    ``pto_damping``: ``"energy_equivalent"`` ν = P̄ / mean(θ̇²) over the analysed span
-    (:func:`span_equivalent_damping`), or ``"optimal"``, the single damping that maximises the
-    spectral mean power of this sea state (bounded scalar search; the irregular counterpart of
-    RD12 Eq. 2.40). Returns the :data:`IRREGULAR_SCALARS` (CWR with the waves product's J and
-    the flap width of ``hydro``) and a dataset with ``pto_damping``.
+    :func:`spectral_response` over the waves product's ``spectrum_incident``.
+
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        The run's flap product (analysed span, ``theta_dot``, ``mean_power``).
+    waves : xarray.Dataset
+        The run's waves product (``spectrum_incident`` [m2 s], ``energy_flux`` [W m-1]).
+    hydro : xarray.Dataset
+        Coefficient container as written (real and imaginary parts).
+    inertia : float
+        Flap moment of inertia about the hinge [kg m2].
+    stiffness : float
+        Hydrostatic stiffness C [N m rad-1].
+    pto_damping : {"energy_equivalent", "optimal"}, optional
+        ν = P̄ / mean(θ̇²) over the analysed span (:func:`span_equivalent_damping`), or the
+        single damping that maximises the spectral mean power of this sea state (bounded
+        scalar search; the irregular counterpart of RD12 Eq. 2.40).
+
+    Returns
+    -------
+    values : dict
+        The :data:`IRREGULAR_SCALARS` (mean power [W], capture width [m], CWR [-] with the
+        waves product's J and the flap width of ``hydro``, significant amplitudes [rad],
+        [N m]).
+    extra : xarray.Dataset
+        ``pto_damping`` [N m s] with how it was set and the variance left out.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``pto_damping``, or an empty spectrum.
+
+    References
+    ----------
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510, Eqs. (2.37), (2.40).
     """
     from scipy.optimize import minimize_scalar
 
@@ -426,12 +727,35 @@ def _capture(values: dict, flux: float, width: float) -> None:
 
 
 def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.DataArray:
-    """The incident wave continued by its mirror image ``before``/``after`` seconds [s].
+    """Continue the incident wave by its mirror image before and after its finite span.
 
     A random sea has no period to continue, but its time reverse has the same spectrum:
     η(t₀ − s) = η(t₀ + s) before the first finite sample (under a half-cosine ramp from rest,
     the simulator's spin-up) and η(t₁ + s) = η(t₁ − s) after the last (unramped, so that the
     excitation filter's end taper falls after the analysed span).
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Incident elevation [m] over ``time`` [s], uniformly sampled where finite.
+    before : float
+        Duration added before the first finite sample [s] (at most the record's length).
+    after : float
+        Duration added after the last finite sample [s] (at most the record's length).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``eta_incident`` [m] over the extended ``time`` [s].
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.flap.comparison import mirrored_extension
+    >>> t = np.arange(5.0)
+    >>> eta = xr.DataArray([0.0, 1.0, 2.0, 3.0, 4.0], dims="time", coords={"time": t})
+    >>> mirrored_extension(eta, before=0.0, after=2.0).values.tolist()
+    [0.0, 1.0, 2.0, 3.0, 4.0, 3.0, 2.0]
     """
     ok = np.flatnonzero(np.isfinite(eta.values))
     t, v = eta["time"].values[ok], eta.values[ok]
@@ -449,8 +773,7 @@ def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.Dat
 def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *,
                         flap_params: Flap, pto: PTO, dt: float, friction: bool = True,
                         spin_up: float = 60.0) -> tuple[dict, float]:
-    """The simulator driven by the run's separated incident wave at x = 0, over the analysed
-    span of an irregular run.
+    """Run the simulator on an irregular run's separated incident wave over its analysed span.
 
     The incident elevation is used where it is finite; where it does not reach ``spin_up``
     seconds before the span (or 30 s past it), it is continued by
@@ -458,10 +781,36 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
     measured one, and θ and the hydrodynamic torque get the statistics of
     :func:`flumekit.performance.motion_statistics`.
 
+    Parameters
+    ----------
+    flap : xarray.Dataset
+        The run's flap product (analysed span, ``theta`` [rad], fitted hydraulic parameters).
+    waves : xarray.Dataset
+        The run's waves product (``eta_incident`` [m] at x = 0, ``energy_flux`` [W m-1]).
+    hydro : xarray.Dataset
+        Coefficient container as stored (:func:`stored_container`).
+    flap_params : flumekit.campaign.Flap
+        The flap (inertia, width).
+    pto : flumekit.campaign.PTO
+        The PTO (anchors, bore, pressures, LuGre friction).
+    dt : float
+        Simulator time step [s].
+    friction : bool, optional
+        Include the LuGre friction.
+    spin_up : float, optional
+        Seconds of incident wave run before the analysed span [s].
+
     Returns
     -------
-    The :data:`IRREGULAR_SCALARS` (CWR with the waves product's J) and the RMS of
-    θ_sim(t) − θ(t) over the span as a fraction of the measured θ's RMS.
+    values : dict
+        The :data:`IRREGULAR_SCALARS` of the simulation (CWR with the waves product's J).
+    theta_difference : float
+        RMS of θ_sim(t) − θ(t) over the span as a fraction of the measured θ's RMS [-].
+
+    Raises
+    ------
+    ValueError
+        The separated incident wave does not cover the analysed span.
     """
     from flumekit.flap.power import window_mean
     from flumekit.flap.simulator import simulate_run
@@ -503,22 +852,33 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
                           simulator: bool = True, friction: bool = True,
                           spin_up: float = 60.0,
                           linear_pto_damping: str = "energy_equivalent") -> xr.Dataset:
-    """An irregular run: the experiment, the linear model (spectral sum of Eq. A1) and the
-    simulator (driven by the measured incident wave) along ``source``.
+    """Compare an irregular run with the linear model and (optionally) the simulator.
+
+    The experiment, the linear model (spectral sum of Eq. A1) and the simulator (driven by the
+    measured incident wave) along ``source``.
 
     Parameters
     ----------
-    flap : The run's flap product (:func:`flumekit.flap.analysis.analyse_irregular_run`).
-    waves : The run's waves product (``spectrum_incident``, ``eta_incident``,
-        ``energy_flux``).
-    hydro : Coefficient container as stored (:func:`stored_container`).
-    flap_params : The flap (inertia, stiffness, width).
-    pto : The PTO (anchors, bore, pressures, LuGre friction).
-    dt : Simulator time step [s].
-    simulator : Run the simulator (else experiment and linear model only).
-    friction : Include the LuGre friction in the simulator.
-    spin_up : Seconds of incident wave the simulator runs before the analysed span [s].
-    linear_pto_damping : How the linear model's ν_pto is set (:func:`linear_model_irregular`).
+    flap : xarray.Dataset
+        The run's flap product (:func:`flumekit.flap.analysis.analyse_irregular_run`).
+    waves : xarray.Dataset
+        The run's waves product (``spectrum_incident``, ``eta_incident``, ``energy_flux``).
+    hydro : xarray.Dataset
+        Coefficient container as stored (:func:`stored_container`).
+    flap_params : flumekit.campaign.Flap
+        The flap (inertia, stiffness, width).
+    pto : flumekit.campaign.PTO
+        The PTO (anchors, bore, pressures, LuGre friction).
+    dt : float, optional
+        Simulator time step [s].
+    simulator : bool, optional
+        Run the simulator (else experiment and linear model only).
+    friction : bool, optional
+        Include the LuGre friction in the simulator.
+    spin_up : float, optional
+        Seconds of incident wave the simulator runs before the analysed span [s].
+    linear_pto_damping : {"energy_equivalent", "optimal"}, optional
+        How the linear model's ν_pto is set (:func:`linear_model_irregular`).
 
     Returns
     -------
@@ -527,8 +887,14 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
         linear model's ``pto_damping``, with the simulator ``theta_relative_rms_difference``
         (over the span, relative to the measured θ's RMS), ``energy_flux`` (J of the waves
         product, the CWR's denominator for every source), and the scalar coordinates of a
-        regular run's comparison: ``incident_power`` J w, ``incident_height`` and
+        regular run's comparison: ``incident_power`` J w [W], ``incident_height`` and
         ``measured_period`` NaN (no single height or period).
+
+    Raises
+    ------
+    ValueError
+        An unknown ``linear_pto_damping``, an empty spectrum, or an incident wave that does
+        not cover the analysed span.
 
     References
     ----------

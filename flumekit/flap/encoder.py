@@ -24,6 +24,12 @@ with R = 2 L5 √(L7² + L5²), φ = atan2(2 L7 L5, −2 L5²) ∈ (π/2, π) an
 
 which covers any physical flap motion. Samples with |c/R| > 1 have no solution (a wire shorter
 or longer than the geometry allows: glitch, wrong zero or wrong L5/L7); they are flagged.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, §2.3, Eq. (1).
 """
 
 from __future__ import annotations
@@ -49,7 +55,7 @@ def _check_lengths(L5: float, L7: float) -> None:
 
 
 def wire_length(theta, L5: float, L7: float) -> np.ndarray:
-    """Wire length L(θ) [m] between the encoder and the flap frame.
+    """Compute the wire length L(θ) between the encoder and the flap frame.
 
     Eq. (1) of Brito et al. (2020), with the sign for θ > 0 towards the beach.
 
@@ -61,6 +67,28 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
         Height of the wire anchor above the hinge [m].
     L7 : float
         Wire length at θ = 0 (horizontal distance from the encoder to the flap frame) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        L(θ) [m].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        L5 or L7 not finite and positive.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (1).
+
+    Examples
+    --------
+    >>> from flumekit.flap.encoder import wire_length
+    >>> wire_length([0.0, 0.1], 1.53, 1.48).round(4)
+    array([1.48  , 1.6328])
     """
     _check_lengths(L5, L7)
     th = np.asarray(theta, dtype=float)
@@ -69,7 +97,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
 
 
 def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
-    """Flap angle θ from the wire shortening ΔL7, Eq. (1) in closed form.
+    """Compute the flap angle θ from the wire shortening ΔL7, Eq. (1) in closed form.
 
     Parameters
     ----------
@@ -87,6 +115,28 @@ def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
         ``theta``: θ [rad] (positive towards the beach); ``out_of_domain``: boolean flag of
         the samples whose argument c/R leaves [−1, 1]; there θ is clipped to the end of the
         branch (never NaN), so callers must look at the flag.
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        L5 or L7 not finite and positive.
+    ValueError
+        Non-finite samples of the wire shortening.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (1).
+
+    Examples
+    --------
+    The inverse of :func:`wire_length`:
+
+    >>> from flumekit.flap.encoder import angle_from_wire, wire_length
+    >>> shortening = 1.48 - wire_length([-0.05, 0.1], 1.53, 1.48)
+    >>> angle_from_wire(shortening, 1.53, 1.48).theta.round(12)
+    array([-0.05,  0.1 ])
     """
     _check_lengths(L5, L7)
     s = np.asarray(wire_shortening, dtype=float)
@@ -103,7 +153,7 @@ def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
 
 
 def wire_from_counts(counts, counts_per_metre: float, zero_count: float = 0.0) -> np.ndarray:
-    """Wire shortening ΔL7 [m] from encoder counts.
+    """Convert encoder counts to the wire shortening ΔL7.
 
     Parameters
     ----------
@@ -114,6 +164,22 @@ def wire_from_counts(counts, counts_per_metre: float, zero_count: float = 0.0) -
         a drum of 0.1 m circumference: 6000 m-1).
     zero_count : float
         Count at θ = 0 (the flap at rest, usually the start of the record) [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        ΔL7 [m], positive when the wire is reeled in.
+
+    Raises
+    ------
+    ValueError
+        A non-positive ``counts_per_metre`` or non-numeric counts.
+
+    Examples
+    --------
+    >>> from flumekit.flap.encoder import wire_from_counts
+    >>> wire_from_counts([100, 160, 40], 6000.0, zero_count=100)
+    array([ 0.  ,  0.01, -0.01])
     """
     if not (np.isfinite(counts_per_metre) and counts_per_metre > 0):
         raise ValueError(f"counts_per_metre must be > 0, got {counts_per_metre}")
@@ -124,7 +190,35 @@ def wire_from_counts(counts, counts_per_metre: float, zero_count: float = 0.0) -
 
 
 def counts_from_wire(wire_shortening, counts_per_metre: float, zero_count: int = 0) -> np.ndarray:
-    """Integer encoder counts for a wire shortening [m] (quantised to the nearest count)."""
+    """Convert a wire shortening to integer encoder counts (quantised to the nearest count).
+
+    The inverse of :func:`wire_from_counts`, used to synthesise encoder records.
+
+    Parameters
+    ----------
+    wire_shortening : array_like
+        ΔL7 [m].
+    counts_per_metre : float
+        Counts per metre of wire [m-1], > 0.
+    zero_count : int, optional
+        Count at θ = 0 [-].
+
+    Returns
+    -------
+    numpy.ndarray of int64
+        Encoder counts [-].
+
+    Raises
+    ------
+    ValueError
+        A non-positive ``counts_per_metre``.
+
+    Examples
+    --------
+    >>> from flumekit.flap.encoder import counts_from_wire
+    >>> counts_from_wire([0.0, 0.01, -0.0101], 6000.0, zero_count=100).tolist()
+    [100, 160, 39]
+    """
     if not (np.isfinite(counts_per_metre) and counts_per_metre > 0):
         raise ValueError(f"counts_per_metre must be > 0, got {counts_per_metre}")
     s = np.asarray(wire_shortening, dtype=float)

@@ -20,6 +20,12 @@ hinge-to-anchor line, which differs from the flap plane by the constant angle at
 10.8°; we define β against the hinge-to-anchor line so that |m| = r sin β holds exactly.
 The signed lever arm m is also the rod's kinematic ratio (virtual work): ℓ̇ = m θ̇.
 For the default campaign m ≈ −0.46 m: leaning to the beach shortens the rod (compression).
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
 """
 
 from __future__ import annotations
@@ -42,7 +48,32 @@ def _point(name: str, p) -> np.ndarray:
 
 
 def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
-    """Validate the anchors; raise :class:`GeometryError` for an impossible cylinder."""
+    """Validate the anchors of the PTO cylinder.
+
+    Parameters
+    ----------
+    bed_anchor : array_like
+        Fixed rod anchor (x, z) [m].
+    flap_anchor : array_like
+        Rod anchor on the flap at θ = 0, (x, z) [m].
+
+    Returns
+    -------
+    bed_anchor, flap_anchor : numpy.ndarray
+        The anchors as float arrays of shape (2,) [m].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        An impossible cylinder: an anchor not a finite (x, z) pair or at the hinge, or the two
+        anchors coinciding.
+
+    Examples
+    --------
+    >>> from flumekit.flap.geometry import check_anchors
+    >>> check_anchors((1.04, 0.0), (0.09, 0.47))[1].tolist()
+    [0.09, 0.47]
+    """
     b = _point("bed anchor", bed_anchor)
     p = _point("flap anchor", flap_anchor)
     if np.hypot(*p) <= _MIN_LEVER:
@@ -58,7 +89,33 @@ def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
 
 
 def flap_point(point, theta) -> tuple[np.ndarray, np.ndarray]:
-    """Position (x, z) [m] at angle θ [rad] of a flap point that is at ``point`` for θ = 0."""
+    """Rotate a flap point to the flap angle θ about the hinge.
+
+    Parameters
+    ----------
+    point : array_like
+        The point (x0, z0) at θ = 0 [m].
+    theta : array_like
+        Flap angle θ [rad], positive towards the beach.
+
+    Returns
+    -------
+    x, z : numpy.ndarray
+        Position at θ [m].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        ``point`` is not a finite (x, z) pair.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.flap.geometry import flap_point
+    >>> x, z = flap_point((0.0, 1.0), np.pi / 2)  # the top of the flap, laid towards the beach
+    >>> round(float(x), 12), round(float(z), 12)
+    (1.0, 0.0)
+    """
     x0, z0 = _point("flap point", point)
     th = np.asarray(theta, dtype=float)
     c, s = np.cos(th), np.sin(th)
@@ -89,11 +146,31 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
     flap_anchor : array_like
         Rod anchor on the flap at θ = 0, (x, z) [m].
 
+    Returns
+    -------
+    RodKinematics
+        Rod length ℓ [m], extension rate ℓ̇ [m s-1], angle β to the hinge-to-anchor line [rad]
+        and signed lever arm m [m], each the shape of ``theta``.
+
     Raises
     ------
-    GeometryError : Coinciding anchors, an anchor at the hinge, or a flap angle at which the
-        anchors coincide or the rod line passes through the hinge (no torque can be
-        transmitted, and the torque inversion would divide by zero).
+    flumekit.errors.GeometryError
+        Coinciding anchors, an anchor at the hinge, or a flap angle at which the anchors
+        coincide or the rod line passes through the hinge (no torque can be transmitted, and
+        the torque inversion would divide by zero).
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
+
+    Examples
+    --------
+    >>> from flumekit.flap.geometry import rod_kinematics
+    >>> k = rod_kinematics(0.0, 1.0, (1.04, 0.0), (0.09, 0.47))
+    >>> round(float(k.length), 4), round(float(k.lever_arm), 4)
+    (1.0599, -0.4612)
     """
     b, p0 = check_anchors(bed_anchor, flap_anchor)
     th = np.asarray(theta, dtype=float)
@@ -116,23 +193,72 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
 
 
 def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
-    """Shortest and longest rod lengths [m] that the anchors allow over a full turn."""
+    """Return the shortest and longest rod lengths that the anchors allow over a full turn.
+
+    Parameters
+    ----------
+    bed_anchor : array_like
+        Fixed rod anchor (x, z) [m].
+    flap_anchor : array_like
+        Rod anchor on the flap at θ = 0, (x, z) [m].
+
+    Returns
+    -------
+    shortest, longest : float
+        abs(d − r) and d + r [m], with d and r the anchors' distances from the hinge.
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        Impossible anchors (:func:`check_anchors`).
+
+    Examples
+    --------
+    >>> from flumekit.flap.geometry import rod_length_limits
+    >>> [float(v) for v in rod_length_limits((1.0, 0.0), (0.0, 0.5))]
+    [0.5, 1.5]
+    """
     b, p0 = check_anchors(bed_anchor, flap_anchor)
     d, r = np.hypot(*b), np.hypot(*p0)
     return abs(d - r), d + r
 
 
 def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
-    """Flap angle θ [rad] on the branch through θ = 0 for a given rod length ℓ [m].
+    """Compute the flap angle θ on the branch through θ = 0 for a given rod length ℓ.
 
     The anchors lie on circles of radius d = abs(b) and r = abs(p) about the hinge, so
     ℓ² = d² + r² − 2 d r cos(α − α_b) with α the polar angle of the flap anchor; the branch is
     the one containing θ = 0.
 
+    Parameters
+    ----------
+    rod_length : array_like
+        Rod length ℓ [m].
+    bed_anchor : array_like
+        Fixed rod anchor (x, z) [m].
+    flap_anchor : array_like
+        Rod anchor on the flap at θ = 0, (x, z) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        θ [rad], positive towards the beach.
+
     Raises
     ------
-    GeometryError : A rod shorter than abs(d − r) or longer than d + r (no configuration of the
-        anchors gives that length), or impossible anchors.
+    flumekit.errors.GeometryError
+        A rod shorter than abs(d − r) or longer than d + r (no configuration of the anchors
+        gives that length), impossible anchors, or a flap anchor on the line through the hinge
+        and the bed anchor at θ = 0 (the sign of θ is undetermined).
+
+    Examples
+    --------
+    The inverse of :func:`rod_kinematics`' length:
+
+    >>> from flumekit.flap.geometry import angle_from_rod_length, rod_kinematics
+    >>> ell = rod_kinematics([-0.1, 0.2], 0.0, (1.04, 0.0), (0.09, 0.47)).length
+    >>> angle_from_rod_length(ell, (1.04, 0.0), (0.09, 0.47)).round(12)
+    array([-0.1,  0.2])
     """
     b, p0 = check_anchors(bed_anchor, flap_anchor)
     ell = np.asarray(rod_length, dtype=float)

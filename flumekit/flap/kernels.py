@@ -10,6 +10,12 @@ signatures of :mod:`flumekit.hydro.stepping` and take their parameters as one fl
 
 This module imports numba; :mod:`flumekit.flap` imports it only inside the functions that run
 a loop.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Eqs. (12)-(14) and Appendix B.
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ __all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_pr
 
 @njit(cache=True)
 def lugre_step(z, h, v, dt, c):
-    """One exact frozen-velocity step of Eqs. (A4) and (A6).
+    """Take one exact frozen-velocity step of Eqs. (A4) and (A6).
 
     Parameters
     ----------
@@ -69,10 +75,28 @@ def lugre_step(z, h, v, dt, c):
 
 @njit(cache=True)
 def lugre_advance(z, h, v0, v1, dt, c):
-    """Advance the state for a velocity linear from ``v0`` to ``v1`` [m s-1] over ``dt`` [s].
+    """Advance the state for a velocity linear from ``v0`` to ``v1`` over ``dt``.
 
     The step is split at a velocity reversal, else taken at the mid-step velocity
-    (:func:`lugre_step`, same parameters and returns).
+    (:func:`lugre_step`).
+
+    Parameters
+    ----------
+    z : float
+        Bristle deflection [m].
+    h : float
+        Film thickness parameter [-].
+    v0, v1 : float
+        Rod velocity at the start and end of the step [m s-1].
+    dt : float
+        Step [s].
+    c : ndarray
+        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+
+    Returns
+    -------
+    z, h : float
+        The state at the end of the step ([m], [-]).
     """
     if v0 * v1 < 0.0:
         s = v0 / (v0 - v1)

@@ -22,6 +22,12 @@ for a cylinder mounted the other way). The cavitation branch as printed, P_v + I
 fluid inertia to an absolute vapour pressure: while the chamber cavitates its vapour cavity
 decouples the piston from the fluid column, so the chamber pressure is the vapour pressure
 (P_v − P_atm in gauge terms) and the inertia term does not act on the piston.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
 """
 
 from __future__ import annotations
@@ -37,7 +43,39 @@ ATMOSPHERIC_PRESSURE = 101325.0
 
 def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                       vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
-    """Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm [-] (Eq. 14); P_int gauge [Pa]."""
+    """Compute the Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm (Eq. 14).
+
+    Parameters
+    ----------
+    chamber_pressure : array_like
+        Chamber gauge pressure P_int [Pa].
+    atmospheric_pressure : float, optional
+        P_atm [Pa], > 0.
+    vapour_pressure : float, optional
+        P_v, absolute [Pa].
+
+    Returns
+    -------
+    numpy.ndarray
+        σ [-]; the chamber cavitates where σ < 0.
+
+    Raises
+    ------
+    ValueError
+        A non-positive atmospheric pressure.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (14).
+
+    Examples
+    --------
+    >>> from flumekit.flap.pressure import thoma_coefficient
+    >>> thoma_coefficient([0.0, -98986.0]).round(6)
+    array([0.976916, 0.      ])
+    """
     if not atmospheric_pressure > 0:
         raise ValueError(f"atmospheric pressure must be > 0, got {atmospheric_pressure}")
     return (atmospheric_pressure + np.asarray(chamber_pressure, dtype=float)
@@ -49,7 +87,7 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
                            atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                            vapour_pressure: float = VAPOUR_PRESSURE,
                            compression_sign: int = 1) -> np.ndarray:
-    """Chamber gauge pressure [Pa] from the flap motion (Eq. 13 in the signed form, σ_c = 0).
+    """Compute the chamber gauge pressure from the flap motion (Eq. 13 signed, σ_c = 0).
 
     Parameters
     ----------
@@ -67,6 +105,25 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
         P_v, absolute [Pa].
     compression_sign : int
         +1 if θ̇ > 0 compresses the chamber (the default anchors), −1 otherwise.
+
+    Returns
+    -------
+    numpy.ndarray
+        P_int [Pa], K_p θ̇ abs(θ̇) + I_p θ̈ clamped below at P_v − P_atm.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+
+    Examples
+    --------
+    Compression, then suction strong enough to cavitate:
+
+    >>> from flumekit.flap.pressure import chamber_pressure_model
+    >>> chamber_pressure_model([0.5, -2.0], [0.0, 0.0], 1.0e5, 0.0)
+    array([ 25000., -98986.])
     """
     w = compression_sign * np.asarray(theta_dot, dtype=float)
     a = compression_sign * np.asarray(theta_ddot, dtype=float)
@@ -104,12 +161,50 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
     ----------
     chamber_pressure : array_like
         Measured gauge pressure [Pa].
-    theta_dot, theta_ddot : array_like
-        Flap angular velocity [rad s-1] and acceleration [rad s-2].
+    theta_dot : array_like
+        Flap angular velocity θ̇ [rad s-1].
+    theta_ddot : array_like
+        Flap angular acceleration θ̈ [rad s-2].
+    atmospheric_pressure : float, optional
+        P_atm [Pa].
+    vapour_pressure : float, optional
+        P_v, absolute [Pa].
+    compression_sign : int, optional
+        +1 if θ̇ > 0 compresses the chamber, −1 otherwise.
+    max_iterations : int, optional
+        Largest number of active-set iterations.
+
+    Returns
+    -------
+    PressureFit
+        K_p [Pa s2 rad-2], I_p [Pa s2 rad-1], R² [-], the cavitating samples, the fitted
+        pressure [Pa] and whether a coefficient is held at its bound 0.
 
     Raises
     ------
-    ValueError : Non-finite input, mismatched shapes, or too few non-cavitating samples.
+    ValueError
+        Non-finite input, mismatched shapes, too few non-cavitating samples, or a constant
+        pressure.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+    Lawson, C. L. & Hanson, R. J. (1974). Solving Least Squares Problems. Prentice-Hall,
+    Chapter 23 (non-negative least squares).
+
+    Examples
+    --------
+    A pressure made by the model itself is fitted exactly:
+
+    >>> import numpy as np
+    >>> from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model
+    >>> t = np.linspace(0.0, 4.0, 401)
+    >>> w, a = 0.3 * np.cos(np.pi * t), -0.3 * np.pi * np.sin(np.pi * t)
+    >>> fit = fit_pressure_model(chamber_pressure_model(w, a, 2.0e5, 300.0), w, a)
+    >>> round(fit.pressure_loss_coefficient), round(fit.fluid_inertia, 6), round(fit.r2, 9)
+    (200000, 300.0, 1.0)
     """
     p = np.asarray(chamber_pressure, dtype=float).ravel()
     w = compression_sign * np.asarray(theta_dot, dtype=float).ravel()
@@ -153,7 +248,37 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
 
 
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
-    """Pressure force pushing the rod out, F_p = A P_int [N] (Eq. 13); P_int gauge [Pa], A [m2]."""
+    """Compute the pressure force pushing the rod out, F_p = A P_int.
+
+    Parameters
+    ----------
+    chamber_pressure : array_like
+        Chamber gauge pressure P_int [Pa].
+    bore_area : float
+        Bore area A [m2], > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        F_p [N].
+
+    Raises
+    ------
+    ValueError
+        A non-positive bore area.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.2.
+
+    Examples
+    --------
+    >>> from flumekit.flap.pressure import pressure_force
+    >>> pressure_force([1.0e4, -500.0], 0.002)
+    array([20., -1.])
+    """
     if not bore_area > 0:
         raise ValueError(f"bore area must be > 0, got {bore_area}")
     return bore_area * np.asarray(chamber_pressure, dtype=float)

@@ -7,6 +7,12 @@ the quasi-steady window of θ (crests within 2 % of the amplitude scale), amplit
 difference of the mean per-cycle maximum and minimum (Fig. 8), the mean PTO power over the
 window, W_I of Eq. (A2) from the incident height, C_f = W̄_out / W_I, and phase averages over
 the window with cycles starting at a zero up-crossing of θ (Fig. 10).
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8.
 """
 
 from __future__ import annotations
@@ -20,13 +26,48 @@ from flumekit.flap.power import capture_factor, incident_power, window_mean
 
 
 def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.SteadyWindow:
-    """Quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
+    """Find the quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
 
-    Crests within ``tolerance`` of the amplitude scale (:func:`flumekit.signal.
-    quasi_steady_window`), cycle crossings closer than half the wave ``period`` [s] ignored;
-    about the median of θ if it leans so far to one side that its zero up-crossings give no
-    steady cycles (:func:`flumekit.signal.steady_window_or_centred`); at least two cycles, else
-    ``ValueError``.
+    Crests within ``tolerance`` of the amplitude scale
+    (:func:`flumekit.signal.quasi_steady_window`), cycle crossings closer than half the wave
+    ``period`` ignored; about the median of θ if it leans so far to one side that its zero
+    up-crossings give no steady cycles (:func:`flumekit.signal.steady_window_or_centred`).
+
+    Parameters
+    ----------
+    theta : array_like
+        Flap angle θ [rad].
+    time : array_like
+        Sample times [s], uniform.
+    period : float
+        Wave period [s].
+    tolerance : float, optional
+        Crest tolerance as a fraction of the amplitude scale [-].
+
+    Returns
+    -------
+    flumekit.signal.SteadyWindow
+        Start and end [s], measured period [s] and number of cycles of the window.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two quasi-steady cycles.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.5.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.flap.summary import steady_window
+    >>> t = np.arange(0.0, 40.0, 0.01)
+    >>> win = steady_window(0.1 * np.sin(np.pi * t), t, period=2.0)
+    >>> round(win.period, 3)
+    2.0
     """
     win = sig.steady_window_or_centred(theta, time, tolerance=tolerance,
                                        min_period=0.5 * period)
@@ -38,37 +79,55 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
 def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_height: float,
             depth: float, flap_width: float, n_phase: int = 100,
             ci95: tuple[str, ...] = ()) -> xr.Dataset:
-    """Phase averages, amplitudes, mean power, W_I and C_f of a run over its steady window.
+    """Summarise a run over its steady window: phase averages, amplitudes, power, W_I, C_f.
 
     The one summary of a flap run, measured (:func:`flumekit.flap.analysis.analyse_run`) or
     simulated (:func:`summarise_run`).
 
     Parameters
     ----------
-    time : Sample times [s], uniform.
-    series : ``{name: values}`` over ``time``, with at least ``theta`` [rad], ``power`` [W] and
+    time : array_like
+        Sample times [s], uniform.
+    series : dict of str to array_like
+        ``{name: values}`` over ``time``, with at least ``theta`` [rad], ``power`` [W] and
         ``torque_hydrodynamic`` [N m]; each gets ``<name>_phase_mean``.
-    window : The steady window (:func:`steady_window`); phase averages start at its first
-        zero up-crossing of θ (t/T = 0, Fig. 10).
-    period : Wave period T of the run [s].
-    incident_height : Incident wave height H at the flap [m] (separation stage), > 0.
-    depth : Water depth h [m].
-    flap_width : Flap width L [m] (Eq. A2).
-    n_phase : Phase points per cycle.
-    ci95 : Names of ``series`` that also get ``<name>_phase_ci95``.
+    window : flumekit.signal.SteadyWindow
+        The steady window (:func:`steady_window`); phase averages start at its first zero
+        up-crossing of θ (t/T = 0, Fig. 10).
+    period : float
+        Wave period T of the run [s].
+    incident_height : float
+        Incident wave height H at the flap [m] (separation stage), > 0.
+    depth : float
+        Water depth h [m].
+    flap_width : float
+        Flap width L [m] (Eq. A2).
+    n_phase : int, optional
+        Phase points per cycle.
+    ci95 : tuple of str, optional
+        Names of ``series`` that also get ``<name>_phase_ci95``.
 
     Returns
     -------
-    Dataset over ``phase`` with the phase averages and the scalars ``theta_amplitude``,
-    ``torque_amplitude`` (half the difference of the mean per-cycle maximum and minimum,
-    Fig. 8), ``mean_power`` (over the window), ``incident_height``, ``incident_power`` (W_I,
-    Eq. A2), ``capture_factor`` (C_f = W̄_out / W_I, §3.2), ``steady_start``, ``steady_end``,
-    ``measured_period``, ``steady_cycles``.
+    xarray.Dataset
+        Over ``phase`` [-], the phase averages (units of each series) and the scalars
+        ``theta_amplitude`` [rad], ``torque_amplitude`` [N m] (half the difference of the mean
+        per-cycle maximum and minimum, Fig. 8), ``mean_power`` [W] (over the window),
+        ``incident_height`` [m], ``incident_power`` [W] (W_I, Eq. A2), ``capture_factor`` [-]
+        (C_f = W̄_out / W_I, §3.2), ``steady_start``, ``steady_end``, ``measured_period`` [s]
+        and ``steady_cycles``.
 
     Raises
     ------
-    ValueError : a non-positive or non-finite incident height: without an incident wave there
-        is no capture factor, and a zero height means the separation failed.
+    ValueError
+        A non-positive or non-finite incident height: without an incident wave there is no
+        capture factor, and a zero height means the separation failed.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.5-§3.3, Eq. (A2).
     """
     if not (np.isfinite(incident_height) and incident_height > 0):
         raise ValueError(f"incident height must be > 0, got {incident_height}")
@@ -92,22 +151,41 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
 
 def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, depth: float,
                   flap_width: float, tolerance: float = 0.02, n_phase: int = 100) -> xr.Dataset:
-    """:func:`summary` of a simulated run, in the names of the experimental flap analysis.
+    """Summarise a simulated run as :func:`summary`, in the experimental analysis's names.
 
     Parameters
     ----------
-    sim : Output of :func:`flumekit.flap.simulator.simulate_run` (or ``simulate``).
-    period : Wave period T of the run [s].
-    incident_height : Incident wave height H at the flap [m] (from the separation), for W_I.
-    depth : Water depth h [m].
-    flap_width : Flap width L [m] (Eq. A2).
-    tolerance : Crest tolerance of the quasi-steady window (2 %, §2.5).
-    n_phase : Phase points per cycle.
+    sim : xarray.Dataset
+        Output of :func:`flumekit.flap.simulator.simulate_run` (or ``simulate``).
+    period : float
+        Wave period T of the run [s].
+    incident_height : float
+        Incident wave height H at the flap [m] (from the separation), for W_I.
+    depth : float
+        Water depth h [m].
+    flap_width : float
+        Flap width L [m] (Eq. A2).
+    tolerance : float, optional
+        Crest tolerance of the quasi-steady window [-] (2 %, §2.5).
+    n_phase : int, optional
+        Phase points per cycle.
 
     Returns
     -------
-    :func:`summary` of ``theta``, ``theta_dot``, ``power``, ``torque_hydrodynamic`` (and
-    ``chamber_pressure`` for the hydraulic PTO), with the simulator's scalar attributes.
+    xarray.Dataset
+        :func:`summary` of ``theta``, ``theta_dot``, ``power``, ``torque_hydrodynamic`` (and
+        ``chamber_pressure`` for the hydraulic PTO), with the simulator's scalar attributes.
+
+    Raises
+    ------
+    ValueError
+        Fewer than two quasi-steady cycles, or a non-positive incident height.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.5-§3.3.
     """
     t = sim["time"].values
     win = steady_window(sim["theta"].values, t, period, tolerance)

@@ -21,6 +21,12 @@ PTO torques. F_p = A P_int pushes the rod out, the LuGre friction force F_f resi
 extension rate, so the net extending force is F_p − F_f and its torque on the flap is
 m (F_p − F_f) with m the signed lever arm of :mod:`flumekit.flap.geometry` (|m| = r sin β,
 the lever arm that Eq. 12 omits). As resisting torques: T_p = −m F_p, T_f = +m F_f.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Eqs. (11)-(12) and Appendix A.
 """
 
 from __future__ import annotations
@@ -29,7 +35,7 @@ import numpy as np
 
 
 def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
-    """Net gravity-buoyancy resisting torque T_g = C sin θ [N m].
+    """Compute the net gravity-buoyancy resisting torque T_g = C sin θ.
 
     Parameters
     ----------
@@ -37,19 +43,69 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
         Flap angle [rad].
     buoyancy_stiffness : float
         Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
+
+    Returns
+    -------
+    numpy.ndarray
+        T_g [N m], positive when it opposes a positive θ.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (11) and Appendix A.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.flap.torque import gravity_torque
+    >>> float(gravity_torque(np.pi / 6, 605.0))
+    302.4...
     """
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
 
 def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
-    """Inertia torque I θ̈ [N m]; I is the flap's moment of inertia about the hinge [kg m2]."""
+    """Compute the inertia torque I θ̈ of the flap.
+
+    Parameters
+    ----------
+    theta_ddot : array_like
+        Angular acceleration θ̈ [rad s-2].
+    inertia : float
+        The flap's moment of inertia about the hinge I [kg m2], > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        I θ̈ [N m].
+
+    Raises
+    ------
+    ValueError
+        A non-positive moment of inertia.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (11).
+
+    Examples
+    --------
+    >>> from flumekit.flap.torque import inertia_torque
+    >>> inertia_torque([0.5, -1.0], 14.74)
+    array([  7.37, -14.74])
+    """
     if not inertia > 0:
         raise ValueError(f"moment of inertia must be > 0, got {inertia}")
     return inertia * np.asarray(theta_ddot, dtype=float)
 
 
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
-    """Resisting torque of the cylinder pressure force, T_p = −m F_p [N m] (Eq. 12 with lever arm).
+    """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
+
+    Eq. (12) with the lever arm.
 
     Parameters
     ----------
@@ -57,12 +113,31 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
         Pressure force pushing the rod out, A P_int [N].
     lever_arm : array_like
         Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β.
+
+    Returns
+    -------
+    numpy.ndarray
+        T_p [N m], positive when it opposes a positive θ.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (12).
+
+    Examples
+    --------
+    >>> from flumekit.flap.torque import pressure_torque
+    >>> float(pressure_torque(100.0, -0.2))
+    20.0
     """
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
 
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
-    """Resisting torque of the cylinder friction force, T_f = m F_f [N m] (Eq. 12 with lever arm).
+    """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
+
+    Eq. (12) with the lever arm.
 
     Parameters
     ----------
@@ -70,13 +145,30 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
         Friction force resisting the rod's extension (> 0 while extending) [N].
     lever_arm : array_like
         Signed lever arm m of the rod about the hinge [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        T_f [N m], positive when it opposes a positive θ.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (12).
+
+    Examples
+    --------
+    >>> from flumekit.flap.torque import friction_torque
+    >>> float(friction_torque(-30.0, -0.2))
+    6.0
     """
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
 
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
                         buoyancy_stiffness: float) -> np.ndarray:
-    """Hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO [N m] (Eq. 11).
+    """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).
 
     Parameters
     ----------
@@ -90,6 +182,28 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
         Moment of inertia about the hinge [kg m2].
     buoyancy_stiffness : float
         Net buoyancy stiffness C [N m rad-1].
+
+    Returns
+    -------
+    numpy.ndarray
+        T_h [N m], positive towards the beach.
+
+    Raises
+    ------
+    ValueError
+        A non-positive moment of inertia.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Eq. (11).
+
+    Examples
+    --------
+    >>> from flumekit.flap.torque import hydrodynamic_torque
+    >>> float(hydrodynamic_torque(0.0, 2.0, 5.0, inertia=10.0, buoyancy_stiffness=605.0))
+    25.0
     """
     # Eq. (11) in Brito et al. 2020
     return (inertia_torque(theta_ddot, inertia) + gravity_torque(theta, buoyancy_stiffness)

@@ -30,6 +30,15 @@ _LAZY = {
     "optimal_pto_damping": "response",
     "excitation_torque": "excitation",
     "simulate": "simulation",
+    "with_infinite_frequency_inertia": "coefficients",
+    "from_kernel": "coefficients",
+    "split_complex": "coefficients",
+    "merge_complex": "coefficients",
+    "rigid_body_dataset": "rigid_body",
+    "about_hinge": "rigid_body",
+    "inertia_about_hinge": "rigid_body",
+    "state_space_dataset": "radiation",
+    "state_space_from_dataset": "radiation",
 }
 
 __all__ = sorted(_LAZY)

@@ -23,7 +23,26 @@ FREQUENCY_DIMS = ("omega", "freq", "period", "wavenumber", "wavelength")
 
 
 def merge_complex_dim(ds: xr.Dataset) -> xr.Dataset:
-    """Join variables split along a ``complex`` ("re", "im") dimension into complex values."""
+    """Join variables split along a ``complex`` ("re", "im") dimension into complex values.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Capytaine dataset (units of its variables kept).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` without the ``complex`` dimension (``ds`` itself if it has none).
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.hydro.bem_layout import merge_complex_dim
+    >>> ds = xr.Dataset({"f": ("complex", [1.0, 2.0])}, coords={"complex": ["re", "im"]})
+    >>> complex(merge_complex_dim(ds)["f"])
+    (1+2j)
+    """
     if "complex" not in ds.dims:
         return ds
     ds = ds.copy()
@@ -33,7 +52,23 @@ def merge_complex_dim(ds: xr.Dataset) -> xr.Dataset:
 
 
 def frequency_dim(ds: xr.Dataset) -> str:
-    """Capytaine's frequency dimension, which must carry an ``omega`` coordinate."""
+    """Return the name of Capytaine's frequency dimension, which must carry ``omega``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Capytaine dataset.
+
+    Returns
+    -------
+    str
+        The first of :data:`FREQUENCY_DIMS` among the dataset's dimensions.
+
+    Raises
+    ------
+    ValueError
+        No frequency dimension, or no ``omega`` coordinate [rad s-1].
+    """
     fdim = next((d for d in FREQUENCY_DIMS if d in ds.dims), None)
     if fdim is None:
         raise ValueError(f"no frequency dimension among {list(ds.dims)}; Capytaine uses one "
@@ -44,7 +79,25 @@ def frequency_dim(ds: xr.Dataset) -> str:
 
 
 def select_direction(da: xr.DataArray, wave_direction: float) -> xr.DataArray:
-    """``da`` at the incident direction ``wave_direction`` [rad] (modulo 2π), if it has one."""
+    """Select the incident direction ``wave_direction`` (modulo 2π), if ``da`` has one.
+
+    Parameters
+    ----------
+    da : xarray.DataArray
+        A variable, possibly over ``wave_direction`` [rad].
+    wave_direction : float
+        The direction to keep [rad] (0: waves towards +x).
+
+    Returns
+    -------
+    xarray.DataArray
+        ``da`` at that direction (``da`` itself if it has no ``wave_direction`` dimension).
+
+    Raises
+    ------
+    ValueError
+        The direction was not computed (within 1e-6 rad).
+    """
     if "wave_direction" not in da.dims:
         return da
     dirs = da["wave_direction"].values.astype(float)
@@ -56,7 +109,23 @@ def select_direction(da: xr.DataArray, wave_direction: float) -> xr.DataArray:
 
 
 def excitation_of(ds: xr.Dataset) -> xr.DataArray:
-    """``excitation_force``, or ``diffraction_force`` + ``Froude_Krylov_force``."""
+    """Return ``excitation_force``, or ``diffraction_force`` + ``Froude_Krylov_force``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Capytaine dataset with complex values (:func:`merge_complex_dim`).
+
+    Returns
+    -------
+    xarray.DataArray
+        The excitation force per unit amplitude [N m-1, N m m-1].
+
+    Raises
+    ------
+    ValueError
+        Neither form is in the dataset.
+    """
     if "excitation_force" in ds:
         return ds["excitation_force"]
     if "diffraction_force" in ds and "Froude_Krylov_force" in ds:

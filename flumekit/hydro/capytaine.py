@@ -1,5 +1,6 @@
-"""Reader of Capytaine's netCDF output (``cpt.assemble_dataset`` + ``to_netcdf``), as WEC-Sim
-ships it.
+"""Reader of Capytaine's netCDF output (``cpt.assemble_dataset`` + ``to_netcdf``).
+
+The format as WEC-Sim ships it.
 
 The file holds ``added_mass`` and ``radiation_damping`` over (frequency, ``radiating_dof``,
 ``influenced_dof``), ``excitation_force`` (or ``diffraction_force`` + ``Froude_Krylov_force``)
@@ -35,21 +36,37 @@ from flumekit.hydro.rigid_body import DOFS, rigid_body_dataset
 
 def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
                    wave_direction: float = 0.0, reference_point=None) -> xr.Dataset:
-    """Six-dof coefficients of one body from a Capytaine dataset or netCDF file.
+    """Read the six-dof coefficients of one body from a Capytaine dataset or netCDF file.
 
     Parameters
     ----------
-    source : Path of the netCDF file, or the dataset.
-    body : Body name in a multi-body file (dofs ``<body>__Surge`` ...); by default the dofs
+    source : str, pathlib.Path or xarray.Dataset
+        Path of the netCDF file, or the dataset.
+    body : str, optional
+        Body name in a multi-body file (dofs ``<body>__Surge`` ...); by default the dofs
         without a body prefix.
-    wave_direction : Incident direction [rad] to keep (0: waves towards +x).
-    reference_point : Rotation centre of the body's rigid dofs (x, y, z) [m].
+    wave_direction : float, optional
+        Incident direction [rad] to keep (0: waves towards +x).
+    reference_point : sequence of float, optional
+        Rotation centre of the body's rigid dofs (x, y, z) [m].
 
     Returns
     -------
-    Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset`; frequencies that failed
-    (NaN) are kept (see :func:`flumekit.hydro.rigid_body.drop_failed`), ω = 0 is dropped and
-    ω = ∞ becomes ``added_mass_infinite``.
+    xarray.Dataset
+        Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset`; frequencies that
+        failed (NaN) are kept (see :func:`flumekit.hydro.rigid_body.drop_failed`), ω = 0 is
+        dropped and ω = ∞ becomes ``added_mass_infinite`` [kg, kg m, kg m2].
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        The file is missing or not a usable Capytaine result (missing variables or dofs, an
+        unknown wave direction), naming the file.
+
+    References
+    ----------
+    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
+    J. Open Source Software 4(36), 1341.
     """
     path = None if isinstance(source, xr.Dataset) else Path(source)
     try:

@@ -19,10 +19,20 @@ Brito et al. (2020, App. A) write θ̇ = iωθ, which belongs to the opposite ti
 e^{-iωt} the physically correct derivative is θ̇ = −iωΘ. θ is positive when the top of the
 flap moves towards the beach (+x), the direction the incident waves travel.
 
-Checks before use (DESIGN.md §5): finite values and C > 0 (:func:`hydro_dataset`, always),
+Checks before use: finite values and C > 0 (:func:`hydro_dataset`, always),
 passivity (B ≥ 0, :func:`check_passive`, explicit fix
 :func:`make_passive`) and the infinite-frequency inertia from the Ogilvie (1964) relation at
 every frequency with its spread (:func:`infinite_frequency_inertia`).
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8, Appendix A.
+Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
+channel. J. Fluid Mech. 701, 482-510.
+Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
 """
 
 from __future__ import annotations
@@ -52,13 +62,39 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
 
     Parameters
     ----------
-    angular_frequency : Angular frequencies ω [rad s-1], > 0, distinct.
-    added_inertia : A(ω) [kg m2].
-    radiation_damping : B(ω) [N m s].
-    excitation_torque : F(ω) [N m m-1], complex, per unit incident amplitude at x = 0
-        (time factor e^{-iωt}).
-    hydrostatic_stiffness : C [N m rad-1], net buoyancy (gravity + buoyancy) stiffness.
-    source : Where the coefficients come from (kept in ``attrs``).
+    angular_frequency : array_like
+        Angular frequencies ω [rad s-1], > 0, distinct, at least two.
+    added_inertia : array_like
+        Added inertia A(ω) [kg m2], one value per frequency.
+    radiation_damping : array_like
+        Radiation damping B(ω) [N m s], one value per frequency.
+    excitation_torque : array_like of complex
+        Excitation torque F(ω) [N m m-1] per unit incident amplitude at x = 0 (time factor
+        e^{-iωt}), one value per frequency.
+    hydrostatic_stiffness : float
+        Net hydrostatic (gravity + buoyancy) stiffness C [N m rad-1], > 0.
+    source : str, optional
+        Where the coefficients come from (kept in ``attrs``).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``added_inertia`` [kg m2], ``radiation_damping`` [N m s] and ``excitation_torque``
+        [N m m-1] over ascending ``angular_frequency`` [rad s-1], and the scalar
+        ``hydrostatic_stiffness`` [N m rad-1].
+
+    Raises
+    ------
+    HydroError
+        Fewer than two frequencies, frequencies not finite, not positive or not distinct, a
+        coefficient of the wrong length or not finite, or C not finite or ≤ 0.
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import hydro_dataset
+    >>> ds = hydro_dataset([2.0, 1.0], [50.0, 60.0], [10.0, 5.0], [30 + 1j, 20 + 2j], 400.0)
+    >>> ds["added_inertia"].values.tolist()
+    [60.0, 50.0]
     """
     w = np.asarray(angular_frequency, dtype=float).ravel()
     arrays = {"added_inertia": np.asarray(added_inertia, dtype=float).ravel(),
@@ -95,10 +131,38 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
 
 
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
-    """K̂(ω) = ∫₀^∞ K(t) e^{iωt} dt [N m s] of K(t) = Σ a_j e^{−α_j t} cos(β_j t).
+    """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
-    Each term gives a_j (α_j − iω)/((α_j − iω)² + β_j²) (time factor e^{-iωt}); a_j [N m],
-    α_j > 0 [s-1], β_j ≥ 0 [rad s-1], broadcast against each other.
+    K̂(ω) = ∫₀^∞ K(t) e^{iωt} dt of K(t) = Σ a_j e^{−α_j t} cos(β_j t); each term gives
+    a_j (α_j − iω)/((α_j − iω)² + β_j²) (time factor e^{-iωt}).
+
+    Parameters
+    ----------
+    omega : array_like
+        Angular frequencies ω [rad s-1].
+    amplitude : array_like
+        Term amplitudes a_j [N m].
+    decay_rate : array_like
+        Decay rates α_j [s-1], > 0.
+    frequency : array_like
+        Oscillation frequencies β_j [rad s-1], ≥ 0 (broadcast against ``amplitude`` and
+        ``decay_rate``).
+
+    Returns
+    -------
+    numpy.ndarray of complex
+        K̂(ω) [N m s], shape of ``omega``: B(ω) = Re K̂ and A(ω) − A∞ = −Im K̂ / ω.
+
+    References
+    ----------
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import kernel_response
+    >>> kernel_response([0.0], 2.0, 4.0, 0.0)  # a/α at ω = 0
+    array([0.5+0.j])
     """
     w = np.asarray(omega, dtype=float)[..., None]
     a, al, be = (np.atleast_1d(np.asarray(v, dtype=float)) for v in
@@ -120,11 +184,40 @@ def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
 
     Parameters
     ----------
-    angular_frequency : ω [rad s-1].
-    amplitude, decay_rate, frequency : a_j [N m], α_j [s-1], β_j [rad s-1].
-    added_inertia_infinite : A∞ [kg m2] (stored as ``added_inertia_infinite``).
-    excitation_torque : F(ω) [N m m-1], complex, per unit amplitude at x = 0.
-    hydrostatic_stiffness : C [N m rad-1].
+    angular_frequency : array_like
+        Angular frequencies ω [rad s-1], > 0.
+    amplitude, decay_rate, frequency : array_like
+        Kernel terms a_j [N m], α_j [s-1] and β_j [rad s-1] (see :func:`kernel_response`).
+    added_inertia_infinite : float
+        Infinite-frequency added inertia A∞ [kg m2] (stored as ``added_inertia_infinite``).
+    excitation_torque : array_like of complex
+        F(ω) [N m m-1] per unit incident amplitude at x = 0.
+    hydrostatic_stiffness : float
+        C [N m rad-1], > 0.
+
+    Returns
+    -------
+    xarray.Dataset
+        The container of :func:`hydro_dataset` with ``added_inertia_infinite`` [kg m2] and
+        the kernel's terms in ``attrs["kernel"]``.
+
+    Raises
+    ------
+    HydroError
+        As :func:`hydro_dataset`.
+
+    References
+    ----------
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import from_kernel
+    >>> ds = from_kernel([1.0, 2.0], 2.0, 4.0, 0.0, added_inertia_infinite=10.0,
+    ...                  excitation_torque=[1.0, 1.0], hydrostatic_stiffness=100.0)
+    >>> round(float(ds["radiation_damping"][0]), 4)  # a α / (α² + ω²)
+    0.4706
     """
     w = np.asarray(angular_frequency, dtype=float)
     kh = kernel_response(w, amplitude, decay_rate, frequency)
@@ -138,7 +231,19 @@ def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
 
 
 def split_complex(hydro: xr.Dataset) -> xr.Dataset:
-    """Replace every complex variable X by ``X_real`` and ``X_imag`` (for netCDF)."""
+    """Replace every complex variable X by ``X_real`` and ``X_imag`` (for netCDF).
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Dataset with complex variables (e.g. the container of :func:`hydro_dataset`).
+
+    Returns
+    -------
+    xarray.Dataset
+        The same dataset with each complex variable replaced by its real and imaginary parts
+        (same units, long name suffixed with "(real part)" / "(imag part)").
+    """
     out = hydro.copy()
     for name in [n for n in hydro.data_vars if hydro[n].dtype.kind == "c"]:
         da = out[name]
@@ -153,11 +258,28 @@ _PARTS = (("_real", "_imag"), ("_re", "_im"))
 
 
 def join_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
-    """The complex variable ``name`` of ``ds``, joined from its real and imaginary parts.
+    """Join the complex variable ``name`` of ``ds`` from its real and imaginary parts.
 
     The parts are ``name_real``/``name_imag`` (as :func:`split_complex` writes them) or
-    ``name_re``/``name_im``. The result keeps the real part's attributes, its long name without
-    the "real part of the " prefix or " (real part)" suffix.
+    ``name_re``/``name_im``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Dataset holding the two parts.
+    name : str
+        Name of the complex variable, without suffix.
+
+    Returns
+    -------
+    xarray.DataArray
+        The complex variable (units of its parts); it keeps the real part's attributes, its
+        long name without the "real part of the " prefix or " (real part)" suffix.
+
+    Raises
+    ------
+    KeyError
+        Neither pair of parts is in ``ds``.
     """
     for re_s, im_s in _PARTS:
         if name + re_s in ds and name + im_s in ds:
@@ -172,7 +294,20 @@ def join_complex(ds: xr.Dataset, name: str) -> xr.DataArray:
 
 
 def merge_complex(ds: xr.Dataset) -> xr.Dataset:
-    """Inverse of :func:`split_complex`: join ``X_real``/``X_imag`` (or ``_re``/``_im``) pairs."""
+    """Join every ``X_real``/``X_imag`` (or ``_re``/``_im``) pair into a complex ``X``.
+
+    The inverse of :func:`split_complex`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Dataset with split complex variables.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset with each pair replaced by one complex variable.
+    """
     out = ds.copy()
     for name in list(ds.data_vars):
         for re_s, im_s in _PARTS:
@@ -196,14 +331,34 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
 
 
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
-    """Container from :func:`flumekit.flap.renzi_dias.model.coefficients` (over ``period``).
+    """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
     Parameters
     ----------
-    coefficients : Dataset over ``period`` [s] with ``added_inertia`` [kg m2],
-        ``radiation_damping`` [N m s] and the excitation torque per unit amplitude, complex or as
-        real/imaginary parts (``excitation_torque_real``/``_imag``), time factor e^{-iωt}.
-    hydrostatic_stiffness : C [N m rad-1] (the campaign's ``flap.buoyancy_stiffness``).
+    coefficients : xarray.Dataset
+        Output of :func:`flumekit.flap.renzi_dias.model.coefficients`: over ``period`` [s]
+        (or ``angular_frequency`` [rad s-1]) with ``added_inertia`` [kg m2],
+        ``radiation_damping`` [N m s] and the excitation torque per unit amplitude [N m m-1],
+        complex or as real/imaginary parts (``excitation_torque_real``/``_imag``), time factor
+        e^{-iωt}.
+    hydrostatic_stiffness : float
+        C [N m rad-1] (the campaign's ``flap.buoyancy_stiffness``).
+
+    Returns
+    -------
+    xarray.Dataset
+        The container of :func:`hydro_dataset`.
+
+    Raises
+    ------
+    HydroError
+        No ``period`` or ``angular_frequency`` dimension, no excitation torque, or values that
+        :func:`hydro_dataset` rejects.
+
+    References
+    ----------
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510.
     """
     dim = "period" if "period" in coefficients.dims else DIM
     if dim not in coefficients.dims:
@@ -220,7 +375,7 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
                    hydrostatic_stiffness: float | None = None,
                    failed: str = "drop") -> xr.Dataset:
-    """Container from a Capytaine result (``cpt.assemble_dataset`` or its netCDF file).
+    """Build the container from a Capytaine result (``cpt.assemble_dataset`` or its netCDF).
 
     The degree of freedom must be a rotation about the hinge axis, e.g.
     ``body.add_rotation_dof(rotation_center=(0, 0, z_hinge), direction=(0, 1, 0))``: with waves
@@ -230,7 +385,8 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
 
     Parameters
     ----------
-    bem : Capytaine dataset: ``added_mass``, ``radiation_damping`` over (frequency,
+    bem : xarray.Dataset
+        Capytaine dataset: ``added_mass``, ``radiation_damping`` over (frequency,
         ``influenced_dof``, ``radiating_dof``) and ``excitation_force`` or
         ``diffraction_force`` + ``Froude_Krylov_force`` over (frequency, ``wave_direction``,
         ``influenced_dof``); complex values either complex or split along a ``complex`` dim
@@ -238,16 +394,38 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
         dim may be ``omega`` or another of Capytaine's (then ``omega`` must be a coordinate).
         ω = 0 and ω = ∞ entries are dropped from the frequency axis; the ω = ∞ added inertia is
         kept as ``added_inertia_infinite``.
-    dof : Name of the rotation dof; by default the only radiating dof.
-    wave_direction : Incident wave direction [rad], 0 for waves towards +x.
-    hydrostatic_stiffness : C [N m rad-1]; by default the dataset's ``hydrostatic_stiffness``
-        (which must then be about the hinge and include the flap's weight).
-    failed : Frequencies where the BEM run failed (non-finite values): "drop" (with a warning
-        naming them) or "raise".
+    dof : str, optional
+        Name of the rotation dof; by default the only radiating dof.
+    wave_direction : float, optional
+        Incident wave direction [rad], 0 for waves towards +x.
+    hydrostatic_stiffness : float, optional
+        C [N m rad-1]; by default the dataset's ``hydrostatic_stiffness`` (which must then be
+        about the hinge and include the flap's weight).
+    failed : {"drop", "raise"}, optional
+        Frequencies where the BEM run failed (non-finite values): dropped (with a
+        :class:`FailedFrequencyWarning` naming them) or an error.
 
-    For a six-dof rigid body (rotations about a body point, as WEC-Sim's files) use
-    :func:`flumekit.hydro.capytaine.read_capytaine` and
-    :func:`flumekit.hydro.rigid_body.about_hinge` instead.
+    Returns
+    -------
+    xarray.Dataset
+        The container of :func:`hydro_dataset`, with ``added_inertia_infinite`` [kg m2] when
+        the result holds ω = ∞.
+
+    Raises
+    ------
+    HydroError
+        No frequency dimension, no radiation or excitation results, an ambiguous or unknown
+        ``dof``, failed frequencies with ``failed="raise"``, or no hydrostatic stiffness.
+
+    See Also
+    --------
+    flumekit.hydro.capytaine.read_capytaine, flumekit.hydro.rigid_body.about_hinge :
+        For a six-dof rigid body (rotations about a body point, as WEC-Sim's files).
+
+    References
+    ----------
+    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
+    J. Open Source Software 4(36), 1341.
     """
     from flumekit.hydro.bem_layout import (
         excitation_of,
@@ -326,15 +504,31 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
 # --- checks -------------------------------------------------------------------------------
 
 def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
-    """Frequencies where the radiation damping is negative (below −rtol·max B).
+    """List the frequencies where the radiation damping is negative (below −rtol·max B).
 
     A passive body cannot give energy to the waves on average, so B(ω) ≥ 0; negative values come
     from irregular frequencies or under-resolved meshes in BEM results, or from interpolation.
 
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container (:func:`hydro_dataset`).
+    rtol : float, optional
+        Tolerance [-] relative to the largest damping below which B counts as negative.
+
     Returns
     -------
-    Dataset over the offending ``angular_frequency`` values with their ``radiation_damping``;
-    ``attrs``: ``n_negative``, ``min_damping`` [N m s], ``max_damping`` [N m s].
+    xarray.Dataset
+        ``radiation_damping`` [N m s] over the offending ``angular_frequency`` values
+        [rad s-1]; ``attrs``: ``n_negative``, ``min_damping`` [N m s], ``max_damping``
+        [N m s].
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import hydro_dataset, passivity_report
+    >>> ds = hydro_dataset([1.0, 2.0, 3.0], [5.0, 5.0, 5.0], [1.0, -0.5, 2.0], [1, 1, 1], 10.0)
+    >>> passivity_report(ds).attrs["n_negative"]
+    1
     """
     b = hydro["radiation_damping"]
     bmax = float(b.max())
@@ -349,6 +543,18 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
     The fix is explicit: :func:`make_passive` (clip to zero, recorded in ``attrs``) or better
     coefficients (finer mesh, irregular-frequency removal).
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container (:func:`hydro_dataset`).
+    rtol : float, optional
+        Tolerance [-] relative to the largest damping (see :func:`passivity_report`).
+
+    Raises
+    ------
+    HydroError
+        The damping is negative at one or more frequencies (the first eight are listed).
     """
     rep = passivity_report(hydro, rtol)
     n = rep.attrs["n_negative"]
@@ -365,7 +571,25 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
 
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
-    """Explicit passivity fix: negative radiation damping clipped to zero (recorded in attrs)."""
+    """Clip negative radiation damping to zero, recorded in ``attrs["passivity_fix"]``.
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container (:func:`hydro_dataset`).
+
+    Returns
+    -------
+    xarray.Dataset
+        A copy with B(ω) [N m s] ≥ 0.
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import hydro_dataset, make_passive
+    >>> ds = hydro_dataset([1.0, 2.0], [5.0, 5.0], [1.0, -0.5], [1, 1], 10.0)
+    >>> make_passive(ds)["radiation_damping"].values.tolist()
+    [1.0, 0.0]
+    """
     b = hydro["radiation_damping"]
     neg = b < 0
     out = hydro.copy()
@@ -377,7 +601,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
 
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
-    """Infinite-frequency added inertia from the Ogilvie (1964) relation at every frequency.
+    """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
 
         A∞ = A(ω) + (1/ω) ∫₀^∞ K(t) sin(ωt) dt        Ogilvie (1964), Eq. (A.5)-type relation
 
@@ -389,13 +613,31 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
     The sine transform is evaluated exactly for piecewise-linear K between its samples.
 
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container (:func:`hydro_dataset`).
+    duration : float, optional
+        Length of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
+    dt : float, optional
+        Time step of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
+    **irf_options
+        Further options of :func:`flumekit.hydro.radiation.impulse_response`.
+
     Returns
     -------
-    Dataset with ``added_inertia_infinite_estimate`` over ``angular_frequency`` [kg m2] and the
-    scalar ``added_inertia_infinite`` (median of the estimates) [kg m2]; ``attrs``:
-    ``spread`` = (90th − 10th percentile)/abs(median) of the estimates (robust to the lowest
-    frequencies, where the 1/ω factor amplifies the error of the low-frequency extension of B),
-    ``full_spread`` = (max − min)/abs(median), ``rms_spread`` = std/abs(median).
+    xarray.Dataset
+        ``added_inertia_infinite_estimate`` over ``angular_frequency`` [kg m2] and the scalar
+        ``added_inertia_infinite`` (median of the estimates) [kg m2]; ``attrs``: ``spread`` =
+        (90th − 10th percentile)/abs(median) of the estimates [-] (robust to the lowest
+        frequencies, where the 1/ω factor amplifies the error of the low-frequency extension of
+        B), ``full_spread`` = (max − min)/abs(median) [-], ``rms_spread`` = std/abs(median)
+        [-].
+
+    References
+    ----------
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
     """
     from flumekit.hydro.radiation import impulse_response, sine_transform
 
@@ -418,19 +660,39 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:
-    """Container with ``added_inertia_infinite`` set from the Ogilvie relation, after checks.
+    """Set ``added_inertia_infinite`` from the Ogilvie relation, after checks.
 
     Parameters
     ----------
-    hydro : Coefficient container (passivity is checked first).
-    max_spread : Largest accepted robust spread (``spread`` of
-        :func:`infinite_frequency_inertia`) of the per-frequency estimates; a larger
-        spread raises :class:`HydroError` with the numbers. ``None`` skips the check.
-    at_frequency : Instead of the median, take the estimate at this angular frequency
-        [rad s-1] (interpolated): the time-domain model then reproduces A and B exactly at that
-        frequency even if the coefficients are not causal (e.g. a constant added inertia), which
-        is what a regular-wave comparison needs. The spread is still reported.
-    **irf_options : Passed to :func:`flumekit.hydro.radiation.impulse_response`.
+    hydro : xarray.Dataset
+        Coefficient container (passivity is checked first).
+    max_spread : float or None, optional
+        Largest accepted robust spread [-] (``spread`` of :func:`infinite_frequency_inertia`)
+        of the per-frequency estimates. ``None`` skips the check.
+    at_frequency : float, optional
+        Instead of the median, take the estimate at this angular frequency [rad s-1]
+        (interpolated): the time-domain model then reproduces A and B exactly at that
+        frequency even if the coefficients are not causal (e.g. a constant added inertia),
+        which is what a regular-wave comparison needs. The spread is still reported.
+    **irf_options
+        Passed to :func:`flumekit.hydro.radiation.impulse_response`.
+
+    Returns
+    -------
+    xarray.Dataset
+        A copy of ``hydro`` with ``added_inertia_infinite`` [kg m2], the per-frequency
+        ``added_inertia_infinite_estimate`` [kg m2] and the spread and method in ``attrs``.
+
+    Raises
+    ------
+    HydroError
+        The damping is negative somewhere, the spread exceeds ``max_spread``, or
+        ``at_frequency`` lies outside the coefficients' range.
+
+    References
+    ----------
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
     """
     check_passive(hydro)
     est = infinite_frequency_inertia(hydro, **irf_options)

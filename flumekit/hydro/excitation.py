@@ -33,6 +33,12 @@ outside the record (and the tapers) changes the torque by less than that fractio
 ∫|k| max|η| (measured below 1e-4 of the torque amplitude in
 ``tests/hydro/test_simulation.py``). A flume record starts in still water, so only the end
 matters there: extend the record, or keep to ``valid_end``.
+
+References
+----------
+Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
+101-109.
+Falnes, J. (2002). Ocean waves and oscillating systems. Cambridge University Press, §5.9.
 """
 
 from __future__ import annotations
@@ -48,9 +54,33 @@ DIM = "angular_frequency"
 
 
 def transfer_function(hydro: xr.Dataset, omega) -> np.ndarray:
-    """F(ω) [N m m-1] on ``omega`` ≥ 0: linear inside the band, 0 above; below the first
-    frequency ω₁ the real part is held and the imaginary part falls linearly to zero at ω = 0
-    (F of a real filter is real at zero frequency: a jump there would leave a 1/t tail)."""
+    """Return the excitation filter F(ω) continued to every ω ≥ 0.
+
+    Linear inside the band, 0 above; below the first frequency ω₁ the real part is held and
+    the imaginary part falls linearly to zero at ω = 0 (F of a real filter is real at zero
+    frequency: a jump there would leave a 1/t tail).
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container with complex ``excitation_torque`` [N m m-1] over
+        ``angular_frequency`` [rad s-1].
+    omega : array_like
+        Angular frequencies [rad s-1], ≥ 0.
+
+    Returns
+    -------
+    numpy.ndarray of complex
+        F(ω) [N m m-1], shape of ``omega``.
+
+    Examples
+    --------
+    >>> from flumekit.hydro.coefficients import hydro_dataset
+    >>> from flumekit.hydro.excitation import transfer_function
+    >>> hydro = hydro_dataset([1.0, 2.0], [5.0, 5.0], [1.0, 1.0], [10 + 2j, 20 + 4j], 10.0)
+    >>> transfer_function(hydro, [0.0, 0.5, 1.5, 3.0])
+    array([10.+0.j, 10.+1.j, 15.+3.j,  0.+0.j])
+    """
     w = hydro[DIM].values
     f = hydro["excitation_torque"].values
     om = np.asarray(omega, dtype=float)
@@ -62,8 +92,10 @@ def transfer_function(hydro: xr.Dataset, omega) -> np.ndarray:
 
 
 def _effective_length(hydro: xr.Dataset, dt: float, tol: float) -> tuple[int, int]:
-    """Lags (in steps) of the filter's impulse response beyond which its past and future
-    tails hold less than ``tol`` of ∫|k| (module notes)."""
+    """Return the lags (in steps) beyond which the filter's tails hold less than ``tol``.
+
+    The past and future tails of the impulse response k, as fractions of ∫|k| (module notes).
+    """
     w = hydro[DIM].values
     nfft = sfft.next_fast_len(max(4096, 8 * int(np.ceil(2 * np.pi / w[0] / dt))), real=True)
     f = transfer_function(hydro, 2 * np.pi * sfft.rfftfreq(nfft, dt))
@@ -83,23 +115,59 @@ def _effective_length(hydro: xr.Dataset, dt: float, tol: float) -> tuple[int, in
 def excitation_torque(eta_incident: xr.DataArray, hydro: xr.Dataset, *, taper: float = 2.0,
                       padding: float | None = None,
                       tail_tolerance: float = 1e-4) -> xr.DataArray:
-    """Excitation torque time series [N m] from the incident elevation at x = 0 [m].
+    """Compute the excitation torque time series from the incident elevation at x = 0.
+
+    The linear filter T_exc(t) = Re Σ F(ω) â(ω) e^{-iωt}, evaluated by FFT with the end
+    treatment of the module notes.
 
     Parameters
     ----------
-    eta_incident : Incident elevation at the hinge line over ``time`` [s], uniformly sampled.
-    hydro : Coefficient container with ``excitation_torque`` (complex, per unit amplitude).
-    taper : Half-cosine ramp at each end of the record [s] (0 for a periodic record).
-    padding : Zero padding [s]; default the longest period of the band plus 20 s, extended to
-        the filter's effective length (module notes).
-    tail_tolerance : Fraction of ∫|k| left outside the effective length (module notes).
+    eta_incident : xarray.DataArray
+        Incident elevation at the hinge line [m] over ``time`` [s], uniformly sampled, finite.
+    hydro : xarray.Dataset
+        Coefficient container with ``excitation_torque`` [N m m-1] (complex, per unit
+        amplitude).
+    taper : float, optional
+        Half-cosine ramp at each end of the record [s] (0 for a periodic record).
+    padding : float, optional
+        Zero padding [s]; default the longest period of the band plus 20 s, extended to the
+        filter's effective length (module notes).
+    tail_tolerance : float, optional
+        Fraction [-] of ∫|k| left outside the effective length (module notes).
 
     Returns
     -------
-    DataArray ``torque_excitation`` over the same ``time``; attrs: the method, ``eta_mean``
-    [m], ``variance_below_band`` and ``variance_above_band`` (fractions of the elevation
-    variance outside the coefficients' frequency band), ``valid_start`` and ``valid_end`` [s]
-    (module notes).
+    xarray.DataArray
+        ``torque_excitation`` [N m] over the same ``time``; attrs: the method, ``eta_mean``
+        [m], ``variance_below_band`` and ``variance_above_band`` (fractions [-] of the
+        elevation variance outside the coefficients' frequency band), ``valid_start`` and
+        ``valid_end`` [s] (module notes).
+
+    Raises
+    ------
+    ValueError
+        The elevation is not 1-D over ``time``, not uniformly sampled, not finite, or shorter
+        than twice the taper.
+
+    References
+    ----------
+    Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
+    101-109.
+    Falnes, J. (2002). Ocean waves and oscillating systems. Cambridge University Press, §5.9.
+
+    Examples
+    --------
+    A wave at a frequency inside the band gives abs(F) a:
+
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.hydro.coefficients import hydro_dataset
+    >>> from flumekit.hydro.excitation import excitation_torque
+    >>> hydro = hydro_dataset([0.5, 5.0], [5.0, 5.0], [1.0, 1.0], [100.0, 100.0], 10.0)
+    >>> t = np.arange(0.0, 200.0, 0.05)
+    >>> eta = xr.DataArray(0.1 * np.cos(2 * np.pi * t / 2.0), dims="time", coords={"time": t})
+    >>> tq = excitation_torque(eta, hydro)
+    >>> round(float(abs(tq.sel(time=slice(50, 150))).max()), 1)
+    10.0
     """
     if "time" not in eta_incident.dims or eta_incident.ndim != 1:
         raise ValueError("eta_incident must be a 1-D DataArray over 'time'")

@@ -32,6 +32,15 @@ Numerics
   The order is the smallest that meets the requested relative L2 error on K(t); the fitting
   errors in time and in frequency are stored on the model. Unstable poles are reflected into
   the left half-plane (reported).
+
+References
+----------
+Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
+101-109.
+Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+Kung, S.-Y. (1978). A new identification and model reduction algorithm via singular value
+decomposition. Proc. 12th Asilomar Conference on Circuits, Systems and Computers, 705-714.
 """
 
 from __future__ import annotations
@@ -63,18 +72,45 @@ def _g(d: np.ndarray) -> np.ndarray:
 
 
 def filon(x, f, y, kind: str) -> np.ndarray:
-    """∫ f(x) cos(y x) dx or ∫ f(x) sin(y x) dx over [x₀, x_N], exact for piecewise-linear f.
-
-    Parameters
-    ----------
-    x : Nodes, increasing, shape (N+1,).
-    f : Values at the nodes, shape (N+1,).
-    y : Transform variable(s), any shape.
-    kind : "cos" or "sin".
+    """Integrate f(x) cos(y x) or f(x) sin(y x) over [x₀, x_N], exactly for piecewise-linear f.
 
     On [x_j, x_{j+1}] with centre x̄, half-width Δ/2, mean f̄ and increment Δf, c = y x̄ and
     d = yΔ/2:  ∫ f cos = Δ[f̄ cos c sinc d − Δf sin c g(d)],  ∫ f sin = Δ[f̄ sin c sinc d +
     Δf cos c g(d)], g(d) = (sin d − d cos d)/(2d²).
+
+    Parameters
+    ----------
+    x : array_like
+        Nodes, increasing, shape (N+1,) (units of x).
+    f : array_like
+        Values at the nodes, shape (N+1,) (units of f).
+    y : array_like
+        Transform variable(s), any shape (units of 1/x).
+    kind : {"cos", "sin"}
+        Which transform.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integral for every ``y`` [units of f times x], shape of ``y``.
+
+    Raises
+    ------
+    ValueError
+        ``kind`` is neither "cos" nor "sin".
+
+    References
+    ----------
+    Filon, L. N. G. (1928). On a quadrature formula for trigonometric integrals. Proc. Roy.
+    Soc. Edinburgh 49, 38-47.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.hydro.radiation import filon
+    >>> x = np.linspace(0.0, np.pi / 2, 3)  # f = 1: exact however coarse the grid
+    >>> round(float(filon(x, np.ones(3), 1.0, "cos")), 12)
+    1.0
     """
     x = np.asarray(x, dtype=float)
     f = np.asarray(f, dtype=float)
@@ -108,9 +144,37 @@ def _tail_exponent(w: np.ndarray, b: np.ndarray, n_fit: int = 5) -> float:
 def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold",
                      n_tail: int = 400) -> tuple[np.ndarray, np.ndarray, dict]:
-    """Damping on [0, tail_factor·ω_N] with the low- and high-frequency extensions.
+    """Extend the damping to [0, tail_factor·ω_N] at low and high frequencies (module notes).
 
-    Returns ω nodes [rad s-1], B nodes [N m s] and a dict of what was done (exponent, fractions).
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    tail : {"power", "none"}, optional
+        High-frequency continuation: B(ω_N)(ω_N/ω)^p, or none.
+    tail_exponent : float, optional
+        The exponent p [-], > 1; by default fitted to the last points (clipped to [1.5, 8]).
+    tail_factor : float, optional
+        Upper end of the continuation as a multiple of ω_N [-].
+    low : {"hold", "zero"}, optional
+        Below ω₁: B held at B(ω₁), or ramped linearly to zero at ω = 0.
+    n_tail : int, optional
+        Number of geometrically spaced nodes of the continuation.
+
+    Returns
+    -------
+    omega : numpy.ndarray
+        Nodes [rad s-1], from 0.
+    damping : numpy.ndarray
+        B at the nodes [N m s].
+    info : dict
+        What was done: ``omega_min``, ``omega_max`` [rad s-1], ``tail_exponent`` [-] and the
+        fractions [-] ``tail_fraction`` and ``tail_truncation`` of ∫B dω.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``tail`` or ``low``, or a tail exponent ≤ 1 (K(0) would be infinite).
     """
     w = hydro[DIM].values.astype(float)
     b = hydro["radiation_damping"].values.astype(float)
@@ -145,19 +209,49 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
 def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
                      tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
-    """Radiation impulse response K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω [N m] (Cummins 1962).
+    """Compute the radiation impulse response K(t) = (2/π) ∫₀^∞ B(ω) cos(ωt) dω.
 
     Parameters
     ----------
-    hydro : Coefficient container (:mod:`flumekit.hydro.coefficients`).
-    duration : Longest lag [s]; default 30 s.
-    dt : Lag step [s]; default π/(8 ω_N) capped at 0.05 s.
-    tail, tail_exponent, tail_factor, low : High- and low-frequency extension of B (module notes).
+    hydro : xarray.Dataset
+        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    duration : float, optional
+        Longest lag [s]; default 30 s.
+    dt : float, optional
+        Lag step [s]; default π/(8 ω_N) capped at 0.05 s.
+    tail, tail_exponent, tail_factor, low : optional
+        High- and low-frequency extension of B, as in :func:`extended_damping`.
 
     Returns
     -------
-    DataArray ``radiation_irf`` over ``lag`` [s]; attrs describe the extension
-    (``tail_exponent``, ``tail_fraction``, ``tail_truncation``, ``omega_min``, ``omega_max``).
+    xarray.DataArray
+        ``radiation_irf`` K(t) [N m] over ``lag`` [s]; attrs describe the extension
+        (``tail_exponent``, ``tail_fraction``, ``tail_truncation``, ``omega_min``,
+        ``omega_max``).
+
+    Raises
+    ------
+    ValueError
+        ``duration`` or ``dt`` not positive, or an invalid extension (:func:`extended_damping`).
+
+    References
+    ----------
+    Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
+    101-109.
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+
+    Examples
+    --------
+    Constant damping without a tail is a sinc: K(0) = (2/π) B ω_N.
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.coefficients import hydro_dataset
+    >>> from flumekit.hydro.radiation import impulse_response
+    >>> hydro = hydro_dataset([1.0, 4.0], [5.0, 5.0], [2.0, 2.0], [1, 1], 10.0)
+    >>> k = impulse_response(hydro, duration=1.0, tail="none")
+    >>> round(float(k[0]) * np.pi / 2, 9)  # B ω_N = 8 N m
+    8.0
     """
     w_n = float(hydro[DIM].values[-1])
     duration = 30.0 if duration is None else float(duration)
@@ -175,17 +269,61 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 
 
 def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
-    """C(ω) = ∫₀^L K(t) cos(ωt) dt [N m s] (equals B(ω) for an exact K)."""
+    """Compute C(ω) = ∫₀^L K(t) cos(ωt) dt (equals B(ω) for an exact K).
+
+    Parameters
+    ----------
+    irf : xarray.DataArray
+        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
+    omega : array_like
+        Angular frequencies [rad s-1].
+
+    Returns
+    -------
+    numpy.ndarray
+        C(ω) [N m s], shape of ``omega``.
+    """
     return filon(irf["lag"].values, irf.values, omega, "cos")
 
 
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
-    """S(ω) = ∫₀^L K(t) sin(ωt) dt [N m] (equals ω(A∞ − A(ω)) for an exact K, Ogilvie 1964)."""
+    """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
+
+    Parameters
+    ----------
+    irf : xarray.DataArray
+        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
+    omega : array_like
+        Angular frequencies [rad s-1].
+
+    Returns
+    -------
+    numpy.ndarray
+        S(ω) [N m s], shape of ``omega``.
+
+    References
+    ----------
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    """
     return filon(irf["lag"].values, irf.values, omega, "sin")
 
 
 def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
-    """K̂(ω) = C(ω) + i S(ω) [N m s]: memory torque per unit θ̇ amplitude (time factor e^{-iωt})."""
+    """Compute K̂(ω) = C(ω) + i S(ω), the memory torque per unit θ̇ amplitude.
+
+    Parameters
+    ----------
+    irf : xarray.DataArray
+        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
+    omega : array_like
+        Angular frequencies [rad s-1].
+
+    Returns
+    -------
+    numpy.ndarray of complex
+        K̂(ω) [N m s] (time factor e^{-iωt}), shape of ``omega``.
+    """
     return cosine_transform(irf, omega) + 1j * sine_transform(irf, omega)
 
 
@@ -214,12 +352,12 @@ class StateSpace:
         return int(sum(2 if abs(p.imag) > 0 else 1 for p in self.poles))
 
     def impulse(self, t) -> np.ndarray:
-        """K_ss(t) [N m]."""
+        """Return the model's impulse response K_ss(t) [N m] at lags ``t`` [s]."""
         t = np.asarray(t, dtype=float)
         return np.real(np.exp(np.multiply.outer(t, self.poles)) @ self.residues)
 
     def frequency_response(self, omega) -> np.ndarray:
-        """K̂_ss(ω) [N m s] in the convention of :func:`memory_response`."""
+        """Return K̂_ss(ω) [N m s] at ``omega`` [rad s-1], as :func:`memory_response` defines it."""
         w = np.asarray(omega, dtype=float)
         out = np.zeros(w.shape, dtype=complex)
         iw = 1j * w
@@ -232,7 +370,7 @@ class StateSpace:
         return out
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Real (A, B, C) with ẋ = A x + B θ̇, μ = C x (2×2 blocks for pairs)."""
+        """Return real (A, B, C) with ẋ = A x + B θ̇, μ = C x (2×2 blocks for pairs)."""
         n = self.order
         a, b, c = np.zeros((n, n)), np.zeros(n), np.zeros(n)
         i = 0
@@ -274,23 +412,54 @@ def _realise(k: np.ndarray, dt: float, u: np.ndarray, s: np.ndarray, vt: np.ndar
 def fit_state_space(irf: xr.DataArray, order: int | None = None, *, rtol: float = 0.01,
                     max_order: int = 24, fit_dt: float | None = None,
                     omega=None) -> StateSpace:
-    """State-space approximation of K(t) by Kung's (1978) SVD realisation (module notes).
+    """Fit a state-space model to K(t) by Kung's (1978) SVD realisation (module notes).
 
     Parameters
     ----------
-    irf : K(t) from :func:`impulse_response`.
-    order : Number of Hankel singular values kept (real state dimension); by default the
+    irf : xarray.DataArray
+        K(t) [N m] over ``lag`` [s] from :func:`impulse_response`.
+    order : int, optional
+        Number of Hankel singular values kept (real state dimension); by default the
         smallest that reaches ``rtol``.
-    rtol : Target relative L2 error of K_ss(t) against K(t) over the IRF lags.
-    max_order : Largest order tried.
-    fit_dt : Sampling interval used for the realisation [s] (a multiple of the IRF step);
-        default the multiple nearest to π/(4 ω_max) of the coefficients, at least the IRF step.
-    omega : Angular frequencies [rad s-1] for the frequency-domain error; default 200 points
-        over the coefficients' band (``omega_min``/``omega_max`` attrs of ``irf``).
+    rtol : float, optional
+        Target relative L2 error [-] of K_ss(t) against K(t) over the IRF lags.
+    max_order : int, optional
+        Largest order tried.
+    fit_dt : float, optional
+        Sampling interval used for the realisation [s] (a multiple of the IRF step); default
+        the multiple nearest to π/(4 ω_max) of the coefficients, at least the IRF step.
+    omega : array_like, optional
+        Angular frequencies [rad s-1] for the frequency-domain error; default 200 points over
+        the coefficients' band (``omega_min``/``omega_max`` attrs of ``irf``).
 
     Returns
     -------
-    :class:`StateSpace` with ``fit_error_time`` and ``fit_error_frequency``.
+    StateSpace
+        The model with ``fit_error_time`` and ``fit_error_frequency`` [-]; when no order up to
+        ``max_order`` reaches ``rtol``, the one with the smallest error in time.
+
+    Raises
+    ------
+    ValueError
+        Fewer than 8 samples at ``fit_dt``, or ``order`` out of range.
+
+    References
+    ----------
+    Kung, S.-Y. (1978). A new identification and model reduction algorithm via singular value
+    decomposition. Proc. 12th Asilomar Conference on Circuits, Systems and Computers, 705-714.
+
+    Examples
+    --------
+    A kernel of one damped cosine needs one complex pole pair:
+
+    >>> from flumekit.hydro.coefficients import from_kernel
+    >>> from flumekit.hydro.radiation import fit_state_space, impulse_response
+    >>> import numpy as np
+    >>> w = np.linspace(0.2, 20.0, 200)
+    >>> hydro = from_kernel(w, 50.0, 1.0, 3.0, added_inertia_infinite=10.0,
+    ...                     excitation_torque=np.ones(w.size), hydrostatic_stiffness=100.0)
+    >>> fit_state_space(impulse_response(hydro)).order
+    2
     """
     t = irf["lag"].values
     k = irf.values.astype(float)
@@ -339,9 +508,22 @@ def fit_state_space(irf: xr.DataArray, order: int | None = None, *, rtol: float 
 
 
 def state_space_dataset(ss: StateSpace) -> xr.Dataset:
-    """The model as netCDF-ready variables over ``radiation_mode`` (real and imaginary parts
-    of the poles [s-1] and residues [N m]), with its fit errors in ``attrs``; to fit the model
-    once (per campaign) and share it (:func:`state_space_from_dataset`)."""
+    """Return the model as netCDF-ready variables over ``radiation_mode``.
+
+    The model is fitted once per campaign and shared through this dataset
+    (:func:`state_space_from_dataset` reads it back).
+
+    Parameters
+    ----------
+    ss : StateSpace
+        The model (:func:`fit_state_space`).
+
+    Returns
+    -------
+    xarray.Dataset
+        Real and imaginary parts of the poles [s-1] and residues [N m], with the fit errors
+        [-], the realisation step [s] and the number of reflected poles in ``attrs``.
+    """
     p, r = np.asarray(ss.poles, complex), np.asarray(ss.residues, complex)
     dim = "radiation_mode"
     ds = xr.Dataset({
@@ -360,8 +542,21 @@ def state_space_dataset(ss: StateSpace) -> xr.Dataset:
 
 
 def state_space_from_dataset(ds: xr.Dataset) -> StateSpace:
-    """Inverse of :func:`state_space_dataset` (also once the parts are merged into complex
-    ``radiation_pole``/``radiation_residue`` by ``hydro.coefficients.merge_complex``)."""
+    """Rebuild the model from :func:`state_space_dataset`'s variables.
+
+    Also accepts the parts merged into complex ``radiation_pole``/``radiation_residue`` by
+    :func:`flumekit.hydro.coefficients.merge_complex`.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Poles [s-1] and residues [N m] over ``radiation_mode``, fit information in ``attrs``.
+
+    Returns
+    -------
+    StateSpace
+        The model.
+    """
 
     def get(name):
         if name in ds:

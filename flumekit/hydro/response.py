@@ -20,6 +20,14 @@ Appendix A of Brito et al. (2020, "Brito") with the coefficients of
 
 The phase convention is that of the models: η = Re(A e^{-iωt}) at the hinge line (x = 0), so
 θ(t) = |Θ| cos(ωt - arg Θ) and θ peaks arg Θ/ω after the crest passes the hinge line.
+
+References
+----------
+Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+investigation of the flow field in the vicinity of an oscillating wave surge converter.
+J. Mar. Sci. Eng. 8.
+Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
+channel. J. Fluid Mech. 701, 482-510 (RD12).
 """
 
 from __future__ import annotations
@@ -44,15 +52,48 @@ def _nonnegative(name: str, value) -> None:
 
 def optimal_pto_damping(coefficients: xr.Dataset, inertia: float, stiffness: float,
                         pto_stiffness: float = 0.0, pto_inertia: float = 0.0) -> xr.DataArray:
-    """PTO damping maximising the mean power at each period, RD12 Eq. (2.40) [N m s].
+    """Compute the PTO damping that maximises the mean power at each period.
+
+    ν_opt = √((C + C_pto − (I + μ + I_pto)ω²)²/ω² + ν²), RD12 Eq. (2.40).
 
     Parameters
     ----------
-    coefficients : Dataset with ``added_inertia`` [kg m2], ``radiation_damping`` [N m s] over
-        ``period`` [s].
-    inertia : Moment of inertia of the flap about the hinge I [kg m2].
-    stiffness : Net buoyancy (hydrostatic) stiffness C [N m rad-1].
-    pto_stiffness, pto_inertia : Optional PTO stiffness [N m rad-1] and inertia [kg m2].
+    coefficients : xarray.Dataset
+        ``added_inertia`` μ [kg m2] and ``radiation_damping`` ν [N m s] over ``period`` [s].
+    inertia : float
+        Moment of inertia of the flap about the hinge I [kg m2], ≥ 0.
+    stiffness : float
+        Net buoyancy (hydrostatic) stiffness C [N m rad-1].
+    pto_stiffness : float, optional
+        PTO stiffness C_pto [N m rad-1].
+    pto_inertia : float, optional
+        PTO inertia I_pto [kg m2].
+
+    Returns
+    -------
+    xarray.DataArray
+        ``optimal_pto_damping`` ν_opt [N m s] over ``period``.
+
+    Raises
+    ------
+    ValueError
+        ``inertia`` negative or not finite.
+
+    References
+    ----------
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510.
+
+    Examples
+    --------
+    At resonance (C = (I + μ)ω²) the optimum equals the radiation damping:
+
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.hydro.response import optimal_pto_damping
+    >>> coef = xr.Dataset({"added_inertia": ("period", [5.0]),
+    ...                    "radiation_damping": ("period", [3.0])}, coords={"period": [2.0]})
+    >>> float(optimal_pto_damping(coef, 10.0, 15.0 * np.pi**2)[0])
+    3.0
     """
     _nonnegative("inertia", inertia)
     omega = _omega(coefficients)
@@ -68,31 +109,55 @@ def optimal_pto_damping(coefficients: xr.Dataset, inertia: float, stiffness: flo
 def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness: float,
              pto_damping, pto_stiffness: float = 0.0, pto_inertia: float = 0.0,
              channel_width: float | None = None) -> xr.Dataset:
-    """Linear flap response to regular waves (Brito Eq. A1) and its power.
+    """Compute the linear flap response to regular waves (Brito Eq. A1) and its power.
 
     Parameters
     ----------
-    coefficients : Dataset over ``period`` [s] with ``added_inertia`` [kg m2],
-        ``radiation_damping`` [N m s], ``excitation_torque_real``/``_imag`` [N m m-1] and the
-        attributes ``depth`` [m], ``flap_width`` [m], ``rho`` [kg m-3], ``g`` [m s-2] (as made by
+    coefficients : xarray.Dataset
+        Dataset over ``period`` [s] with ``added_inertia`` [kg m2], ``radiation_damping``
+        [N m s], ``excitation_torque_real``/``_imag`` [N m m-1] and the attributes ``depth``
+        [m], ``flap_width`` [m], ``rho`` [kg m-3], ``g`` [m s-2] (as made by
         :func:`flumekit.flap.renzi_dias.model.coefficients` or :mod:`flumekit.flap.bem`).
-    wave_amplitude : Incident wave amplitude A = H/2 [m]; scalar or a DataArray (e.g. over
-        ``wave_height``), broadcast against ``period``.
-    inertia : Moment of inertia I of the flap about the hinge [kg m2] (14.74 in Brito §2.2).
-    stiffness : Net buoyancy stiffness C [N m rad-1] (605 in Brito App. A).
-    pto_damping : Linear PTO damping ν_pto [N m s], ≥ 0; scalar or DataArray (e.g. the result
-        of :func:`optimal_pto_damping`).
-    pto_stiffness, pto_inertia : Optional PTO stiffness [N m rad-1] and inertia [kg m2].
-    channel_width : Channel width b [m] for ``capture_factor_channel``; default: the dataset's
+    wave_amplitude : float or xarray.DataArray
+        Incident wave amplitude A = H/2 [m], ≥ 0; a DataArray (e.g. over ``wave_height``) is
+        broadcast against ``period``.
+    inertia : float
+        Moment of inertia I of the flap about the hinge [kg m2] (14.74 in Brito §2.2).
+    stiffness : float
+        Net buoyancy stiffness C [N m rad-1] (605 in Brito App. A).
+    pto_damping : float or xarray.DataArray
+        Linear PTO damping ν_pto [N m s], ≥ 0 (e.g. the result of
+        :func:`optimal_pto_damping`).
+    pto_stiffness : float, optional
+        PTO stiffness [N m rad-1].
+    pto_inertia : float, optional
+        PTO inertia [kg m2].
+    channel_width : float, optional
+        Channel width b [m] for ``capture_factor_channel``; default: the dataset's
         ``channel_width`` attribute if any (otherwise that variable is omitted).
 
     Returns
     -------
-    Dataset with ``theta_real``, ``theta_imag``, ``theta_amplitude``, ``theta_phase`` [rad],
-    ``mean_power`` [W], ``incident_power`` W_I [W], ``capture_factor`` (flap-width
-    normalisation, Brito = RD12), ``capture_factor_channel`` (channel-width normalisation),
-    ``torque_amplitude`` [N m] (amplitude of the wave torque F A + (ω²μ + iων)Θ on the moving
-    flap, hydrostatics excluded) and ``pto_damping`` [N m s].
+    xarray.Dataset
+        ``theta_real``, ``theta_imag``, ``theta_amplitude``, ``theta_phase`` [rad],
+        ``mean_power`` [W], ``incident_power`` W_I [W], ``capture_factor`` [-] (flap-width
+        normalisation, Brito = RD12), ``capture_factor_channel`` [-] (channel-width
+        normalisation), ``torque_amplitude`` [N m] (amplitude of the wave torque
+        F A + (ω²μ + iων)Θ on the moving flap, hydrostatics excluded) and ``pto_damping``
+        [N m s].
+
+    Raises
+    ------
+    ValueError
+        A negative or non-finite amplitude, PTO damping or inertia, or a missing attribute.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, Appendix A.
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
+    a channel. J. Fluid Mech. 701, 482-510.
     """
     _nonnegative("wave_amplitude", wave_amplitude)
     _nonnegative("pto_damping", pto_damping)

@@ -77,22 +77,48 @@ def rigid_body_dataset(angular_frequency, added_mass, radiation_damping, excitat
                        hydrostatic_stiffness, *, reference_point=None, rho: float = 1000.0,
                        g: float = 9.81, water_depth: float = np.inf, wave_direction: float = 0.0,
                        added_mass_infinite=None, source: str = "") -> xr.Dataset:
-    """Six-dof coefficients of one rigid body about a reference point, as a dataset.
+    """Build the dataset of six-dof coefficients of one rigid body about a reference point.
 
     Parameters
     ----------
-    angular_frequency : ω [rad s-1], shape (n,), > 0 (NaN coefficients allowed: see
-        :func:`drop_failed`).
-    added_mass : A(ω) [kg, kg m, kg m2], shape (n, 6, 6), indexed (radiating, influenced).
-    radiation_damping : B(ω) [N s m-1 ... N m s], shape (n, 6, 6).
-    excitation_force : F(ω) per unit incident amplitude [N m-1, N m m-1], complex, shape (n, 6),
-        time factor e^{-iωt}, referenced to the incident wave at the origin of the BEM frame.
-    hydrostatic_stiffness : C [N m-1 ... N m rad-1], shape (6, 6), about the reference point.
-    reference_point : (x, y, z) [m] about which the rotations are taken, or None if unknown.
-    rho, g, water_depth : Density [kg m-3], gravity [m s-2], depth [m] of the BEM run.
-    wave_direction : Incident wave direction of ``excitation_force`` [rad] (0: towards +x).
-    added_mass_infinite : A∞ [kg ...], shape (6, 6), if the BEM run has it.
-    source : Where the data come from (kept in ``attrs``).
+    angular_frequency : array_like
+        ω [rad s-1], shape (n,), > 0 (NaN coefficients allowed: see :func:`drop_failed`).
+    added_mass : array_like
+        A(ω) [kg, kg m, kg m2], shape (n, 6, 6), indexed (radiating, influenced).
+    radiation_damping : array_like
+        B(ω) [N s m-1 ... N m s], shape (n, 6, 6).
+    excitation_force : array_like of complex
+        F(ω) per unit incident amplitude [N m-1, N m m-1], shape (n, 6), time factor
+        e^{-iωt}, referenced to the incident wave at the origin of the BEM frame.
+    hydrostatic_stiffness : array_like
+        C [N m-1 ... N m rad-1], shape (6, 6), about the reference point.
+    reference_point : sequence of float, optional
+        (x, y, z) [m] about which the rotations are taken, or None if unknown.
+    rho : float, optional
+        Water density of the BEM run [kg m-3].
+    g : float, optional
+        Gravitational acceleration of the BEM run [m s-2].
+    water_depth : float, optional
+        Water depth of the BEM run [m] (``inf`` for deep water).
+    wave_direction : float, optional
+        Incident wave direction of ``excitation_force`` [rad] (0: towards +x).
+    added_mass_infinite : array_like, optional
+        A∞ [kg, kg m, kg m2], shape (6, 6), if the BEM run has it.
+    source : str, optional
+        Where the data come from (kept in ``attrs``).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``added_mass``, ``radiation_damping``, ``excitation_force`` over ascending
+        ``angular_frequency`` and the dofs (Surge ... Yaw), ``hydrostatic_stiffness``; the run's
+        constants in ``attrs``.
+
+    Raises
+    ------
+    HydroError
+        An array of the wrong shape, frequencies not finite or not positive, or a non-finite
+        stiffness matrix.
     """
     w = np.asarray(angular_frequency, dtype=float).ravel()
     a = np.asarray(added_mass, dtype=float)
@@ -126,7 +152,18 @@ def rigid_body_dataset(angular_frequency, added_mass, radiation_damping, excitat
 
 
 def failed_frequencies(ds: xr.Dataset) -> np.ndarray:
-    """Angular frequencies [rad s-1] at which any coefficient is not finite."""
+    """Return the angular frequencies [rad s-1] at which any coefficient is not finite.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Six-dof dataset of :func:`rigid_body_dataset`.
+
+    Returns
+    -------
+    numpy.ndarray
+        The failed frequencies [rad s-1], ascending (empty if none).
+    """
     bad = np.zeros(ds.sizes[DIM], dtype=bool)
     for name in ("added_mass", "radiation_damping", "excitation_force"):
         v = ds[name].values
@@ -135,8 +172,28 @@ def failed_frequencies(ds: xr.Dataset) -> np.ndarray:
 
 
 def drop_failed(ds: xr.Dataset, failed: str = "drop") -> xr.Dataset:
-    """Remove the frequencies with non-finite coefficients (``failed="drop"``, with a warning
-    naming them) or raise :class:`HydroError` naming them (``failed="raise"``)."""
+    """Remove the frequencies with non-finite coefficients, or raise naming them.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Six-dof dataset of :func:`rigid_body_dataset`.
+    failed : {"drop", "raise"}, optional
+        Drop them with a :class:`~flumekit.hydro.coefficients.FailedFrequencyWarning` naming
+        them (their list kept in ``attrs["dropped_frequencies"]`` [rad s-1]), or raise.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds`` without the failed frequencies (``ds`` itself if none failed).
+
+    Raises
+    ------
+    HydroError
+        Failed frequencies with ``failed="raise"``, or every frequency failed.
+    ValueError
+        ``failed`` is neither "drop" nor "raise".
+    """
     bad = failed_frequencies(ds)
     if bad.size == 0:
         return ds
@@ -156,7 +213,40 @@ def drop_failed(ds: xr.Dataset, failed: str = "drop") -> xr.Dataset:
 
 
 def hinge_mode(reference_point, hinge_point, axis=(0.0, 1.0, 0.0)) -> np.ndarray:
-    """Mode shape T = [u × d ; u] (d = r₀ − H) of a rotation about a hinge (module notes)."""
+    """Return the mode shape T = [u × d ; u] (d = r₀ − H) of a rotation about a hinge.
+
+    Parameters
+    ----------
+    reference_point : sequence of float
+        Reference point r₀ (x, y, z) [m] of the six-dof result.
+    hinge_point : sequence of float
+        A point H (x, y, z) [m] on the hinge axis.
+    axis : sequence of float, optional
+        Hinge direction u (normalised here) [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        T, shape (6,): translation of r₀ per unit rotation [m rad-1], then the rotation
+        axis [-].
+
+    Raises
+    ------
+    HydroError
+        A zero or malformed axis, or points that are not 3-vectors.
+
+    References
+    ----------
+    Newman, J. N. (1977). Marine Hydrodynamics. MIT Press, §7.1.
+
+    Examples
+    --------
+    The OSWEC of the module notes, r₀ five metres above the hinge:
+
+    >>> from flumekit.hydro.rigid_body import hinge_mode
+    >>> hinge_mode((0.0, 0.0, 5.0), (0.0, 0.0, 0.0)).tolist()
+    [5.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+    """
     u = np.asarray(axis, dtype=float)
     if u.shape != (3,) or not np.linalg.norm(u) > 0:
         raise HydroError(f"the hinge axis must be a non-zero 3-vector, got {axis}")
@@ -169,16 +259,34 @@ def hinge_mode(reference_point, hinge_point, axis=(0.0, 1.0, 0.0)) -> np.ndarray
 
 def inertia_about_hinge(mass: float, inertia_cog: float, centre_of_gravity, hinge_point,
                         axis=(0.0, 1.0, 0.0)) -> float:
-    """Moment of inertia about the hinge axis, I_h = I_G + m r² (parallel-axis theorem) [kg m2].
+    """Compute the moment of inertia about the hinge axis, I_h = I_G + m r².
+
+    The parallel-axis theorem, r the distance of the centre of gravity from the hinge axis,
+    ‖u × (r_G − H)‖.
 
     Parameters
     ----------
-    mass : m [kg].
-    inertia_cog : I_G about the parallel axis through the centre of gravity [kg m2].
-    centre_of_gravity, hinge_point : (x, y, z) [m].
-    axis : Hinge direction.
+    mass : float
+        Body mass m [kg].
+    inertia_cog : float
+        I_G about the parallel axis through the centre of gravity [kg m2].
+    centre_of_gravity : sequence of float
+        r_G (x, y, z) [m].
+    hinge_point : sequence of float
+        A point H (x, y, z) [m] on the hinge axis.
+    axis : sequence of float, optional
+        Hinge direction u [-].
 
-    r is the distance of the centre of gravity from the hinge axis, |u × (r_G − H)|.
+    Returns
+    -------
+    float
+        I_h [kg m2].
+
+    Examples
+    --------
+    >>> from flumekit.hydro.rigid_body import inertia_about_hinge
+    >>> inertia_about_hinge(2.0, 1.0, (0.0, 0.0, 3.0), (0.0, 0.0, 0.0))
+    19.0
     """
     u = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
     r = np.cross(u, np.asarray(centre_of_gravity, float) - np.asarray(hinge_point, float))
@@ -189,27 +297,54 @@ def about_hinge(ds: xr.Dataset, hinge_point, axis=(0.0, 1.0, 0.0), *, mass: floa
                 displaced_volume: float | None = None, reference_point=None,
                 hydrostatic_stiffness: float | None = None, passivity: str = "raise",
                 failed: str = "drop") -> xr.Dataset:
-    """One-dof container of a rotation about a hinge axis from a six-dof result (module notes).
+    """Reduce a six-dof result to the one-dof container of a rotation about a hinge axis.
+
+    A_h = Tᵀ A T, B_h = Tᵀ B T, F_h = Tᵀ F and C_h = Tᵀ C T + F_s · d − (F_s · u)(u · d)
+    with the mode shape T of :func:`hinge_mode` (module notes).
 
     Parameters
     ----------
-    ds : Six-dof dataset of :func:`rigid_body_dataset` (Capytaine or WAMIT reader).
-    hinge_point : A point (x, y, z) on the hinge axis [m], in the BEM frame.
-    axis : Hinge direction (u); +y turns the top of a flap towards +x for positive θ.
-    mass : Body mass m [kg] (the real one: WEC-Sim's OSWEC flap is 127 000 kg, not the ρV of
+    ds : xarray.Dataset
+        Six-dof dataset of :func:`rigid_body_dataset` (Capytaine or WAMIT reader).
+    hinge_point : sequence of float
+        A point (x, y, z) on the hinge axis [m], in the BEM frame.
+    axis : sequence of float, optional
+        Hinge direction u [-]; +y turns the top of a flap towards +x for positive θ.
+    mass : float, optional
+        Body mass m [kg] (the real one: WEC-Sim's OSWEC flap is 127 000 kg, not the ρV of
         Capytaine's default inertia matrix).
-    displaced_volume : V [m3] at rest.
-    reference_point : r₀ [m]; default the dataset's ``reference_point`` attribute.
-    hydrostatic_stiffness : C_h about the hinge [N m rad-1] if known otherwise; replaces the
-        transformed value (then ``mass`` and ``displaced_volume`` are not needed).
-    passivity : "raise" (default: :func:`~flumekit.hydro.coefficients.check_passive`) or
-        "clip" (:func:`~flumekit.hydro.coefficients.make_passive`, recorded in ``attrs``).
-    failed : What to do with non-finite frequencies (:func:`drop_failed`).
+    displaced_volume : float, optional
+        Displaced volume V at rest [m3].
+    reference_point : sequence of float, optional
+        r₀ [m]; default the dataset's ``reference_point`` attribute.
+    hydrostatic_stiffness : float, optional
+        C_h about the hinge [N m rad-1] if known otherwise; replaces the transformed value
+        (then ``mass`` and ``displaced_volume`` are not needed).
+    passivity : {"raise", "clip"}, optional
+        :func:`~flumekit.hydro.coefficients.check_passive`, or
+        :func:`~flumekit.hydro.coefficients.make_passive` (recorded in ``attrs``).
+    failed : {"drop", "raise"}, optional
+        What to do with non-finite frequencies (:func:`drop_failed`).
 
     Returns
     -------
-    The container of :mod:`flumekit.hydro.coefficients` (A_h, B_h, F_h, C_h; A∞ of the mode
-    when the dataset has it), with ``attrs`` naming the transformation.
+    xarray.Dataset
+        The container of :mod:`flumekit.hydro.coefficients` (A_h [kg m2], B_h [N m s], F_h
+        [N m m-1], C_h [N m rad-1]; A∞ of the mode [kg m2] when the dataset has it), with
+        ``attrs`` naming the transformation.
+
+    Raises
+    ------
+    HydroError
+        No reference point, no way to compute C_h, C_h ≤ 0 (statically unstable), negative
+        damping with ``passivity="raise"``, or failed frequencies with ``failed="raise"``.
+    ValueError
+        An unknown ``passivity``.
+
+    References
+    ----------
+    Newman, J. N. (1977). Marine Hydrodynamics. MIT Press, §7.1.
+    Falnes, J. (2002). Ocean Waves and Oscillating Systems. Cambridge University Press, §5.7.
     """
     r0 = reference_point if reference_point is not None else ds.attrs.get("reference_point")
     if r0 is None:

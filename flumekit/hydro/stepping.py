@@ -52,24 +52,82 @@ EXTRA = f8(i8, f8, f8, _vec, _vec, _mat)
 
 @njit(PREDICT, cache=True)
 def no_predict(s0, s1, th, om, acc, params):
-    """Keep the states of a PTO without internal states."""
+    """Keep the states of a PTO without internal states (signature ``PREDICT``).
+
+    Parameters
+    ----------
+    s0, s1 : float
+        The PTO's states (unused).
+    th, om, acc : float
+        θ [rad], θ̇ [rad s-1] and θ̈ [rad s-2] of the first stage (unused).
+    params : ndarray
+        The PTO's parameters (unused).
+
+    Returns
+    -------
+    tuple of float
+        Four zeros: the states at mid-step and at the step's end.
+    """
     return 0.0, 0.0, 0.0, 0.0
 
 
 @njit(ADVANCE, cache=True)
 def no_advance(s0, s1, th, om, th_new, om_new, params):
-    """Keep the states of a PTO without internal states."""
+    """Keep the states of a PTO without internal states (signature ``ADVANCE``).
+
+    Parameters
+    ----------
+    s0, s1 : float
+        The PTO's states.
+    th, om, th_new, om_new : float
+        θ [rad] and θ̇ [rad s-1] at the step's start and end (unused).
+    params : ndarray
+        The PTO's parameters (unused).
+
+    Returns
+    -------
+    s0, s1 : float
+        The states, unchanged.
+    """
     return s0, s1
 
 
 @njit(EXTRA, cache=True)
 def no_extra(j, th, om, params, state, record):
-    """No extra torque."""
+    """Return no extra torque (signature ``EXTRA``).
+
+    Parameters
+    ----------
+    j : int
+        Half-step index (unused).
+    th, om : float
+        θ [rad] and θ̇ [rad s-1] (unused).
+    params, state : ndarray
+        Parameters and mutable state (unused).
+    record : ndarray
+        Per-step record (unused).
+
+    Returns
+    -------
+    float
+        0 [N m].
+    """
     return 0.0
 
 
 def is_compiled(*functions) -> bool:
-    """Tell whether every function is a numba-compiled kernel the compiled loop can call."""
+    """Tell whether every function is a numba-compiled kernel the compiled loop can call.
+
+    Parameters
+    ----------
+    *functions : callable
+        The parts of a run (memory model, PTO and extra-torque kernels).
+
+    Returns
+    -------
+    bool
+        True when each is a numba dispatcher; else the loop runs uncompiled (``py_func``).
+    """
     from numba.core.registry import CPUDispatcher
 
     return all(isinstance(f, CPUDispatcher) for f in functions)
@@ -104,9 +162,20 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
         w21, w22, w32, w33, w41, w43, w44 [N m s rad-1] of the memory).
     final : bool
         The chunk ends the run (its last step has no later stages).
-    begin, finish, mem_c, mem_r : kernels and state of the memory model.
-    accel, predict, advance, pto_params : kernels and parameters of the PTO.
-    extra, extra_params, extra_state, extra_record, has_extra : the extra torque.
+    begin, finish : function
+        Kernels of the memory model (signatures ``BEGIN``, ``FINISH``).
+    mem_c, mem_r : ndarray
+        State of the memory model (complex and real), advanced in place.
+    accel, predict, advance : function
+        Kernels of the PTO (signatures ``ACCEL``, ``PREDICT``, ``ADVANCE``).
+    pto_params : ndarray
+        Parameters of the PTO kernels.
+    extra : function
+        Extra torque kernel (signature ``EXTRA``).
+    extra_params, extra_state, extra_record : ndarray
+        Its parameters, mutable state and per-step record.
+    has_extra : bool
+        Whether to call ``extra``.
     out : ndarray
         (9, last - first) output: θ, θ̇, θ̈, μ, out0, out1, s0, s1, extra torque per step.
 
@@ -176,5 +245,28 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
 
 @njit(ACCEL, cache=True)
 def linear_accel(t, th, om, rest, s0, s1, params):
-    """θ̈ [rad s-2] with a linear damper: params = (ν [N m s], 1/(I + A∞) [kg-1 m-2])."""
+    """Return θ̈ with a linear PTO damper (signature ``ACCEL``).
+
+    Parameters
+    ----------
+    t : float
+        Time [s] (unused).
+    th : float
+        θ [rad] (unused: the restoring torque is in ``rest``).
+    om : float
+        θ̇ [rad s-1].
+    rest : float
+        The torques other than the PTO's [N m].
+    s0, s1 : float
+        The PTO's states (unused).
+    params : ndarray
+        (ν [N m s], 1/(I + A∞) [kg-1 m-2]).
+
+    Returns
+    -------
+    acc : float
+        θ̈ = (rest − ν θ̇)/(I + A∞) [rad s-2].
+    out0, out1 : float
+        Zeros (no PTO outputs).
+    """
     return (rest - params[0] * om) * params[1], 0.0, 0.0

@@ -1,5 +1,7 @@
-"""Reader of WAMIT's numeric output: ``.1`` (added mass, damping), ``.3`` (diffraction
-excitation) and ``.hst`` (hydrostatic restoring), WAMIT User Manual v7, §4.2-4.3 and §4.9.
+"""Reader of WAMIT's numeric output: ``.1``, ``.3`` and ``.hst`` files.
+
+``.1`` holds added mass and damping, ``.3`` the diffraction excitation and ``.hst`` the
+hydrostatic restoring (WAMIT User Manual v7, §4.2-4.3 and §4.9).
 
 Every file is whitespace-separated text in WAMIT's non-dimensional form (length scale L =
 ULEN of the run, ρ, g):
@@ -58,23 +60,47 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
                g: float = 9.81, body: int = 1, wave_direction: float = 0.0,
                reference_point=(0.0, 0.0, 0.0), water_depth: float = np.inf,
                first_column: str = "period") -> xr.Dataset:
-    """Six-dof coefficients of one body from ``<stem>.1``, ``<stem>.3`` and ``<stem>.hst``.
+    """Read the six-dof coefficients of one body from ``<stem>.1``, ``.3`` and ``.hst``.
 
     Parameters
     ----------
-    stem : Path without extension.
-    length_scale : WAMIT's ULEN [m].
-    rho, g : Density [kg m-3] and gravity [m s-2] of the dimensional values.
-    body : Body number (1 for the first).
-    wave_direction : Heading to keep [rad] (0: waves towards +x).
-    reference_point : Body origin (x, y, z) [m] in the frame of the excitation phase reference.
-    water_depth : Depth of the run [m].
-    first_column : "period" [s] or "angular_frequency" [rad s-1].
+    stem : str or pathlib.Path
+        Path without extension.
+    length_scale : float, optional
+        WAMIT's ULEN [m].
+    rho : float, optional
+        Water density [kg m-3] of the dimensional values.
+    g : float, optional
+        Gravitational acceleration [m s-2] of the dimensional values.
+    body : int, optional
+        Body number (1 for the first).
+    wave_direction : float, optional
+        Heading to keep [rad] (0: waves towards +x).
+    reference_point : sequence of float, optional
+        Body origin (x, y, z) [m] in the frame of the excitation phase reference.
+    water_depth : float, optional
+        Depth of the run [m].
+    first_column : {"period", "angular_frequency"}, optional
+        What the first column holds: the period [s] (IPEROUT = 1) or the angular frequency
+        [rad s-1] (IPEROUT = 2).
 
     Returns
     -------
-    Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset` (NaN where a frequency lacks
-    a coefficient, see :func:`flumekit.hydro.rigid_body.drop_failed`).
+    xarray.Dataset
+        Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset` (NaN where a
+        frequency lacks a coefficient, see :func:`flumekit.hydro.rigid_body.drop_failed`).
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        A file is missing, empty, holds a non-number or a wrong column count (file and line
+        named), has no positive period, or lacks the requested heading.
+    ValueError
+        ``first_column`` is neither "period" nor "angular_frequency".
+
+    References
+    ----------
+    WAMIT, Inc. (2016). WAMIT User Manual, Version 7, §4.2-4.3 and §4.9.
     """
     stem = Path(stem)
     p1, p3, ph = (stem.with_name(stem.name + ext) for ext in (".1", ".3", ".hst"))
