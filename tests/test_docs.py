@@ -117,7 +117,11 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
 
 @pytest.mark.parametrize("module", ["flumekit.waves.records", "flumekit.waves.separation",
                                     "flumekit.waves.calibration", "flumekit.waves.spectra",
-                                    "flumekit.waves.statistics"])
+                                    "flumekit.waves.statistics",
+                                    "flumekit.pipeline.cache", "flumekit.pipeline.code",
+                                    "flumekit.pipeline.engine", "flumekit.pipeline.executors",
+                                    "flumekit.pipeline.raw", "flumekit.pipeline.render",
+                                    "flumekit.pipeline.rules"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
