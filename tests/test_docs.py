@@ -121,7 +121,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.pipeline.cache", "flumekit.pipeline.code",
                                     "flumekit.pipeline.engine", "flumekit.pipeline.executors",
                                     "flumekit.pipeline.raw", "flumekit.pipeline.render",
-                                    "flumekit.pipeline.rules"])
+                                    "flumekit.pipeline.rules",
+                                    "flumekit.stages", "flumekit.stages.common",
+                                    "flumekit.stages.performance", "flumekit.stages.runs"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
