@@ -123,7 +123,11 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.pipeline.raw", "flumekit.pipeline.render",
                                     "flumekit.pipeline.rules",
                                     "flumekit.stages", "flumekit.stages.common",
-                                    "flumekit.stages.performance", "flumekit.stages.runs"])
+                                    "flumekit.stages.performance", "flumekit.stages.runs",
+                                    "flumekit.lazy", "flumekit.units", "flumekit.scaling",
+                                    "flumekit.schema", "flumekit.performance.capture",
+                                    "flumekit.performance.matrix",
+                                    "flumekit.performance.statistics"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
