@@ -127,7 +127,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.lazy", "flumekit.units", "flumekit.scaling",
                                     "flumekit.schema", "flumekit.performance.capture",
                                     "flumekit.performance.matrix",
-                                    "flumekit.performance.statistics"])
+                                    "flumekit.performance.statistics",
+                                    "flumekit.conventions", "flumekit.campaign",
+                                    "flumekit.cli"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
