@@ -86,7 +86,18 @@ class Graph:
         return _key(path) in self.producer
 
     def downstream(self, target: str) -> list[str]:
-        """Every target built (directly or not) from ``target``'s outputs."""
+        """Return every target built, directly or not, from a target's outputs.
+
+        Parameters
+        ----------
+        target : str
+            The target.
+
+        Returns
+        -------
+        list of str
+            The targets downstream of it (not ``target`` itself).
+        """
         out: list[str] = []
         stack = list(self._users[target])
         while stack:

@@ -87,7 +87,23 @@ class State:
         return self._stat(_key(path)) is not None
 
     def hash(self, path: Path) -> str:
-        """Content hash of ``path`` (cached while its size and mtime are unchanged)."""
+        """Return the SHA-256 of a file's bytes, cached while its size and mtime are unchanged.
+
+        Parameters
+        ----------
+        path : pathlib.Path
+            The file.
+
+        Returns
+        -------
+        str
+            Hex digest.
+
+        Raises
+        ------
+        FileNotFoundError
+            When the file is absent.
+        """
         key = _key(path)
         st = self._stat(key)
         if st is None:
@@ -104,6 +120,16 @@ class State:
         """Return the identity of a file: its writer's content digest, else its bytes' hash.
 
         The writer's digest is keyed by the bytes' hash, so a moved project keeps it.
+
+        Parameters
+        ----------
+        path : pathlib.Path
+            The file.
+
+        Returns
+        -------
+        str
+            Hex digest.
         """
         h = self.hash(path)
         return self.content.get(h, h)
