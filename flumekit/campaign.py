@@ -340,6 +340,20 @@ RUN: dict[str, Key] = {
 
 @dataclass(frozen=True)
 class Flume:
+    """The wave flume of a campaign (``[flume]`` of campaign.toml).
+
+    Attributes
+    ----------
+    water_depth : float
+        Still-water depth [m].
+    width : float or None
+        Channel width [m]; required with the flap (the channel of its models).
+    length : float or None
+        Flume length [m], descriptive: no computation reads it.
+    density : float
+        Water density [kg m-3], fresh water unless declared.
+    """
+
     water_depth: float  # [m]
     width: float | None = None  # [m], required with the flap (the channel of its models)
     length: float | None = None  # [m], descriptive: no computation reads it
@@ -407,6 +421,7 @@ class PTO:
 
     @property
     def bore_area(self) -> float:
+        """Bore area of the cylinder [m2]."""
         return math.pi * self.bore_diameter**2 / 4
 
 
@@ -422,6 +437,23 @@ class Encoder:
 
 @dataclass(frozen=True)
 class Probes:
+    """The wave probes of a campaign (``[probes]`` of campaign.toml).
+
+    Attributes
+    ----------
+    names : tuple of str
+        Probe names, in channel order.
+    sampling_rate : float
+        Sampling rate [Hz].
+    separation : tuple of str
+        Probes used for the incident/reflected separation.
+    units : str
+        Unit of the recorded channels (:data:`flumekit.units.UNITS`): a voltage is
+        calibrated, a length is not.
+    still_water : str, list, dict or None
+        The still-water rule; None: ``"none"`` for voltages, ``"mean"`` for lengths.
+    """
+
     names: tuple[str, ...]
     sampling_rate: float  # [Hz]
     separation: tuple[str, ...]  # probes used for incident/reflected separation
@@ -450,6 +482,26 @@ class Beam:
 
 @dataclass(frozen=True)
 class UVP:
+    """The ultrasonic velocity profiler of a campaign (``[uvp]`` of campaign.toml).
+
+    Attributes
+    ----------
+    frequency : float
+        Emitting frequency [Hz].
+    sampling_rate : float
+        Profile rate per beam [Hz].
+    n_channels : int
+        Channels along each beam.
+    start_channel : float
+        Distance of channel 0 from the transducer [m].
+    channel_distance, channel_width : float
+        Spacing and width of the channels [m].
+    sound_speed : float
+        Speed of sound in the water [m s-1].
+    beams : tuple of Beam
+        The transducers.
+    """
+
     frequency: float  # emitting frequency [Hz]
     sampling_rate: float  # profile rate per beam [Hz]
     n_channels: int
@@ -471,9 +523,28 @@ class Scale:
 
 @dataclass(frozen=True)
 class Component:
-    """One declared Type B component: ``value`` is the standard uncertainty (normal) or the
-    half-width (rectangular) in the unit of :data:`UNCERTAINTY_COMPONENTS`, None when it is
-    derived from the campaign's data (calibration residuals, encoder counts)."""
+    """One declared Type B uncertainty component of ``[uncertainty]``.
+
+    Attributes
+    ----------
+    name : str
+        A key of :data:`UNCERTAINTY_COMPONENTS`.
+    value : float or None
+        The standard uncertainty (normal) or the half-width (rectangular), in the unit of
+        :data:`UNCERTAINTY_COMPONENTS`; None when it is derived from the campaign's data
+        (calibration residuals, encoder counts).
+    distribution : {"normal", "rectangular"}
+        Its distribution.
+    declared : bool
+        False: the documented default.
+    rated_output : float or None
+        Rated output of the pressure sensor [Pa], ``pressure_accuracy`` only.
+
+    References
+    ----------
+    JCGM 100:2008, Evaluation of measurement data - Guide to the expression of uncertainty in
+    measurement (GUM), §4.3 (Type B evaluation).
+    """
 
     name: str
     value: float | None
@@ -483,15 +554,33 @@ class Component:
 
     @property
     def standard_uncertainty(self) -> float | None:
-        """u in the component's unit: the value, or value / sqrt(3) when rectangular."""
+        """Standard uncertainty u in the component's unit: the value, or value / √3 if rectangular.
+
+        A rectangular distribution of half-width a has u = a / √3 (JCGM 100:2008, §4.3.7).
+        """
         if self.value is None:
             return None
         return self.value / math.sqrt(3.0) if self.distribution == "rectangular" else self.value
 
 
 def uncertainty_components(table: dict | None) -> tuple[Component, ...]:
-    """Every component of :data:`UNCERTAINTY_COMPONENTS`, declared in ``table`` (the
-    ``[uncertainty]`` table of campaign.toml) or at its documented default."""
+    """Return every component of :data:`UNCERTAINTY_COMPONENTS`, declared or at its default.
+
+    Parameters
+    ----------
+    table : dict or None
+        The ``[uncertainty]`` table of campaign.toml (None: every default).
+
+    Returns
+    -------
+    tuple of Component
+        One per component, in the order of :data:`UNCERTAINTY_COMPONENTS`.
+
+    Examples
+    --------
+    >>> all(not c.declared for c in uncertainty_components(None))
+    True
+    """
     table = table or {}
     out = []
     for name, (_, _, dist, value, _) in UNCERTAINTY_COMPONENTS.items():
@@ -506,6 +595,40 @@ def uncertainty_components(table: dict | None) -> tuple[Component, ...]:
 
 @dataclass(frozen=True)
 class Run:
+    """One run of a campaign, read from its ``runs/<run>/run.toml``.
+
+    Attributes
+    ----------
+    id : str
+        The run's name (its folder).
+    path : pathlib.Path
+        Its folder.
+    kind : {"waves", "uvp", "irregular"}
+        What the run records.
+    period : float or None
+        Target wave period [s]; None for an irregular run.
+    height : float or None
+        Target wave height [m]; None when not declared (and for an irregular run).
+    repeat : int
+        Repetition index of the wave condition.
+    probe_x : dict of str to float
+        Probe name -> position x [m].
+    uvp_elevation : float or None
+        Elevation of the UVP beams [m] (UVP runs).
+    files : dict of str to pathlib.Path
+        Instrument -> raw file.
+    clock : dict of str to float
+        Instrument -> clock offset [s].
+    still_water : object
+        The run's still-water rule (None: the campaign's).
+    start : str or None
+        Declared start of the records, ISO 8601 (``Z``: UTC).
+    sea_state : SeaState or None
+        The target sea state of an irregular run.
+    dialects : dict
+        Instrument -> the run's own ``[files.<instrument>]`` keys.
+    """
+
     id: str
     path: Path
     kind: str  # "waves", "uvp" or "irregular"
@@ -528,11 +651,38 @@ class Run:
         return self.kind == "irregular"
 
     def file(self, instrument: str) -> Path:
+        """Return the raw file of an instrument (``"probes"``, ``"flap"``) of this run."""
         return self.files[instrument]
 
 
 @dataclass(frozen=True)
 class Campaign:
+    """A raw campaign: its flume, instruments and runs (:func:`load_campaign`).
+
+    Attributes
+    ----------
+    name, title : str
+        The campaign's name and title.
+    root : pathlib.Path
+        The campaign folder.
+    flume : Flume
+        The flume.
+    flap, pto, encoder : Flap, PTO, Encoder or None
+        The flap instruments, declared together or not at all.
+    probes : Probes
+        The wave probes.
+    uvp : UVP or None
+        The velocity profiler.
+    runs : tuple of Run
+        The runs, sorted by folder name.
+    files : dict
+        Instrument -> its file dialect (``[files.<instrument>]``).
+    scale : Scale or None
+        Froude scale of the model, when declared.
+    uncertainty : tuple of Component
+        Every Type B uncertainty component, declared or at its default.
+    """
+
     name: str
     title: str
     root: Path
@@ -552,20 +702,34 @@ class Campaign:
 
     @property
     def calibration_file(self) -> Path:
+        """Path of the probe calibration file."""
         return self.root / self.files.get("calibration", {}).get(
             "file", INSTRUMENT_FILES["calibration"])
 
     @property
     def instruments(self) -> tuple[str, ...]:
-        """The instruments declared: 'probes', then 'flap' (flap, PTO, encoder and pressure),
-        then 'uvp'."""
+        """The instruments declared: 'probes', then 'flap' (flap, PTO, encoder, pressure), 'uvp'."""
         return ("probes",) + (("flap",) if self.flap else ()) + (("uvp",) if self.uvp else ())
 
     def dialect(self, instrument: str, run: Run | None = None) -> dict:
-        """How ``instrument``'s files are written (a dict for ``io.dialects.Dialect``): the
-        campaign's ``[files.<instrument>]``, with a run's own keys over it; a run declaring
+        """Return how an instrument's files are written (a dict for ``io.dialects.Dialect``).
+
+        The campaign's ``[files.<instrument>]``, with a run's own keys over it; a run declaring
         another ``format`` than the campaign's has its own dialect alone (a delimiter means
-        nothing to an HDF5 file)."""
+        nothing to an HDF5 file).
+
+        Parameters
+        ----------
+        instrument : str
+            ``"probes"``, ``"flap"``, ``"calibration"`` or ``"uvp"``.
+        run : Run, optional
+            The run whose own keys apply.
+
+        Returns
+        -------
+        dict
+            The dialect's keys.
+        """
         base = dict(self.files.get(instrument, {}))
         own = {} if run is None else dict(run.dialects.get(instrument, {}))
         if "format" in own and own["format"] != base.get("format", "csv"):
@@ -573,6 +737,7 @@ class Campaign:
         return {**base, **own}
 
     def run(self, run_id: str) -> Run:
+        """Return the run named ``run_id``; a KeyError naming the campaign if there is none."""
         for r in self.runs:
             if r.id == run_id:
                 return r
@@ -675,8 +840,11 @@ def _read_run(path: Path, campaign: Campaign, problems: list[Problem]) -> Run | 
 
 
 def _iso(t) -> str:
-    """ISO 8601 of a TOML date-time: in UTC with ``Z`` when it has an offset, else as written
-    (the laboratory's clock); the fraction of a second without trailing zeros."""
+    """Return the ISO 8601 form of a TOML date-time.
+
+    In UTC with ``Z`` when it has an offset, else as written (the laboratory's clock); the
+    fraction of a second without trailing zeros.
+    """
     import datetime
 
     if t.tzinfo is not None:
@@ -706,10 +874,41 @@ def _check_channels(path: Path, files: dict, channels: dict[str, list[str]],
 
 
 def load_campaign(root: str | Path) -> Campaign:
-    """Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``.
+    r"""Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``.
 
-    Every problem of a file is reported at once (one :class:`InputError` listing them); the run
-    files are read only when the campaign file is sound.
+    Every problem of a file is reported at once (one :class:`~flumekit.errors.InputError`
+    listing them); the run files are read only when the campaign file is sound. The format of
+    the files is described in ``raw/README.md``.
+
+    Parameters
+    ----------
+    root : str or path-like
+        The raw campaign folder.
+
+    Returns
+    -------
+    Campaign
+        The campaign with its runs, sorted by folder name.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file and key of every problem: a missing or unknown key (with the closest
+        known name), a wrong type, a value out of range, or metadata that contradict each
+        other (e.g. a flap wider than the flume).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> root = pathlib.Path(tmp.name)
+    >>> _ = (root / "campaign.toml").write_text(
+    ...     '[campaign]\nname = "demo"\n[flume]\nwater_depth = 0.5\n'
+    ...     '[probes]\nnames = ["WP1", "WP2"]\nsampling_rate = 100.0\n')
+    >>> c = load_campaign(root)
+    >>> c.flume.water_depth, c.probes.names, c.instruments, c.runs
+    (0.5, ('WP1', 'WP2'), ('probes',), ())
+    >>> tmp.cleanup()
     """
     root = Path(root)
     path = root / "campaign.toml"

@@ -114,8 +114,11 @@ class _BarEvents:
 
 
 def _interrupts():
-    """Count Ctrl-C: the first raises KeyboardInterrupt as usual, and the engine also stops
-    before its next target if some library swallowed that exception."""
+    """Count Ctrl-C and return whether one was pressed.
+
+    The first Ctrl-C raises KeyboardInterrupt as usual, and the engine also stops before its
+    next target if some library swallowed that exception.
+    """
     import signal
 
     seen: list[int] = []
@@ -138,6 +141,26 @@ def _forced(args, pipe, graph) -> tuple[bool, list[str]]:
 
 
 def cmd_make(args) -> int:
+    """Run ``flumekit make``: build the requested targets (default: every scene).
+
+    Holds the build lock of the processed folder; a make with nothing to do answers from
+    the up-to-date record without reading the graph.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        The first failure (without ``-k``), naming its rule and run.
+    """
     import time
 
     from flumekit.io.atomic import remove_orphans
@@ -205,7 +228,7 @@ def _dry_run(args, pipe) -> int:
 
 
 def _summary(args, pipe, graph, report) -> None:
-    """The closing lines of a build: counts, failures, where the outputs are, what next."""
+    """Print the closing lines of a build: counts, failures, where the outputs are, what next."""
     import os
 
     try:
@@ -247,8 +270,10 @@ def _summary(args, pipe, graph, report) -> None:
 
 
 def _warnings(graph, report) -> list[str]:
-    """The warnings of the datasets built now (their ``flumekit_warnings`` attribute), each
-    once and naming its run."""
+    """Return the warnings of the datasets built now, each once and naming its run.
+
+    They are the datasets' ``flumekit_warnings`` attribute.
+    """
     from flumekit.stages.runs import WARNINGS, run_warnings
 
     found: list[str] = []
@@ -277,7 +302,7 @@ def _say_warnings(warned: list[str], first: int = 5) -> None:
 
 
 def _results(graph, report) -> None:
-    """The make summary's results: each waves run built now, with its first-harmonic Kr."""
+    """Print the make summary's results: each waves run built now, with its first-harmonic Kr."""
     built = [t for t, *_ in report.ran if t.startswith("waves/")]
     if built:
         from flumekit.stages.waves import report as waves_report
@@ -288,6 +313,18 @@ def _results(graph, report) -> None:
 
 
 def cmd_list(args) -> int:
+    """Run ``flumekit list``: the scenes and every target, marking those out of date.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.pipeline.engine import plan
     from flumekit.pipeline.state import State
 
@@ -312,7 +349,20 @@ def cmd_list(args) -> int:
 
 
 def cmd_graph(args) -> int:
-    """The dependency graph of the targets (default: every scene) as DOT or Mermaid."""
+    """Run ``flumekit graph``: print the dependency graph of the targets as DOT or Mermaid.
+
+    The targets default to every scene.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.pipeline.render import render
 
     pipe = _pipeline(args)
@@ -326,6 +376,16 @@ def cmd_clean(args) -> int:
 
     Only files the pipeline declares as outputs under the processed folder are removed; raw
     data (and the virtual flume's synthesised campaign) is never touched.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
     """
     from flumekit.pipeline.engine import remove_outputs
     from flumekit.pipeline.lock import build_lock
@@ -351,6 +411,18 @@ def cmd_clean(args) -> int:
 
 
 def cmd_synth(args) -> int:
+    """Run ``flumekit synth``: write a virtual-flume campaign into a new folder.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.synth.campaign import write_campaign
 
     out = Path(args.out)
@@ -362,7 +434,25 @@ def cmd_synth(args) -> int:
 
 
 def cmd_new(args) -> int:
-    """A commented campaign skeleton (campaign, one run, pipeline) in an absent or empty folder."""
+    """Run ``flumekit new``: write a commented campaign skeleton into an absent or empty folder.
+
+    The skeleton holds a campaign file, one run and a pipeline file.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        When the folder holds files.
+    """
     from importlib import resources
 
     out = Path(args.dir)
@@ -383,6 +473,18 @@ def cmd_new(args) -> int:
 
 
 def cmd_params(args) -> int:
+    """Run ``flumekit params``: print the stage parameters with defaults and units.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.stages import parameters, parameters_markdown
 
     if args.markdown:
@@ -403,7 +505,21 @@ def cmd_params(args) -> int:
 
 
 def cmd_clock(args) -> int:
-    """Estimate (never apply) an instrument's clock offset from a signal two instruments share."""
+    """Run ``flumekit clock``: estimate (never apply) an instrument's clock offset.
+
+    The offset is that of a signal two instruments share
+    (:func:`flumekit.signal.estimate_time_offset`).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.campaign import load_campaign
     from flumekit.io.instruments import FLAP_VARIABLES, read_flap, read_probes
     from flumekit.signal import estimate_time_offset
@@ -441,6 +557,23 @@ def cmd_clock(args) -> int:
 
 
 def cmd_bench(args) -> int:
+    """Run ``flumekit bench``: the accuracy-versus-run-time benchmarks of one area.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        For an area that has no benchmark.
+    """
     import importlib
 
     from flumekit.bench import areas
@@ -452,6 +585,18 @@ def cmd_bench(args) -> int:
 
 
 def cmd_report(args) -> int:
+    """Run ``flumekit report``: write the campaign report from the processed data.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed command line (:func:`parser`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success.
+    """
     from flumekit.report import write_report
 
     pipe = _pipeline(args)
@@ -468,14 +613,16 @@ def cmd_report(args) -> int:
 
 
 def _version() -> str:
-    from flumekit import __version__  # not importlib.metadata: 0.2 s on every call
+    from flumekit import __version__  # not importlib.metadata, which is slow on every call
 
     return __version__
 
 
 def _global_options(sub: bool) -> argparse.ArgumentParser:
-    """--debug, -q, -v: accepted before and after the subcommand (the subcommand's copy must
-    not reset what was given before it, hence SUPPRESS)."""
+    """Return the parser of --debug, -q and -v, accepted before and after the subcommand.
+
+    The subcommand's copy must not reset what was given before it, hence SUPPRESS.
+    """
     g = argparse.ArgumentParser(add_help=False)
     kw = {"default": argparse.SUPPRESS} if sub else {}
     g.add_argument("--debug", action="store_true", help="show tracebacks", **kw)
@@ -487,6 +634,19 @@ def _global_options(sub: bool) -> argparse.ArgumentParser:
 
 
 def parser() -> argparse.ArgumentParser:
+    """Return the parser of the ``flumekit`` command line.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        With one subcommand per ``cmd_*`` function, each bound as ``func``.
+
+    Examples
+    --------
+    >>> args = parser().parse_args(["make", "-n", "-j", "2", "waves/*"])
+    >>> args.func.__name__, args.dry_run, args.jobs, args.targets
+    ('cmd_make', True, 2, ['waves/*'])
+    """
     from flumekit.bench import areas as bench_areas
     from flumekit.synth import DEFAULT_SEED
 
@@ -609,7 +769,25 @@ def parser() -> argparse.ArgumentParser:
 
 
 def os_problem(e: OSError) -> str:
-    """One line for an operating-system error: the file, what failed, what to do."""
+    """Return one line for an operating-system error: the file, what failed, what to do.
+
+    Parameters
+    ----------
+    e : OSError
+        The error.
+
+    Returns
+    -------
+    str
+        The message, with a hint for a full disk, an exhausted quota, a read-only file system
+        or a missing permission.
+
+    Examples
+    --------
+    >>> import errno
+    >>> os_problem(OSError(errno.EROFS, "Read-only file system", "out.nc"))[:36]
+    'out.nc: Read-only file system (the f'
+    """
     import errno
 
     where = f"{e.filename}: " if e.filename else ""
@@ -628,11 +806,25 @@ def os_problem(e: OSError) -> str:
 
 
 def main(argv: list[str] | None = None) -> int:
+    """Run the ``flumekit`` command line.
+
+    Errors of the input or the machine are printed on one line (``--debug``: with the
+    traceback); Ctrl-C ends with status 130.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        Exit status: 0 on success, 1 on an error, 130 when interrupted.
+    """
     import os
 
     # one BLAS thread per process unless the user says otherwise: the analyses' linear algebra
-    # is small (a few unknowns per bin, per draw), where threads cost more than they save (the
-    # uncertainty scene of the small campaign: 13 s with one thread, 49 s with the default),
+    # is small (a few unknowns per bin, per draw), where threads cost more than they save,
     # and `make -j` already runs rules in parallel processes
     for var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(var, "1")

@@ -34,13 +34,17 @@ MAX_GAP = "max_gap"
 
 
 def run_warnings(run: str | None, text: str) -> list[str]:
-    """The lines of a :data:`WARNINGS` attribute ``text``, each starting with ``run <run>: ``
-    when ``run`` is given and the line does not name it already.
+    r"""Return the lines of a :data:`WARNINGS` attribute, each naming its run.
+
+    A line starts with ``run <run>: `` when ``run`` is given and the line does not name it
+    already.
 
     Parameters
     ----------
-    run : The run the warnings are of, or None to leave the lines as they are.
-    text : The attribute's value (newline-separated warnings).
+    run : str or None
+        The run the warnings are of; None leaves the lines as they are.
+    text : str
+        The attribute's value (newline-separated warnings).
 
     Returns
     -------
@@ -49,7 +53,7 @@ def run_warnings(run: str | None, text: str) -> list[str]:
 
     Examples
     --------
-    >>> run_warnings("r1", "probe WP2 flat\\nrun r1: gap")
+    >>> run_warnings("r1", "probe WP2 flat\nrun r1: gap")
     ['run r1: probe WP2 flat', 'run r1: gap']
     """
     lines = [w for w in text.splitlines() if w.strip()]
@@ -59,8 +63,29 @@ def run_warnings(run: str | None, text: str) -> list[str]:
 
 
 def record_start(ds: xr.Dataset | xr.DataArray, axis: str = "time") -> str | None:
-    """The start of the record the time axis ``axis`` of ``ds`` counts from (None when not
-    known)."""
+    """Return the start of the record a time axis counts from.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or xarray.DataArray
+        The dataset.
+    axis : str, default "time"
+        The time coordinate.
+
+    Returns
+    -------
+    str or None
+        The ISO 8601 :data:`RECORD_START` of the axis (ending in ``Z`` when in UTC); None
+        when the axis is absent or its start is not known.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset(coords={"time": ("time", [0.0, 0.1],
+    ...                                  {"record_start": "2024-03-05T10:12:00Z"})})
+    >>> record_start(ds), record_start(ds, "x")
+    ('2024-03-05T10:12:00Z', None)
+    """
     if axis not in ds.coords:
         return None
     v = ds[axis].attrs.get(RECORD_START)
@@ -69,11 +94,24 @@ def record_start(ds: xr.Dataset | xr.DataArray, axis: str = "time") -> str | Non
 
 @dataclass(frozen=True)
 class Variable:
+    """The registered attributes of a variable name.
+
+    Parameters
+    ----------
+    units : str
+        UDUNITS spelling (``"1"`` for dimensionless and labels).
+    long_name : str
+        CF long name.
+    standard_name : str, optional
+        CF standard name, where one exists.
+    """
+
     units: str
     long_name: str
     standard_name: str | None = None
 
     def attrs(self) -> dict[str, str]:
+        """Return the CF attributes: ``units``, ``long_name`` and ``standard_name`` if any."""
         out = {"units": self.units, "long_name": self.long_name}
         if self.standard_name:
             out["standard_name"] = self.standard_name
@@ -518,7 +556,28 @@ VARIABLES.update({
 })
 
 def attrs(name: str) -> dict[str, str]:
-    """CF attributes of a registered variable name."""
+    """Return the CF attributes of a registered variable name.
+
+    Parameters
+    ----------
+    name : str
+        A name of :data:`VARIABLES`.
+
+    Returns
+    -------
+    dict of str to str
+        ``units``, ``long_name`` and ``standard_name`` where registered.
+
+    Raises
+    ------
+    KeyError
+        For a name not in the registry.
+
+    Examples
+    --------
+    >>> attrs("time")["units"]
+    's'
+    """
     try:
         return VARIABLES[name].attrs()
     except KeyError:
@@ -530,6 +589,23 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
 
     Attributes already present are kept (a caller may refine a long name), but ``units`` always
     comes from the registry so that one name means one unit everywhere.
+
+    Parameters
+    ----------
+    obj : xarray.Dataset or xarray.DataArray
+        The object to annotate (not modified).
+
+    Returns
+    -------
+    xarray.Dataset or xarray.DataArray
+        A copy with the registry's attributes.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = annotate(xr.Dataset(coords={"time": [0.0, 0.1]}))
+    >>> ds.time.attrs["units"], ds.time.attrs["standard_name"]
+    ('s', 'time')
     """
     obj = obj.copy()
     names = list(obj.coords) + (list(obj.data_vars) if isinstance(obj, xr.Dataset) else [])
@@ -548,7 +624,20 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
 
 
 def check(ds: xr.Dataset) -> None:
-    """Raise ``ValueError`` naming every variable that lacks ``units`` or ``long_name``."""
+    """Raise ``ValueError`` naming every variable that lacks ``units`` or ``long_name``.
+
+    Label variables (strings) need a ``long_name`` only.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset to check.
+
+    Raises
+    ------
+    ValueError
+        Listing every variable and the attribute it lacks.
+    """
     missing = []
     for name, var in {**ds.coords, **ds.data_vars}.items():
         if var.dtype.kind in "OSU":  # labels
@@ -561,9 +650,30 @@ def check(ds: xr.Dataset) -> None:
 
 
 def global_attrs(title: str, source: str, parameters: dict | None = None) -> dict[str, str]:
-    """Global attributes: Conventions, title, source, history (the flumekit version) and the
-    parameters. No clock time: identical inputs give identical bytes (the time of a build is in
-    the engine's state, ``.flumekit-state.json``)."""
+    """Return the global attributes of a written dataset.
+
+    No clock time: identical inputs give identical bytes (the time of a build is in the
+    engine's state, ``.flumekit-state.json``).
+
+    Parameters
+    ----------
+    title : str
+        What the dataset holds.
+    source : str
+        What it was made from.
+    parameters : dict, optional
+        The parameters it was made with (JSON-encoded, keys sorted).
+
+    Returns
+    -------
+    dict of str to str
+        ``Conventions``, ``title``, ``source``, ``history`` (the flumekit version) and
+        ``flumekit_parameters``.
+
+    References
+    ----------
+    CF Conventions 1.8, §2.6.2 (description of file contents).
+    """
     from flumekit import __version__
 
     params = json.dumps(parameters or {}, sort_keys=True, default=str)
@@ -587,19 +697,34 @@ PROVENANCE_ATTRS = ("history", "flumekit_parameters", "flumekit_rule", "flumekit
 
 
 def set_provenance(prov: dict | None):
-    """Declare the rule being built (``None``: none); returns a token for :func:`reset`."""
+    """Declare the rule being built in this context.
+
+    Parameters
+    ----------
+    prov : dict or None
+        The rule's target, version, parameters, inputs and paths
+        (:func:`flumekit.pipeline.rules.execute`); None: no rule.
+
+    Returns
+    -------
+    contextvars.Token
+        For :func:`reset_provenance`.
+    """
     return _PROVENANCE.set(prov)
 
 
 def reset_provenance(token) -> None:
+    """Restore the provenance that :func:`set_provenance` replaced (``token``: its result)."""
     _PROVENANCE.reset(token)
 
 
 @functools.cache
 def _dependency_versions() -> str:
-    """Versions of the numerical libraries, looked up once per process (they cannot change
-    within it; importlib.metadata parses each package's metadata file, ~4 ms a package, which
-    every written product paid)."""
+    """Return the versions of the numerical libraries, looked up once per process.
+
+    They cannot change within a process, and importlib.metadata parses each package's
+    metadata file, which is too slow to repeat for every written product.
+    """
     from importlib.metadata import PackageNotFoundError, version
 
     out = []
@@ -612,11 +737,23 @@ def _dependency_versions() -> str:
 
 
 def provenance(attrs: dict) -> dict:
-    """``attrs`` plus the provenance of the rule being built: flumekit version, rule, its
-    version and parameters, every input with its path relative to the pipeline file and its
-    content hash, and the versions of the numerical libraries. Absolute input paths in string
-    attributes (a stage's ``source``) become those relative paths, so that the same campaign
-    built in two folders gives the same bytes."""
+    """Return global attributes with the provenance of the rule being built.
+
+    Absolute input paths in string attributes (a stage's ``source``) become paths relative to
+    the pipeline file, so that the same campaign built in two folders gives the same bytes.
+
+    Parameters
+    ----------
+    attrs : dict
+        The dataset's global attributes (not modified).
+
+    Returns
+    -------
+    dict
+        ``attrs`` with the flumekit version and the versions of the numerical libraries, and,
+        inside a rule (:func:`set_provenance`), the rule, its version and parameters, and every
+        input with its relative path and content hash.
+    """
     from flumekit import __version__
 
     prov = _PROVENANCE.get()
@@ -638,9 +775,29 @@ def provenance(attrs: dict) -> dict:
 
 
 def content_digest(ds: xr.Dataset) -> str:
-    """SHA-256 of what a dataset holds (values, dimensions, attributes), without the attributes
-    that say how it was made (:data:`PROVENANCE_ATTRS`). Two datasets with the same digest are
-    the same data: the engine stops a rebuild's cascade there."""
+    """Return the SHA-256 of what a dataset holds, without how it was made.
+
+    Values, dimensions, dtypes and attributes count; the attributes of
+    :data:`PROVENANCE_ATTRS` do not. Two datasets with the same digest are the same data: the
+    engine stops a rebuild's cascade there.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset (loaded values).
+
+    Returns
+    -------
+    str
+        Hex digest.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> a = xr.Dataset({"h": ("t", [1.0, 2.0])}, attrs={"history": "run 1"})
+    >>> content_digest(a) == content_digest(a.assign_attrs(history="run 2"))
+    True
+    """
     import numpy as np
 
     h = hashlib.sha256()

@@ -1,5 +1,8 @@
-"""Public names of a package imported on first use (PEP 562), so that importing the package
-stays cheap: ``import flumekit.qc`` loads no numba, ``import flumekit.hydro`` no scipy."""
+"""Public names of a package imported on first use (PEP 562).
+
+Importing a package stays cheap: ``import flumekit.qc`` loads no numba, ``import
+flumekit.hydro`` no scipy.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +14,7 @@ __all__ = ["lazy_names"]
 
 def lazy_names(package: str, names: dict[str, str], namespace: dict
                ) -> tuple[Callable[[str], object], Callable[[], list[str]]]:
-    """The module ``__getattr__`` and ``__dir__`` of a package whose names load on first use.
+    """Return the module ``__getattr__`` and ``__dir__`` of a package whose names load lazily.
 
     Parameters
     ----------
@@ -26,6 +29,10 @@ def lazy_names(package: str, names: dict[str, str], namespace: dict
     -------
     tuple of callable
         ``(__getattr__, __dir__)`` to assign in the package's ``__init__``.
+
+    References
+    ----------
+    PEP 562 -- Module __getattr__ and __dir__ (2017).
 
     Examples
     --------

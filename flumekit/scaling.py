@@ -46,7 +46,7 @@ class Dimensions:
 
 
 def dimensions(units: str) -> Dimensions:
-    """Powers of m, s and kg of a UDUNITS unit string.
+    """Return the powers of m, s and kg of a UDUNITS unit string.
 
     Parameters
     ----------
@@ -57,6 +57,7 @@ def dimensions(units: str) -> Dimensions:
     Returns
     -------
     Dimensions
+        Powers of length, time and mass.
 
     Raises
     ------
@@ -79,7 +80,7 @@ def dimensions(units: str) -> Dimensions:
 
 
 def froude_factor(units: str, scale: float, density_ratio: float = 1.0) -> float:
-    """Model-to-prototype factor of a quantity in ``units``: λ^(a + b/2 + 3c) (ρ_p/ρ_m)^c.
+    """Return the model-to-prototype factor of a quantity: λ^(a + b/2 + 3c) (ρ_p/ρ_m)^c.
 
     Parameters
     ----------
@@ -95,6 +96,16 @@ def froude_factor(units: str, scale: float, density_ratio: float = 1.0) -> float
     float
         The factor [-].
 
+    Raises
+    ------
+    ValueError
+        For units no Froude law scales (:func:`dimensions`).
+
+    References
+    ----------
+    ITTC (2021) Recommended procedure 7.5-02-07-03.7, Wave energy converter model test
+    experiments, §2.1 (Froude scaling).
+
     Examples
     --------
     >>> round(froude_factor("W", 10.0), 3)  # power: 10^3.5
@@ -106,7 +117,7 @@ def froude_factor(units: str, scale: float, density_ratio: float = 1.0) -> float
 
 def scale(ds: xr.Dataset, scale: float, model_density: float = 1000.0,
           prototype_density: float = 1025.0, to: str = "prototype") -> xr.Dataset:
-    """A dataset at full (``to="prototype"``) or model scale by Froude similitude.
+    """Return a dataset at full (``to="prototype"``) or model scale by Froude similitude.
 
     Each numeric variable and coordinate is multiplied by its factor (:func:`froude_factor`)
     derived from its units in :data:`flumekit.conventions.VARIABLES`; labels are kept.

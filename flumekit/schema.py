@@ -25,7 +25,23 @@ from flumekit.errors import InputError
 
 
 def read_toml(path: Path) -> dict[str, Any]:
-    """A TOML file's contents; a missing or invalid file is an error naming it."""
+    """Read a TOML file.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+
+    Returns
+    -------
+    dict
+        Its contents.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file, when it is missing, a folder, not UTF-8 or not valid TOML.
+    """
     try:
         with open(path, "rb") as f:
             return tomllib.load(f)
@@ -57,9 +73,37 @@ KINDS = {
 class Key:
     """One key of a TOML table.
 
-    ``kind`` is one of :data:`KINDS`, or ``"table"`` with ``table`` its schema; ``items`` is the
-    schema of every key of an open table (names chosen by the user, e.g. probe names);
-    ``check(value) -> problem or None`` adds a custom test.
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS`, or ``"table"``.
+    doc : str, optional
+        What the key means, for messages and generated documentation.
+    unit : str, optional
+        Its unit (e.g. ``"m"``), shown in brackets.
+    required : bool, default True
+        A missing key is a problem.
+    default : object, optional
+        The value of an optional key that is not set (:func:`defaults`).
+    positive, nonnegative : bool, default False
+        A number must be > 0 (>= 0).
+    choices : tuple, optional
+        The allowed values.
+    table : mapping of str to Key, optional
+        The schema of a ``"table"``.
+    items : Key, optional
+        The schema of every key of an open table (names chosen by the user, e.g. probe names).
+    check : callable, optional
+        ``check(value) -> problem or None``, a custom test.
+    kinds : tuple of str, optional
+        Alternatives to ``kind``.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> schema = {"depth": Key("number", "water depth", unit="m", positive=True)}
+    >>> [str(p) for p in validate({"depth": -1.0}, schema, Path("run.toml"))]
+    ["run.toml, key 'depth': must be > 0, got -1.0"]
     """
 
     kind: str
@@ -78,11 +122,24 @@ class Key:
 
 @dataclass(frozen=True)
 class Problem:
+    """One problem of a TOML file: the file, the key (dotted; empty: the file) and what is wrong.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    key : str
+        The dotted key, e.g. ``"probes.x"``; empty for the file as a whole.
+    message : str
+        What was expected.
+    """
+
     path: Path
     key: str
     message: str
 
     def __str__(self) -> str:
+        """Return ``"<file>, key '<key>': <message>"``."""
         return f"{self.path}, key '{self.key}': {self.message}" if self.key else \
             f"{self.path}: {self.message}"
 
@@ -138,7 +195,25 @@ def _check_value(key: Key, v: Any, name: str, path: Path) -> list[Problem]:
 
 
 def suggest(word: str, known: list[str]) -> str:
-    """'; did you mean X?' for the closest known name (difflib), or ''."""
+    """Return ``"; did you mean 'X'?"`` for the closest known name (difflib), or ``""``.
+
+    Parameters
+    ----------
+    word : str
+        The unknown name.
+    known : list of str
+        The known names.
+
+    Returns
+    -------
+    str
+        The suggestion, or an empty string when no name is close.
+
+    Examples
+    --------
+    >>> suggest("dpeth", ["depth", "width"])
+    "; did you mean 'depth'?"
+    """
     import difflib  # only on a problem: planning a sound campaign need not import it
 
     close = difflib.get_close_matches(word, known, n=1, cutoff=0.6)
@@ -147,7 +222,30 @@ def suggest(word: str, known: list[str]) -> str:
 
 def validate(data: Mapping[str, Any], schema: Mapping[str, Key], path: Path, section: str = "",
              items: Key | None = None) -> list[Problem]:
-    """Every problem of ``data`` against ``schema`` (keys named from ``section``)."""
+    """Return every problem of a parsed TOML table against its schema.
+
+    Missing keys, wrong types, values out of range and unknown keys (with the closest known
+    name) are all reported; a missing key that an unknown key's closest name points at is that
+    typo, reported once.
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed table.
+    schema : mapping of str to Key
+        Its schema.
+    path : pathlib.Path
+        The file, named in every problem.
+    section : str, optional
+        The table's dotted name, prefixed to the keys.
+    items : Key, optional
+        The schema of every key not in ``schema`` (an open table).
+
+    Returns
+    -------
+    list of Problem
+        Empty when the table is sound.
+    """
     out: list[Problem] = []
 
     def full(k: str) -> str:
@@ -181,7 +279,21 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Key], path: Path, sec
 
 
 def raise_problems(path: Path, problems: list[Problem]) -> None:
-    """One error listing every problem (nothing if there is none)."""
+    """Raise one error listing every problem (nothing if there is none).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file the problems are in.
+    problems : list of Problem
+        From :func:`validate`.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file and key of a single problem, or listing several (``problems``
+        attribute).
+    """
     if not problems:
         return
     if len(problems) == 1:
@@ -194,12 +306,36 @@ def raise_problems(path: Path, problems: list[Problem]) -> None:
 
 
 def defaults(schema: Mapping[str, Key], data: Mapping[str, Any]) -> dict[str, Any]:
-    """``data`` with the defaults of the keys it does not set (one level)."""
+    """Return ``data`` with the defaults of the optional keys it does not set (one level).
+
+    Examples
+    --------
+    >>> defaults({"n": Key("integer", required=False, default=3)}, {})
+    {'n': 3}
+    """
     return {**{k: key.default for k, key in schema.items() if not key.required}, **data}
 
 
 def describe(schema: Mapping[str, Key], section: str = "") -> list[tuple[str, str]]:
-    """(key, description) of every key, for generated documentation."""
+    """Return ``(key, description)`` of every key, for generated documentation.
+
+    Parameters
+    ----------
+    schema : mapping of str to Key
+        The schema; sub-tables are described key by key.
+    section : str, optional
+        Dotted name prefixed to the keys.
+
+    Returns
+    -------
+    list of tuple of (str, str)
+        Dotted key and its description with unit and default.
+
+    Examples
+    --------
+    >>> describe({"depth": Key("number", "water depth", unit="m")})
+    [('depth', 'water depth [m]')]
+    """
     rows = []
     for k, key in schema.items():
         name = f"{section}.{k}" if section else k

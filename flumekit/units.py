@@ -18,4 +18,26 @@ UNITS: dict[str, tuple[str, float]] = {
 
 
 def quantity(unit: str) -> str:
+    """Return the physical quantity of a unit a raw file may declare.
+
+    Parameters
+    ----------
+    unit : str
+        A unit of :data:`UNITS`.
+
+    Returns
+    -------
+    str
+        ``"time"``, ``"voltage"``, ``"pressure"``, ``"length"`` or ``"count"``.
+
+    Raises
+    ------
+    KeyError
+        For a unit not in :data:`UNITS`.
+
+    Examples
+    --------
+    >>> quantity("mbar"), UNITS["mbar"][1]
+    ('pressure', 100.0)
+    """
     return UNITS[unit][0]

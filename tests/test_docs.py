@@ -139,7 +139,19 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.flap.geometry", "flumekit.flap.pressure",
                                     "flumekit.figures.style", "flumekit.figures.check",
                                     "flumekit.figures.groups", "flumekit.figures.qc",
-                                    "flumekit.figures.simulator"])
+                                    "flumekit.figures.simulator",
+                                    "flumekit.pipeline.cache", "flumekit.pipeline.code",
+                                    "flumekit.pipeline.engine", "flumekit.pipeline.executors",
+                                    "flumekit.pipeline.raw", "flumekit.pipeline.render",
+                                    "flumekit.pipeline.rules",
+                                    "flumekit.stages", "flumekit.stages.common",
+                                    "flumekit.stages.performance", "flumekit.stages.runs",
+                                    "flumekit.lazy", "flumekit.units", "flumekit.scaling",
+                                    "flumekit.schema", "flumekit.performance.capture",
+                                    "flumekit.performance.matrix",
+                                    "flumekit.performance.statistics",
+                                    "flumekit.conventions", "flumekit.campaign",
+                                    "flumekit.cli"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

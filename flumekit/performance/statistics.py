@@ -1,5 +1,7 @@
-"""Statistics of a motion or load record in irregular seas (a flap's angle, a buoy's heave, a
-hinge torque): the spectral significant amplitude and the zero-crossing amplitudes.
+"""Statistics of a motion or load record in irregular seas.
+
+The record is a flap's angle, a buoy's heave or a hinge torque; the statistics are the spectral
+significant amplitude and the zero-crossing amplitudes.
 
 Amplitudes are half heights, the way a wave's amplitude is half its height: the significant
 amplitude 2 √m0 is half of the spectral Hm0 = 4 √m0 of the record, the zero-crossing

@@ -1,6 +1,9 @@
-"""The make-style pipeline: a pipeline file (:func:`load_pipeline`), rules (:class:`Rule`),
-the graph they form, what is out of date (:func:`plan`, :func:`why`) and running it
-(:func:`make`, with an executor from :func:`executor_for`)."""
+"""The make-style pipeline of flumekit.
+
+A pipeline file (:func:`load_pipeline`), rules (:class:`Rule`), the graph they form, what is
+out of date (:func:`plan`, :func:`why`) and running it (:func:`make`, with an executor from
+:func:`executor_for`).
+"""
 
 
 from flumekit.lazy import lazy_names

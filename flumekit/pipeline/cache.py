@@ -43,7 +43,14 @@ _FORMAT = 1
 
 
 def code_signature() -> list:
-    """flumekit's version and (relative path, size, mtime) of every file of the package."""
+    """Return flumekit's version and the size and mtime of every file of the package.
+
+    Returns
+    -------
+    list
+        ``[version, python_version, (relative_path, size [byte], mtime [ns]), ...]``, files
+        in sorted walk order.
+    """
     from flumekit import __version__
 
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # the package
@@ -58,8 +65,21 @@ def code_signature() -> list:
 
 
 def graph_key(files: Iterable[str | Path], extra: object) -> str:
-    """The digest of ``files``' contents (None for an absent file), ``extra`` (JSON-able, other
-    values by ``str``) and :func:`code_signature`."""
+    """Return the digest of some files' contents, extra inputs and the code.
+
+    Parameters
+    ----------
+    files : iterable of str or path-like
+        Files the graph's rules are made of; an absent file is hashed as absent, so that
+        adding or removing it changes the key.
+    extra : object
+        Other inputs, JSON-able (other values hashed by ``str``).
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest over the files, ``extra`` and :func:`code_signature`.
+    """
     h = hashlib.sha256()
     for f in files:
         try:
@@ -75,10 +95,26 @@ def graph_key(files: Iterable[str | Path], extra: object) -> str:
 
 
 def pipeline_key(pipe) -> tuple[str | None, Synthesis | None]:
-    """The key of a pipeline's graph (:func:`graph_key`: every campaign file its rules are made
-    of, the pipeline, the code) and what the virtual flume is to synthesise
-    (:func:`flumekit.pipeline.raw.synthesis_plan`; None: the campaign is there). Raises on a
-    raw folder that may not be used (nothing is written)."""
+    """Return the key of a pipeline's graph and what the virtual flume is to synthesise.
+
+    Parameters
+    ----------
+    pipe : flumekit.pipeline.Pipeline
+        The parsed pipeline.
+
+    Returns
+    -------
+    key : str or None
+        :func:`graph_key` over every campaign file the rules are made of, the pipeline and
+        the code; None when a campaign file cannot be read (the campaign loader reports it).
+    synthesis : Synthesis or None
+        :func:`flumekit.pipeline.raw.synthesis_plan`; None when the campaign is there.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        For a raw folder that may not be used (nothing is written).
+    """
     from flumekit.pipeline.raw import campaign_files, synthesis_plan
 
     lazy = synthesis_plan(pipe.raw, pipe.synth, pipe.path)
@@ -93,9 +129,11 @@ def pipeline_key(pipe) -> tuple[str | None, Synthesis | None]:
 
 
 def _plain(rule: Rule) -> Rule:
-    """``rule`` with its paths as strings and its parameters' hash memoised (both travel with
-    it through the cache; hashing every rule's parameters again would cost a no-op make as
-    much as reading them)."""
+    """Return ``rule`` with its paths as strings and its hashes memoised.
+
+    Both travel with the rule through the cache; hashing every rule's parameters again would
+    cost a no-op make as much as reading them.
+    """
     from dataclasses import replace
 
     rule = replace(rule, inputs={k: os.fspath(v) for k, v in rule.inputs.items()},
@@ -106,12 +144,24 @@ def _plain(rule: Rule) -> Rule:
 
 
 def cached_graph(path: Path, key: str | None, build: Callable[[], list[Rule]]) -> Graph:
-    """The graph cached in ``path`` under ``key`` (:func:`graph_key`), else that of
-    ``build()``'s rules (then cached in ``path`` when its folder exists; ``key`` None: never
-    cached).
+    """Return the graph cached under a key, else build and cache it.
 
     Either way the rules hold their paths as strings, so that a build behaves the same whether
     its graph came from the cache or not.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The cache file; written only when its folder exists.
+    key : str or None
+        :func:`graph_key` of the graph; None: never read or write the cache.
+    build : callable
+        Returns the list of rules when the cache cannot be used.
+
+    Returns
+    -------
+    flumekit.pipeline.engine.Graph
+        The graph of the cached or built rules.
     """
     import pickle
 
@@ -141,7 +191,25 @@ def cached_graph(path: Path, key: str | None, build: Callable[[], list[Rule]]) -
 
 
 def request_key(*parts: object) -> str:
-    """A digest of JSON-able ``parts`` (other values by ``str``): what a make was asked."""
+    """Return a digest of what a make was asked.
+
+    Parameters
+    ----------
+    *parts : object
+        JSON-able parts of the request (other values by ``str``).
+
+    Returns
+    -------
+    str
+        SHA-256 hex digest.
+
+    Examples
+    --------
+    >>> request_key(["all"], 1) == request_key(["all"], 1)
+    True
+    >>> len(request_key("all"))
+    64
+    """
     return hashlib.sha256(json.dumps(parts, sort_keys=True, default=str).encode()).hexdigest()
 
 
@@ -154,9 +222,23 @@ def _stat(path) -> list[int] | None:
 
 
 def up_to_date(path: Path, request: str | None, state_file: Path) -> list[str] | None:
-    """The targets a make of ``request`` left up to date (:func:`record_up_to_date`), if since
-    then no file they read or wrote and not the build state changed size or modification time;
-    None otherwise (and for ``request`` None)."""
+    """Return the targets a previous make of the same request left up to date.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The record written by :func:`record_up_to_date`.
+    request : str or None
+        :func:`request_key` of this make; None: no record applies.
+    state_file : pathlib.Path
+        The build state file, whose size and mtime the record holds.
+
+    Returns
+    -------
+    list of str or None
+        The targets, if since the record no file they read or wrote and not the build state
+        changed size or modification time; None otherwise.
+    """
     if request is None:
         return None
     try:
@@ -175,9 +257,24 @@ def up_to_date(path: Path, request: str | None, state_file: Path) -> list[str] |
 
 def record_up_to_date(path: Path, request: str | None, state_file: Path, graph: Graph,
                       targets: list[str]) -> None:
-    """Record that ``targets`` (and everything they need) are up to date after a make of
-    ``request``: the size and modification time of every file they read or write, and of the
-    build state (see :func:`up_to_date`)."""
+    """Record that targets (and everything they need) are up to date after a make.
+
+    The record holds the size and modification time of every file they read or write, and of
+    the build state (see :func:`up_to_date`); nothing is recorded when a file vanished.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The record file (written atomically).
+    request : str or None
+        :func:`request_key` of the make; None: record nothing.
+    state_file : pathlib.Path
+        The build state file.
+    graph : flumekit.pipeline.engine.Graph
+        The graph the make ran.
+    targets : list of str
+        The targets made.
+    """
     if request is None:
         return
     order = graph.closure(targets)
@@ -199,7 +296,13 @@ def record_up_to_date(path: Path, request: str | None, state_file: Path, graph: 
 
 
 def forget_up_to_date(path: Path) -> None:
-    """Remove the record of :func:`record_up_to_date` (a make that builds may change anything)."""
+    """Remove the record of :func:`record_up_to_date` (a make that builds may change anything).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The record file; absent is fine.
+    """
     try:
         os.unlink(path)
     except FileNotFoundError:

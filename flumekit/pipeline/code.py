@@ -30,7 +30,26 @@ _DYNAMIC = re.compile(r"import_module\(\s*f[\"'](flumekit(?:\.\w+)+)\.\{")
 
 
 def module_file(name: str) -> str | None:
-    """The source file of flumekit module ``name`` (None: not a module of the package)."""
+    """Return the source file of a flumekit module.
+
+    Parameters
+    ----------
+    name : str
+        Dotted module name, e.g. ``"flumekit.waves.spectra"``.
+
+    Returns
+    -------
+    str or None
+        Path of its ``.py`` file (a package's ``__init__.py``); None when ``name`` is not a
+        module of the package.
+
+    Examples
+    --------
+    >>> module_file("flumekit.pipeline.code").endswith("code.py")
+    True
+    >>> module_file("numpy") is None
+    True
+    """
     parts = name.split(".")
     if parts[0] != "flumekit":
         return None
@@ -43,7 +62,7 @@ def module_file(name: str) -> str | None:
 
 
 def _package_modules(package: str) -> list[str]:
-    """The modules directly in a flumekit package (its ``__init__`` excluded)."""
+    """Return the modules directly in a flumekit package (its ``__init__`` excluded)."""
     folder = os.path.join(PACKAGE_DIR, *package.split(".")[1:])
     out = []
     for entry in sorted(os.listdir(folder)):
@@ -57,7 +76,7 @@ def _package_modules(package: str) -> list[str]:
 
 @functools.cache
 def _imports(name: str) -> tuple[str, ...]:
-    """The flumekit modules module ``name`` imports (module level and inside functions)."""
+    """Return the flumekit modules module ``name`` imports (module level and in functions)."""
     path = module_file(name)
     if name == "flumekit":  # the facade: read for its version, not followed
         return ()
@@ -89,7 +108,23 @@ def _imports(name: str) -> tuple[str, ...]:
 
 
 def closure(name: str) -> list[str]:
-    """Module ``name`` and every flumekit module it reaches through imports, sorted."""
+    """Return a module and every flumekit module it reaches through imports.
+
+    Parameters
+    ----------
+    name : str
+        Dotted flumekit module name.
+
+    Returns
+    -------
+    list of str
+        ``name`` and the modules it reaches, sorted.
+
+    Examples
+    --------
+    >>> "flumekit.pipeline.code" in closure("flumekit.pipeline.code")
+    True
+    """
     seen = {name}
     todo = [name]
     while todo:

@@ -1,5 +1,8 @@
-"""Pipeline definitions (``pipelines/<campaign>.toml``): where the campaign lives, stage
-parameters, how to synthesise it when missing, and the scenes."""
+"""Pipeline definitions (``pipelines/<campaign>.toml``).
+
+A pipeline file says where the campaign lives, the stage parameters, how to synthesise the
+campaign when it is missing, and the scenes (named target lists).
+"""
 
 from __future__ import annotations
 
@@ -37,6 +40,26 @@ PIPELINE = {
 
 @dataclass(frozen=True)
 class Pipeline:
+    """A parsed pipeline file (:func:`load_pipeline`).
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        The pipeline file.
+    name : str
+        The pipeline's name.
+    raw : pathlib.Path
+        The raw campaign folder, resolved.
+    processed : pathlib.Path
+        The processed data folder, resolved.
+    synth : dict or None
+        The ``[synth]`` table (virtual-flume size and seed); None: never synthesise.
+    stages : dict
+        Stage name -> its parameters (``[stages.<stage>]``).
+    scenes : dict
+        Scene name -> target names or patterns.
+    """
+
     path: Path
     name: str
     raw: Path
@@ -47,6 +70,7 @@ class Pipeline:
 
     @property
     def state_file(self) -> Path:
+        """Path of the build state file in the processed folder."""
         return self.processed / ".flumekit-state.json"
 
 
@@ -58,7 +82,7 @@ def _merge(base: dict, over: dict) -> dict:
 
 
 def _read(path: Path, depth: int = 0) -> dict:
-    """A pipeline file, merged over the file it ``extends`` (tables merge key by key)."""
+    """Read a pipeline file, merged over the file it ``extends`` (tables merge key by key)."""
     data = read_toml(path)
     schema = {**PIPELINE, "pipeline": Key("table", "", required="extends" not in data,
                                            table=PIPELINE["pipeline"].table)}
@@ -108,7 +132,29 @@ def check_outside_raw(raw: Path, processed: Path, source: Path, key: str) -> Non
 
 
 def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipeline:
-    """Read a pipeline file; relative paths in it are relative to the file's folder."""
+    """Read a pipeline file.
+
+    Relative paths in it are relative to the file's folder; a file that ``extends`` another
+    is merged over it (tables merge key by key).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The pipeline file (``pipelines/<campaign>.toml``).
+    processed : str or path-like, optional
+        Processed data folder replacing the file's ``pipeline.processed``.
+
+    Returns
+    -------
+    Pipeline
+        The parsed pipeline, with resolved folders.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        For a missing or malformed key (named with its file and field), an ``extends``
+        cycle, or a processed folder among the raw files (:func:`check_outside_raw`).
+    """
     path = Path(path)
     data = _read(path)
     missing = [k for k in ("name", "raw", "processed") if k not in data.get("pipeline", {})]

@@ -1,4 +1,4 @@
-"""Plan and run the rules a set of targets needs (DESIGN.md §4).
+"""Plan and run the rules a set of targets needs.
 
 A target is rebuilt when an output is missing, or when the content hash of an input, the rule's
 parameters or its code version differ from those of its last successful build. Only the rules
@@ -34,7 +34,27 @@ def _key(p) -> str:
 
 
 class Graph:
-    """Rules indexed by target and by output path, with their dependencies (computed once)."""
+    """Rules indexed by target and by output path, with their dependencies (computed once).
+
+    A rule depends on the rule that writes one of its inputs.
+
+    Parameters
+    ----------
+    rules : iterable of Rule
+        The pipeline's rules, one per target.
+
+    Raises
+    ------
+    ValueError
+        When two rules build the same target.
+
+    Examples
+    --------
+    >>> from flumekit.pipeline.rules import Rule
+    >>> g = Graph([Rule("a", "m:f", {}, {"o": "a.nc"}), Rule("b", "m:f", {"i": "a.nc"}, {})])
+    >>> g.closure(["b"]), g.downstream("a")
+    (['a', 'b'], ['b'])
+    """
 
     def __init__(self, rules: Iterable[Rule]):
         self.rules: dict[str, Rule] = {}
@@ -58,13 +78,26 @@ class Graph:
                 self._users[d].append(t)
 
     def deps(self, target: str) -> list[str]:
+        """Return the targets whose outputs ``target`` reads."""
         return self._deps[target]
 
     def produced(self, path) -> bool:
+        """Return whether some rule of the graph writes ``path``."""
         return _key(path) in self.producer
 
     def downstream(self, target: str) -> list[str]:
-        """Every target built (directly or not) from ``target``'s outputs."""
+        """Return every target built, directly or not, from a target's outputs.
+
+        Parameters
+        ----------
+        target : str
+            The target.
+
+        Returns
+        -------
+        list of str
+            The targets downstream of it (not ``target`` itself).
+        """
         out: list[str] = []
         stack = list(self._users[target])
         while stack:
@@ -75,6 +108,23 @@ class Graph:
         return out
 
     def match(self, patterns: Iterable[str]) -> list[str]:
+        """Return the targets named by target names or glob patterns, in order, once each.
+
+        Parameters
+        ----------
+        patterns : iterable of str
+            Target names or ``fnmatch`` patterns (``*``, ``?``, ``[...]``).
+
+        Returns
+        -------
+        list of str
+            The matching targets.
+
+        Raises
+        ------
+        flumekit.errors.FlumekitError
+            When a pattern matches no target.
+        """
         found: list[str] = []
         for pat in patterns:
             hits = (fnmatch.filter(self.rules, pat) if any(c in pat for c in "*?[")
@@ -85,13 +135,30 @@ class Graph:
         return found
 
     def match_any(self, pattern: str) -> bool:
-        """True if some target matches ``pattern``."""
+        """Return whether some target matches ``pattern`` (a name or a glob pattern)."""
         if not any(c in pattern for c in "*?["):
             return pattern in self.rules
         return any(map(re.compile(fnmatch.translate(pattern)).match, self.rules))
 
     def closure(self, targets: Iterable[str]) -> list[str]:
-        """The targets and everything they depend on, in dependency (topological) order."""
+        """Return the targets and everything they depend on, in dependency order.
+
+        Parameters
+        ----------
+        targets : iterable of str
+            Target names.
+
+        Returns
+        -------
+        list of str
+            The targets and their dependencies, topologically sorted (a dependency before
+            its users).
+
+        Raises
+        ------
+        flumekit.errors.FlumekitError
+            On a dependency cycle.
+        """
         order: list[str] = []
         seen: set[str] = set()
         visiting: set[str] = set()
@@ -114,6 +181,26 @@ class Graph:
 
 
 def signature(rule: Rule, state: State) -> dict:
+    """Return what a build of ``rule`` depends on: version, code, parameters, input hashes.
+
+    Parameters
+    ----------
+    rule : Rule
+        The rule.
+    state : State
+        The build state, which knows the content hash of each input.
+
+    Returns
+    -------
+    dict
+        ``{"version", "code", "params", "inputs"}``; compared with the stored signature of
+        the last successful build to decide a rebuild.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When an input file is missing.
+    """
     inputs = {}
     for name, p in sorted(rule.inputs.items()):
         try:
@@ -125,8 +212,23 @@ def signature(rule: Rule, state: State) -> dict:
 
 
 def provenance(rule: Rule, state: State, root: Path | None) -> dict:
-    """What a rule's datasets record about their making: every input with its path relative to
-    ``root`` (the pipeline file's folder) and its content hash; absolute paths -> relative."""
+    """Return what a rule's datasets record about their making.
+
+    Parameters
+    ----------
+    rule : Rule
+        The rule about to run.
+    state : State
+        The build state (content hashes of the inputs).
+    root : pathlib.Path or None
+        The pipeline file's folder, against which paths are made relative (None: file names).
+
+    Returns
+    -------
+    dict
+        ``"inputs"``: every input with its relative path and content hash; ``"paths"``:
+        absolute path -> relative path, longest first, so that no machine path is recorded.
+    """
     def rel(p) -> str:
         return os.path.relpath(p, root) if root is not None else Path(p).name
 
@@ -138,7 +240,32 @@ def provenance(rule: Rule, state: State, root: Path | None) -> dict:
 
 
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
-    """Reason to rebuild ``rule`` (None when it is up to date)."""
+    """Return the reason to rebuild a rule, or None when it is up to date.
+
+    Parameters
+    ----------
+    rule : Rule
+        The rule to judge.
+    state : State
+        The build state (signatures of the last successful builds, file hashes).
+    force : bool
+        Rebuild regardless of the state (never for a rule that creates raw data).
+    rebuilt : set of str
+        Targets rebuilt (with changed outputs) in this make.
+    graph : Graph
+        The graph the rule belongs to.
+
+    Returns
+    -------
+    str or None
+        A short reason (``"never built"``, ``"parameters changed"``, ...); None when the rule
+        is up to date.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When an input the rule needs is missing and no rule makes it.
+    """
     exists = state.exists
     missing = [n for n, p in rule.outputs.items() if not exists(p)]
     if rule.source:
@@ -179,6 +306,8 @@ def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) 
 
 @dataclass
 class Failure:
+    """A target whose build failed: the target, its run, the file at fault and the problem."""
+
     target: str
     run: str | None
     file: str | None
@@ -187,6 +316,8 @@ class Failure:
 
 @dataclass
 class Report:
+    """What a make did: targets run (with reason and duration [s]), skipped, failed, blocked."""
+
     ran: list[tuple[str, str, float]]  # target, reason, seconds
     skipped: list[str]  # up to date
     failed: list[Failure] = field(default_factory=list)
@@ -205,28 +336,57 @@ class Events:
         self.say_finished = finished
 
     def start(self, n_total: int) -> None:
-        pass
+        """Announce a build of ``n_total`` targets."""
 
     def started(self, i: int, n: int, target: str, reason: str) -> None:
+        """Announce target ``i`` of ``n`` started, with the reason it runs."""
         self.log(f"[{i}/{n}] {target}: {reason}")
 
     def finished(self, target: str, seconds: float) -> None:
+        """Announce a target done after ``seconds`` [s]."""
         if self.say_finished:
             self.log(f"    {target} done in {seconds:.2f} s")
 
     def skipped(self, target: str) -> None:
-        pass
+        """Announce a target up to date."""
 
     def failed(self, failure: Failure) -> None:
+        """Announce a failure."""
         self.log(f"    {failure.target} FAILED: {failure.problem}")
 
     def close(self) -> None:
-        pass
+        """End the build's output."""
 
 
 def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
          force_targets: Iterable[str] = ()) -> list[tuple[str, str]]:
-    """What would run and why, for a dry run. Assumes every rebuilt input changes."""
+    """Return what a make would run and why (a dry run).
+
+    Assumes every rebuilt input changes, so everything downstream of a rebuild is listed.
+
+    Parameters
+    ----------
+    graph : Graph
+        The pipeline's rules.
+    targets : list of str
+        Requested targets.
+    state : State
+        The build state.
+    force : bool, default False
+        Rebuild every target needed.
+    force_targets : iterable of str, optional
+        Targets to rebuild regardless of the state.
+
+    Returns
+    -------
+    list of tuple of (str, str)
+        ``(target, reason)`` in the order they would run.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When an input the targets need is missing and no rule makes it.
+    """
     rebuilt: set[str] = set()
     forced = set(force_targets)
     out = []
@@ -243,9 +403,20 @@ def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
                    within: Path | None = None, dry_run: bool = False) -> dict[str, list[Path]]:
     """Remove the outputs of ``targets`` and forget their build signatures.
 
-    Rules that create raw data (``source``) are never touched. ``within``: only files under
-    this folder are removed (symbolic links resolved). ``dry_run``: nothing is removed or
-    forgotten; the result says what would be.
+    Rules that create raw data (``source``) are never touched.
+
+    Parameters
+    ----------
+    graph : Graph
+        The pipeline's rules.
+    state : State
+        The build state, whose signatures of ``targets`` are forgotten.
+    targets : iterable of str
+        The targets to clean.
+    within : pathlib.Path, optional
+        Only files under this folder are removed (symbolic links resolved).
+    dry_run : bool, default False
+        Remove and forget nothing; the result says what would be removed.
 
     Returns
     -------
@@ -270,9 +441,24 @@ def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
 
 
 def invalidate(graph: Graph, state: State, target: str) -> list[str]:
-    """Remove the outputs of ``target`` and of everything downstream of it, and forget their
-    build signatures (:func:`remove_outputs`); returns the targets whose outputs were
-    removed."""
+    """Remove the outputs of a target and of everything downstream of it.
+
+    Their build signatures are forgotten too (:func:`remove_outputs`).
+
+    Parameters
+    ----------
+    graph : Graph
+        The pipeline's rules.
+    state : State
+        The build state.
+    target : str
+        The target invalidated.
+
+    Returns
+    -------
+    list of str
+        The targets whose outputs were removed.
+    """
     return list(remove_outputs(graph, state, [target, *graph.downstream(target)]))
 
 
@@ -289,6 +475,43 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
     build: the report lists the failures and the targets they blocked; otherwise the first
     failure is raised once the running rules have finished. An interrupt (Ctrl-C) is not a
     failure: it propagates as soon as the state of finished rules is saved.
+
+    Parameters
+    ----------
+    graph : Graph
+        The pipeline's rules.
+    targets : list of str
+        Requested targets.
+    state : State
+        The build state, saved after every finished rule.
+    executor : Executor
+        Where rules run (:func:`flumekit.pipeline.executor_for`).
+    force : bool, default False
+        Rebuild every target needed.
+    log : callable, optional
+        Prints a line of progress (default: standard error); ignored when ``events`` is given.
+    force_targets : iterable of str, optional
+        Targets to rebuild regardless of the state.
+    keep_going : bool, default False
+        Build everything that does not depend on a failure, then report.
+    events : Events, optional
+        Receives the progress of the build.
+    root : pathlib.Path, optional
+        The pipeline file's folder; recorded paths are relative to it (:func:`provenance`).
+    interrupted : callable, optional
+        Returns True when the user asked to stop (a Ctrl-C a library swallowed).
+
+    Returns
+    -------
+    Report
+        What ran, was skipped, failed, was blocked or removed, and the build time [s].
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        The first failure, naming its rule and run, unless ``keep_going``.
+    KeyboardInterrupt
+        When interrupted, after the state of finished rules is saved.
     """
     events = events or Events(log or (lambda s: print(s, file=sys.stderr)))
     forced = set(force_targets)
@@ -403,8 +626,10 @@ MESSAGE_LENGTH = 200
 
 
 def _short(e: BaseException) -> str:
-    """``Type: message`` of an unexpected exception on one line, at most
-    :data:`MESSAGE_LENGTH` characters of its message."""
+    """Return ``Type: message`` of an unexpected exception on one line.
+
+    The message is cut at :data:`MESSAGE_LENGTH` characters.
+    """
     if isinstance(e, OSError) and e.strerror:
         text = e.strerror + (f": {e.filename}" if e.filename else "")
     else:
@@ -428,8 +653,10 @@ FULL_DISK = 1 << 20
 
 
 def _full_disk(rule: Rule) -> str | None:
-    """What to say when the disk of ``rule``'s outputs is full (less than :data:`FULL_DISK`
-    free), else None."""
+    """Return what to say when the disk of ``rule``'s outputs is full, else None.
+
+    Full: less than :data:`FULL_DISK` free.
+    """
     for p in rule.outputs.values():
         folder = Path(p).parent
         while not folder.exists() and folder != folder.parent:
@@ -446,7 +673,7 @@ def _full_disk(rule: Rule) -> str | None:
 
 
 def _inputs(rule: Rule, most: int = 3) -> str:
-    """The input files of ``rule`` by name, the first ``most`` of them."""
+    """Return the input files of ``rule`` by name, the first ``most`` of them."""
     names = [f"{k} = {Path(p).name}" for k, p in rule.inputs.items()]
     more = f" and {len(names) - most} more" if len(names) > most else ""
     return ", ".join(names[:most]) + more

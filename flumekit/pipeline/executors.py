@@ -1,6 +1,6 @@
 """Where rules run: in this process, in a local process/thread pool, or on a Dask cluster.
 
-Dask is the only scale-out engine (DESIGN.md §4): a scheduler address given with
+Dask is the only scale-out engine: a scheduler address given with
 ``--scheduler`` or the standard ``DASK_SCHEDULER_ADDRESS`` sends rules to its workers.
 
 Pool workers die with their driver: they ignore Ctrl-C (the driver handles it and stops them),
@@ -26,19 +26,28 @@ DASK_TIMEOUT = 30.0
 
 
 class Executor:
+    """Where the engine sends rules: submit a call, wait for some to finish, close.
+
+    A context manager: leaving it by an interrupt closes with ``abort=True``.
+    """
+
     def submit(self, fn: Callable, *args: Any):
+        """Start ``fn(*args)`` and return its future (``concurrent.futures``-like)."""
         raise NotImplementedError
 
     def wait_any(self, futures: list) -> list:
+        """Return the futures of ``futures`` that are done, waiting for at least one."""
         raise NotImplementedError
 
     def close(self, abort: bool = False) -> None:
-        pass
+        """Release the workers; ``abort``: stop running calls instead of waiting for them."""
 
     def __enter__(self):
+        """Return the executor itself."""
         return self
 
     def __exit__(self, exc_type, *exc):
+        """Close, aborting running calls on KeyboardInterrupt or SystemExit."""
         self.close(abort=exc_type is not None and issubclass(exc_type, (KeyboardInterrupt,
                                                                        SystemExit)))
 
@@ -49,17 +58,23 @@ class SerialExecutor(Executor):
     With ``exit_on_interrupt`` (the command line) a Ctrl-C while a rule runs removes the
     temporary files the rule was writing and ends the process at once (status 130), as a pool
     worker ends on SIGTERM: a KeyboardInterrupt raised at an arbitrary point of library code
-    is not safe. One raised inside xarray's netCDF writing, between taking its (non-reentrant)
-    file lock and the ``try`` that releases it, left the lock held, and the writer's cleanup
-    then waited for it forever: the serial build that did not end after Ctrl-C. Finished
-    rules are in the build state already (saved after each), so nothing else is lost. Without
-    it (the library use, a notebook), Ctrl-C raises KeyboardInterrupt as Python does.
+    is not safe: raised inside xarray's netCDF writing, between taking its (non-reentrant)
+    file lock and the ``try`` that releases it, it leaves the lock held, and the writer's
+    cleanup then waits for it forever. Finished rules are in the build state already (saved
+    after each), so nothing else is lost. Without it (the library use, a notebook), Ctrl-C
+    raises KeyboardInterrupt as Python does.
+
+    Parameters
+    ----------
+    exit_on_interrupt : bool, default False
+        End the process on Ctrl-C while a rule runs (the command line).
     """
 
     def __init__(self, exit_on_interrupt: bool = False):
         self.exit_on_interrupt = exit_on_interrupt
 
     def submit(self, fn, *args):
+        """Run ``fn(*args)`` now and return a finished future holding its result or error."""
         import concurrent.futures as cf  # here: a no-op make never needs it
 
         fut = cf.Future()
@@ -77,6 +92,7 @@ class SerialExecutor(Executor):
         return fut
 
     def wait_any(self, futures):
+        """Return ``futures``: every one is finished when submitted."""
         return futures
 
 
@@ -120,7 +136,15 @@ def _worker_init() -> None:
 
 
 class PoolExecutor(Executor):
-    """A local pool of ``jobs`` processes (or threads)."""
+    """A local pool of ``jobs`` processes (or threads).
+
+    Parameters
+    ----------
+    jobs : int
+        Number of workers.
+    kind : {"processes", "threads"}, default "processes"
+        Worker kind; processes are forked where the platform allows.
+    """
 
     def __init__(self, jobs: int, kind: str = "processes"):
         import concurrent.futures as cf
@@ -136,15 +160,18 @@ class PoolExecutor(Executor):
                                                initializer=_worker_init)
 
     def submit(self, fn, *args):
+        """Queue ``fn(*args)`` on the pool and return its future."""
         return self.pool.submit(fn, *args)
 
     def wait_any(self, futures):
+        """Return the futures that are done, waiting for the first to finish."""
         import concurrent.futures as cf
 
         done, _ = cf.wait(futures, return_when=cf.FIRST_COMPLETED)
         return list(done)
 
     def close(self, abort: bool = False):
+        """Shut the pool down; ``abort``: terminate the worker processes (SIGTERM, then kill)."""
         if not abort or self.kind == "threads":
             self.pool.shutdown(wait=True, cancel_futures=True)
             return
@@ -171,6 +198,18 @@ class DaskExecutor(Executor):
 
     A scheduler that does not answer within ``timeout`` seconds, and a cluster that has no
     worker for ``timeout`` seconds while rules wait, are errors (not a silent hang).
+
+    Parameters
+    ----------
+    address : str
+        The scheduler address (``tcp://HOST:PORT``, or ``inproc://`` of this process).
+    timeout : float, default :data:`DASK_TIMEOUT`
+        Time the scheduler may take to answer and the cluster may stay without a worker [s].
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        When dask.distributed is not installed, or the scheduler cannot be reached.
     """
 
     def __init__(self, address: str, timeout: float = DASK_TIMEOUT):
@@ -212,17 +251,20 @@ class DaskExecutor(Executor):
                                 "DASK_SCHEDULER_ADDRESS to build locally") from None
 
     def lost(self, e: BaseException) -> FlumekitError:
+        """Return the error that says the scheduler was lost (``e``: what the client raised)."""
         return FlumekitError(f"lost the Dask scheduler at {self.address} "
                              f"({type(e).__name__}); the rules that had finished are kept: "
                              "restart the scheduler and make again, or build locally (-j N)")
 
     def submit(self, fn, *args):
+        """Send ``fn(*args)`` to the cluster as a task and return its future."""
         try:
             return self.client.submit(fn, *args, pure=False)
         except (OSError, CancelledError) as e:
             raise self.lost(e) from None
 
     def wait_any(self, futures):
+        """Return the futures that are done; an error when the cluster stays without workers."""
         from distributed import wait
 
         alone_since: float | None = None
@@ -251,6 +293,7 @@ class DaskExecutor(Executor):
                                     "Start workers, or build locally (-j N)")
 
     def close(self, abort: bool = False):
+        """Close the client (the cluster keeps running) and restore its loggers' levels."""
         try:
             self.client.close(timeout=self.timeout)
         except (OSError, TimeoutError, CancelledError):
@@ -261,7 +304,18 @@ class DaskExecutor(Executor):
 
 
 def default_jobs() -> int:
-    """Count the CPUs this process may run on (its affinity mask, else the machine's)."""
+    """Return the number of CPUs this process may run on.
+
+    Returns
+    -------
+    int
+        Size of the process's affinity mask, else the machine's CPU count; at least 1.
+
+    Examples
+    --------
+    >>> default_jobs() >= 1
+    True
+    """
     try:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # not on every platform
@@ -270,6 +324,39 @@ def default_jobs() -> int:
 
 def executor_for(jobs: int | None = 1, scheduler: str | None = None, kind: str = "processes",
                  timeout: float = DASK_TIMEOUT, exit_on_interrupt: bool = False) -> Executor:
+    """Return the executor for a number of jobs or a Dask scheduler.
+
+    Parameters
+    ----------
+    jobs : int or None, default 1
+        Local workers; 1: this process (:class:`SerialExecutor`); None: one per CPU this
+        process may use (:func:`default_jobs`).
+    scheduler : str, optional
+        A Dask scheduler address; default: the ``DASK_SCHEDULER_ADDRESS`` environment
+        variable. When given, rules run on that cluster whatever ``jobs`` says.
+    kind : {"processes", "threads"}, default "processes"
+        Worker kind of a local pool.
+    timeout : float, default :data:`DASK_TIMEOUT`
+        Time a Dask scheduler may take to answer [s].
+    exit_on_interrupt : bool, default False
+        Serial only: end the process on Ctrl-C (the command line).
+
+    Returns
+    -------
+    Executor
+        A :class:`DaskExecutor`, :class:`PoolExecutor` or :class:`SerialExecutor`.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        When a Dask scheduler is given but cannot be used.
+
+    Examples
+    --------
+    >>> with executor_for(1) as ex:
+    ...     ex.submit(sum, [1, 2]).result()
+    3
+    """
     address = scheduler or os.environ.get("DASK_SCHEDULER_ADDRESS")
     if address:
         return DaskExecutor(address, timeout)

@@ -22,8 +22,27 @@ from flumekit.errors import FlumekitError
 @contextmanager
 def build_lock(folder: Path, wait: float | None = None,
                say=lambda s: print(s, file=sys.stderr)) -> Iterator[None]:
-    """Hold the build lock of ``folder``; wait at most ``wait`` seconds (None: as long as it
-    takes), after saying who holds it."""
+    """Hold the build lock of a processed folder.
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        The processed folder (created if absent); the lock is ``.flumekit.lock`` in it.
+    wait : float, optional
+        Longest wait for another build's lock [s]; None: as long as it takes.
+    say : callable, optional
+        Prints who holds the lock before waiting (default: standard error).
+
+    Yields
+    ------
+    None
+        While the lock is held.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        When the lock is still held after ``wait`` seconds.
+    """
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / ".flumekit.lock"
     fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)

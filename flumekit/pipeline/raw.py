@@ -51,15 +51,45 @@ class Synthesis:
 
 
 def is_synthesis_temporary(name: str) -> bool:
-    """Whether a name in ``runs/`` is the temporary folder of a run being synthesised (the
-    virtual flume writes each run beside the others, then renames it into place)."""
+    """Return whether a name in ``runs/`` is the temporary folder of a run being synthesised.
+
+    The virtual flume writes each run beside the others, then renames it into place.
+
+    Parameters
+    ----------
+    name : str
+        A folder name.
+
+    Returns
+    -------
+    bool
+        True for ``.<anything>.partial``.
+
+    Examples
+    --------
+    >>> is_synthesis_temporary(".R01.partial"), is_synthesis_temporary("R01")
+    (True, False)
+    """
     return name.startswith(".") and name.endswith(".partial")
 
 
 def run_folders(raw: Path) -> list[str]:
-    """The names of the run folders in ``raw/runs``, sorted: every folder except hidden ones
-    without ``run.toml`` (a tool's folder, a synthesis temporary); a hidden folder with
-    ``run.toml`` is listed (the campaign reader would read it as a run)."""
+    """Return the names of the run folders in ``raw/runs``, sorted.
+
+    Every folder is listed except hidden ones without ``run.toml`` (a tool's folder, a
+    synthesis temporary); a hidden folder with ``run.toml`` is listed (the campaign reader
+    would read it as a run).
+
+    Parameters
+    ----------
+    raw : pathlib.Path
+        The campaign folder.
+
+    Returns
+    -------
+    list of str
+        Folder names; empty when ``raw/runs`` is absent.
+    """
     try:
         entries = list(os.scandir(raw / "runs"))
     except (FileNotFoundError, NotADirectoryError):
@@ -109,7 +139,24 @@ def check_run_names(raw: Path, names: list[str]) -> None:
 
 
 def read_marker(raw: Path) -> dict | None:
-    """The virtual flume's marker of ``raw`` (None: not a virtual campaign)."""
+    """Read the virtual flume's marker of a raw folder.
+
+    Parameters
+    ----------
+    raw : pathlib.Path
+        The campaign folder.
+
+    Returns
+    -------
+    dict or None
+        ``{"size", "seed", "runs", "written"}`` (``written`` None for a campaign written
+        whole); None when ``raw`` is not a virtual campaign.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When the marker exists but cannot be read.
+    """
     marker = raw / MARKER
     if not marker.is_file():
         return None
@@ -126,7 +173,7 @@ def read_marker(raw: Path) -> dict | None:
 
 
 def check_virtual_campaign(raw: Path, info: dict, present: list[str]) -> list[str]:
-    """The planned runs still to synthesise in a virtual campaign, or an error.
+    """Return the planned runs still to synthesise in a virtual campaign, or raise.
 
     Parameters
     ----------
@@ -175,7 +222,7 @@ def check_virtual_campaign(raw: Path, info: dict, present: list[str]) -> list[st
 
 
 def synthesis_plan(raw: Path, synth: dict | None, pipeline_file: Path) -> Synthesis | None:
-    """What the virtual flume is to write into ``raw`` (None: the campaign is there and whole).
+    """Return what the virtual flume is to write into a raw folder.
 
     Parameters
     ----------
@@ -189,6 +236,7 @@ def synthesis_plan(raw: Path, synth: dict | None, pipeline_file: Path) -> Synthe
     Returns
     -------
     Synthesis or None
+        The size and seed to synthesise; None when the campaign is there and whole.
 
     Raises
     ------
@@ -218,8 +266,19 @@ def synthesis_plan(raw: Path, synth: dict | None, pipeline_file: Path) -> Synthe
 
 
 def campaign_files(raw: Path) -> list[str | Path]:
-    """Every file the rules of a campaign are made of: ``campaign.toml``, the marker and each
-    ``runs/<run>/run.toml`` (strings, not Paths: the paper campaign has 141 runs)."""
+    """Return every file the rules of a campaign are made of.
+
+    Parameters
+    ----------
+    raw : pathlib.Path
+        The campaign folder.
+
+    Returns
+    -------
+    list of str or pathlib.Path
+        ``campaign.toml``, the virtual-flume marker and each ``runs/<run>/run.toml`` (present
+        or not); the run files as strings, which are cheaper than Paths for a large campaign.
+    """
     runs = os.path.join(raw, "runs")
     return [raw / "campaign.toml", raw / MARKER,
             *(os.path.join(runs, r, "run.toml") for r in run_folders(raw))]

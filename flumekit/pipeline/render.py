@@ -10,14 +10,14 @@ FORMATS = ("dot", "mermaid")
 
 
 def _label(target: str, fmt: str) -> str:
-    """A target name inside the double quotes of a DOT or Mermaid label."""
+    """Return a target name escaped for the double quotes of a DOT or Mermaid label."""
     if fmt == "dot":
         return target.replace("\\", "\\\\").replace('"', '\\"')
     return target.replace('"', "#quot;")
 
 
 def render(graph, nodes: list[str], fmt: str = "dot") -> str:
-    """The subgraph of ``nodes`` (with every edge between them) as DOT or Mermaid.
+    """Return the subgraph of ``nodes`` (with every edge between them) as DOT or Mermaid.
 
     Parameters
     ----------
@@ -32,6 +32,11 @@ def render(graph, nodes: list[str], fmt: str = "dot") -> str:
     -------
     str
         The graph, one statement a line.
+
+    Raises
+    ------
+    ValueError
+        For a format other than those of :data:`FORMATS`.
 
     Examples
     --------

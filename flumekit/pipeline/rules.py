@@ -21,6 +21,37 @@ from typing import Any
 
 @dataclass(frozen=True)
 class Rule:
+    """What a target is built from, by which action, with which parameters.
+
+    Parameters
+    ----------
+    target : str
+        Unique target name, e.g. ``"waves/T3.50_H0.250_r00"``.
+    action : str
+        ``"module:function"``, imported only when the rule runs; called as
+        ``action(inputs, outputs, params)``.
+    inputs : dict of str to path-like
+        Input name -> file it reads.
+    outputs : dict of str to path-like
+        Output name -> file it writes (atomically).
+    params : dict, optional
+        The action's parameters (JSON-able; their hash is part of the build signature).
+    version : str, default "1"
+        An extra that changes the build signature on its own (the code is tracked anyway).
+    run : str, optional
+        Run identifier, for messages.
+    source : bool, default False
+        A rule that creates raw data (the virtual flume): it runs only where its outputs are
+        all absent, is never forced, and the engine never removes its outputs.
+
+    Examples
+    --------
+    >>> r = Rule("waves/R01", "flumekit.stages.waves:build", {"eta": "R01/eta.nc"},
+    ...          {"waves": "waves/R01.nc"}, {"depth": 0.5})
+    >>> r.params_hash() == Rule("x", "m:f", {}, {}, {"depth": 0.5}).params_hash()
+    True
+    """
+
     target: str  # unique name, e.g. "waves/T3.50_H0.250_r00"
     action: str  # "module:function"
     # paths as Path or str (the cached rules of :mod:`flumekit.pipeline.cache` hold strings);
@@ -36,6 +67,7 @@ class Rule:
     source: bool = False
 
     def params_hash(self) -> str:
+        """Return the SHA-256 hex digest of the parameters (memoised)."""
         h = self.__dict__.get("_params_hash")  # memoised: a no-op make asks for every rule's
         if h is None:
             h = digest(json.dumps(self.params, sort_keys=True, default=str).encode())
@@ -43,8 +75,10 @@ class Rule:
         return h
 
     def code_hash(self) -> str:
-        """Hash of the source the action runs (:func:`flumekit.pipeline.code.code_hash`): a
-        change of that code rebuilds the target. Memoised, and kept in the cached graph."""
+        """Return the hash of the source the action runs (memoised, kept in the cached graph).
+
+        See :func:`flumekit.pipeline.code.code_hash`: a change of that code rebuilds the target.
+        """
         h = self.__dict__.get("_code_hash")
         if h is None:
             from flumekit.pipeline.code import code_hash
@@ -54,15 +88,24 @@ class Rule:
         return h
 
     def resolve(self) -> Callable[[dict, dict, dict], None]:
+        """Import and return the action function."""
         module, _, name = self.action.partition(":")
         return getattr(importlib.import_module(module), name)
 
 
 def digest(data: bytes) -> str:
+    """Return the SHA-256 hex digest of ``data``.
+
+    Examples
+    --------
+    >>> digest(b"")[:16]
+    'e3b0c44298fc1c14'
+    """
     return hashlib.sha256(data).hexdigest()
 
 
 def file_digest(path: Path) -> str:
+    """Return the SHA-256 hex digest of a file's bytes (read in chunks of 1 MiB)."""
     h = hashlib.sha256()
     with open(path, "rb") as f:
         for chunk in iter(lambda: f.read(1 << 20), b""):
@@ -71,14 +114,30 @@ def file_digest(path: Path) -> str:
 
 
 def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str, str]]:
-    """Run a rule's action (in whatever process the executor chose); return its run time [s]
-    and the content digests of the datasets it wrote (path -> digest).
-
-    ``provenance`` (inputs with relative paths and content hashes) goes into every dataset the
-    action writes (:func:`flumekit.conventions.provenance`).
+    """Run a rule's action, in whatever process the executor chose.
 
     A failing action leaves none of its outputs behind (a raw-data ``source`` rule removes
     nothing: its action writes atomically and may not touch what was there).
+
+    Parameters
+    ----------
+    rule : Rule
+        The rule to run.
+    provenance : dict, optional
+        Inputs with relative paths and content hashes (:func:`flumekit.pipeline.engine.provenance`),
+        recorded in every dataset the action writes (:func:`flumekit.conventions.provenance`).
+
+    Returns
+    -------
+    seconds : float
+        Run time of the action [s].
+    written : dict of str to str
+        Path -> content digest of the datasets it wrote (:func:`written_digests`).
+
+    Raises
+    ------
+    RuntimeError
+        When the action did not write all its outputs.
     """
     import time
 
@@ -109,10 +168,25 @@ def execute(rule: Rule, provenance: dict | None = None) -> tuple[float, dict[str
 
 
 def written_digests(result) -> dict[str, str]:
-    """Path -> content digest of what an action returned: a written file (anything with a
-    ``path`` and a ``digest``, :class:`flumekit.io.atomic.Written`), a list of them, or None
-    (no digest: the engine identifies the outputs by their bytes); anything else is a
-    TypeError."""
+    """Return path -> content digest of what an action returned.
+
+    Parameters
+    ----------
+    result : Written or list of Written or None
+        A written file (anything with a ``path`` and a ``digest``,
+        :class:`flumekit.io.atomic.Written`), a list of them, or None (no digest: the engine
+        identifies the outputs by their bytes).
+
+    Returns
+    -------
+    dict of str to str
+        Path -> content digest.
+
+    Raises
+    ------
+    TypeError
+        For anything else.
+    """
     if result is None:
         return {}
     if hasattr(result, "digest"):

@@ -27,6 +27,16 @@ def _key(p) -> str:
 
 
 class State:
+    """The build state of a processed folder, read from and saved to a JSON file.
+
+    A corrupt or absent file is an empty state: it only costs a rebuild.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The state file (:attr:`flumekit.pipeline.Pipeline.state_file`).
+    """
+
     def __init__(self, path: Path):
         self.path = path
         self.files: dict[str, list] = {}
@@ -45,11 +55,14 @@ class State:
 
     @contextmanager
     def scan(self) -> Iterator[None]:
-        """Within the block, each file is ``stat``-ed once: a file read by many targets (the
-        campaign file, a run's dataset feeding every summary) costs one system call per scan
-        of the targets, not one per reader. For a block in which no file that was stat-ed
-        changes: the engine scans the targets whose inputs are complete, and the outputs of a
-        rule started in a scan are read only by targets that wait for it."""
+        """Stat each file once within the block.
+
+        A file read by many targets (the campaign file, a run's dataset feeding every summary)
+        costs one system call per scan of the targets, not one per reader. For a block in which
+        no file that was stat-ed changes: the engine scans the targets whose inputs are
+        complete, and the outputs of a rule started in a scan are read only by targets that
+        wait for it.
+        """
         self._stats = {}
         try:
             yield
@@ -70,10 +83,27 @@ class State:
         return st
 
     def exists(self, path) -> bool:
+        """Return whether ``path`` exists (one ``stat`` per scan)."""
         return self._stat(_key(path)) is not None
 
     def hash(self, path: Path) -> str:
-        """Content hash of ``path`` (cached while its size and mtime are unchanged)."""
+        """Return the SHA-256 of a file's bytes, cached while its size and mtime are unchanged.
+
+        Parameters
+        ----------
+        path : pathlib.Path
+            The file.
+
+        Returns
+        -------
+        str
+            Hex digest.
+
+        Raises
+        ------
+        FileNotFoundError
+            When the file is absent.
+        """
         key = _key(path)
         st = self._stat(key)
         if st is None:
@@ -87,16 +117,30 @@ class State:
         return h
 
     def identity(self, path: Path) -> str:
-        """The content digest its writer reported for the current bytes of ``path``, else the
-        hash of its bytes (keyed by the bytes' hash, so a moved project keeps it)."""
+        """Return the identity of a file: its writer's content digest, else its bytes' hash.
+
+        The writer's digest is keyed by the bytes' hash, so a moved project keeps it.
+
+        Parameters
+        ----------
+        path : pathlib.Path
+            The file.
+
+        Returns
+        -------
+        str
+            Hex digest.
+        """
         h = self.hash(path)
         return self.content.get(h, h)
 
     def written(self, path: Path, digest: str) -> None:
+        """Record the content digest a writer reported for the current bytes of ``path``."""
         self.content[self.hash(path)] = digest
         self.dirty = True
 
     def save(self) -> None:
+        """Write the state atomically, dropping content digests of bytes no file holds."""
         live = {entry[2] for entry in self.files.values()}
         self.content = {h: d for h, d in self.content.items() if h in live}
         self.dirty = False

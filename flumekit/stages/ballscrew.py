@@ -32,13 +32,41 @@ PREFIXES = ("ballscrew/", "figure/bs_fig")
 
 
 def wanted(ctx: Context) -> bool:
-    """Whether the pipeline asks for the ball-screw study: a ``[stages.ballscrew]`` table, or
-    a scene entry beginning with one of :data:`PREFIXES`."""
+    """Return whether the pipeline asks for the ball-screw study.
+
+    It does with a ``[stages.ballscrew]`` table, or a scene entry beginning with one of
+    :data:`PREFIXES`.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The pipeline's parameters and scenes.
+
+    Returns
+    -------
+    bool
+        True when the study's rules are to be declared.
+    """
     return "ballscrew" in ctx.params or any(
         t.startswith(PREFIXES) for targets in ctx.scenes.values() for t in targets)
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    """Return the rules of the ball-screw study: one per step of :data:`STEPS`.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    p : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        Each step reads the previous step's dataset; none when the pipeline does not ask for the
+        study (:func:`wanted`).
+    """
     if not wanted(ctx):
         return []
     keys = {"kinematics": ("amplitude", "period", "samples_per_period", "lead"),
@@ -72,6 +100,28 @@ def _previous(inputs):
 
 
 def kinematics(inputs, outputs, params) -> Written:
+    """Compute the buoy's reference motion and the linkage kinematics.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        None (the first step).
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``ballscrew/kinematics.nc``.
+    params : dict
+        ``amplitude`` [m], ``period`` [s], ``samples_per_period`` [-], ``lead`` [m].
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358.
+    """
     from flumekit.ballscrew import buoy
 
     motion = buoy.reference_motion(params["amplitude"], params["period"],
@@ -81,11 +131,34 @@ def kinematics(inputs, outputs, params) -> Written:
 
 
 def _knobs(params, part: str) -> dict:
-    """The ``<part>_<field>`` parameters a pipeline set, as keyword arguments of the model."""
+    """Return the ``<part>_<field>`` parameters a pipeline set, as the model's keywords."""
     return {k[len(part) + 1:]: v for k, v in params.items() if k.startswith(part + "_")}
 
 
 def efficiency(inputs, outputs, params) -> Written:
+    """Compute the PTO force, lubrication regime and efficiency of the ball screw.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``previous``: the kinematics dataset.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``ballscrew/efficiency.nc``.
+    params : dict
+        The ``screw_*``, ``lubricant_*`` and ``pto_*`` knobs a pipeline set (None: the
+        model's default).
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358.
+    """
     from flumekit.ballscrew import screw as ballscrew
 
     kin = _previous(inputs)
@@ -97,6 +170,29 @@ def efficiency(inputs, outputs, params) -> Written:
 
 
 def thermal_lumped(inputs, outputs, params) -> Written:
+    """Run the lumped thermal model of the ball-screw PTO.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``previous``: the efficiency dataset.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``ballscrew/thermal_lumped.nc``.
+    params : dict
+        ``cycle_duration`` [s], ``total_duration`` [s], ``lumped_time_step`` [s] and the
+        ``thermal_*`` knobs a pipeline set.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358.
+    """
     from flumekit.ballscrew.thermal.lumped import LumpedThermal
     from flumekit.ballscrew.thermal.lumped import thermal_lumped as run
 
@@ -107,6 +203,29 @@ def thermal_lumped(inputs, outputs, params) -> Written:
 
 
 def thermal_fem(inputs, outputs, params) -> Written:
+    """Run the axisymmetric finite-element thermal model of the ball screw.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``previous``: the lumped thermal dataset.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``ballscrew/thermal_fem.nc``.
+    params : dict
+        ``fem_time_step`` [s], ``radial_cell_size`` [m], ``axial_cell_size`` [m],
+        ``fem_order`` [-].
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    References
+    ----------
+    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
+    15, 9358.
+    """
     from flumekit.ballscrew.thermal.fem import thermal_fem as run
 
     return _write(run(_previous(inputs), time_step=params["fem_time_step"],

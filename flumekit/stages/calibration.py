@@ -16,6 +16,20 @@ DOCS = {"order": "order of the calibration polynomial, level [m] against voltage
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
+    """Return the calibration rule, for probes recorded in volts.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    params : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        One rule, ``calibration``; none when the probes are recorded in length units.
+    """
     if ctx.campaign.probes.calibrated:  # probes recorded in length units need no calibration
         return []
     params["probes"] = list(ctx.campaign.probes.names)
@@ -26,6 +40,27 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 
 
 def build(inputs, outputs, params) -> Written:
+    """Fit each probe's calibration polynomial to its static submersions and write it.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``calibration``: the raw calibration file.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``calibration.nc``.
+    params : dict
+        ``order`` [-], ``min_r2`` [-], ``warn_r2`` [-], ``probes``, ``dialect``.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When a probe's fit is below ``min_r2`` or not monotonic over its voltages.
+    """
     import warnings
 
     from flumekit.conventions import WARNINGS

@@ -18,6 +18,20 @@ VERSION = "3"
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
+    """Return one rule per run: the surface elevation at every probe, ``eta/<run>``.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    params : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        The runs' elevation rules.
+    """
     c = ctx.campaign
     calibrated = c.probes.calibrated
     out = []
@@ -39,6 +53,30 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 
 
 def build(inputs, outputs, params) -> Written:
+    """Compute the surface elevation at every probe of a run and write it.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``probes``: the quality-controlled probe record; ``calibration``: the calibration
+        dataset (probes recorded in volts only).
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``eta/<run>.nc``.
+    params : dict
+        The probes, their positions ``probe_x`` [m], the ``still_water`` rule and the run's
+        parameters (:func:`flumekit.stages.runs.run_params`).
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When a calibration is not monotonic over the recorded voltages, or the
+        still-water rule does not apply.
+    """
     import numpy as np
 
     from flumekit.conventions import SOURCE_FILE, WARNINGS

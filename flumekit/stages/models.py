@@ -49,12 +49,31 @@ DOCS = {
 
 
 #: the choices of ``linear_pto_damping``: :data:`flumekit.flap.comparison.LINEAR_PTO_DAMPING`,
-#: repeated here because importing flumekit.flap (numpy, scipy, xarray) made planning several
-#: times slower (tests/stages checks that the two agree)
+#: repeated here so that planning does not import flumekit.flap (numpy, scipy, xarray), which
+#: would cost planning more than the rules themselves (tests/stages checks that the two agree)
 LINEAR_PTO_DAMPING = ("energy_equivalent", "optimal")
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    """Return the rules of the models stage.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    p : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        ``models/hydro``, one ``comparison/<run>`` per run and ``comparison_summary``.
+
+    Raises
+    ------
+    flumekit.errors.FlumekitError
+        For an unknown ``coefficients`` or ``linear_pto_damping`` choice.
+    """
     from flumekit.errors import FlumekitError
 
     c = ctx.campaign
@@ -92,6 +111,36 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
 
 
 def hydro(inputs, outputs, params) -> Written:
+    """Compute the flap's hydrodynamic coefficients over a frequency grid and write them.
+
+    The Renzi–Dias thin plate in the flume's channel, or the thick flap by BEM
+    (Capytaine); stored with the radiation impulse response and A∞ from the Ogilvie
+    relation (:func:`flumekit.flap.comparison.stored_container`).
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        None.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``models/hydro.nc``.
+    params : dict
+        The flume and flap geometry (``depth``, ``flap_width``, ``hinge_height``,
+        ``channel_width``, ``thickness`` [m]; ``stiffness`` [N m rad-1], ``inertia``
+        [kg m2]), ``coefficients`` and its frequency grid [rad s-1], ``irf_duration`` [s].
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    References
+    ----------
+    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy
+    converter in a channel. J. Fluid Mech. 701, 482-510.
+
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. 5th Symposium on Naval Hydrodynamics.
+    """
     from flumekit.flap.comparison import stored_container
     from flumekit.io.netcdf import write_product
 
@@ -117,6 +166,24 @@ def hydro(inputs, outputs, params) -> Written:
 
 
 def compare(inputs, outputs, params) -> Written:
+    """Compare a run's experiment with the linear model and the simulator and write it.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``flap``, ``waves``: the run's products; ``hydro``: ``models/hydro.nc``;
+        ``campaign``: ``campaign.toml``.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``comparison/<run>.nc``.
+    params : dict
+        ``dt`` [s], ``simulator``, ``friction``, ``spin_up_periods`` [-],
+        ``linear_pto_damping`` and the run's parameters.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+    """
     from pathlib import Path
 
     from flumekit.campaign import load_campaign
@@ -142,5 +209,21 @@ def compare(inputs, outputs, params) -> Written:
 
 
 def summary(inputs, outputs, params) -> Written:
+    """Stack the comparisons of every run along ``run`` (phase-resolved variables dropped).
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        Run -> its ``comparison/<run>.nc``.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``comparison_summary.nc``.
+    params : dict
+        Unused.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+    """
     return stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
                       keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))

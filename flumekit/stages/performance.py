@@ -30,6 +30,20 @@ DOCS = {
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    """Return the power-matrix rule over the campaign's irregular runs.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    p : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        One rule, ``power_matrix``; none without irregular runs.
+    """
     irregular = [r for r in ctx.campaign.runs if r.irregular]
     if not irregular:
         return []
@@ -48,8 +62,32 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
 
 
 def target_te(target: dict) -> float:
-    """The energy period Te = m_-1/m0 [s] of a target sea state: declared, or that of the
-    JONSWAP spectrum of its ``tp`` and ``gamma`` (default 3.3)."""
+    """Return the energy period of a target sea state.
+
+    Parameters
+    ----------
+    target : dict
+        ``te`` [s] when declared, else ``tp`` [s] and ``gamma`` [-] (default 3.3) of a
+        JONSWAP spectrum.
+
+    Returns
+    -------
+    float
+        Te = m_-1 / m0 [s], the declared one or that of the JONSWAP spectrum (integrated
+        to 20 fp).
+
+    References
+    ----------
+    IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
+    Part 100: Electricity producing wave energy converters - Power performance assessment.
+
+    Examples
+    --------
+    >>> target_te({"te": 2.5})
+    2.5
+    >>> round(target_te({"tp": 2.0, "gamma": 3.3}) / 2.0, 2)
+    0.9
+    """
     import numpy as np
 
     from flumekit.synth.waves import jonswap
@@ -63,8 +101,28 @@ def target_te(target: dict) -> float:
 
 
 def edges_around(values) -> list[float]:
-    """Bin edges giving each distinct value its own bin: halfway between neighbours, the outer
-    edges as far out as the nearest inner one (±10 % around a lone value)."""
+    """Return bin edges that give each distinct value its own bin.
+
+    Inner edges lie halfway between neighbours, the outer edges as far out as the nearest
+    inner one (±10 % around a lone value).
+
+    Parameters
+    ----------
+    values : array_like
+        The values (e.g. target Hm0 [m] or Te [s]); equal to 9 decimals counts as one.
+
+    Returns
+    -------
+    list of float
+        Increasing edges, one more than the distinct values.
+
+    Examples
+    --------
+    >>> edges_around([1.0, 2.0, 2.0, 4.0])
+    [0.5, 1.5, 3.0, 5.0]
+    >>> edges_around([2.0])
+    [1.8, 2.2]
+    """
     import numpy as np
 
     v = np.unique(np.round(np.asarray(values, dtype=float), 9))
@@ -75,6 +133,30 @@ def edges_around(values) -> list[float]:
 
 
 def build(inputs, outputs, params) -> None:
+    """Bin the irregular runs' power by incident Hm0 and Te and write the power matrix.
+
+    A run outside the bins is in no cell: it is named in the product and warned about.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``waves:<run>``, ``flap:<run>``, ``comparison:<run>``: the products of each irregular
+        run.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``power_matrix.nc``.
+    params : dict
+        ``hm0_edges`` [m] and ``te_edges`` [s] (None: from the targets), ``targets``, ``runs``.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When a product lacks a variable, or the runs' comparison sources differ.
+
+    References
+    ----------
+    IEC TS 62600-100:2012, Power performance assessment of electricity producing wave
+    energy converters.
+    """
     import numpy as np
     import xarray as xr
 

@@ -12,7 +12,7 @@ from flumekit.pipeline.cache import cached_graph, pipeline_key
 
 
 def pipeline_rules(pipe, lazy) -> list:
-    """The rules of pipeline ``pipe`` (:class:`flumekit.pipeline.config.Pipeline`).
+    """Return the rules of a pipeline (:class:`flumekit.pipeline.config.Pipeline`).
 
     Parameters
     ----------
@@ -24,6 +24,7 @@ def pipeline_rules(pipe, lazy) -> list:
     Returns
     -------
     list of Rule
+        Every stage's rules, and the virtual flume's synthesis rules when ``lazy`` is given.
     """
     from flumekit.campaign import load_campaign
     from flumekit.stages import build_rules, check_stage_params, virtual
@@ -43,7 +44,7 @@ def pipeline_rules(pipe, lazy) -> list:
 
 
 def pipeline_graph(pipe, key_lazy: tuple | None = None):
-    """The graph of pipeline ``pipe``, from its cache while nothing it is made of changed.
+    """Return the graph of a pipeline, from its cache while nothing it is made of changed.
 
     Parameters
     ----------
@@ -54,7 +55,8 @@ def pipeline_graph(pipe, key_lazy: tuple | None = None):
 
     Returns
     -------
-    Graph
+    flumekit.pipeline.engine.Graph
+        The graph of :func:`pipeline_rules`.
     """
     key, lazy = key_lazy or pipeline_key(pipe)
     return cached_graph(pipe.processed / ".flumekit-graph.pickle", key,

@@ -28,6 +28,26 @@ VERSION = "5"
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
+    """Return the quality-control rules of every run and the campaign's QC summary.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The campaign, the processed folder and the pipeline's parameters.
+    params : dict
+        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        ``qc/probes/<run>`` (and ``qc/flap/<run>`` with the flap instruments) per run, and
+        ``qc_summary``.
+
+    References
+    ----------
+    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
+    data.
+    """
     c = ctx.campaign
     out = []
     for run in c.runs:
@@ -55,8 +75,10 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 
 
 def __getattr__(name: str):
-    """``WARNINGS``, which lives in :mod:`flumekit.conventions`, for the callers outside
-    ``stages/`` that still read it from here (loaded on use: planning imports no xarray)."""
+    """Return ``WARNINGS`` of :mod:`flumekit.conventions`, for callers that read it from here.
+
+    Loaded on use: planning imports no xarray.
+    """
     if name == "WARNINGS":
         from flumekit.conventions import WARNINGS
 

@@ -1,5 +1,7 @@
-"""The ``[stages.qc]`` parameters: the QC stage's and, for the UVP beams, the uvp stage's
-(whose rules check the beams they read)."""
+"""The ``[stages.qc]`` parameters.
+
+The QC stage's and, for the UVP beams, the uvp stage's (whose rules check the beams they read).
+"""
 
 from __future__ import annotations
 

@@ -1,5 +1,8 @@
-"""Actions of the qc stage's per-run rules: a run's probe and flap records read, checked against
-their metadata and quality-controlled (:mod:`flumekit.stages.qc`)."""
+"""Actions of the qc stage's per-run rules (:mod:`flumekit.stages.qc`).
+
+A run's probe and flap records are read, checked against their metadata and
+quality-controlled.
+"""
 
 from __future__ import annotations
 
@@ -8,8 +11,11 @@ from flumekit.stages.common import COMPRESS, gross_range, read_raw, write_qc
 
 
 def _thresholds(params: dict):
-    """The QARTOD thresholds of a run's probe or flap rule: an irregular run's dropout level
-    is ``dropout_irregular`` (a random sea is no sinusoid: its extremes lie further out)."""
+    """Return the QARTOD thresholds of a run's probe or flap rule.
+
+    An irregular run's dropout level is ``dropout_irregular`` (a random sea is no sinusoid:
+    its extremes lie further out).
+    """
     from flumekit.qc.record import Thresholds
 
     if params.get("kind") == "irregular":
@@ -18,8 +24,11 @@ def _thresholds(params: dict):
 
 
 def _stuck(ds, name, path, max_gap):
-    """Error naming the file and channel of masked spans longer than the interpolation limit
-    (a stuck or dropped-out channel the flap analysis cannot bridge)."""
+    """Raise an error naming the file and channel of masked spans longer than allowed.
+
+    A stuck or dropped-out channel longer than the interpolation limit ``max_gap`` [s] is one
+    the flap analysis cannot bridge.
+    """
     from flumekit.errors import InputError
     from flumekit.qc.record import unfilled_gaps
 
@@ -32,6 +41,37 @@ def _stuck(ds, name, path, max_gap):
 
 
 def probes(inputs, outputs, params) -> Written:
+    """Quality-control a run's probe record and check it against the run's metadata.
+
+    Dead, stuck or noise-only probes are errors; the record's kind (regular or
+    irregular) and dominant period [s] must agree with the declared ones.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``probes``: the raw probe file; ``run``: the run's ``run.toml``.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``qc/probes/<run>.nc``.
+    params : dict
+        The QARTOD thresholds and checks of ``[stages.qc]``, the raw reading
+        (:func:`flumekit.stages.common.raw_reading`) and the run's parameters.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file and probe, for a dead probe, or a kind or period that
+        contradicts ``run.toml``.
+
+    References
+    ----------
+    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
+    data.
+    """
     from pathlib import Path
 
     import numpy as np
@@ -78,6 +118,34 @@ def probes(inputs, outputs, params) -> Written:
 
 
 def flap(inputs, outputs, params) -> Written:
+    """Quality-control a run's encoder and chamber-pressure record.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``flap``: the raw flap file; ``run``: the run's ``run.toml``.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``qc/flap/<run>.nc``.
+    params : dict
+        The QARTOD thresholds and checks of ``[stages.qc]``, the raw reading and the run's
+        parameters.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the engine.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file and channel, for a dead or stuck channel, a masked span
+        longer than ``max_gap`` [s], or a period that contradicts ``run.toml``.
+
+    References
+    ----------
+    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
+    data.
+    """
     from pathlib import Path
 
     import numpy as np

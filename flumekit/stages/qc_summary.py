@@ -1,5 +1,7 @@
-"""Action of the qc stage's campaign rule: QC counts, probe-to-flap lags and the warnings of
-every run (:mod:`flumekit.stages.qc`)."""
+"""Action of the qc stage's campaign rule (:mod:`flumekit.stages.qc`).
+
+QC counts, probe-to-flap lags and the warnings of every run.
+"""
 
 from __future__ import annotations
 
@@ -7,11 +9,28 @@ from flumekit.io.atomic import Written
 
 
 def summary(inputs, outputs, params) -> Written:
-    """Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag and
-    its departure from the lag expected for its wave condition (:mod:`flumekit.qc.clock`; a
-    clock offset beyond ``clock_tolerance`` is a warning naming the run, the reference of each
-    run is the attribute ``clock_reference``), and every warning of the QC datasets.
-    A campaign without the flap instruments has the probe counts only."""
+    """Summarise the quality control of every run and write it.
+
+    Per run: samples per QC flag of every probe and flap channel, the probe-to-flap lag [s]
+    and its departure from the lag expected for its wave condition (:mod:`flumekit.qc.clock`;
+    a clock offset beyond ``clock_tolerance`` is a warning naming the run, the reference of
+    each run is the attribute ``clock_reference``), and every warning of the QC datasets.
+    A campaign without the flap instruments has the probe counts only.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``probes/<run>`` and ``flap/<run>``: the QC products of each run.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``qc_summary.nc``.
+    params : dict
+        ``clock_tolerance`` [s] and ``conditions``: run -> ``[period [s], height [m]]``.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest.
+    """
     import numpy as np
     import xarray as xr
 
@@ -22,7 +41,7 @@ def summary(inputs, outputs, params) -> Written:
     from flumekit.qc.record import flag_counts
 
     def counts(flags, name):
-        """Samples per flag of a flag variable, all its channels together."""
+        """Return the samples per flag of a flag variable, all its channels together."""
         return xr.DataArray(flag_counts(flags.values.reshape(-1)), dims="flag_meaning",
                             coords={"flag_meaning": ("flag_meaning", FLAG_MEANINGS.split(),
                                                      {"long_name": "QARTOD flag meaning"})},

@@ -6,14 +6,28 @@ from flumekit.io.atomic import Written
 
 
 def run_params(run, campaign=None) -> dict:
-    """The parameters of a run that every per-run rule carries (and :func:`run_coords` uses),
-    with the records' start when run.toml declares one (:func:`write_run` applies it).
+    """Return the parameters of a run that every per-run rule carries.
 
-    ``kind`` is the run's kind ("waves", "uvp", "irregular"), ``sea_state`` the target sea
-    state of an irregular run (a dict, else None); ``sea_state_coords``: whether the runs of
-    ``campaign`` carry the target sea state as coordinates (when any run is irregular, so
-    that every run of a mixed campaign has the same coordinates); ``uvp_coords`` False (set
-    only then): the campaign declares no UVP, so its runs carry no ``uvp_elevation``.
+    :func:`run_coords` makes coordinates of them; the records' start, when run.toml declares
+    one, is applied by :func:`write_run`.
+
+    Parameters
+    ----------
+    run : flumekit.campaign.Run
+        The run.
+    campaign : flumekit.campaign.Campaign, optional
+        Its campaign, which decides the coordinates every run carries.
+
+    Returns
+    -------
+    dict
+        ``run``, ``kind`` ("waves", "uvp", "irregular"), ``period`` [s], ``height`` [m],
+        ``repeat``, ``uvp_elevation`` [m], ``sea_state`` (the target sea state of an
+        irregular run as a dict, else None), ``sea_state_coords`` (whether the runs of
+        ``campaign`` carry the target sea state as coordinates: when any run is irregular, so
+        that every run of a mixed campaign has the same coordinates), ``start`` when declared,
+        and ``uvp_coords`` False when the campaign declares no UVP (its runs carry no
+        ``uvp_elevation``).
     """
     sea = run.sea_state
     return {"run": run.id, "kind": run.kind, "period": run.period, "height": run.height,
@@ -27,13 +41,30 @@ def run_params(run, campaign=None) -> dict:
 
 
 def run_coords(params: dict) -> dict:
-    """Run parameters as scalar coordinates, so runs concatenate along ``run``.
+    """Return run parameters as scalar coordinates, so runs concatenate along ``run``.
 
     ``uvp_elevation`` (present when the campaign declares the UVP) is NaN for runs without
-    UVP, the target period and height NaN for an
-    irregular run and its target Hm0, Tp and Te (``wave_hm0``, ``wave_tp``, ``wave_te``,
-    present when the campaign has irregular runs) NaN for a regular one, so every run has the
-    same coordinates.
+    UVP, the target period and height NaN for an irregular run and its target Hm0, Tp and Te
+    (``wave_hm0``, ``wave_tp``, ``wave_te``, present when the campaign has irregular runs) NaN
+    for a regular one, so every run has the same coordinates.
+
+    Parameters
+    ----------
+    params : dict
+        The run's parameters (:func:`run_params`).
+
+    Returns
+    -------
+    dict
+        Coordinate name -> scalar: ``run``, ``wave_period`` [s], ``wave_height`` [m],
+        ``repeat``, and where they apply ``uvp_elevation`` [m], ``wave_hm0`` [m],
+        ``wave_tp`` [s], ``wave_te`` [s].
+
+    Examples
+    --------
+    >>> run_coords({"run": "R01", "period": 2.0, "height": None, "repeat": 0,
+    ...             "uvp_coords": False})
+    {'run': 'R01', 'wave_period': 2.0, 'wave_height': nan, 'repeat': 0}
     """
     def nan(v):
         return float("nan") if v is None else v
@@ -50,14 +81,41 @@ def run_coords(params: dict) -> dict:
 
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
               compress: bool = True, coords: bool = True) -> Written:
-    """Write one run's dataset: run coordinates (those the dataset lacks), global attributes,
-    and the start of its time axis: the one its record carries (from the raw file, through
-    every stage; ``record``: the dataset whose time axis ``ds``'s was computed from, when a
-    domain function made it from plain numbers), else the one run.toml declares (``start``).
-    ``compress``: as :func:`flumekit.io.netcdf.write_dataset`. ``coords=False``: no run
-    coordinates (a product that no summary stacks along ``run``; each variable costs 0.5-1 ms
-    to write, and its title and parameters name the run). Returns the written file
-    (:class:`~flumekit.io.atomic.Written`), for the action to return to its rule."""
+    """Write one run's dataset with its run coordinates, attributes and record start.
+
+    The start of its time axis is the one its record carries (from the raw file, through every
+    stage), else the one run.toml declares (``start``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The run's product.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: the file to write.
+    params : dict
+        The rule's parameters, with the run's (:func:`run_params`).
+    title, source : str
+        Global attributes; the title gets the run's name appended.
+    record : xarray.Dataset, optional
+        The dataset whose time axis ``ds``'s was computed from, when a domain function made
+        it from plain numbers: its record start is carried over.
+    compress : bool, default True
+        As :func:`flumekit.io.netcdf.write_dataset`.
+    coords : bool, default True
+        Add the run coordinates (those the dataset lacks); False for a product that no
+        summary stacks along ``run`` (each coordinate costs a variable to write, and the
+        title and parameters name the run).
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest, for the action to return to its rule.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When the record's own start departs from the declared one by more than 1 s.
+    """
     from flumekit import conventions
     from flumekit.io.netcdf import write_product
 
@@ -76,9 +134,12 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
 
 
 def _declared_start(ds, declared: str, run: str):
-    """``ds`` with the start run.toml declares, where its record gives none; a record whose
-    own start departs from the declared one by more than 1 s (both in UTC, or both on the
-    lab's clock) is an error: metadata that contradicts the record is not used silently."""
+    """Return ``ds`` with the start run.toml declares, where its record gives none.
+
+    A record whose own start departs from the declared one by more than 1 s (both in UTC, or
+    both on the lab's clock) is an error: metadata that contradicts the record is not used
+    silently.
+    """
     import numpy as np
 
     from flumekit import conventions
@@ -101,8 +162,24 @@ def _declared_start(ds, declared: str, run: str):
 
 
 def summary_rule(ctx, stage: str, version: str, module: str | None = None):
-    """The summary rule of a per-run stage: ``<stage>_summary`` from every ``<stage>/<run>.nc``,
-    built by ``summary`` of ``flumekit.stages.<module>`` (default: the stage's name)."""
+    """Return the summary rule of a per-run stage.
+
+    Parameters
+    ----------
+    ctx : flumekit.stages.context.Context
+        The stage context.
+    stage : str
+        The stage; the rule ``<stage>_summary`` reads every ``<stage>/<run>.nc``.
+    version : str
+        The stage's rule version.
+    module : str, optional
+        The stage module whose ``summary`` builds it (default: the stage's name).
+
+    Returns
+    -------
+    flumekit.pipeline.Rule
+        The summary rule.
+    """
     from flumekit.pipeline.rules import Rule
 
     return Rule(f"{stage}_summary", f"flumekit.stages.{module or stage}:summary",
@@ -111,10 +188,27 @@ def summary_rule(ctx, stage: str, version: str, module: str | None = None):
 
 
 def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:
-    """Write the per-run datasets ``inputs`` stacked along ``run`` (a campaign summary).
+    """Write the per-run datasets stacked along ``run`` (a campaign summary).
 
-    ``keep(ds)`` names the variables to keep (default: every scalar); ``drop_dims`` are dropped
-    first.
+    Every run's warnings are kept, each naming its run once.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        Run -> its product.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: the summary file.
+    title : str
+        The summary's title.
+    keep : callable, optional
+        ``keep(ds)`` names the variables to keep (default: every scalar).
+    drop_dims : sequence of str, optional
+        Dimensions dropped first.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest.
     """
     import xarray as xr
 
@@ -135,9 +229,11 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
 
 
 def __getattr__(name: str):
-    """``WARNINGS`` and ``run_warnings``, which live in :mod:`flumekit.conventions`, for the
-    callers outside ``stages/`` that still import them from here (loaded on use: planning
-    imports no xarray)."""
+    """Return ``WARNINGS`` or ``run_warnings`` of :mod:`flumekit.conventions`.
+
+    For the callers outside ``stages/`` that import them from here (loaded on use: planning
+    imports no xarray).
+    """
     if name in ("WARNINGS", "run_warnings"):
         from flumekit import conventions
 

@@ -1,5 +1,8 @@
-"""Action of the uvp stage's per-run rule (:mod:`flumekit.stages.uvp`): the beams read once,
-checked where the average reads them, their flags written, cleaned and phase-averaged."""
+"""Action of the uvp stage's per-run rule (:mod:`flumekit.stages.uvp`).
+
+The beams are read once, checked where the average reads them, their flags written, cleaned
+and phase-averaged.
+"""
 
 from __future__ import annotations
 
@@ -9,9 +12,22 @@ from flumekit.stages.runs import write_run
 
 
 def beam_checker(beams: dict, params: dict):
-    """The quality control of a run's UVP beams over a span [s] (probes' clock): the flags of
-    :func:`flumekit.qc.record.beam_flags` with the [stages.qc] parameters ``params["qc"]``
-    (:data:`flumekit.stages.qc_params.UVP_PARAMS`) of the uvp rule; pure (nothing written)."""
+    """Return the quality control of a run's UVP beams over a span.
+
+    Parameters
+    ----------
+    beams : dict of str to xarray.Dataset
+        The run's beam records.
+    params : dict
+        The uvp rule's parameters: ``qc`` holds the ``[stages.qc]`` parameters of
+        :data:`flumekit.stages.qc_params.UVP_PARAMS`, ``time_offset`` [s] the UVP's clock.
+
+    Returns
+    -------
+    callable
+        ``check(span)``: the flags of :func:`flumekit.qc.record.beam_flags` over ``span``
+        [s] (probes' clock); pure (nothing written).
+    """
     from flumekit.qc.record import Thresholds, beam_flags
 
     qc = params["qc"]
@@ -25,7 +41,24 @@ def beam_checker(beams: dict, params: dict):
 
 
 def write_beam_flags(flags, path, params: dict, sources) -> Written:
-    """Write the UVP beams' QC flags (:func:`beam_checker`) to ``path`` (``qc/uvp/<run>.nc``)."""
+    """Write the UVP beams' QC flags (:func:`beam_checker`).
+
+    Parameters
+    ----------
+    flags : xarray.Dataset
+        The flags.
+    path : pathlib.Path
+        ``qc/uvp/<run>.nc``.
+    params : dict
+        The uvp rule's parameters.
+    sources : sequence of path-like
+        The beam files, named in the product.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file written and its content digest.
+    """
     return write_qc(flags, {"dataset": path}, {**params, "max_gap": params["qc"]["max_gap"]},
                     "Quality-control flags of the UVP beam velocities",
                     "flumekit qc stage from " + ", ".join(map(str, sources)),
@@ -33,9 +66,39 @@ def write_beam_flags(flags, path, params: dict, sources) -> Written:
 
 
 def build(inputs, outputs, params) -> list[Written]:
-    """The run's beams read once, checked where the average reads them
+    """Phase-average a run's UVP beams and write them with their QC flags.
+
+    The beams are read once, checked where the average reads them
     (:func:`flumekit.uvp.run_window.checked_window`, the flags written), cleaned and
-    phase-averaged."""
+    phase-averaged (:func:`flumekit.uvp.phase_average_beams`).
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        Beam name -> its ``.mfprof`` file; ``waves``, ``flap``: the run's products;
+        ``campaign``: ``campaign.toml``.
+    outputs : dict of str to pathlib.Path
+        ``dataset``: ``uvp/<run>.nc``; ``qc``: ``qc/uvp/<run>.nc``.
+    params : dict
+        The uvp stage's parameters (``n_cycles``, ``n_phase``, ``cutoff`` [Hz], ``order``,
+        ``margin`` [m], ``min_amplitude``), ``qc``, ``time_offset`` [s] and the run's.
+
+    Returns
+    -------
+    list of flumekit.io.atomic.Written
+        The flags file and the phase-averaged product.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the files, when the waves product has no analysed span or no clean window
+        of ``n_cycles`` periods exists.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
+    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    """
     from pathlib import Path
 
     from flumekit.campaign import load_campaign

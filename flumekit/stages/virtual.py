@@ -18,6 +18,26 @@ from flumekit.pipeline.rules import Rule
 
 def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
           run_ids: list[str]) -> list[Rule]:
+    """Return the rules that synthesise the raw files the stage rules read.
+
+    Parameters
+    ----------
+    stage_rules : list of flumekit.pipeline.Rule
+        The stages' rules; their inputs under ``root`` are what the synthesis must write.
+    root : pathlib.Path
+        The raw campaign folder.
+    size : str
+        Campaign size ("small", "default", "paper").
+    seed : int
+        Random seed of the campaign.
+    run_ids : list of str
+        The planned runs.
+
+    Returns
+    -------
+    list of flumekit.pipeline.Rule
+        ``synth/campaign`` and one ``synth/<run>`` per run, all ``source`` rules.
+    """
     runs_dir = (root / "runs").resolve()
     base: dict[str, Path] = {}
     per_run: dict[str, dict[str, Path]] = {r: {} for r in run_ids}
@@ -43,12 +63,34 @@ def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
 
 
 def base(inputs, outputs, params) -> None:
+    """Write the campaign-wide raw files of a virtual campaign.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        None.
+    outputs : dict of str to pathlib.Path
+        The campaign-wide raw files (``campaign.toml``, the probe calibration).
+    params : dict
+        ``root``, ``size``, ``seed``.
+    """
     from flumekit.synth.campaign import write_virtual_base
 
     write_virtual_base(params["root"], params["size"], int(params["seed"]))
 
 
 def run(inputs, outputs, params) -> None:
+    """Write the raw files of one run of a virtual campaign.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``campaign``: ``campaign.toml``.
+    outputs : dict of str to pathlib.Path
+        The run's raw files.
+    params : dict
+        ``root``, ``run``.
+    """
     from flumekit.synth.campaign import write_virtual_run
 
     write_virtual_run(params["root"], params["run"])

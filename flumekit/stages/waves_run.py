@@ -1,11 +1,26 @@
-"""The analyses of the waves stage's per-run rule (:func:`flumekit.stages.waves.build`): a
-regular or an irregular sea, with the rule's parameters."""
+"""The analyses of the waves stage's per-run rule (:func:`flumekit.stages.waves.build`).
+
+A regular or an irregular sea, with the rule's parameters.
+"""
 
 from __future__ import annotations
 
 
 def regular(eta, params):
-    """The analysis of a regular run (:func:`flumekit.waves.analyse_run`)."""
+    """Analyse a regular run (:func:`flumekit.waves.analyse_run`).
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation at every probe [m], with probe positions ``x`` [m].
+    params : dict
+        The waves rule's parameters.
+
+    Returns
+    -------
+    xarray.Dataset
+        Incident and reflected waves and their statistics.
+    """
     from flumekit.waves import analyse_run
 
     return analyse_run(eta, params["depth"], params["period"], params["x_ref"],
@@ -18,7 +33,22 @@ def regular(eta, params):
 
 
 def irregular(eta, params):
-    """The analysis of an irregular run (:func:`flumekit.waves.analyse_irregular_run`)."""
+    """Analyse an irregular run (:func:`flumekit.waves.analyse_irregular_run`).
+
+    The target peak period steers the analysis band only, not the result.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation at every probe [m], with probe positions ``x`` [m].
+    params : dict
+        The waves rule's parameters, with the run's target ``sea_state``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Incident and reflected spectra and the sea state's parameters.
+    """
     from flumekit.waves import analyse_irregular_run
 
     sea = params["sea_state"]
