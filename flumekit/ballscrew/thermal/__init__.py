@@ -1,6 +1,8 @@
-"""Thermal models of the ball-screw power take-off: lumped (Eqs. 8-10,
-:mod:`~flumekit.ballscrew.thermal.lumped`) and axisymmetric finite elements
-(:mod:`~flumekit.ballscrew.thermal.fem`)."""
+"""Thermal models of the ball-screw power take-off.
+
+Lumped (Senatore & De Simone 2022, Eqs. 8-10, :mod:`~flumekit.ballscrew.thermal.lumped`) and
+axisymmetric finite elements (:mod:`~flumekit.ballscrew.thermal.fem`).
+"""
 
 
 from flumekit.lazy import lazy_names

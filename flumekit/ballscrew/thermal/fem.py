@@ -86,7 +86,7 @@ def refine_points(breaks, cell_size: float) -> np.ndarray:
 
 
 def boundary_facets(mesh: MeshQuad, where=None) -> np.ndarray:
-    """Indices of boundary facets whose midpoint (r, z) satisfies ``where(r, z)`` (all if None)."""
+    """Return the boundary facets whose midpoint (r, z) satisfies ``where(r, z)`` (all if None)."""
     f = mesh.boundary_facets()
     mid = mesh.p[:, mesh.facets[:, f]].mean(axis=1)
     if where is None:
@@ -311,6 +311,7 @@ class PTOGeometry:
         ("screw_under_nut", 0.0, 0.65), ("nut", 0.054, 0.65))
 
     def __post_init__(self):
+        """Check that every region has a positive extent."""
         for reg in self.regions:
             if not (0 <= reg.r0 < reg.r1 and reg.z0 < reg.z1):
                 raise GeometryError(f"region '{reg.name}' has an empty or inverted extent")
@@ -367,8 +368,9 @@ def assemble_pto(geometry: PTOGeometry, radial_cell_size: float = 0.005,
 
 
 def source_powers(th: xr.Dataset, factor: int) -> dict[str, np.ndarray]:
-    """Powers [W] of the lumped dataset split over the FEM source regions, averaged over FEM
-    steps of ``factor`` lumped steps.
+    """Split the powers [W] of the lumped dataset over the FEM source regions.
+
+    Averaged over FEM steps of ``factor`` lumped steps.
 
     Eq. (9) gives the screw p_sn r Q_mecc (ball system: the swept screw length) plus
     p_sb (1 - r) Q_mecc (support bearing: the bearing seat); Eq. (10) the nut (1 - p_sn) r Q_mecc;

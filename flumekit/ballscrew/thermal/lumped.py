@@ -86,6 +86,7 @@ class LumpedThermal:
     air_temperature_screw: float = 293.15
 
     def __post_init__(self):
+        """Check that every capacity, conductance and temperature is positive."""
         for name in ("heat_capacity_generator", "heat_capacity_screw", "heat_capacity_nut",
                      "conductance_generator_air", "conductance_screw_air",
                      "conductance_nut_air", "initial_temperature",
@@ -214,7 +215,7 @@ def step_means(time, values, period: float, edges) -> np.ndarray:
 
 def operating_cycle(eff: xr.Dataset, params: LumpedThermal = LumpedThermal(),
                     cycle_duration: float = 600.0, time_step: float = 1.0) -> xr.Dataset:
-    """The heat sources of one WEC operating cycle (the role of the paper's Fig. 9).
+    """Build the heat sources of one WEC operating cycle (the role of the paper's Fig. 9).
 
     The paper uses UMBRA's measured losses of a 600 s cycle; we build them from the efficiency
     dataset (which must hold whole wave periods): mechanical losses Q_mecc = friction and

@@ -217,7 +217,7 @@ def channel_container(depth: float, flap_width: float, hinge_height: float,
                       channel_width: float, hydrostatic_stiffness: float, *,
                       omega: tuple[float, float, int] = CONTAINER_OMEGA, rho: float = 1000.0,
                       g: float = G) -> xr.Dataset:
-    """The coefficient container of a thin flap in a channel (RD12), with A∞.
+    """Build the coefficient container of a thin flap in a channel (RD12), with A∞.
 
     The one container of the flume's flap: the comparison stage's linear model and simulator
     and the virtual flume use it. :func:`coefficients` on ``omega`` = (ω_min, ω_max, n) evenly
@@ -244,7 +244,7 @@ def channel_container(depth: float, flap_width: float, hinge_height: float,
 
 def dataset(sol: Solution, depth: float, hinge_height: float, rho: float = 1000.0,
             g: float = G) -> xr.Dataset:
-    """The coefficients dataset of a :class:`Solution` (see :func:`coefficients`)."""
+    """Return the coefficients dataset of a :class:`Solution` (see :func:`coefficients`)."""
     m, w, omega = sol.modes, sol.flap_width, sol.omega
     s = np.sum(m.f * sol.alpha[..., 0], axis=-1)
     mu = rho * np.pi * w / 4 * s.real  # Eq. (2.34) in RD12
