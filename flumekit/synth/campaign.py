@@ -277,7 +277,7 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
         runs = plan_runs(size)
         from flumekit.synth.flap import flume_hydrodynamics
 
-        # the flap simulator's coefficients and radiation model: the same for every run (~1.5 s)
+        # the flap simulator's coefficients and radiation model: the same for every run
         flap_hydro = flume_hydrodynamics(campaign)
         for i, r in enumerate(runs):
             if progress is not None:
