@@ -121,7 +121,7 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.synth.campaign", "flumekit.synth.flap",
                                     "flumekit.synth.flume", "flumekit.synth.irregular",
                                     "flumekit.synth.uvp", "flumekit.synth.waves",
-                                    "flumekit.hydro.simulation"])
+                                    "flumekit.hydro.simulation", "flumekit.flap.simulator"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0
