@@ -885,7 +885,7 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
     Examples
     --------
     A body without radiation damping behind a linear damper reaches the steady amplitude
-    |F a| / |C − (I + A) ω² − i ω ν| of the linear equation:
+    ``|F a| / |C − (I + A) ω² − i ω ν|`` of the linear equation:
 
     >>> import numpy as np
     >>> from flumekit.hydro import hydro_dataset
