@@ -151,7 +151,12 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.performance.matrix",
                                     "flumekit.performance.statistics",
                                     "flumekit.conventions", "flumekit.campaign",
-                                    "flumekit.cli"])
+                                    "flumekit.cli",
+                                    "flumekit.synth.campaign", "flumekit.synth.flap",
+                                    "flumekit.synth.flume", "flumekit.synth.irregular",
+                                    "flumekit.synth.uvp", "flumekit.synth.waves",
+                                    "flumekit.hydro.simulation", "flumekit.flap.simulator",
+                                    "flumekit.figures.registry"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

@@ -78,7 +78,18 @@ def _table(title: str, header: list[str], rows: list[list[str]]) -> str:
 
 
 def run(quick: bool = False) -> str:
-    """Run the benchmark and return the printed tables."""
+    """Run the benchmark and return the printed tables.
+
+    Parameters
+    ----------
+    quick : bool, default False
+        A 120 s run with fewer frequencies and one repetition instead of 600 s and three.
+
+    Returns
+    -------
+    str
+        The tables of run time against error (module notes).
+    """
     campaign = _campaign()
     duration = 120.0 if quick else 600.0
     repeat = 1 if quick else 3
@@ -164,7 +175,7 @@ def run(quick: bool = False) -> str:
 
 
 def _long_runs(hy, exc, flap, ss, cyl, duration, quick) -> str:
-    """CPU time of the hydraulic run and the peak memory of a long decimated run."""
+    """Measure the CPU time of the hydraulic run and the peak memory of a long decimated run."""
     import tracemalloc
 
     from flumekit.hydro.simulation import RegularWave, simulate

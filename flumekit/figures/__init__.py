@@ -1,6 +1,9 @@
-"""The papers' figures, drawn from processed datasets only: the waves (Figs. 5a, 6a), the
-flap (Figs. 5b, 6b-d, 7-10), the UVP field (Figs. 11, 12), the power matrix and capture width
-ratio, and the quality-control summary of a run. Each returns a matplotlib Figure."""
+"""The papers' figures, drawn from processed datasets only.
+
+The waves (Figs. 5a, 6a), the flap (Figs. 5b, 6b-d, 7-10), the UVP field (Figs. 11, 12), the
+power matrix and capture width ratio, and the quality-control summary of a run. Each returns
+a matplotlib Figure.
+"""
 
 
 from flumekit.lazy import lazy_names

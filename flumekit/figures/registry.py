@@ -27,7 +27,27 @@ Prepare = Callable[[Mapping[str, Any], Mapping[str, Any]], tuple[tuple, dict]]
 
 
 def one_dataset(data: Mapping[str, Any], params: Mapping[str, Any]) -> tuple[tuple, dict]:
-    """The arguments of a figure drawn from one dataset: that dataset."""
+    """Return the arguments of a figure drawn from one dataset: that dataset.
+
+    Parameters
+    ----------
+    data : mapping of str to xarray.Dataset
+        The one dataset its rule reads, by input name.
+    params : mapping
+        The rule's parameters (unused).
+
+    Returns
+    -------
+    args : tuple
+        ``(dataset,)``.
+    kwargs : dict
+        Empty.
+
+    Examples
+    --------
+    >>> one_dataset({"waves": "ds"}, {})
+    (('ds',), {})
+    """
     (ds,) = data.values()
     return (ds,), {}
 
@@ -38,9 +58,12 @@ class Figure:
 
     Attributes
     ----------
-    name : The name a pipeline gives it (the target ``figure/<name>``, or its prefix).
-    function : Draws it: returns a :class:`matplotlib.figure.Figure`.
-    prepare : ``(datasets by input name, rule parameters) -> (args, kwargs)`` of ``function``.
+    name : str
+        The name a pipeline gives it (the target ``figure/<name>``, or its prefix).
+    function : callable
+        Draws it: returns a :class:`matplotlib.figure.Figure`.
+    prepare : callable
+        ``(datasets by input name, rule parameters) -> (args, kwargs)`` of ``function``.
     """
 
     name: str
@@ -48,7 +71,19 @@ class Figure:
     prepare: Prepare = one_dataset
 
     def draw(self, data: Mapping[str, Any], params: Mapping[str, Any] | None = None):
-        """Draw the figure from the datasets ``data`` read by its rule (``params``: the rule's)."""
+        """Draw the figure from the datasets ``data`` read by its rule.
+
+        Parameters
+        ----------
+        data : mapping of str to xarray.Dataset
+            The datasets by input name.
+        params : mapping, optional
+            The rule's parameters.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
         args, kwargs = self.prepare(data, params or {})
         return self.function(*args, **kwargs)
 
@@ -63,18 +98,24 @@ FIGURES: dict[str, Figure] = {}
 
 
 def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], Callable]:
-    """Decorator: register a figure function under ``name``.
+    """Register a figure function under ``name`` (a decorator).
 
     Parameters
     ----------
-    name : The figure's name; unique.
-    prepare : How its arguments are made from the datasets its rule reads (default: the
-        one dataset).
+    name : str
+        The figure's name; unique.
+    prepare : callable, default :func:`one_dataset`
+        How its arguments are made from the datasets its rule reads.
 
     Returns
     -------
     callable
         The decorator, which returns the function unchanged.
+
+    Raises
+    ------
+    ValueError
+        When the decorator is applied, if another function is registered under ``name``.
     """
     def decorate(function: Callable) -> Callable:
         known = FIGURES.get(name)
@@ -90,6 +131,15 @@ def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], 
 
 def figure(name: str) -> Figure:
     """Return the registered figure ``name`` (the figure modules imported first).
+
+    Parameters
+    ----------
+    name : str
+        The figure's registered name, e.g. ``"fig05a"``.
+
+    Returns
+    -------
+    Figure
 
     Raises
     ------

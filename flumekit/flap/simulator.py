@@ -84,7 +84,7 @@ __all__ = ["BadParameterError", "DivergenceError", "FlapDynamics", "HydraulicCyl
 
 def drag_torque_coefficient(drag_coefficient: float, flap_width: float, submerged_height: float,
                             rho: float = 1000.0) -> float:
-    """c_d [N m s2] of the quadratic drag torque c_d θ̇|θ̇| of a flat flap (Morison-type drag).
+    """Compute c_d of the quadratic drag torque c_d θ̇|θ̇| of a flat flap (Morison-type drag).
 
     Each strip at a distance r above the hinge moves at r θ̇ and resists with
     ½ ρ C_d w (r θ̇)|r θ̇| dr, so c_d = ½ ρ C_d w ∫₀^d r³ dr = ρ C_d w d⁴ / 8, with d the wetted
@@ -93,10 +93,34 @@ def drag_torque_coefficient(drag_coefficient: float, flap_width: float, submerge
 
     Parameters
     ----------
-    drag_coefficient : C_d of the plate [-] (about 2 for a flat plate normal to the flow).
-    flap_width : w [m].
-    submerged_height : d [m].
-    rho : Water density [kg m-3].
+    drag_coefficient : float
+        C_d of the plate [-] (about 2 for a flat plate normal to the flow), ≥ 0.
+    flap_width : float
+        w [m], > 0.
+    submerged_height : float
+        d [m], > 0.
+    rho : float, default 1000
+        Water density [kg m-3].
+
+    Returns
+    -------
+    float
+        c_d [N m s2].
+
+    Raises
+    ------
+    ValueError
+        If C_d < 0 or the width or height is not positive.
+
+    References
+    ----------
+    Morison, J. R., O'Brien, M. P., Johnson, J. W. & Schaaf, S. A. (1950). The force exerted by
+    surface waves on piles. Petroleum Transactions, AIME 189, 149-154.
+
+    Examples
+    --------
+    >>> drag_torque_coefficient(2.0, 1.0, 0.5)
+    15.625
     """
     if not (drag_coefficient >= 0 and flap_width > 0 and submerged_height > 0):
         raise ValueError("drag_torque_coefficient needs C_d >= 0, width > 0, height > 0")
@@ -120,12 +144,29 @@ class HydraulicCylinder:
 
     Parameters
     ----------
-    bore_area : A [m2].
-    pressure_loss_coefficient : K_p [Pa s2 rad-2].
-    fluid_inertia : I_p [Pa s2 rad-1].
-    bed_anchor, flap_anchor : Rod anchors (x, z) [m] (flap anchor at θ = 0).
-    atmospheric_pressure, vapour_pressure : P_atm and absolute P_v [Pa].
-    friction : Modified LuGre model, or None.
+    bore_area : float
+        A [m2].
+    pressure_loss_coefficient : float
+        K_p [Pa s2 rad-2].
+    fluid_inertia : float
+        I_p [Pa s2 rad-1].
+    bed_anchor, flap_anchor : tuple of float
+        Rod anchors (x, z) [m] (flap anchor at θ = 0).
+    atmospheric_pressure, vapour_pressure : float
+        P_atm and absolute P_v [Pa].
+    friction : flumekit.flap.friction.LuGre or None
+        Modified LuGre model, or None.
+
+    Raises
+    ------
+    BadParameterError
+        If a parameter is negative or not finite.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (§2.2, Eqs. 12-14,
+    Appendix B).
     """
 
     bore_area: float
@@ -138,6 +179,7 @@ class HydraulicCylinder:
     friction: LuGre | None = None
 
     def __post_init__(self):
+        """Check every parameter (:class:`BadParameterError` names a bad one)."""
         for name in ("bore_area", "pressure_loss_coefficient", "fluid_inertia",
                      "atmospheric_pressure", "vapour_pressure"):
             _sim.check_parameter(name, getattr(self, name), 0.0)
@@ -148,15 +190,45 @@ class HydraulicCylinder:
     @classmethod
     def from_campaign(cls, pto, pressure_loss_coefficient: float, fluid_inertia: float,
                       friction: bool = True) -> HydraulicCylinder:
-        """From :class:`flumekit.campaign.PTO` and the fitted (or true) K_p, I_p."""
+        """Build the cylinder from :class:`flumekit.campaign.PTO` and the fitted (or true) K_p, I_p.
+
+        Parameters
+        ----------
+        pto : flumekit.campaign.PTO
+            The campaign's PTO: bore, anchors, pressures and friction.
+        pressure_loss_coefficient : float
+            K_p [Pa s2 rad-2].
+        fluid_inertia : float
+            I_p [Pa s2 rad-1].
+        friction : bool, default True
+            Include the campaign's LuGre friction (if it has one).
+
+        Returns
+        -------
+        HydraulicCylinder
+        """
         fr = LuGre.from_campaign(pto.friction) if (friction and pto.friction) else None
         return cls(pto.bore_area, float(pressure_loss_coefficient), float(fluid_inertia),
                    tuple(pto.bed_anchor), tuple(pto.flap_anchor), pto.atmospheric_pressure,
                    pto.vapour_pressure, fr)
 
     def kernel(self, inertia: float, dt: float) -> PTOKernel:
-        """Compiled kernels (:mod:`flumekit.flap.kernels`): θ̈ with the fluid inertia and the
-        vapour clamp, the LuGre states at the stage times and at the end of the step."""
+        """Return the compiled kernels of :mod:`flumekit.flap.kernels`.
+
+        They give θ̈ with the fluid inertia and the vapour clamp, and the LuGre states at the
+        stage times and at the end of the step (:class:`flumekit.hydro.simulation.PTO`).
+
+        Parameters
+        ----------
+        inertia : float
+            Effective inertia I + A∞ [kg m2].
+        dt : float
+            Time step [s].
+
+        Returns
+        -------
+        flumekit.hydro.simulation.PTOKernel
+        """
         from flumekit.flap import kernels
 
         th_lo, dth, mtab = _lever_table(self)
@@ -178,7 +250,11 @@ class HydraulicCylinder:
                          kernels.cylinder_advance, params, explain)
 
     def outputs(self, time, theta, theta_dot, theta_ddot, pressure, friction, z, h) -> dict:
-        """Pressure, forces, torques, flow, power, lever arm, cavitation, LuGre state."""
+        """Return pressure, forces, torques, flow, power, lever arm, cavitation, LuGre state.
+
+        Units: pressure [Pa] (gauge), forces [N], torques [N m], flow [m3 s-1], power [W],
+        lever arm [m] (:class:`flumekit.hydro.simulation.PTO`).
+        """
         rod = rod_kinematics(theta, theta_dot, self.bed_anchor, self.flap_anchor)
         m = rod.lever_arm
         fp = self.bore_area * pressure
@@ -194,6 +270,7 @@ class HydraulicCylinder:
         return out
 
     def describe(self) -> dict:
+        """Return the attributes naming the cylinder and its K_p, I_p and bore."""
         return {"pto": "hydraulic cylinder, Eq. (13) signed form with vapour clamp"
                        + (" + modified LuGre friction (App. B)" if self.friction else ""),
                 "pressure_loss_coefficient": self.pressure_loss_coefficient,
@@ -210,26 +287,65 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
 
     Parameters
     ----------
-    excitation : Excitation torque T_exc over ``time`` [N m] (cubic-spline interpolated to
-        the half steps), or None for a free response.
-    flap : Inertia, A∞, stiffness, restoring law, drag and angle limit.
-    radiation : :class:`flumekit.hydro.radiation.StateSpace`, an impulse response K(t)
-        (DataArray over ``lag``, convolution), or None (no memory term).
-    pto : :class:`LinearDamper`, :class:`HydraulicCylinder` or None.
-    dt : Time step h [s].
-    duration : Simulated time [s]; default the excitation record.
-    theta0, theta_dot0 : Initial angle [rad] and angular velocity [rad s-1].
-    output_step : Output interval [s], a multiple of ``dt`` (default every step).
-    extra_torque : Optional callable ``(j, theta, theta_dot) -> torque`` [N m] acting on the
-        flap, with j the half-step index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is
-        called once per step, in order, at the step's start, and held over the step
-        (operator splitting, first order in the term: for slowly varying losses).
+    excitation : xarray.DataArray or None
+        Excitation torque T_exc over ``time`` [N m] (cubic-spline interpolated to the half
+        steps), or None for a free response.
+    flap : FlapDynamics
+        Inertia, A∞, stiffness, restoring law, drag and angle limit.
+    radiation : StateSpace, xarray.DataArray or None
+        :class:`flumekit.hydro.radiation.StateSpace`, an impulse response K(t) (DataArray over
+        ``lag``, convolution), or None (no memory term).
+    pto : LinearDamper, HydraulicCylinder or None
+        The power take-off.
+    dt : float
+        Time step h [s].
+    duration : float, optional
+        Simulated time [s]; default the excitation record.
+    theta0, theta_dot0 : float, default 0
+        Initial angle [rad] and angular velocity [rad s-1].
+    output_step : float, optional
+        Output interval [s], a multiple of ``dt`` (default every step).
+    extra_torque : callable, optional
+        ``(j, theta, theta_dot) -> torque`` [N m] acting on the flap, with j the half-step
+        index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is called once per step, in
+        order, at the step's start, and held over the step (operator splitting, first order
+        in the term: for slowly varying losses).
 
     Returns
     -------
-    xr.Dataset over ``time`` with θ, θ̇, θ̈, every torque (signs in the module notes), the
-    energy balance of :mod:`flumekit.hydro.simulation`, and for the hydraulic PTO the chamber
-    pressure, flow rate, power, forces, lever arm, cavitation flag and LuGre state.
+    xarray.Dataset
+        Over ``time``: θ [rad], θ̇ [rad s-1], θ̈ [rad s-2], every torque [N m] (signs in the
+        module notes), the energy balance of :mod:`flumekit.hydro.simulation` [J], and for
+        the hydraulic PTO the chamber pressure [Pa], flow rate [m3 s-1], power [W], forces
+        [N], lever arm [m], cavitation flag and LuGre state.
+
+    Raises
+    ------
+    BadParameterError
+        If a parameter is not finite or out of range, a free response has no duration, the
+        excitation does not cover the run or ``output_step`` is not a multiple of ``dt``.
+    DivergenceError
+        If the run diverges (:mod:`flumekit.hydro.simulation`).
+
+    References
+    ----------
+    Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9.
+    Cox, S. M., Matthews, P. C. (2002). Exponential time differencing for stiff systems.
+    J. Comput. Phys. 176, 430-455.
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (Eqs. 11-13, Appendix B).
+
+    Examples
+    --------
+    Free decay of an undamped flap from 0.1 rad: after one natural period
+    2π √((I + A∞)/C) it is back at 0.1 rad.
+
+    >>> import numpy as np
+    >>> flap = FlapDynamics(inertia=2.0, added_inertia_infinite=0.5, hydrostatic_stiffness=60.0)
+    >>> period = 2 * np.pi * np.sqrt(2.5 / 60.0)
+    >>> run = simulate(None, flap, None, None, dt=period / 200, duration=period, theta0=0.1)
+    >>> round(float(run.theta[-1]), 6)
+    0.1
     """
     dt = _sim.check_parameter("dt", dt, 0.0, strict=True)
     if excitation is not None:
@@ -301,40 +417,73 @@ def simulate_run(hydro: xr.Dataset, eta_incident_at_flap: xr.DataArray, campaign
 
     Parameters
     ----------
-    hydro : Coefficient container (:mod:`flumekit.hydro.coefficients`); passivity is always
+    hydro : xarray.Dataset
+        Coefficient container (:mod:`flumekit.hydro.coefficients`); passivity is always
         checked. Its ``added_inertia_infinite`` is used if present, else it is estimated by the
         Ogilvie relation (median, or at ``match_frequency``; ``max_spread`` checks the spread).
-    eta_incident_at_flap : Incident elevation at x = 0 over ``time`` [m] (separation stage).
-    campaign : :class:`flumekit.campaign.Campaign` (flap inertia, PTO geometry and friction);
-        only needed for the hydraulic PTO when ``inertia`` is given.
-    pto : "hydraulic", "linear" or "none".
-    pto_damping : ν_pto [N m s] for ``pto="linear"``.
-    pressure_loss_coefficient, fluid_inertia : K_p [Pa s2 rad-2] and I_p [Pa s2 rad-1] of
-        Eq. (13) for ``pto="hydraulic"`` (fitted by the flap stage, or the virtual flume's truth).
-    friction : Include the LuGre friction of ``campaign.pto.friction``.
-    drag_coefficient : Quadratic drag torque coefficient c_d [N m s2].
-    restoring : "linear" (C θ, as Eq. A1) or "sine" (C sin θ).
-    dt : Time step [s].
-    radiation : "state_space", "convolution" or "none", or a precomputed model
+    eta_incident_at_flap : xarray.DataArray
+        Incident elevation at x = 0 over ``time`` [m] (separation stage).
+    campaign : flumekit.campaign.Campaign, optional
+        Flap inertia, PTO geometry and friction; needed for the hydraulic PTO, and for the
+        inertia unless ``inertia`` is given.
+    pto : str, default "hydraulic"
+        "hydraulic", "linear" or "none".
+    pto_damping : float, optional
+        ν_pto [N m s] for ``pto="linear"``.
+    pressure_loss_coefficient, fluid_inertia : float, optional
+        K_p [Pa s2 rad-2] and I_p [Pa s2 rad-1] of Eq. (13) for ``pto="hydraulic"`` (fitted
+        by the flap stage, or the virtual flume's truth).
+    friction : bool, default True
+        Include the LuGre friction of ``campaign.pto.friction``.
+    drag_coefficient : float, default 0
+        Quadratic drag torque coefficient c_d [N m s2].
+    restoring : str, default "linear"
+        "linear" (C θ, as Eq. A1) or "sine" (C sin θ).
+    dt : float, default 0.02
+        Time step [s].
+    radiation : str, StateSpace or xarray.DataArray, default "state_space"
+        "state_space", "convolution" or "none", or a precomputed model
         (:class:`~flumekit.hydro.radiation.StateSpace` or an impulse response over ``lag``),
         fitted once per campaign and shared by its runs.
-    irf_duration : Length of K(t) [s].
-    order : State-space order (default: smallest with 1 % error on K(t)).
-    match_frequency : Angular frequency [rad s-1] at which A∞ makes the time-domain model
-        reproduce A(ω) exactly (e.g. 2π/T of a regular-wave run); default the median estimate.
-    max_spread : Largest accepted spread of the Ogilvie estimates (None: report only).
-    taper : End tapers of the excitation filter [s] (:func:`flumekit.hydro.excitation.
-        excitation_torque`); the result's ``valid_end`` attribute says where the filter's end
-        effect starts.
-    inertia : Flap inertia about the hinge [kg m2]; default ``campaign.flap.inertia``.
-    output_step : Output interval [s], a multiple of ``dt``.
-    extra_torque : Further torque on the flap, passed to :func:`simulate` (its half steps
-        are those of the elevation's time grid at step ``dt``).
+    irf_duration : float, default 30
+        Length of K(t) [s].
+    order : int, optional
+        State-space order (default: smallest with 1 % error on K(t)).
+    match_frequency : float, optional
+        Angular frequency [rad s-1] at which A∞ makes the time-domain model reproduce A(ω)
+        exactly (e.g. 2π/T of a regular-wave run); default the median estimate.
+    max_spread : float, optional
+        Largest accepted spread of the Ogilvie estimates (None: report only).
+    taper : float, default 2
+        End tapers of the excitation filter [s]
+        (:func:`flumekit.hydro.excitation.excitation_torque`); the result's ``valid_end``
+        attribute says where the filter's end effect starts.
+    inertia : float, optional
+        Flap inertia about the hinge [kg m2]; default ``campaign.flap.inertia``.
+    output_step : float, optional
+        Output interval [s], a multiple of ``dt``.
+    extra_torque : callable, optional
+        Further torque on the flap, passed to :func:`simulate` (its half steps are those of
+        the elevation's time grid at step ``dt``).
 
     Returns
     -------
-    Dataset of :func:`flumekit.hydro.simulation.simulate` on the elevation's time grid spacing
-    ``dt``, with ``eta_incident`` at the simulation times; attrs name the options.
+    xarray.Dataset
+        As :func:`flumekit.hydro.simulation.simulate`, on the elevation's time grid spacing
+        ``dt``, with ``eta_incident`` [m] at the simulation times; attrs name the options.
+
+    Raises
+    ------
+    BadParameterError
+        If neither ``inertia`` nor ``campaign`` is given, the PTO's parameters are missing, or
+        a parameter is out of range.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (Eqs. 11-13).
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symp. Naval Hydrodynamics, 3-128.
     """
     if inertia is None:
         if campaign is None:

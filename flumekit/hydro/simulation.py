@@ -87,8 +87,35 @@ class BadParameterError(SimulationError, ValueError):
 
 def check_parameter(name: str, value, minimum: float | None = None,
                     strict: bool = False) -> float:
-    """``value`` as a float, or :class:`BadParameterError` naming it if not finite or below
-    ``minimum`` (``strict``: at or below)."""
+    """Return ``value`` as a float, checked to be finite and not below ``minimum``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    value : float
+        The value to check.
+    minimum : float, optional
+        Smallest allowed value.
+    strict : bool, default False
+        Refuse ``value`` equal to ``minimum`` too.
+
+    Returns
+    -------
+    float
+        ``value``.
+
+    Raises
+    ------
+    BadParameterError
+        Naming the parameter, if ``value`` is not finite or below ``minimum`` (``strict``: at
+        or below).
+
+    Examples
+    --------
+    >>> check_parameter("dt", 0.01, 0.0, strict=True)
+    0.01
+    """
     v = float(value)
     if not math.isfinite(v):
         raise BadParameterError(f"bad parameter: {name} = {value} is not finite")
@@ -104,13 +131,24 @@ class BodyDynamics:
 
     Parameters
     ----------
-    inertia : Inertia I about the dof's axis [kg m2] (a mass [kg] for a translation).
-    added_inertia_infinite : A∞ [kg m2].
-    hydrostatic_stiffness : C [N m rad-1], > 0 (the restoring of gravity and buoyancy).
-    restoring : "linear" (C θ) or "sine" (C sin θ).
-    drag_coefficient : c_d of the quadratic drag c_d θ̇|θ̇| [N m s2], ≥ 0.
-    angle_limit : Physical range |θ| ≤ angle_limit [rad]; beyond it the run is declared
-        diverged (default π/2: a hinged body lying flat).
+    inertia : float
+        Inertia I about the dof's axis [kg m2] (a mass [kg] for a translation).
+    added_inertia_infinite : float
+        A∞ [kg m2].
+    hydrostatic_stiffness : float
+        C [N m rad-1], > 0 (the restoring of gravity and buoyancy).
+    restoring : str, default "linear"
+        "linear" (C θ) or "sine" (C sin θ).
+    drag_coefficient : float, default 0
+        c_d of the quadratic drag c_d θ̇|θ̇| [N m s2], ≥ 0.
+    angle_limit : float, default π/2
+        Physical range |θ| ≤ angle_limit [rad]; beyond it the run is declared diverged
+        (π/2: a hinged body lying flat).
+
+    Raises
+    ------
+    BadParameterError
+        If a parameter is not finite or out of its range, or I + A∞ ≤ 0.
     """
 
     inertia: float
@@ -121,6 +159,7 @@ class BodyDynamics:
     angle_limit: float = math.pi / 2
 
     def __post_init__(self):
+        """Check every parameter (:class:`BadParameterError` names a bad one)."""
         check_parameter("inertia", self.inertia)
         check_parameter("added_inertia_infinite", self.added_inertia_infinite)
         check_parameter("hydrostatic_stiffness", self.hydrostatic_stiffness)
@@ -161,14 +200,17 @@ class PTO(Protocol):
     """What the simulator needs from a PTO model."""
 
     def kernel(self, inertia: float, dt: float) -> PTOKernel:
-        """Scalar kernels for the effective inertia I + A∞ [kg m2] and step dt [s]."""
+        """Return the scalar kernels for the effective inertia I + A∞ [kg m2] and step dt [s]."""
 
     def outputs(self, time, theta, theta_dot, theta_ddot, out0, out1, s0, s1) -> dict:
-        """Arrays over the steps: ``torque_pto`` (total, resisting), ``torque_friction`` (its
-        friction part), ``power`` (useful absorbed power) and any other variable."""
+        """Return the PTO's variables over the steps.
+
+        At least ``torque_pto`` (total, resisting) [N m], ``torque_friction`` (its friction
+        part) [N m] and ``power`` (useful absorbed power) [W], plus any other variable.
+        """
 
     def describe(self) -> dict:
-        """Attributes of the result naming the PTO and its parameters."""
+        """Return the attributes of the result naming the PTO and its parameters."""
 
 
 @dataclass(frozen=True)
@@ -178,18 +220,22 @@ class LinearPTO:
     damping: float
 
     def __post_init__(self):
+        """Refuse a negative or non-finite damping."""
         check_parameter("pto damping", self.damping, 0.0)
 
     def kernel(self, inertia, dt):
+        """Return the compiled kernel of the damper (:class:`PTO`)."""
         from flumekit.hydro.stepping import linear_accel
 
         return PTOKernel(linear_accel, params=np.array([self.damping, 1.0 / inertia]))
 
     def outputs(self, time, theta, theta_dot, theta_ddot, out0, out1, s0, s1):
+        """Return the damper's torque [N m], no friction, and its power [W] (:class:`PTO`)."""
         t = self.damping * theta_dot
         return {"torque_pto": t, "torque_friction": np.zeros_like(t), "power": t * theta_dot}
 
     def describe(self):
+        """Return the attributes naming the damper (:class:`PTO`)."""
         return {"pto": "linear damper", "pto_damping": self.damping}
 
 
@@ -205,15 +251,18 @@ class CallablePTO:
     name: str = "user callable"
 
     def kernel(self, inertia, dt):
+        """Return an uncompiled kernel calling ``torque`` (:class:`PTO`)."""
         f, inv = self.torque, 1.0 / inertia
         return PTOKernel(lambda t, th, om, rest, s0, s1, p: ((rest - f(t, th, om)) * inv, 0.0,
                                                              0.0))
 
     def outputs(self, time, theta, theta_dot, theta_ddot, out0, out1, s0, s1):
+        """Return the law's torque [N m], no friction, and its power [W] (:class:`PTO`)."""
         t = np.array([self.torque(a, b, c) for a, b, c in zip(time, theta, theta_dot)])
         return {"torque_pto": t, "torque_friction": np.zeros_like(t), "power": t * theta_dot}
 
     def describe(self):
+        """Return the attributes naming the law (:class:`PTO`)."""
         return {"pto": f"callable: {self.name}"}
 
 
@@ -228,19 +277,50 @@ def _ramp(t: np.ndarray, ramp: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class RegularWave:
-    """η(0, t) = Re{a e^{-iωt}} at the reference line, a = H/2, under a half-cosine ``ramp`` [s]
-    from t = 0. The excitation is exact: T_exc = Re{F(ω) a e^{-iωt}} (F interpolated)."""
+    """A regular wave η(0, t) = Re{a e^{-iωt}} at the reference line, a = H/2.
+
+    The wave rises under a half-cosine ``ramp`` [s] from t = 0. The excitation is exact:
+    T_exc = Re{F(ω) a e^{-iωt}} (F interpolated in the container).
+
+    Parameters
+    ----------
+    height : float
+        Wave height H [m], ≥ 0.
+    period : float
+        Wave period T [s], > 0.
+    ramp : float, default 0
+        Ramp duration [s].
+    """
 
     height: float
     period: float
     ramp: float = 0.0
 
     def __post_init__(self):
+        """Check the height, period and ramp (:class:`BadParameterError`)."""
         check_parameter("wave height", self.height, 0.0)
         check_parameter("wave period", self.period, 0.0, strict=True)
         check_parameter("ramp", self.ramp, 0.0)
 
     def excitation(self, hydro):
+        """Return T_exc(t), η(t), no time span and the attributes of the wave.
+
+        Parameters
+        ----------
+        hydro : xarray.Dataset
+            Coefficient container (:mod:`flumekit.hydro.coefficients`).
+
+        Returns
+        -------
+        torque : callable
+            t [s] -> T_exc [N m].
+        eta : callable
+            t [s] -> η [m] at the reference line.
+        span : None
+            A synthetic wave covers every time.
+        attrs : dict
+            Attributes of the result describing the wave.
+        """
         w = 2 * np.pi / self.period
         f = complex(transfer_function(hydro, [w])[0]) * self.height / 2
 
@@ -256,15 +336,27 @@ class RegularWave:
 
 @dataclass(frozen=True)
 class IrregularWave:
-    """Random-phase sum η = Re Σ a_j e^{-i(ω_j t − φ_j)}, a_j = √(2 S(ω_j) Δω_j), φ_j uniform
-    from ``seed`` (numpy's default generator), under a half-cosine ``ramp`` [s].
+    """An irregular wave by the random-phase sum η = Re Σ a_j e^{-i(ω_j t − φ_j)}.
+
+    a_j = √(2 S(ω_j) Δω_j), φ_j uniform from ``seed`` (numpy's default generator), under a
+    half-cosine ``ramp`` [s].
 
     Parameters
     ----------
-    angular_frequency : ω_j [rad s-1], increasing, > 0.
-    spectral_density : S(ω_j) [m2 s rad-1] ≥ 0.
-    seed : Seed of the phases.
-    ramp : Ramp duration [s].
+    angular_frequency : numpy.ndarray
+        ω_j [rad s-1], increasing, > 0.
+    spectral_density : numpy.ndarray
+        S(ω_j) [m2 s rad-1] ≥ 0.
+    seed : int
+        Seed of the phases.
+    ramp : float, default 0
+        Ramp duration [s].
+
+    References
+    ----------
+    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
+    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
+    118-122.
     """
 
     angular_frequency: np.ndarray
@@ -273,6 +365,13 @@ class IrregularWave:
     ramp: float = 0.0
 
     def excitation(self, hydro):
+        """Return T_exc(t), η(t), no time span and the attributes (as :class:`RegularWave`).
+
+        Raises
+        ------
+        BadParameterError
+            If the frequencies are not increasing and > 0 or S is not finite and ≥ 0.
+        """
         w = np.asarray(self.angular_frequency, dtype=float)
         s = np.asarray(self.spectral_density, dtype=float)
         if w.shape != s.shape or w.ndim != 1 or w.size < 2 or not np.all(np.diff(w) > 0) \
@@ -301,15 +400,24 @@ class IrregularWave:
 
 @dataclass(frozen=True)
 class MeasuredWave:
-    """A recorded incident elevation at the reference line (DataArray over ``time`` [s], [m]),
-    through the FFT excitation filter (:func:`flumekit.hydro.excitation.excitation_torque`)
-    with end ``taper`` [s]; the result's ``valid_end`` says where the filter's end effect
-    starts."""
+    """A recorded incident elevation at the reference line, through the FFT excitation filter.
+
+    The filter is :func:`flumekit.hydro.excitation.excitation_torque`; the result's
+    ``valid_end`` says where the filter's end effect starts.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Incident elevation [m] over ``time`` [s].
+    taper : float, default 2
+        Length of the filter's end taper [s].
+    """
 
     eta: xr.DataArray
     taper: float = 2.0
 
     def excitation(self, hydro):
+        """Return T_exc(t), η(t) (cubic splines), the record's time span and the attributes."""
         exc = excitation_torque(self.eta, hydro, taper=self.taper)
         t = exc["time"].values
         f = CubicSpline(t, exc.values)
@@ -324,7 +432,20 @@ class MeasuredWave:
 
 
 def excitation_series(excitation: xr.DataArray):
-    """Callable T_exc(t) (cubic spline) and time span of an excitation torque over ``time``."""
+    """Return a callable T_exc(t) (cubic spline) and the time span of an excitation torque.
+
+    Parameters
+    ----------
+    excitation : xarray.DataArray
+        Excitation torque [N m] over ``time`` [s].
+
+    Returns
+    -------
+    torque : scipy.interpolate.CubicSpline
+        t [s] -> T_exc [N m].
+    span : tuple of float
+        First and last time of the record [s].
+    """
     t = excitation["time"].values.astype(float)
     return CubicSpline(t, excitation.values.astype(float)), (float(t[0]), float(t[-1]))
 
@@ -332,11 +453,28 @@ def excitation_series(excitation: xr.DataArray):
 # --- the integrator --------------------------------------------------------------------------
 
 def stable_step(body: BodyDynamics, damping: float = 0.0) -> float:
-    """Largest step [s] of classical RK4 for the body's linear part without radiation memory.
+    """Return the largest step [s] of classical RK4 for the body's linear part without memory.
 
     The eigenvalues λ of J θ̈ + ν θ̇ + C θ = 0 (J = I + A∞) must satisfy |λ| h ≲ 2.8 (RK4's
     stability region reaches −2.79 on the real axis and ±2.83 on the imaginary one). The
     memory and a nonlinear PTO change the limit; it is a hint for error messages.
+
+    Parameters
+    ----------
+    body : BodyDynamics
+        Inertias I, A∞ and stiffness C.
+    damping : float, default 0
+        Linear damping ν [N m s].
+
+    Returns
+    -------
+    float
+        The step limit [s] (inf for a body without stiffness or damping).
+
+    Examples
+    --------
+    >>> round(stable_step(BodyDynamics(2.0, 0.0, 200.0)), 4)
+    0.28
     """
     j = body.inertia + body.added_inertia_infinite
     c, nu = abs(body.hydrostatic_stiffness), abs(damping)
@@ -349,13 +487,55 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
               n_steps: int, t0: float = 0.0, theta0: float = 0.0, theta_dot0: float = 0.0,
               output_every: int = 1, chunk: int = 20000, energy_growth: float = 1.0,
               eta: Callable | None = None, extra_torque: Callable | None = None) -> dict:
-    """Integrate from rest (or θ0, θ̇0) over ``n_steps`` steps of ``dt``; arrays every
-    ``output_every`` steps (module notes). ``excitation(t)`` gives T_exc [N m] on an array of
-    times (None: free response). ``extra_torque(j, θ, θ̇)`` [N m] is a further torque acting on
-    the body (j the half-step index from the start: time t0 + j dt/2), called once per step in
-    order at the step's start and held over the step (operator splitting, first order in the
-    term: for slowly varying losses beyond the model, e.g. the virtual flume's); its work is
-    ``work_extra``. Returns a dict of arrays for :func:`to_dataset`.
+    """Integrate the equation of motion from rest (or θ0, θ̇0) over ``n_steps`` steps of ``dt``.
+
+    The scheme and the guards are those of the module notes; arrays are kept every
+    ``output_every`` steps.
+
+    Parameters
+    ----------
+    excitation : callable or None
+        t [s] (an array) -> T_exc [N m]; None: free response.
+    body : BodyDynamics
+        Inertia, A∞, restoring, drag and angle limit.
+    radiation : StateSpace, xarray.DataArray or None
+        Radiation memory model (:func:`radiation_model`).
+    pto : PTO or None
+        The power take-off (:class:`PTO` protocol).
+    dt : float
+        Time step [s].
+    n_steps : int
+        Number of steps.
+    t0 : float, default 0
+        Start time [s].
+    theta0, theta_dot0 : float, default 0
+        Initial state [rad], [rad s-1].
+    output_every : int, default 1
+        Keep one sample in every ``output_every`` steps.
+    chunk : int, default 20000
+        Steps integrated per compiled call (bounds the memory).
+    energy_growth : float, default 1
+        Largest accepted energy created from nothing, as a multiple of the energy supplied.
+    eta : callable, optional
+        t [s] -> incident elevation [m], recorded as ``eta_incident``.
+    extra_torque : callable, optional
+        ``extra_torque(j, θ, θ̇)`` [N m], a further torque acting on the body (j the
+        half-step index from the start: time t0 + j dt/2), called once per step in order at
+        the step's start and held over the step (operator splitting, first order in the term:
+        for slowly varying losses beyond the model, e.g. the virtual flume's); its work is
+        ``work_extra``. An object with a ``kernel()`` method gives a compiled kernel.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The arrays of :func:`to_dataset`.
+
+    Raises
+    ------
+    BadParameterError
+        If a parameter or the excitation is not finite or out of range.
+    DivergenceError
+        If the run diverges (non-finite state, angle limit or energy created).
     """
     from flumekit.hydro.memory import memory_integrator
 
@@ -512,9 +692,11 @@ def _energies(a: dict, dt: float, carry):
 
 def _run_chunk(first: int, last: int, exc: np.ndarray, state: np.ndarray, memory, final: bool,
                body: np.ndarray, kern: PTOKernel, extra: _Extra) -> np.ndarray:
-    """Steps ``first`` to ``last`` of the run (:func:`flumekit.hydro.stepping.steps`):
-    compiled when every part is, else the same loop in Python; ``state`` and ``memory`` are
-    advanced in place. Returns the (9, last - first) record of the steps."""
+    """Integrate steps ``first`` to ``last`` of the run (:func:`flumekit.hydro.stepping.steps`).
+
+    The loop is compiled when every part is, else the same loop runs in Python; ``state`` and
+    ``memory`` are advanced in place. Returns the (9, last - first) record of the steps.
+    """
     from flumekit.hydro import stepping
 
     begin, finish = memory.kernels
@@ -571,7 +753,30 @@ _ATTRS = {
 
 def to_dataset(out: dict, time: np.ndarray, body: BodyDynamics, radiation, pto,
                dt: float, extra_attrs: dict | None = None) -> xr.Dataset:
-    """The result as a dataset over ``time`` with the attributes of the run."""
+    """Return the result as a dataset over ``time`` with the attributes of the run.
+
+    Parameters
+    ----------
+    out : dict of str to numpy.ndarray
+        The arrays of :func:`integrate`.
+    time : numpy.ndarray
+        Output times [s].
+    body : BodyDynamics
+        The body simulated.
+    radiation : StateSpace, xarray.DataArray or None
+        The radiation memory model used.
+    pto : PTO or None
+        The power take-off used.
+    dt : float
+        Time step [s].
+    extra_attrs : dict, optional
+        Further attributes (wave, output step, ...).
+
+    Returns
+    -------
+    xarray.Dataset
+        One variable per array, with units and long names.
+    """
     attrs = {"integrator": ("fixed-step RK4 for (theta, theta_dot); exponential (ETD) update "
                             "of the radiation modes; PTO states by the PTO's own kernels"),
              "time_step": float(dt), "inertia": body.inertia,
@@ -611,36 +816,86 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
 
     Parameters
     ----------
-    hydro : Coefficient container (:mod:`flumekit.hydro.coefficients`); passivity is always
+    hydro : xarray.Dataset
+        Coefficient container (:mod:`flumekit.hydro.coefficients`); passivity is always
         checked (:func:`~flumekit.hydro.coefficients.check_passive`). Its
         ``added_inertia_infinite`` is used if present (and ``match_frequency`` is None), else
-        the Ogilvie estimate (median over frequencies, or at ``match_frequency``).
-    inertia : Body inertia about the dof's axis I [kg m2].
-    pto : :class:`LinearPTO`, :class:`CallablePTO`, a device's PTO (:class:`PTO` protocol) or
+        the Ogilvie (1964) estimate (median over frequencies, or at ``match_frequency``).
+    inertia : float
+        Body inertia about the dof's axis I [kg m2].
+    pto : PTO or None
+        :class:`LinearPTO`, :class:`CallablePTO`, a device's PTO (:class:`PTO` protocol) or
         None.
-    wave : :class:`RegularWave`, :class:`IrregularWave`, :class:`MeasuredWave`, or an
-        excitation torque DataArray over ``time`` [N m].
-    dt : Time step [s].
-    duration : Simulated time [s]; default the record of a measured wave or torque.
-    stiffness : C [N m rad-1]; default the container's ``hydrostatic_stiffness``.
-    radiation : "state_space", "convolution", "none", or a precomputed model (a
+    wave : RegularWave, IrregularWave, MeasuredWave or xarray.DataArray
+        The wave, or an excitation torque [N m] over ``time``.
+    dt : float
+        Time step [s].
+    duration : float, optional
+        Simulated time [s]; default the record of a measured wave or torque.
+    stiffness : float, optional
+        C [N m rad-1]; default the container's ``hydrostatic_stiffness``.
+    radiation : str, StateSpace or xarray.DataArray, default "state_space"
+        "state_space", "convolution", "none", or a precomputed model (a
         :class:`~flumekit.hydro.radiation.StateSpace` or an impulse response over ``lag``) to
         share across runs.
-    irf_duration, order : Length of K(t) [s] and state-space order (default: 1 % on K(t)).
-    match_frequency : [rad s-1] (see ``hydro``).
-    max_spread : Largest accepted spread of the Ogilvie estimates of A∞ (None: report only).
-    extra_torque : Further torque ``(j, θ, θ̇) -> T`` [N m] on the body (:func:`integrate`);
-        its ``description`` attribute, if any, goes into the result's attributes.
-    restoring, drag_coefficient, angle_limit : :class:`BodyDynamics`.
-    output_step : Output interval [s], a multiple of ``dt`` (default every step).
-    t_start : Start time [s] (default 0, or the record's start).
-    energy_growth : Largest accepted energy created from nothing, as a multiple of the energy
-        supplied, before the run is declared diverged.
+    irf_duration : float, default 60
+        Length of the impulse response K(t) [s].
+    order : int, optional
+        State-space order (default: 1 % on K(t)).
+    match_frequency : float, optional
+        Frequency of the A∞ estimate [rad s-1] (see ``hydro``).
+    restoring, drag_coefficient, angle_limit
+        As in :class:`BodyDynamics` ([-], [N m s2], [rad]).
+    output_step : float, optional
+        Output interval [s], a multiple of ``dt`` (default every step).
+    t_start : float, optional
+        Start time [s] (default 0, or the record's start).
+    energy_growth : float, default 1
+        Largest accepted energy created from nothing, as a multiple of the energy supplied,
+        before the run is declared diverged.
+    max_spread : float, optional
+        Largest accepted spread of the Ogilvie estimates of A∞ (None: report only).
+    extra_torque : callable, optional
+        Further torque ``(j, θ, θ̇) -> T`` [N m] on the body (:func:`integrate`); its
+        ``description`` attribute, if any, goes into the result's attributes.
 
     Returns
     -------
-    xr.Dataset over ``time``: θ, θ̇, θ̈, the torques, the PTO's outputs, the works and stored
-    energy of the energy balance (module notes), ``eta_incident`` for a wave input.
+    xarray.Dataset
+        Over ``time``: θ [rad], θ̇ [rad s-1], θ̈ [rad s-2], the torques [N m], the PTO's
+        outputs, the works and stored energy of the energy balance [J] (module notes),
+        ``eta_incident`` [m] for a wave input.
+
+    Raises
+    ------
+    BadParameterError
+        If a parameter is not finite or out of range, the wave record does not cover the run
+        or ``output_step`` is not a multiple of ``dt``.
+    DivergenceError
+        If the run diverges (module notes).
+
+    References
+    ----------
+    Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9.
+    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
+    motions. Proc. 5th Symp. Naval Hydrodynamics, 3-128.
+    Cox, S. M., Matthews, P. C. (2002). Exponential time differencing for stiff systems.
+    J. Comput. Phys. 176, 430-455.
+
+    Examples
+    --------
+    A body without radiation damping behind a linear damper reaches the steady amplitude
+    ``|F a| / |C − (I + A) ω² − i ω ν|`` of the linear equation:
+
+    >>> import numpy as np
+    >>> from flumekit.hydro import hydro_dataset
+    >>> w = np.linspace(0.5, 10.0, 50)
+    >>> hy = hydro_dataset(w, np.full(50, 5.0), np.zeros(50), np.full(50, 100.0 + 0j), 200.0)
+    >>> run = simulate(hy, 15.0, LinearPTO(20.0), RegularWave(height=0.1, period=2.0),
+    ...                dt=0.01, duration=120.0, radiation="none")
+    >>> exact = 100.0 * 0.05 / abs(200.0 - 20.0 * np.pi**2 - 1j * np.pi * 20.0)
+    >>> round(float(abs(run.theta.sel(time=slice(100, None))).max()), 4), round(exact, 4)
+    (0.0795, 0.0795)
     """
     from flumekit.hydro.coefficients import with_infinite_frequency_inertia
 
@@ -691,7 +946,31 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
 
 def radiation_model(hydro: xr.Dataset, radiation, dt: float, irf_duration: float = 60.0,
                     order: int | None = None):
-    """The radiation memory model: a given one, None, or fitted from the container."""
+    """Return the radiation memory model: a given one, None, or one fitted from the container.
+
+    Parameters
+    ----------
+    hydro : xarray.Dataset
+        Coefficient container.
+    radiation : str, StateSpace, xarray.DataArray or None
+        "state_space", "convolution", "none", or a model (returned as is).
+    dt : float
+        Time step of the run [s]; K(t) is sampled at min(dt/2, 0.01 s).
+    irf_duration : float, default 60
+        Length of K(t) [s].
+    order : int, optional
+        State-space order (default: 1 % on K(t)).
+
+    Returns
+    -------
+    StateSpace, xarray.DataArray or None
+        The state-space model, the impulse response over ``lag``, or None.
+
+    Raises
+    ------
+    BadParameterError
+        If ``radiation`` is an unknown name.
+    """
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
     if isinstance(radiation, (StateSpace, xr.DataArray)) or radiation is None:

@@ -1,5 +1,6 @@
-"""Stage: every figure, drawn from processed datasets (the QC figures also from the raw probe
-and flap files, which the QC products do not repeat), one rule per figure.
+"""Stage: every figure, drawn from processed datasets, one rule per figure.
+
+The QC figures also read the raw probe and flap files, which the QC products do not repeat.
 
 ``fig05a`` ... ``fig12`` are the figures of Brito et al. (2020); ``bs_fig09`` ... ``bs_fig18``
 those of Senatore & De Simone (2022); ``separation/<run>`` the incident/reflected separation of
@@ -44,6 +45,11 @@ def _figure_run(ctx: Context, wanted: str) -> str | None:
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
+    """Declare one rule ``figure/<name>`` per figure the campaign can draw (module notes).
+
+    ``p`` holds the ``[stages.figures]`` parameters; an empty or unknown ``formats`` is a
+    FlumekitError, a ``run`` the campaign lacks a KeyError.
+    """
     from flumekit.figures.style import FORMATS
     from flumekit.stages.ballscrew import FIGURE_SOURCES
     from flumekit.stages.ballscrew import wanted as ballscrew_wanted
@@ -58,8 +64,11 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
     out: list[Rule] = []
 
     def fig(figure: str, inputs: dict, target: str | None = None, **params) -> None:
-        """The rule of the registered figure ``figure`` (flumekit.figures.registry), drawn
-        from ``inputs``, as target ``figure/<target>`` (default: the figure's name)."""
+        """Add the rule of the registered figure ``figure``, drawn from ``inputs``.
+
+        The figure is looked up in :mod:`flumekit.figures.registry`; the target is
+        ``figure/<target>`` (default: the figure's name).
+        """
         name = target or figure
         out.append(Rule(f"figure/{name}", "flumekit.stages.figures:draw", inputs=inputs,
                         outputs={f: ctx.out("figures", f"{name}.{f}") for f in formats},
@@ -108,8 +117,10 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
 
 
 def _qc_inputs(ctx: Context, run) -> dict:
-    """Inputs of the QC figure of ``run``: the QC products of its instruments and the raw
-    probe and flap files (the values as read: the products do not repeat them)."""
+    """Return the inputs of the QC figure of ``run``: its QC products and raw files.
+
+    The raw probe and flap files give the values as read, which the products do not repeat.
+    """
     inputs = {}
     for kind in raw_reading(ctx, run):
         inputs[kind] = ctx.out("qc", kind, f"{run.id}.nc")
@@ -120,9 +131,11 @@ def _qc_inputs(ctx: Context, run) -> dict:
 
 
 def draw(inputs, outputs, params) -> None:
-    """Draw the registered figure ``params["figure"]`` from the rule's inputs (processed
-    datasets; raw files through their readers) and save it in every format, after the
-    figure test."""
+    """Draw the registered figure ``params["figure"]`` and save it in every format.
+
+    The figure is drawn from the rule's inputs (processed datasets; raw files through their
+    readers) and saved after passing the figure test (:mod:`flumekit.figures.check`).
+    """
     from flumekit.figures.check import assert_passes
     from flumekit.figures.registry import figure
     from flumekit.figures.style import laid_out, save, style

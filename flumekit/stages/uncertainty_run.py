@@ -1,5 +1,7 @@
-"""The uncertainty stage's actions (:mod:`flumekit.stages.uncertainty` declares the rules):
-the propagation of one run and the conditions with their budgets."""
+"""The uncertainty stage's actions: the propagation of one run, the conditions and budgets.
+
+:mod:`flumekit.stages.uncertainty` declares the rules.
+"""
 
 from __future__ import annotations
 
@@ -7,8 +9,23 @@ from flumekit.stages.runs import write_run
 
 
 def run_uncertainty(inputs, outputs, params) -> None:
-    """Monte Carlo and linear propagation of one run (:func:`~flumekit.uncertainty.
-    propagation.propagate`)."""
+    """Propagate the uncertainty of one run by Monte Carlo and linearly, and write it.
+
+    :func:`flumekit.uncertainty.propagation.propagate` (JCGM 101:2008 Monte Carlo, JCGM
+    100:2008 linear propagation) of the campaign's Type B components through the run's waves
+    and flap analyses.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``campaign`` (campaign.toml), ``eta`` (the run's elevation), optionally
+        ``calibration`` and the raw ``flap`` record.
+    outputs : dict of str to pathlib.Path
+        The run's uncertainty dataset.
+    params : dict
+        The rule's parameters: ``run``, ``depth`` [m], ``period`` [s], the waves and flap
+        stages' parameters, ``draws``, ``seed``, ``directions``, ``linear``.
+    """
     import warnings
     from pathlib import Path
 
@@ -55,8 +72,17 @@ def run_uncertainty(inputs, outputs, params) -> None:
 
 
 def conditions(inputs, outputs, params) -> None:
-    """Repeat statistics per condition with the runs' propagated uncertainties, and the
-    budget."""
+    """Write the repeat statistics per condition with the runs' uncertainties, and the budget.
+
+    Parameters
+    ----------
+    inputs : dict of str to pathlib.Path
+        ``waves`` and optionally ``flap`` summaries, and ``run:<id>`` uncertainty datasets.
+    outputs : dict of str to pathlib.Path
+        ``dataset`` (conditions.nc) and ``budget`` (budget.nc).
+    params : dict
+        The rule's parameters, optionally ``scale`` (the Froude scale of the report).
+    """
     import xarray as xr
 
     from flumekit.io.netcdf import read_dataset, write_product

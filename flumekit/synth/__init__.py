@@ -1,5 +1,8 @@
-"""The virtual flume: synthetic campaigns with a known truth (regular and irregular waves,
-the flap's response, UVP profiles), written in the raw format of raw/README.md."""
+"""The virtual flume: synthetic campaigns with a known truth.
+
+Regular and irregular waves, the flap's response and UVP profiles, written in the raw format
+of raw/README.md, with the truth beside them (Brito et al. 2020's flume and flap).
+"""
 
 from flumekit.lazy import lazy_names
 

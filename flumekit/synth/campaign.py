@@ -53,6 +53,22 @@ SEA_SEED = 11
 
 @dataclass(frozen=True)
 class Size:
+    """What a campaign size holds: its regular, UVP and irregular runs.
+
+    Attributes
+    ----------
+    wave_runs : tuple of (float, float)
+        (period [s], height [m]) of each regular wave run.
+    uvp_elevations : tuple of float
+        Elevation of the UVP above the bed [m], one UVP run per entry (repeats allowed).
+    n_steady_waves : int
+        Steady waves after the ramp (>= 50 are averaged) [-].
+    sea_states : tuple of (float, float)
+        (Hm0 [m], Tp [s]) of each irregular run.
+    sea_duration : float
+        Record length of the irregular runs [s].
+    """
+
     wave_runs: tuple[tuple[float, float], ...]
     uvp_elevations: tuple[float, ...]  # one UVP run per entry (repeats allowed)
     n_steady_waves: int = 55  # steady waves after the ramp (>= 50 are averaged)
@@ -116,7 +132,7 @@ def probe_positions(period: float, depth: float, truth: Truth) -> dict[str, floa
 
 
 def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
-    """True sensor law V = a + b eta per probe: b ~ 10 V/m, a ~ 2.5 V, each a few % apart."""
+    """Draw the true sensor law V = a + b eta per probe: b ~ 10 V/m, a ~ 2.5 V, a few % apart."""
     b = 10.0 * (1 + 0.05 * rng.standard_normal(len(names)))
     a = 2.5 + 0.3 * rng.standard_normal(len(names))
     return a, b
@@ -126,6 +142,28 @@ def _probe_gains(names, rng) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class RunSpec:
+    """One planned run of a virtual campaign.
+
+    Attributes
+    ----------
+    id : str
+        Run identifier, the name of its folder under ``runs/``.
+    kind : str
+        ``"waves"``, ``"uvp"`` or ``"irregular"``.
+    period : float
+        Wave period [s] (an irregular run: the peak period Tp).
+    height : float
+        Wave height [m] (an irregular run: Hm0).
+    repeat : int
+        Repeat index of the condition [-].
+    uvp_elevation : float or None
+        UVP elevation above the bed [m] of a UVP run, else None.
+    key : tuple of int
+        With the campaign's seed, the run's random stream: (condition index, repeat).
+    sea : dict or None
+        An irregular run's hm0, tp, gamma, seed and duration (as in ``run.toml``), else None.
+    """
+
     id: str
     kind: str
     period: float
@@ -137,8 +175,31 @@ class RunSpec:
 
 
 def plan_runs(size: str) -> list[RunSpec]:
-    """The runs of a campaign size, each with its own random stream (so any subset of runs can
-    be synthesised, in any order, to the same bytes as the whole campaign)."""
+    """Plan the runs of a campaign size, each with its own random stream.
+
+    Each run's random stream depends only on the seed and the run's key, so any subset of runs
+    can be synthesised, in any order, to the same bytes as the whole campaign.
+
+    Parameters
+    ----------
+    size : str
+        Campaign size: ``"small"``, ``"default"`` or ``"paper"``.
+
+    Returns
+    -------
+    list of RunSpec
+        The regular runs, then the UVP runs, then the irregular runs.
+
+    Raises
+    ------
+    ValueError
+        If ``size`` is not one of the three sizes.
+
+    Examples
+    --------
+    >>> [r.id for r in plan_runs("small")][:3]
+    ['T2.00_H0.150_r0', 'T3.50_H0.250_r0', 'uvp_z0.300_r0']
+    """
     spec = _size(size)
     runs = [("waves", t, h, None) for t, h in spec.wave_runs]
     runs += [("uvp", *UVP_CONDITION, z) for z in spec.uvp_elevations]
@@ -170,7 +231,44 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
     ``root`` must be absent or an empty folder: synthesis never deletes or overwrites anything
     it did not write (raw data is sacred). The campaign is written to a fresh temporary sibling
     folder and renamed into place at the end, so an interrupted synthesis leaves no half
-    campaign at ``root``. ``progress(i, n, run_id)`` is called before each run.
+    campaign at ``root``. The layout is that of raw/README.md, with the truth in ``truth/``
+    (module notes).
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        Campaign folder to create; absent or empty.
+    size : str, default "small"
+        Campaign size: ``"small"`` (2 regular, 2 UVP and 1 irregular run), ``"default"``
+        (27 regular runs of Table 1, 14 UVP repeats, 4 sea states) or ``"paper"`` (the 63
+        conditions of Table 1, 78 UVP repeats, 12 sea states).
+    seed : int, default :data:`flumekit.synth.DEFAULT_SEED`
+        Seed of every random stream: the same seed gives the same files.
+    truth : Truth, optional
+        Physics of the virtual flume not written in the raw metadata.
+    progress : callable, optional
+        ``progress(i, n, run_id)``, called before each of the ``n`` runs.
+
+    Returns
+    -------
+    flumekit.campaign.Campaign
+        The written campaign, as :func:`flumekit.load_campaign` reads it.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        If ``root`` exists and is not an empty folder (nothing is changed).
+    ValueError
+        If ``size`` is unknown.
+
+    See Also
+    --------
+    virtual_campaign : The same campaign's plan, without writing it.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (§2, Table 1).
     """
     root = Path(root)
 
@@ -179,7 +277,7 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
         runs = plan_runs(size)
         from flumekit.synth.flap import flume_hydrodynamics
 
-        # the flap simulator's coefficients and radiation model: the same for every run (~1.5 s)
+        # the flap simulator's coefficients and radiation model: the same for every run
         flap_hydro = flume_hydrodynamics(campaign)
         for i, r in enumerate(runs):
             if progress is not None:
@@ -199,8 +297,27 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
 
 
 def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Truth()) -> None:
-    """Write the campaign-wide files of a virtual campaign (``campaign.toml``, the probe
-    calibration, its truth and :data:`MARKER`) into ``root``, absent or empty; no run yet."""
+    """Write the campaign-wide files of a virtual campaign into ``root``, without any run.
+
+    The files are ``campaign.toml``, the probe calibration, its truth and :data:`MARKER`;
+    :func:`write_virtual_run` then adds the runs one by one.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        Campaign folder to create; absent or empty.
+    size : str
+        Campaign size (:func:`plan_runs`).
+    seed : int
+        Seed of the campaign's random streams.
+    truth : Truth, optional
+        Physics of the virtual flume not written in the raw metadata.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        If ``root`` exists and is not an empty folder.
+    """
     root = Path(root)
 
     def fill(tmp: Path) -> None:
@@ -211,10 +328,26 @@ def write_virtual_base(root: str | Path, size: str, seed: int, truth: Truth = Tr
 
 
 def write_virtual_run(root: str | Path, run_id: str, truth: Truth = Truth()) -> None:
-    """Add one planned run (and its truth) to a virtual campaign written by
-    :func:`write_virtual_base`: the same bytes as in the whole campaign of
-    :func:`write_campaign`. Refused where ``root`` is not such a campaign or the run's folder
-    exists (nothing there is touched)."""
+    """Add one planned run and its truth to a virtual campaign of :func:`write_virtual_base`.
+
+    The run's files are the same bytes as in the whole campaign of :func:`write_campaign`.
+    The run folder appears only complete (its truth first, then the run folder by a rename).
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        Folder of a campaign the virtual flume wrote (it holds :data:`MARKER`).
+    run_id : str
+        Identifier of a run of the campaign's plan (:func:`plan_runs`).
+    truth : Truth, optional
+        Physics of the virtual flume not written in the raw metadata.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        If ``root`` is not a virtual-flume campaign, the plan has no run ``run_id`` or the
+        run's folder exists (nothing there is touched).
+    """
     import json
 
     root = Path(root)
@@ -259,7 +392,7 @@ _HYDRO: dict = {}
 
 
 def _hydro(campaign: Campaign):
-    """The flap simulator's hydrodynamics, computed once per process (~1.5 s)."""
+    """Return the flap simulator's hydrodynamics, computed once per process and campaign."""
     from flumekit.synth.flap import flume_hydrodynamics
 
     key = campaign.root
@@ -269,10 +402,38 @@ def _hydro(campaign: Campaign):
 
 
 def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
-    """The campaign :func:`write_campaign` would write at ``root``, without writing anything
-    there: what a pipeline plans with before the virtual flume has run. The campaign and run
-    files are written to a temporary folder and read by :func:`load_campaign` itself, so the
-    plan is what the campaign reader makes of the files the virtual flume will write."""
+    """Return the campaign :func:`write_campaign` would write at ``root``, writing nothing.
+
+    This is what a pipeline plans with before the virtual flume has run. The campaign and run
+    files are written to a temporary folder and read by :func:`flumekit.load_campaign`
+    itself, so the plan is what the campaign reader makes of the files the virtual flume will
+    write; the paths point into ``root``.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        Folder the campaign would be written to (not touched; need not exist).
+    size : str
+        Campaign size: ``"small"``, ``"default"`` or ``"paper"`` (:func:`write_campaign`).
+    seed : int
+        Seed of the campaign (the plan does not depend on it).
+
+    Returns
+    -------
+    flumekit.campaign.Campaign
+        The planned campaign, its runs without data files.
+
+    Raises
+    ------
+    ValueError
+        If ``size`` is unknown.
+
+    Examples
+    --------
+    >>> c = virtual_campaign("raw/small", "small", 2020)
+    >>> c.name, len(c.runs), c.runs[0].id
+    ('small', 5, 'JS_Hm0.100_Tp2.00_r0')
+    """
     import dataclasses
 
     root = Path(root)
@@ -301,6 +462,18 @@ def virtual_campaign(root: str | Path, size: str, seed: int) -> Campaign:
 
 
 def campaign_toml(name: str) -> str:
+    """Return the text of the virtual campaign's ``campaign.toml`` under the name ``name``.
+
+    Parameters
+    ----------
+    name : str
+        Campaign name (the folder's name).
+
+    Returns
+    -------
+    str
+        The packaged default campaign (``flumekit/data/default_campaign.toml``) renamed.
+    """
     template = resources.files("flumekit.data").joinpath("default_campaign.toml").read_text()
     return template.replace('name = "default"', f'name = "{name}"', 1)
 
@@ -374,11 +547,31 @@ def _write_calibration(root, names, a, b, rate, truth: Truth, rng) -> None:
 
 
 def transient(sea: dict, depth: float, probe_x: dict[str, float], truth: Truth) -> float:
-    """The start of an irregular run's analysed span, as a laboratory declares it in run.toml
-    from its flume: the wavemaker's ramp, then the time the incident wave, the flap's
+    """Return the start of an irregular run's analysed span [s], as a laboratory declares it.
+
+    The span starts after the wavemaker's ramp and the time the incident wave, the flap's
     reflection and the beach's wave take to reach the flap and the farthest probe
     (:func:`flumekit.synth.irregular.analysis_start`; the flap's reflection weighted as the
-    incident spectrum, the beach's by its measured roll-off), in whole seconds [s]."""
+    incident spectrum, the beach's by its measured roll-off), in whole seconds.
+
+    Parameters
+    ----------
+    sea : dict
+        The run's target sea state: ``hm0`` [m], ``tp`` [s], ``gamma`` [-], ``seed``,
+        ``duration`` [s].
+    depth : float
+        Water depth [m].
+    probe_x : dict of str to float
+        Probe positions [m] (x = 0 at the flap hinge).
+    truth : Truth
+        The virtual flume's physics (ramp, band, beach).
+
+    Returns
+    -------
+    float
+        Start of the analysed span [s], a whole second, written as ``transient`` in
+        ``run.toml``.
+    """
     from flumekit.synth.irregular import analysis_start, beach_reflection
     from flumekit.synth.waves import random_phase_components
 
@@ -399,7 +592,7 @@ def transient(sea: dict, depth: float, probe_x: dict[str, float], truth: Truth) 
 
 def regular_waves_at_flap(duration: float, rate: float, wave_kw: dict
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """The flap's time axis and the regular waves at x = 0 that drive it.
+    """Return the flap's time axis and the regular waves at x = 0 that drive it.
 
     The waves are computed 20 s past the record's end, so that the flap's last seconds see the
     wave that goes on (:func:`flumekit.synth.flap.flap_record`, ``eta_lead_out``).
@@ -431,8 +624,31 @@ def regular_waves_at_flap(duration: float, rate: float, wave_kw: dict
 
 def run_toml(kind: str, period: float, height: float, repeat: int, z: float | None,
              probe_x: dict[str, float], sea: dict | None = None) -> str:
-    """The text of a virtual run's ``run.toml``; an irregular run's target sea state in
-    ``sea`` (hm0, tp, gamma, seed, duration) replaces the period and height."""
+    """Return the text of a virtual run's ``run.toml``.
+
+    Parameters
+    ----------
+    kind : str
+        Run kind: ``"waves"``, ``"uvp"`` or ``"irregular"``.
+    period : float
+        Wave period [s] (ignored where ``sea`` is given).
+    height : float
+        Wave height [m] (ignored where ``sea`` is given).
+    repeat : int
+        Repeat index [-].
+    z : float or None
+        UVP elevation above the bed [m], or None.
+    probe_x : dict of str to float
+        Probe positions [m].
+    sea : dict, optional
+        An irregular run's target sea state (``hm0``, ``tp``, ``gamma``, ``seed``,
+        ``duration`` and, if known, ``transient``); it replaces the period and height.
+
+    Returns
+    -------
+    str
+        The TOML text (raw/README.md), ending with a newline.
+    """
     if sea is not None:
         lines = ["[run]", f'kind = "{kind}"', f"hm0 = {sea['hm0']}  # [m]",
                  f"tp = {sea['tp']}  # [s]", f"gamma = {sea['gamma']}",
@@ -530,7 +746,7 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
 
 def _write_irregular_run(root, campaign: Campaign, run_id: str, repeat: int, sea: dict, a, b,
                          truth: Truth, rng, flap_hydro=None) -> None:
-    """An irregular run (flumekit.synth.irregular): probes, flap and their truth."""
+    """Write an irregular run (:mod:`flumekit.synth.irregular`): probes, flap and their truth."""
     from flumekit.synth.flap import FlapTruth, flap_record, flap_scattering
     from flumekit.synth.flume import repeat_conditions
     from flumekit.synth.irregular import irregular_sea, sea_state_truth

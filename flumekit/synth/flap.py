@@ -26,8 +26,8 @@ inertia, cavitation at the vapour pressure) and the friction therefore feed back
 motion. The simulator steps ``simulator_substeps`` times per record step (default 1: h = 0.01 s
 at 100 Hz; the states, pressure and LuGre state are the simulator's own at every record sample,
 nothing is resampled). Against 4 steps per sample: θ within 5e-5, θ̇ 2e-4, pressure 3e-4, T_h
-8e-4 and the friction force 9e-3 of their largest values (30 s, T = 2.5 s, cavitating). About
-0.4 s per 360 s record. An optional quadratic drag on the flat flap (``drag_coefficient`` C_d,
+8e-4 and the friction force 9e-3 of their largest values (30 s, T = 2.5 s, cavitating). An
+optional quadratic drag on the flat flap (``drag_coefficient`` C_d,
 :func:`flumekit.flap.simulator.drag_torque_coefficient`) is off by default.
 
 With potential-flow radiation as the only loss besides the PTO (and K_p = 1e6), this flap moves
@@ -38,7 +38,7 @@ s, H = 0.15 m; up to 0.61 rad at T = 4 s, H = 0.3 m. The chamber reaches 1.8-6.9
 paper's conditions and cavitates 17-35 % of the time. A drag coefficient C_d = 20 brings the
 3.5 s amplitude to 0.25 rad only: the paper's smaller motion needs losses this model lacks.
 
-``"linear"``: the original linear one-degree-of-freedom model of the Eq. (A1) type, applied
+``"linear"``: the linear one-degree-of-freedom model of the Eq. (A1) type, applied
 in the frequency domain to the incident surface elevation at the hinge line (so a ramped wave
 ramps the flap), per unit incident amplitude
 
@@ -62,7 +62,7 @@ ramps the flap), per unit incident amplitude
   With these θ reaches 0.08-0.19 rad for H = 0.15 m and 0.16-0.34 rad for H = 0.3 m over
   T = 2-4 s (the paper measured 0.19 rad at T = 3.5 s, H = 0.25 m), and C_f of the nonlinear
   PTO below is 0.075-0.16.
-* K_p = 1.0e6 Pa s² rad⁻² (the default is now the flume's 3.0e6) and I_p = 2.4e4 Pa s² rad⁻¹
+* K_p = 1.0e6 Pa s² rad⁻² (the flume model's default is 3.0e6) and I_p = 2.4e4 Pa s² rad⁻¹
   (a water column of about 3 m in a 12 mm line behind the 50 mm bore: ρ L (A/a) |m| ≈ 2.4e4):
   the chamber reaches 0.65-4.8 bar in compression and cavitates on the suction stroke for the
   larger heights (with K_p = 1.0e6).
@@ -141,6 +141,7 @@ class FlapTruth:
     rho: float = 1000.0  # water density [kg m-3]
 
     def __post_init__(self):
+        """Refuse an unknown model and a non-finite, negative or non-integer parameter."""
         if self.model not in MODELS:
             raise ValueError(f"FlapTruth.model = {self.model!r} is not allowed: {MODELS}")
         for f in dataclasses.fields(self):
@@ -170,13 +171,13 @@ class FlumeHydrodynamics(NamedTuple):
 
 def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
                         irf_step: float = 0.005, rtol: float = 1e-3) -> FlumeHydrodynamics:
-    """Renzi-Dias coefficients of the campaign's flap in the flume and their radiation model.
+    """Build the Renzi-Dias coefficients of the flap in the flume and their radiation model.
 
     The container is the pipeline's ``models/hydro`` one
     (:func:`flumekit.flap.renzi_dias.model.channel_container`, channel width = flume width), and
     the radiation kernel K(t) over ``truth.irf_duration`` is fitted by the state-space model of
-    :func:`flumekit.hydro.radiation.fit_state_space` (about 1.5 s in all: build it once per
-    campaign and pass it to :func:`flap_record`). The fit is tighter than the simulator's
+    :func:`flumekit.hydro.radiation.fit_state_space` (build it once per campaign and pass it
+    to :func:`flap_record`). The fit is tighter than the simulator's
     default (``rtol`` 1e-3 reaches order 17 and 0.28 % on K(t), against order 11 and 0.8 % at
     1e-2): measured against Eq. (A1) at small amplitude without PTO, the flap's steady
     amplitude and phase are then within 0.5 % and 0.35° at T = 2-4 s (1.0 % and 1.0° at T = 4 s
@@ -184,10 +185,24 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
 
     Parameters
     ----------
-    campaign : Campaign (depth, flume width, flap width, hinge height, stiffness C).
-    truth : Density ``rho`` [kg m-3] and ``irf_duration`` [s].
-    irf_step : Sampling step of K(t) for the fit [s].
-    rtol : Target relative error of the state-space fit of K(t).
+    campaign : flumekit.campaign.Campaign
+        Depth, flume width, flap width, hinge height and stiffness C.
+    truth : FlapTruth, optional
+        Density ``rho`` [kg m-3] and ``irf_duration`` [s].
+    irf_step : float, default 0.005
+        Sampling step of K(t) for the fit [s].
+    rtol : float, default 1e-3
+        Target relative error of the state-space fit of K(t) [-].
+
+    Returns
+    -------
+    FlumeHydrodynamics
+        The coefficient container (with A∞) and the state-space radiation model.
+
+    References
+    ----------
+    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
+    channel. J. Fluid Mech. 701, 482-510.
     """
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
@@ -201,7 +216,28 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
 
 def radiation_damping(omega, depth: float, hinge_height: float, width: float,
                       rho: float = 1000.0, g: float = G) -> np.ndarray:
-    """Radiation damping ν(ω) = X² / (2 ρ g c_g w) [N m s] from the 2-D Haskind relation."""
+    """Compute the radiation damping ν(ω) = X² / (2 ρ g c_g w) from the 2-D Haskind relation.
+
+    Parameters
+    ----------
+    omega : array_like
+        Angular frequencies [rad s-1].
+    depth : float
+        Water depth h [m].
+    hinge_height : float
+        Hinge height c above the bed [m].
+    width : float
+        Flap width w [m].
+    rho : float, default 1000
+        Water density [kg m-3].
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    numpy.ndarray
+        ν(ω) [N m s], shaped as ``omega``.
+    """
     w = np.asarray(omega, dtype=float)
     x = two_dimensional_excitation(w, depth, hinge_height, width, rho, g)
     cg = np.full(w.shape, np.sqrt(g * depth))
@@ -212,7 +248,7 @@ def radiation_damping(omega, depth: float, hinge_height: float, width: float,
 
 def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
                     truth: FlapTruth = FlapTruth()) -> tuple[np.ndarray, np.ndarray]:
-    """Complex reflection R(f) and transmission T(f) of the flap in two dimensions [-].
+    """Compute the complex reflection R(f) and transmission T(f) of the flap in two dimensions.
 
     The flap's linear one-degree-of-freedom model (module notes, model "linear": inertia
     I + μ, stiffness C, 2-D radiation damping ν(ω) of the Haskind relation) with a linear loss
@@ -228,7 +264,7 @@ def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
     wave's coefficient at x = 0). Without losses the free flap is transparent at resonance
     (T = 1) and reflects like a wall at high frequency (R → 1); with ν_L = 110 N m s it
     absorbs a quarter of the incident flux at T = 3.5 s (the flume's D = 0.25,
-    :mod:`flumekit.synth.flume`), reflects 15 % there, 33 % at 2 s and 80 % at 1 s.
+    :mod:`flumekit.synth.flume`), reflects 19 % there, 32 % at 2 s and 79 % at 1 s.
 
     Parameters
     ----------
@@ -252,14 +288,15 @@ def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
     Symp. Naval Hydrodynamics, 491-501 (2-D energy relations of a body radiating to both sides).
     Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
     channel. J. Fluid Mech. 701, 482-510 (Eq. 3.1).
+
     Examples
     --------
     >>> import numpy as np
-    >>> from flumekit.campaign import load_campaign
-    >>> campaign = load_campaign("raw/default")  # doctest: +SKIP
-    >>> r, t = flap_scattering(np.array([0.5, 1.0]), campaign, 110.0)  # doctest: +SKIP
-    >>> np.abs(r).round(2).tolist()  # doctest: +SKIP
-    [0.33, 0.79]
+    >>> from flumekit.synth import virtual_campaign
+    >>> campaign = virtual_campaign("raw/default", "default", 2020)
+    >>> r, t = flap_scattering(np.array([0.5, 1.0]), campaign, 110.0)
+    >>> np.abs(r).round(2).tolist()
+    [0.32, 0.79]
     """
     f = np.asarray(frequency, dtype=float)
     if np.any(f <= 0) or not (np.isfinite(loss_damping) and loss_damping >= 0):
@@ -276,20 +313,37 @@ def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
 
 def flap_motion(time, eta_incident_at_flap, *, campaign: Campaign, truth: FlapTruth = FlapTruth(),
                 upsample: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """θ, θ̇, θ̈ and the excitation torque of the linear 1-DOF model (module notes).
+    """Compute θ, θ̇, θ̈ and the excitation torque of the linear 1-DOF model (module notes).
 
     Parameters
     ----------
-    time : Record times [s], uniform.
-    eta_incident_at_flap : Incident surface elevation at x = 0 [m].
-    campaign : Campaign (depth, flap inertia, width, hinge height, buoyancy stiffness).
-    truth : Model parameters.
-    upsample : Return the motion on a grid ``upsample`` times finer than ``time`` (band-limited
+    time : array_like
+        Record times [s], uniform.
+    eta_incident_at_flap : array_like
+        Incident surface elevation at x = 0 [m], on ``time``.
+    campaign : flumekit.campaign.Campaign
+        Depth, flap inertia, width, hinge height and buoyancy stiffness.
+    truth : FlapTruth, optional
+        Model parameters.
+    upsample : int, default 1
+        Return the motion on a grid ``upsample`` times finer than ``time`` (band-limited
         interpolation), of (n − 1)·upsample + 1 points.
 
     Returns
     -------
-    theta [rad], theta_dot [rad s-1], theta_ddot [rad s-2], torque_excitation [N m].
+    theta : numpy.ndarray
+        Flap angle [rad].
+    theta_dot : numpy.ndarray
+        Angular velocity [rad s-1].
+    theta_ddot : numpy.ndarray
+        Angular acceleration [rad s-2].
+    torque_excitation : numpy.ndarray
+        Excitation torque [N m].
+
+    Raises
+    ------
+    ValueError
+        If ``time`` is not uniform or the elevation is not finite or does not match it.
     """
     t = np.asarray(time, dtype=float)
     dt = uniform_step(t, "flap_record", min_samples=4)
@@ -360,8 +414,11 @@ def _linear_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth) -> dict:
 def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
                      hydro: FlumeHydrodynamics | xr.Dataset | None, *, period: float,
                      eta_front=None) -> dict:
-    """Motion, pressure and friction of the time-domain simulator (module notes), with the
-    flume's extra losses for ``truth.model == "flume"`` (:mod:`flumekit.synth.flume`)."""
+    """Simulate the motion, pressure and friction with the time-domain simulator (module notes).
+
+    The flume's extra losses are added for ``truth.model == "flume"``
+    (:mod:`flumekit.synth.flume`).
+    """
     from flumekit.flap.simulator import drag_torque_coefficient, simulate_run
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
@@ -445,8 +502,9 @@ def _simulator_truth(t, dt, eta, campaign: Campaign, truth: FlapTruth,
 
 def _eq13_reference(t, theta, theta_dot, theta_ddot, p_true, period: float, pto,
                     span: tuple[float, float] | None = None) -> dict:
-    """Best Eq. (13) fit to the true chamber pressure over the true quasi-steady window (or
-    over ``span`` [s], the analysed span of an irregular run).
+    """Fit Eq. (13) to the true chamber pressure over the true quasi-steady window or ``span``.
+
+    ``span`` [s] is the analysed span of an irregular run.
 
     What a perfect flap stage can recover: with the flume's check valve the chamber pressure
     holds a term Eq. (13) cannot represent, so the true K_p, I_p are no longer the fit's
@@ -495,47 +553,71 @@ def flap_record(time, eta_incident_at_flap, *, period: float, campaign: Campaign
                 hydro: FlumeHydrodynamics | xr.Dataset | None = None,
                 eta_lead_out=None, eta_front=None,
                 span: tuple[float, float] | None = None) -> xr.Dataset:
-    """Raw flap channels and their truth for one run of the virtual flume.
+    """Synthesise the raw flap channels and their truth for one run of the virtual flume.
 
     Parameters
     ----------
-    time : Record times [s], uniform (100 Hz for the campaign's encoder and pressure sensor).
-    eta_incident_at_flap : True incident surface elevation at the hinge line x = 0 [m], over
-        the whole record (the flap starts from rest at its first sample).
-    period : Wave period of the run [s] (recorded; the models are frequency dependent); the
-        peak period of an irregular run.
-    campaign : Campaign metadata (flap, PTO, encoder, flume).
-    rng : Random generator for the pressure sensor noise.
-    truth : Parameters of the virtual flap (:class:`FlapTruth`), among them ``model``.
-    height : Target wave height of the run [m], recorded in the attributes if given.
-    hydro : For the simulator: :class:`FlumeHydrodynamics` of the campaign (build it once with
+    time : array_like
+        Record times [s], uniform (100 Hz for the campaign's encoder and pressure sensor).
+    eta_incident_at_flap : array_like
+        True incident surface elevation at the hinge line x = 0 [m], over the whole record
+        (the flap starts from rest at its first sample).
+    period : float
+        Wave period of the run [s] (recorded; the models are frequency dependent); the peak
+        period of an irregular run.
+    campaign : flumekit.campaign.Campaign
+        Campaign metadata (flap, PTO, encoder, flume).
+    rng : numpy.random.Generator
+        Random generator for the pressure sensor noise.
+    truth : FlapTruth, optional
+        Parameters of the virtual flap, among them ``model``.
+    height : float, optional
+        Target wave height of the run [m], recorded in the attributes if given.
+    hydro : FlumeHydrodynamics or xarray.Dataset, optional
+        For the simulator: :class:`FlumeHydrodynamics` of the campaign (build it once with
         :func:`flume_hydrodynamics`), or a coefficient container alone (its radiation model is
-        then fitted, ~1 s), or None (both built here). Ignored by the linear model.
-    eta_lead_out : Incident elevation at x = 0 that follows the record [m], at the record's
-        step (optional). The flap is driven over the record and this lead-out, then cut to
+        then fitted here), or None (both built here). Ignored by the linear model.
+    eta_lead_out : array_like, optional
+        Incident elevation at x = 0 that follows the record [m], at the record's step. The
+        flap is driven over the record and this lead-out, then cut to
         ``time``, so that the end of the truth sees the wave that goes on: the excitation
         filter is non-causal and the simulator tapers its last 2 s (without a lead-out, θ of
         the last 1-2 s differs from that of a continuing wave by up to 30 % of its amplitude;
         with 20 s of lead-out the whole record is within 0.11 % of that of a record 60 s
         longer, the rest being a near-constant offset: the excitation filter removes the
         record's mean elevation, :func:`flumekit.hydro.excitation.excitation_torque`).
-    eta_front : True local elevation in front of the flap (incident + reflected at x = 0)
-        [m] over the record and the lead-out, for the flume's wetted length and overtopping
-        (model "flume"); default the incident elevation.
-    span : (start, end) [s] over which the truth's best Eq. (13) fit is made (an irregular
-        run's analysed span); default the true quasi-steady window of θ.
+    eta_front : array_like, optional
+        True local elevation in front of the flap (incident + reflected at x = 0) [m] over
+        the record and the lead-out, for the flume's wetted length and overtopping (model
+        "flume"); default the incident elevation.
+    span : tuple of float, optional
+        (start, end) [s] over which the truth's best Eq. (13) fit is made (an irregular run's
+        analysed span); default the true quasi-steady window of θ.
 
     Returns
     -------
-    xr.Dataset on ``time`` with the raw channels ``encoder_counts`` (int64) and
-    ``chamber_pressure`` (noisy, gauge, Pa), and the truth: ``theta``, ``theta_dot``,
-    ``theta_ddot``, ``wire_shortening``, rod kinematics, ``chamber_pressure_true``,
-    ``cavitating``, forces, LuGre state, torques (resisting convention of
-    :mod:`flumekit.flap.torque`), ``torque_excitation``, ``torque_hydrodynamic`` (Eq. 11),
-    ``flow_rate``, ``power``; with the simulator also ``torque_radiation`` and
-    ``torque_drag`` (acting on the flap). Scalars: K_p, I_p, C, the added inertia and
-    radiation damping at 2π/T (the linear model's constant μ), and A∞ (simulator) or ν_pto
-    (linear).
+    xarray.Dataset
+        On ``time``: the raw channels ``encoder_counts`` (int64) and ``chamber_pressure``
+        (noisy, gauge) [Pa], and the truth: ``theta`` [rad], ``theta_dot`` [rad s-1],
+        ``theta_ddot`` [rad s-2], ``wire_shortening`` [m], rod kinematics,
+        ``chamber_pressure_true`` [Pa], ``cavitating``, forces [N], LuGre state, torques
+        [N m] (resisting convention of :mod:`flumekit.flap.torque`), ``torque_excitation``,
+        ``torque_hydrodynamic`` (Eq. 11), ``flow_rate`` [m3 s-1], ``power`` [W]; with the
+        simulator also ``torque_radiation`` and ``torque_drag`` (acting on the flap).
+        Scalar attributes: K_p, I_p, C, the added inertia and radiation damping at 2π/T (the
+        linear model's constant μ), and A∞ (simulator) or ν_pto (linear).
+
+    Raises
+    ------
+    ValueError
+        If ``time`` is not uniform, ``period`` is not positive or the elevation is not finite
+        or does not match ``time``.
+
+    References
+    ----------
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (Eqs. 1, 11-13,
+    Appendix B).
     """
     t = np.asarray(time, dtype=float)
     dt = uniform_step(t, "flap_record", min_samples=4)

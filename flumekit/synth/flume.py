@@ -1,4 +1,4 @@
-"""Losses of the virtual flume's flap that the pipeline's models lack (issue 16).
+"""Losses of the virtual flume's flap that the pipeline's models lack.
 
 The virtual flap (``FlapTruth(model="flume")``, :mod:`flumekit.synth.flap`) is the time-domain
 simulator of :mod:`flumekit.flap.simulator` (linear potential-flow radiation and excitation,
@@ -64,9 +64,8 @@ Terms (torques acting on the flap, positive towards the beach; θ̇ > 0 towards 
   pressure there is max(K_p-suction + p_lag, P_v), so the suction cavitates the chamber, and a
   vapour cavity (below) can open, only once the stored pressure has returned. A cavity holds
   nothing, and when it collapses the lag restarts so that the chamber pressure goes on from
-  P_v: the pressure is continuous through the cavity (an earlier version dropped the stored
-  pressure when the cavity opened and restarted from the atmosphere when it collapsed, steps
-  of 26 and 34 kPa within one sample that the QC's spike test rightly flagged). Eq. (13) cannot
+  P_v: the pressure is continuous through the cavity (a real chamber's pressure has no step
+  within one sample, which the QC's spike test would rightly flag). Eq. (13) cannot
   represent the lag (its residual ~ 2 τ_c K_p θ̇ θ̈ grows with frequency), and with the cavity
   it sets the fit's R² at both of the paper's Fig. 7 conditions: the cavity lowers the long
   wave's most, the lag the short wave's. τ_c = C_h dp/dQ with the capacitance C_h = α V / p
@@ -114,17 +113,11 @@ Calibration (:mod:`flumekit.bench.flume`, T = 3.5 s, H = 0.25 m unless said): C_
 sets the motion and C_f ≈ 0.12 with K_p = 3.0e6 (FlapTruth); φ = 0.21 makes θ almost
 symmetric (pipeline: max ⟨θ⟩/π 0.061, min −0.063); τ_c = 0.105 s then gives the Eq. (13)
 fit R² 0.948 at 3.5 s and 0.953 at 2.5 s, H = 0.2 m (Fig. 7: 0.95). The valve (P_c = 0.35
-bar) moves the R² little since it passes through the lag (at τ_c = 0.125 s: 0.938 and 0.939
-with 0.35 bar, 0.939 and 0.940 with 0.28 bar). With the
-cavity and the lag the free fit's I_p is negative in every run tried (T = 2-4 s, H = 0.15-0.3
-m), where the stage's fit is bounded at I_p = 0: the fluid inertia is not identified.
-β = 1 (the whole waterline torque, see above); κ = 0: the overtopping cut lowers
-C_f and deepens the lean to the sea at the main condition (κ = 0.15-0.3 with C_d1 lowered to
-keep C_f: min ⟨θ⟩/π −0.074 to −0.077 before the cavity, and no stronger T_h trend over
-Table 1). The previous calibration without the cavity (C_d1 29, K_p 1.75e6, P_c 0.88 bar,
-τ_c 0.065 s) left the flap leaning to the sea: every choice that lowered the lean (a smaller
-valve, more drag) cost R² or C_f, and a refill (suction) check valve did not help, the
-Eq. (13) suction already nearing the cavitation clamp.
+bar) moves the R² little since it passes through the lag. With the cavity and the lag the
+free fit's I_p is negative in the runs of T = 2-4 s, H = 0.15-0.3 m, where the stage's fit is
+bounded at I_p = 0: the fluid inertia is not identified. β = 1 (the whole waterline torque,
+see above); κ = 0: the overtopping cut (with C_d1 lowered to keep C_f) deepens the lean to
+the sea at the main condition and gives no stronger T_h trend over Table 1.
 
 References
 ----------
@@ -169,6 +162,7 @@ class FlumeLosses:
     vapour_cavity: float = 0.21  # φ [-], share of the suction's flow deficit held as a cavity
 
     def __post_init__(self):
+        """Refuse a negative or non-finite coefficient (a positive one where it divides)."""
         for name, v in self.__dict__.items():
             positive = name in ("bearing_radius", "bearing_rate", "valve_speed", "kc_min")
             if not (np.isfinite(v) and (v > 0 if positive else v >= 0)):
@@ -184,16 +178,28 @@ class ExtraTorque:
 
     Parameters
     ----------
-    eta_front : Local elevation in front of the flap [m] on the simulator's half steps.
-    omega : Angular frequency of the run [rad s-1].
-    amplitude : Incident amplitude of the run [m] (bearing load).
-    excitation : |X(ω)| [N m m-1], excitation per unit incident amplitude at ω.
-    campaign : Depth, flap (width, hinge, height) and PTO (anchors, bore).
-    losses : Coefficients.
-    compression_sign : +1 if θ̇ > 0 compresses the chamber, else −1.
-    pressure_loss_coefficient : K_p of Eq. (13) [Pa s2 rad-2] (the compliance lags K_p θ̇²).
-    time_step : Simulator step [s] (the calls' half-step index j counts time_step/2).
-    rho, g : Water density [kg m-3] and gravity [m s-2].
+    eta_front : array_like
+        Local elevation in front of the flap [m] on the simulator's half steps.
+    omega : float
+        Angular frequency of the run [rad s-1].
+    amplitude : float
+        Incident amplitude of the run [m] (bearing load).
+    excitation : float
+        |X(ω)|, the excitation torque per unit incident amplitude at ω [N m m-1].
+    campaign : flumekit.campaign.Campaign
+        Depth, flap (width, hinge, height) and PTO (anchors, bore).
+    losses : FlumeLosses
+        Coefficients of the terms.
+    compression_sign : int
+        +1 if θ̇ > 0 compresses the chamber, else −1.
+    pressure_loss_coefficient : float, default 0
+        K_p of Eq. (13) [Pa s2 rad-2] (the compliance lags K_p θ̇²).
+    time_step : float, default 0.01
+        Simulator step [s] (the calls' half-step index j counts time_step/2).
+    rho : float, default 1000
+        Water density [kg m-3].
+    g : float, default 9.81
+        Gravitational acceleration [m s-2].
     """
 
     description = ("flumekit.synth.flume.ExtraTorque: KC-dependent vortex drag (Graham 1980), "
@@ -238,19 +244,36 @@ class ExtraTorque:
         self._function = kernels.flume_torque
 
     def kernel(self):
-        """The compiled torque, its constants, state and record (:mod:`flumekit.synth.kernels`)
-        for the simulator's loop (:func:`flumekit.hydro.simulation.integrate`)."""
+        """Return the compiled torque with its constants, state and record.
+
+        Returns
+        -------
+        tuple
+            (function, parameters, state, record) of :mod:`flumekit.synth.kernels`, for the
+            simulator's loop (:func:`flumekit.hydro.simulation.integrate`).
+        """
         return self._function, self._params, self._state, self._record
 
     def __call__(self, j: int, th: float, om: float) -> float:
+        """Return the extra torque [N m] at half step ``j``, angle ``th``, rate ``om``."""
         return self._function(int(j), float(th), float(om), self._params, self._state,
                               self._record)
 
     def record(self, step: int = 1) -> dict[str, np.ndarray]:
-        """Every term as the simulator used it, one value per ``step`` steps [N m], [Pa].
+        """Return every term as the simulator used it, one value per ``step`` steps.
 
         The simulator calls the torque once per time step at the step's start state (see
         :func:`flumekit.flap.simulator.simulate`), into the step's row of the record.
+
+        Parameters
+        ----------
+        step : int, default 1
+            Keep one value per ``step`` simulator steps (the output step).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``torque_*`` [N m] and ``chamber_pressure_*`` [Pa] of each term (module notes).
         """
         names = ("torque_vortex_drag", "torque_wetted_length", "torque_overtopping",
                  "torque_bearing", "chamber_pressure_valve", "torque_valve",
@@ -277,6 +300,7 @@ class RepeatScatter:
     valve_pressure: float = 0.1
 
     def __post_init__(self):
+        """Refuse a relative deviation outside [0, 0.5)."""
         for name, v in self.__dict__.items():
             if not (np.isfinite(v) and 0 <= v < 0.5):
                 raise ValueError(f"RepeatScatter.{name} = {v} is not allowed")
@@ -285,10 +309,40 @@ class RepeatScatter:
 def repeat_conditions(rng: np.random.Generator, period: float, height: float,
                       scatter: RepeatScatter, losses: FlumeLosses
                       ) -> tuple[float, float, FlumeLosses]:
-    """The generated period [s], height [m] and flap losses of one run (Gaussian scatter).
+    """Draw the generated period, height and flap losses of one run (Gaussian scatter).
 
     Four normal draws from ``rng``, always (so the rest of a run's random stream does not
     depend on the scatter's values); factors are clipped to ±3 standard deviations.
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        The run's random stream.
+    period : float
+        Nominal wave period [s].
+    height : float
+        Nominal wave height [m].
+    scatter : RepeatScatter
+        Relative standard deviations [-].
+    losses : FlumeLosses
+        Nominal loss coefficients.
+
+    Returns
+    -------
+    period : float
+        Generated period [s].
+    height : float
+        Generated height [m].
+    losses : FlumeLosses
+        ``losses`` with the run's bearing friction and valve pressure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> t, h, _ = repeat_conditions(np.random.default_rng(0), 3.5, 0.25,
+    ...                             RepeatScatter(period=0.0, height=0.0), FlumeLosses())
+    >>> t, h
+    (3.5, 0.25)
     """
     e = np.clip(rng.standard_normal(4), -3.0, 3.0)
     return (float(period * (1 + scatter.period * e[0])),

@@ -1,5 +1,7 @@
-"""The virtual flume in irregular seas: a JONSWAP sea from the wavemaker to the probes and the
-flap, with its reflections, and the truth of the realised sea state.
+"""The virtual flume in irregular seas: a JONSWAP sea, its reflections and its truth.
+
+A JONSWAP sea travels from the wavemaker to the probes and the flap, with the flap's and the
+beach's reflections; the truth is the realised sea state.
 
 The wavemaker (at ``x_wavemaker``) plays the random-phase components of a JONSWAP spectrum
 (:func:`flumekit.synth.waves.random_phase_components`, phases from the run's declared seed)
@@ -13,7 +15,7 @@ wavenumber, so the ramp's front disperses as it should. In numpy's convention
 
 * incident at x: e^{-ik (x - x_wm)};
 * reflected by the flap: R(f) e^{-ik (-x_wm)} e^{-ik (0 - x)}, R of the flap's linear model
-  (:func:`flumekit.synth.flap.flap_scattering`: 15 % at 3.5 s, 33 % at 2 s, 80 % at 1 s);
+  (:func:`flumekit.synth.flap.flap_scattering`: 19 % at 3.5 s, 32 % at 2 s, 79 % at 1 s);
 * from the beach: T(f)² K_b(f) e^{iψ_b} e^{-ik (2 x_b - x_wm - x)}, through the flap both ways
   (its transmission T(f) of the same model) and reflected by the beach with
   K_b(f) = K_b / (1 + (f/f_b)⁴) (:func:`beach_reflection`: the 8 % of Brito et al. 2020 at the
@@ -56,20 +58,28 @@ class SeaTruth:
 
     Attributes
     ----------
-    ramp_peak_periods : Linear ramp of the wavemaker [Tp].
-    band : Generated band (f_min, f_max) [fp]: 0.6-3 fp holds all but 1 % of a γ = 3.3
+    ramp_peak_periods : float
+        Linear ramp of the wavemaker [Tp].
+    band : tuple of float
+        Generated band (f_min, f_max) [fp]: 0.6-3 fp holds all but 1 % of a γ = 3.3
         spectrum's variance (0.1 % below 0.66 fp).
-    loss_damping : ν_L of the flap's reflection model [N m s]
+    loss_damping : float
+        ν_L of the flap's reflection model [N m s]
         (:func:`flumekit.synth.flap.flap_scattering`).
-    beach_roll_off : f_b of the beach's reflection K_b / (1 + (f/f_b)⁴) [Hz].
-    developed : Share of each wave's variance arrived at the flap and the probes before the
+    beach_roll_off : float
+        f_b of the beach's reflection K_b / (1 + (f/f_b)⁴) [Hz].
+    developed : float
+        Share of each wave's variance arrived at the flap and the probes before the
         analysed span [-].
-    lead_out : The flap is driven this long past the record's end [s]
+    lead_out : float
+        The flap is driven this long past the record's end [s]
         (:func:`flumekit.synth.flap.flap_record`).
-    cut : The flume's response tapers (cos²) from ``cut[0]`` to ``cut[1]`` times the band's
-        f_max to zero: no energy of the ramp's spectral spread travels so slowly that it
+    cut : tuple of float
+        The flume's response tapers (cos²) from ``cut[0]`` to ``cut[1]`` times the band's
+        f_max to zero [-]: no energy of the ramp's spectral spread travels so slowly that it
         would wrap round the FFT.
-    probe_x : Probe positions of the irregular runs [m]. WP1-WP3 are 0.2 m and 1.0 m apart:
+    probe_x : tuple of (str, float)
+        Probe positions of the irregular runs [m]. WP1-WP3 are 0.2 m and 1.0 m apart:
         over 0.2-1.8 Hz (every run's band, Tp 1.6-3.0 s) their separation matrix has a
         condition number of at most 4.3, below the Goda-Suzuki limit 6.3
         (:func:`flumekit.waves.layout.check_layout`); the regular runs' L/10, L/4 layout of
@@ -88,7 +98,7 @@ class SeaTruth:
 
 
 def beach_reflection(frequency, beach: Beach, roll_off: float) -> np.ndarray:
-    """The beach's reflection coefficient K_b(f) = K_b / (1 + (f/f_b)⁴) [-].
+    """Compute the beach's reflection coefficient K_b(f) = K_b / (1 + (f/f_b)⁴).
 
     Parameters
     ----------
@@ -144,7 +154,7 @@ class IrregularSea(NamedTuple):
 def analysis_start(frequency, amplitude, *, depth: float, x_min: float, x_wavemaker: float,
                    x_beach: float, ramp_time: float, returning, developed: float,
                    g: float = G) -> float:
-    """First whole second at which every wave has developed at the flap and the probes [s].
+    """Return the first whole second at which every wave has developed at the flap and probes.
 
     Parameters
     ----------
@@ -209,7 +219,10 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
                   gamma: float, seed: int, depth: float, flap: Callable, beach: Beach,
                   x_wavemaker: float, sea: SeaTruth = SeaTruth(), g: float = G
                   ) -> IrregularSea:
-    """Incident, reflected and beach waves of a JONSWAP sea at positions ``x`` (module notes).
+    """Synthesise the incident, reflected and beach waves of a JONSWAP sea at positions ``x``.
+
+    The flume's linear transfer functions of the module notes, applied to the wavemaker's
+    ramped random-phase signal.
 
     Parameters
     ----------
@@ -243,12 +256,27 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
         The field (``eta_incident``, ``eta_reflected``, ``eta_beach`` over ("x", "time")), the
         components at the wavemaker, R_eff(f), the analysed span's start and T_R.
 
+    Raises
+    ------
+    ValueError
+        If a position lies outside (x_wavemaker, 0], ``duration`` is not whole seconds or
+        leaves fewer than 50 peak periods after the sea has developed, the rate does not
+        hold whole samples in the repeat period, or the band holds too few components.
+
     Notes
     -----
     One FFT of the ramped wavemaker signal and one inverse FFT of all positions and waves
     (module notes). The FFT spans the record, the lead-out, the ramp-down and the slowest
     wave's travel from the wavemaker to the beach and back to the farthest position, so
-    nothing wraps round into the record. About 0.3 s for 5 positions and 420 s at 100 Hz.
+    nothing wraps round into the record.
+
+    References
+    ----------
+    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
+    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
+    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
+    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
+    118-122.
 
     Examples
     --------
@@ -339,7 +367,7 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
 def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float], *,
                     depth: float, f_max: float, reflection: Callable | None = None,
                     rho: float = 1000.0, g: float = G) -> xr.Dataset:
-    """The realised sea state of an analysed span at the flap: spectra and their parameters.
+    """Compute the realised sea state of an analysed span at the flap: spectra and parameters.
 
     Parameters
     ----------

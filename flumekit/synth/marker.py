@@ -52,8 +52,15 @@ def record_written(raw: Path, run: str) -> None:
 
 
 def start_record(raw: Path) -> None:
-    """Mark the virtual campaign ``raw``, being written without runs, as synthesised run by run:
-    an empty list of written runs (:func:`record_written` adds each)."""
+    """Mark the virtual campaign ``raw``, being written without runs, as synthesised run by run.
+
+    The marker gains an empty list of written runs (:func:`record_written` adds each).
+
+    Parameters
+    ----------
+    raw : pathlib.Path
+        Folder of the virtual campaign (it holds :data:`flumekit.synth.MARKER`).
+    """
     from flumekit.io.atomic import atomic_path
 
     marker = Path(raw) / MARKER

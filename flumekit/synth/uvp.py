@@ -68,9 +68,12 @@ def _depth_functions(k: float, n: int, depth: float, zb):
 
 
 def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
-    """η, u, w of one wave along its direction of travel: Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ,
-    V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so that harmonic n carries eⁿ; the powers
-    by repeated multiplication in place (no transcendental function per harmonic)."""
+    """Sum η, u, w of one wave along its direction of travel.
+
+    Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ, V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so
+    that harmonic n carries eⁿ; the powers by repeated multiplication in place (no
+    transcendental function per harmonic).
+    """
     ch, sh = _depth_functions(k, amps.size, depth, zb)
     p1 = np.asarray(env * cos_t + 1j * (env * sin_t))
     pn = p1.copy()
@@ -91,30 +94,54 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
                     x_wavemaker: float = X_WAVEMAKER, ramp_waves: float | None = RAMP_WAVES,
                     second_order: bool = True, theory: str | None = None, beach=None,
                     g: float = G) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Velocity and free surface of incident + reflected regular waves (module notes).
+    """Compute the velocity and free surface of incident + reflected regular waves.
+
+    The kinematics of the module notes.
 
     Parameters
     ----------
-    x, z, time : Position [m] (z above the hinge) and time since wave generation started [s],
+    x, z, time : array_like
+        Position [m] (z above the hinge) and time since wave generation started [s],
         broadcast together (``eta`` uses x and time only).
-    period : Wave period T [s].
-    height : Incident wave height H [m].
-    depth : Still water depth h [m].
-    hinge_height : Hinge above the bed [m] (z = 0 at the hinge).
-    reflection : Reflection coefficient Kr [-].
-    reflection_phase : Phase φ of the reflected wave at the reflector [rad].
-    x_reflector, x_wavemaker : Reflector (flap) and wavemaker positions [m].
-    ramp_waves : Ramp length in periods as in :func:`flumekit.synth.waves.regular_wave_field`;
+    period : float
+        Wave period T [s].
+    height : float
+        Incident wave height H [m].
+    depth : float
+        Still water depth h [m].
+    hinge_height : float, default 0.10
+        Hinge above the bed [m] (z = 0 at the hinge).
+    reflection : float, default 0.2
+        Reflection coefficient Kr [-].
+    reflection_phase : float, default 0
+        Phase φ of the reflected wave at the reflector [rad].
+    x_reflector, x_wavemaker : float
+        Reflector (flap) and wavemaker positions [m].
+    ramp_waves : float or None
+        Ramp length in periods as in :func:`flumekit.synth.waves.regular_wave_field`;
         ``None`` for the steady state (no ramp, no travel).
-    second_order, theory : The wave theory as in
-        :func:`flumekit.synth.waves.regular_wave_field` (default the stream function).
-    beach : The wave returning from the beach (:class:`flumekit.synth.waves.Beach`), as in
+    second_order : bool, default True
+        With ``theory``, the wave theory as in :func:`flumekit.synth.waves.regular_wave_field`
+        (default the stream function).
+    theory : str, optional
+        ``"stream"``, ``"stokes2"`` or ``"linear"``.
+    beach : flumekit.synth.waves.Beach, optional
+        The wave returning from the beach, as in
         :func:`flumekit.synth.waves.regular_wave_field`; None: none.
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    u, w : Longitudinal and vertical velocity [m s-1].
-    eta : Free-surface elevation [m].
+    u, w : numpy.ndarray
+        Longitudinal and vertical velocity [m s-1].
+    eta : numpy.ndarray
+        Free-surface elevation [m].
+
+    Raises
+    ------
+    ValueError
+        If Kr lies outside [0, 1].
     """
     from flumekit.synth.waves import ramp_envelope
 
@@ -172,11 +199,39 @@ def incident_upcrossing(*, period: float, height: float, depth: float,
                         x_wavemaker: float = X_WAVEMAKER, second_order: bool = True,
                         theory: str | None = None, harmonics: bool = True,
                         g: float = G) -> float:
-    """Time in [0, T) of a zero up-crossing of the steady incident elevation at x = 0 [s].
+    """Return the time in [0, T) of a zero up-crossing of the steady incident elevation at x = 0.
 
     Solves Σ a_n cos nθ = 0 with a rising slope for θ = ωt + k x_wm (the up-crossing nearest
-    θ = -π/2, the linear one), by Newton steps; ``harmonics=False`` keeps the first harmonic
-    only (its wavenumber is still the theory's).
+    θ = -π/2, the linear one), by Newton steps.
+
+    Parameters
+    ----------
+    period : float
+        Wave period T [s].
+    height : float
+        Wave height H [m].
+    depth : float
+        Still water depth [m].
+    x_wavemaker : float
+        Wavemaker position [m].
+    second_order : bool, default True
+        With ``theory``, the wave theory (:func:`wave_kinematics`).
+    theory : str, optional
+        ``"stream"``, ``"stokes2"`` or ``"linear"``.
+    harmonics : bool, default True
+        False keeps the first harmonic only (its wavenumber is still the theory's).
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    float
+        The up-crossing time [s].
+
+    Raises
+    ------
+    ValueError
+        If the wave is so steep that no rising zero crossing lies near the linear one.
     """
     h = _harmonics(period, height, depth, _theory(theory, second_order), 0.0, g)
     omega, k, a = 2 * np.pi / period, h["k_incident"], h["incident"]
@@ -197,7 +252,11 @@ def incident_upcrossing(*, period: float, height: float, depth: float,
 def maximum_speed(*, period: float, height: float, depth: float, reflection: float,
                   second_order: bool = True, theory: str | None = None, beach=None,
                   g: float = G) -> float:
-    """Upper bound of the flow speed up to the highest crest [m s-1] (for the velocity range)."""
+    """Return an upper bound of the flow speed up to the highest crest [m s-1].
+
+    Used to choose the UVP's velocity range. The parameters are those of
+    :func:`wave_kinematics`.
+    """
     h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g, beach)
     sides = ("incident", "reflected", "beach")
     zb = depth + sum(np.sum(np.abs(h[side])) for side in sides)
@@ -211,8 +270,9 @@ def maximum_speed(*, period: float, height: float, depth: float, reflection: flo
 
 
 def campaign_parameters(uvp: UVP) -> dict[str, object]:
-    """``.mfprof`` file parameters (key names and units of FORMAT.md §4.2) of campaign UVP
-    settings.
+    """Return the ``.mfprof`` file parameters of the campaign's UVP settings.
+
+    Key names and units are those of FORMAT.md §4.2.
 
     ``MaximumDepth`` is not a campaign setting: the writer keeps the data's value or uses the
     smallest depth covering every channel.
@@ -228,8 +288,25 @@ def campaign_parameters(uvp: UVP) -> dict[str, object]:
 
 
 def write_beam(path: str | Path, beam: xr.Dataset, uvp: UVP) -> Path:
-    """Write one beam's records as ``.mfprof`` with the campaign's UVP settings replacing the
-    acoustic and channel parameters of ``beam``'s ``mfprof_*`` attributes."""
+    """Write one beam's records as ``.mfprof`` with the campaign's UVP settings.
+
+    The campaign's settings replace the acoustic and channel parameters of ``beam``'s
+    ``mfprof_*`` attributes.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        File to write.
+    beam : xarray.Dataset
+        One beam's records, as :func:`uvp_beams` returns them.
+    uvp : flumekit.campaign.UVP
+        The campaign's UVP settings.
+
+    Returns
+    -------
+    pathlib.Path
+        The written file.
+    """
     from flumekit.io.mfprof import parameters_from_attrs, write_mfprof
 
     return write_mfprof(path, beam, {**parameters_from_attrs(beam.attrs),
@@ -239,7 +316,7 @@ def write_beam(path: str | Path, beam: xr.Dataset, uvp: UVP) -> Path:
 def instrument_parameters(uvp: UVP, *, max_speed: float | None = None,
                           maximum_depth: float | None = None, margin: float = 1.2
                           ) -> dict[str, object]:
-    """``.mfprof`` parameters of the virtual UVP (file key names and units, FORMAT.md §4.2).
+    """Return the ``.mfprof`` parameters of the virtual UVP (key names and units of FORMAT.md §4.2).
 
     The maximum depth d_max [m] sets the velocity range V_range = c² / (4 f0 d_max). By default
     it is chosen so that ±V_range/2 covers ``margin`` x ``max_speed``. With the paper's set-up
@@ -277,31 +354,51 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
               turbulence: tuple[float, float, float] | None = None,
               theta=None, flap_thickness: float = 0.17, maximum_depth: float | None = None,
               rng: np.random.Generator | int | None = None) -> dict[str, xr.Dataset]:
-    """Virtual UVP records of one run, one dataset per beam (as :func:`read_mfprof` returns).
+    """Synthesise the virtual UVP records of one run, one dataset per beam.
+
+    Each dataset is as :func:`flumekit.read_mfprof` returns it.
 
     Parameters
     ----------
-    time : Profile times since wave generation started [s], 1-D increasing.
-    uvp : Campaign UVP settings (channels, beams).
-    uvp_elevation : Elevation of the run's UVP mounting above the hinge [m].
-    period, height, depth, hinge_height, reflection, reflection_phase, x_wavemaker,
-    ramp_waves, second_order, theory, beach : The wave field, see :func:`wave_kinematics`.
-    noise : Standard deviation of the white Doppler noise along the beam [m s-1].
-    turbulence : Optional (σ_u [m s-1], σ_w [m s-1], correlation ρ_uw [-]) of Gaussian velocity
-        fluctuations band-limited to 0.05-1.5 Hz, independent between channels and beams (a
-        known truth for the turbulence statistics).
-    theta : Flap angle at ``time`` [rad] (positive towards the beach); default 0 (fixed flap).
-    flap_thickness : [m] (the seaward face is at x = -thickness/2 for θ = 0).
-    maximum_depth : Instrument d_max [m]; default: chosen to cover the flow speed
+    time : array_like
+        Profile times since wave generation started [s], 1-D increasing.
+    uvp : flumekit.campaign.UVP
+        Campaign UVP settings (channels, beams).
+    uvp_elevation : float
+        Elevation of the run's UVP mounting above the hinge [m].
+    period, height, depth, hinge_height, reflection, reflection_phase, x_wavemaker : float
+        The wave field, see :func:`wave_kinematics` ([s], [m], [m], [m], [-], [rad], [m]).
+    ramp_waves, second_order, theory, beach
+        The wave field, see :func:`wave_kinematics`.
+    noise : float, default 0.005
+        Standard deviation of the white Doppler noise along the beam [m s-1].
+    turbulence : tuple of float, optional
+        (σ_u [m s-1], σ_w [m s-1], correlation ρ_uw [-]) of Gaussian velocity fluctuations
+        band-limited to 0.05-1.5 Hz, independent between channels and beams (a known truth
+        for the turbulence statistics).
+    theta : array_like, optional
+        Flap angle at ``time`` [rad] (positive towards the beach); default 0 (fixed flap).
+    flap_thickness : float, default 0.17
+        Flap thickness [m] (the seaward face is at x = -thickness/2 for θ = 0).
+    maximum_depth : float, optional
+        Instrument d_max [m]; default: chosen to cover the flow speed
         (:func:`instrument_parameters`); faster velocities alias.
-    rng : Random generator or seed.
+    rng : numpy.random.Generator or int, optional
+        Random generator or seed.
 
     Returns
     -------
-    ``{beam name: Dataset}``, each with dims (time, channel): ``beam_velocity`` [m s-1]
-    (quantised, ``positive="away_from_transducer"``), ``amplitude`` [counts]; coordinates
-    ``time``, ``channel``, ``distance``; ``.mfprof`` parameters as ``mfprof_*`` attributes
-    (ready for :func:`flumekit.io.mfprof.write_mfprof`).
+    dict of str to xarray.Dataset
+        Per beam name, dims (time, channel): ``beam_velocity`` [m s-1] (quantised,
+        ``positive="away_from_transducer"``), ``amplitude`` [counts]; coordinates ``time``,
+        ``channel``, ``distance``; ``.mfprof`` parameters as ``mfprof_*`` attributes (ready
+        for :func:`flumekit.io.mfprof.write_mfprof`).
+
+    Raises
+    ------
+    ValueError
+        If ``time`` is not 1-D increasing, ``turbulence`` is out of range or ``theta`` is not
+        sampled at ``time``.
     """
     rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
     time = np.asarray(time, dtype=float)
@@ -377,19 +474,40 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
                second_order: bool = True, theory: str | None = None, beach=None,
                x=None, z=None, n_phase: int = 100,
                theta=None, elevations=None, reference: str = "incident") -> xr.Dataset:
-    """The true phase-averaged velocity field on the (phase, z, x) grid of the processed field.
+    """Compute the true phase-averaged velocity field on the (phase, z, x) grid.
+
+    The grid is that of the processed UVP field; the steady phase average equals the
+    instantaneous steady field at each phase.
 
     Parameters
     ----------
-    campaign : Campaign (water depth, hinge height, flap thickness, UVP beams).
-    period, height, reflection, reflection_phase, x_wavemaker, second_order, theory, beach :
-        The wave field (:func:`wave_kinematics`).
-    x, z : Grid [m]; default :func:`flumekit.uvp.field.default_grid` of the campaign's beams
-        and ``elevations`` (default 0.20, 0.22, ..., 0.72 m, Brito et al. 2020, §2.3).
-    n_phase : Number of phases t/T = 0, 1/n_phase, ...
-    theta : Optional phase-averaged flap angle over the phase grid [rad]: points inside the
-        flap at a phase are masked.
-    reference : Phase 0 at the zero up-crossing of the steady incident elevation at x = 0,
+    campaign : flumekit.campaign.Campaign
+        Water depth, hinge height, flap thickness and UVP beams.
+    period : float
+        Wave period T [s].
+    height : float
+        Incident wave height H [m].
+    reflection : float, default 0.2
+        Reflection coefficient Kr of the flap [-].
+    reflection_phase : float, default 0
+        Phase of the reflected wave at the flap [rad].
+    x_wavemaker : float
+        Wavemaker position [m].
+    second_order, theory, beach
+        The wave theory and the beach's wave (:func:`wave_kinematics`).
+    x, z : array_like, optional
+        Grid [m]; default :func:`flumekit.uvp.field.default_grid` of the campaign's beams and
+        ``elevations``.
+    n_phase : int, default 100
+        Number of phases t/T = 0, 1/n_phase, ...
+    theta : array_like, optional
+        Phase-averaged flap angle over the phase grid [rad]: points inside the flap at a
+        phase are masked.
+    elevations : array_like, optional
+        UVP elevations above the hinge [m] of the default grid; default 0.20, 0.22, ...,
+        0.72 m (Brito et al. 2020, §2.3).
+    reference : str, default "incident"
+        Phase 0 at the zero up-crossing of the steady incident elevation at x = 0,
         ``"incident"`` (every harmonic, as a zero-crossing analysis of the separated
         incident wave sees it) or ``"first_harmonic"`` (of its first harmonic only). With
         H = 0.25 m, T = 3.5 s the second harmonic is 0.39 of the first and the two references
@@ -397,11 +515,32 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
 
     Returns
     -------
-    Dataset over (phase, z, x): ``u``, ``w`` [m s-1] (NaN above the free surface and inside
-    the flap), ``u_normalised``, ``w_normalised`` (by U0 = πH/T), ``eta`` (phase, x) [m];
-    scalar ``velocity_scale`` [m s-1] and ``phase_reference`` [s]. Phase 0 is the zero
-    up-crossing of the steady incident elevation at x = 0 (:func:`incident_upcrossing`);
-    the steady phase average equals the instantaneous steady field at that phase.
+    xarray.Dataset
+        Over (phase, z, x): ``u``, ``w`` [m s-1] (NaN above the free surface and inside the
+        flap), ``u_normalised``, ``w_normalised`` (by U0 = πH/T) [-], ``inside_flap``,
+        ``eta`` (phase, x) [m]; scalar coordinates ``velocity_scale`` [m s-1] and
+        ``phase_reference`` [s] (:func:`incident_upcrossing`).
+
+    Raises
+    ------
+    ValueError
+        If the grid is not given and the campaign has no UVP, ``reference`` is unknown or
+        ``theta`` is not given on the phases.
+
+    References
+    ----------
+    Fenton, J. D. (1988). The numerical solution of steady water wave problems. Computers &
+    Geosciences 14(3), 357-368.
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (§2.3-2.4).
+
+    Examples
+    --------
+    >>> from flumekit.synth import virtual_campaign
+    >>> c = virtual_campaign("raw/small", "small", 2020)
+    >>> f = true_field(c, period=3.5, height=0.25, x=[-1.0, -0.5], z=[0.3], n_phase=4)
+    >>> dict(f.sizes), round(float(f.velocity_scale), 4)
+    ({'phase': 4, 'z': 1, 'x': 2}, 0.2244)
     """
     from flumekit.uvp.field import default_grid
 
@@ -459,7 +598,20 @@ def true_field(campaign: Campaign, *, period: float, height: float, reflection: 
 
 
 def write_uvp_run(directory: str | Path, beams: dict[str, xr.Dataset]) -> list[Path]:
-    """Write one ``<beam>.mfprof`` per beam into ``directory`` (raw/README.md layout)."""
+    """Write one ``<beam>.mfprof`` per beam into ``directory`` (raw/README.md layout).
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path
+        The run's folder.
+    beams : dict of str to xarray.Dataset
+        Records per beam name, as :func:`uvp_beams` returns them.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The written files.
+    """
     from flumekit.io.mfprof import write_mfprof
 
     directory = Path(directory)

@@ -41,22 +41,38 @@ def _check_grid(time, x, x_low: float, x_high: float) -> tuple[np.ndarray, np.nd
 
 
 def ramp_envelope(tau, ramp_time: float) -> np.ndarray:
-    """Linear ramp-up envelope e(τ) = min(τ / ramp_time, 1), 0 for τ ≤ 0 [-].
+    """Compute the linear ramp-up envelope e(τ) = min(τ / ramp_time, 1), 0 for τ ≤ 0.
 
     The wavemaker's paddle stroke ramped linearly over ``ramp_time`` [s], the usual ramp of a
     paddle's control signal. A linear ramp ends at full amplitude: the 2 % quasi-steady test
     of Brito et al. (2020, §2.5) passes within a wave of the ramp's end for η and for θ alike,
-    as their Fig. 5 shows (both from t/T ≈ 35). The critically damped envelope
-    1 - (1 + s) e^(-s) used before approaches 1 so slowly that θ, which the flap's quadratic
-    losses make grow more slowly than the wave (θ within 2 % while η is still 4 % short), was
-    steady 2 waves before η (34.2 against 36.1 at T = 3.5 s, H = 0.25 m).
+    as their Fig. 5 shows (both from t/T ≈ 35). An envelope that approaches 1 asymptotically
+    (e.g. critically damped) would let θ, which the flap's quadratic losses make grow more
+    slowly than the wave, pass the test before η.
+
+    Parameters
+    ----------
+    tau : array_like
+        Time since the wave front passed [s].
+    ramp_time : float
+        Ramp duration [s].
+
+    Returns
+    -------
+    numpy.ndarray
+        e(τ) [-], in [0, 1].
+
+    Examples
+    --------
+    >>> ramp_envelope([-1.0, 5.0, 20.0], 10.0).tolist()
+    [0.0, 0.5, 1.0]
     """
     s = np.asarray(tau, dtype=float) / ramp_time
     return np.clip(s, 0.0, 1.0)
 
 
 def first_harmonic_amplitude(height: float, k: float, depth: float, second_order: bool) -> float:
-    """First-harmonic amplitude a1 [m] of a wave with crest-to-trough height ``height`` [m].
+    """Return the first-harmonic amplitude a1 [m] of a wave of crest-to-trough height ``height``.
 
     Linear: a1 = H/2. Second-order Stokes, η = a1 cos θ + r a1 cos 2θ with r = B k a1
     (:func:`flumekit.waves.theory.stokes2_coefficient`): H = 2 a1 while 4r ≤ 1; beyond, the
@@ -109,6 +125,7 @@ class Beach:
     transmission: float = 1.0
 
     def __post_init__(self) -> None:
+        """Refuse coefficients outside [0, 1] and a non-finite position or phase."""
         for name in ("reflection", "transmission"):
             v = getattr(self, name)
             if not 0 <= v <= 1:
@@ -126,31 +143,58 @@ HARMONIC_CUTOFF = 1e-4
 @functools.lru_cache(maxsize=64)
 def nonlinear_wave(period: float, height: float, depth: float, g: float = G
                    ) -> StreamFunctionWave:
-    """The flume's steady nonlinear wave: :func:`flumekit.waves.stream_function_wave` with
-    Stokes' second definition of celerity (zero mean mass transport: a closed flume) and its
-    default 20 modes, cached (a run's records and its UVP evaluate the same wave)."""
+    """Return the flume's steady nonlinear wave (stream-function theory, cached).
+
+    :func:`flumekit.waves.stream_function_wave` with Stokes' second definition of celerity
+    (zero mean mass transport: a closed flume) and its default 20 modes; cached because a
+    run's records and its UVP evaluate the same wave.
+
+    Parameters
+    ----------
+    period : float
+        Wave period [s].
+    height : float
+        Crest-to-trough wave height [m].
+    depth : float
+        Still water depth [m].
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    flumekit.waves.stream_function.StreamFunctionWave
+        The steady wave.
+    """
     return stream_function_wave(period, height, depth, current="stokes", g=g)
 
 
 def wave_harmonics(period: float, height: float, depth: float, reflection: float = 0.0,
                    theory: str = "stream", g: float = G, beach: float = 0.0
                    ) -> dict[str, object]:
-    """Harmonic amplitudes and wavenumbers of the incident and reflected regular waves.
+    """Compute harmonic amplitudes and wavenumbers of the incident and reflected regular waves.
 
     Parameters
     ----------
-    period : Wave period T [s].
-    height : Crest-to-trough height H of the incident wave [m].
-    depth : Still water depth h [m].
-    reflection : Reflection coefficient Kr of the first harmonic [-].
-    theory : ``"stream"`` (stream function, :mod:`flumekit.waves.stream_function`),
+    period : float
+        Wave period T [s].
+    height : float
+        Crest-to-trough height H of the incident wave [m].
+    depth : float
+        Still water depth h [m].
+    reflection : float, default 0
+        Reflection coefficient Kr of the first harmonic [-].
+    theory : str, default "stream"
+        ``"stream"`` (stream function, :mod:`flumekit.waves.stream_function`),
         ``"stokes2"`` (second-order Stokes) or ``"linear"``.
-    g : Gravitational acceleration [m s-2].
-    beach : First-harmonic amplitude of the wave returning from the beach, over a1 [-].
+    g : float
+        Gravitational acceleration [m s-2].
+    beach : float, default 0
+        First-harmonic amplitude of the wave returning from the beach, over a1 [-].
 
     Returns
     -------
-    dict with ``k_incident``, ``k_reflected``, ``k_beach`` [rad m-1] (harmonic n travels with
+    dict
+        ``k_incident``, ``k_reflected``, ``k_beach`` [rad m-1] (harmonic n travels with
     n k), ``incident``, ``reflected`` and ``beach`` (amplitudes of harmonics 1, 2, ... [m];
     η = Σ a_n cos nθ), ``<wave>_velocity`` (V_n [m s-1]) and ``<wave>_current`` (c_E [m s-1])
     of the velocity in the direction of travel
@@ -218,11 +262,31 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
 
 
 def harmonic_sum(amplitudes, envelope, cos_theta) -> np.ndarray:
-    """Σ_n a_n eⁿ cos nθ [m] from cos θ.
+    """Sum the harmonics Σ_n a_n eⁿ cos nθ from cos θ.
 
     The envelope scales harmonic n by eⁿ, as the bound harmonics of a slowly modulated Stokes
     wave; cos nθ comes from the Chebyshev recurrence (no transcendental function per
     harmonic).
+
+    Parameters
+    ----------
+    amplitudes : array_like
+        a_n of harmonics 1, 2, ... [m].
+    envelope : numpy.ndarray
+        Envelope e [-], broadcastable with ``cos_theta``.
+    cos_theta : numpy.ndarray
+        cos θ of the first harmonic's phase [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The elevation [m].
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> float(harmonic_sum([0.1, 0.01], 1.0, np.cos(np.array(0.0)))) == 0.11
+    True
     """
     a = np.asarray(amplitudes, dtype=float)
     c_prev, c_cur = np.ones_like(cos_theta), cos_theta
@@ -241,47 +305,69 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
                        second_order: bool = True, x_wavemaker: float = -32.7,
                        theory: str | None = None, beach: Beach | None = None,
                        g: float = G) -> xr.Dataset:
-    """Regular incident and reflected waves with a ramp-up, at probe positions ``x``.
+    """Synthesise regular incident and reflected waves with a ramp-up at positions ``x``.
 
     Parameters
     ----------
-    time : Time since the start of wave generation [s], 1-D.
-    x : Positions along the flume [m], 1-D, between ``x_wavemaker`` and ``x_reflector``.
-    period : Wave period T [s].
-    height : Target crest-to-trough height H of the steady incident wave [m].
-    depth : Still water depth h [m].
-    reflection : Reflection coefficient Kr of the first harmonic [-], 0 ≤ Kr ≤ 1.
-    reflection_phase : Phase added to the reflected wave at the reflector [rad].
-    x_reflector : Position of the reflector (flap) [m].
-    ramp_waves : Ramp length in wave periods: the envelope at the wavemaker is
-        :func:`ramp_envelope` with ramp time ``ramp_waves``·T. The default
-        (:data:`RAMP_WAVES`) with the travel time from the wavemaker makes the records
-        quasi-steady (Brito et al. 2020, §2.5 criterion) after about 35 waves at the probes
-        and at the flap for T = 3.5 s, as in the paper.
-    second_order : Include the bound harmonics (``theory`` "stream" when True, "linear" when
-        False, unless ``theory`` is given).
-    x_wavemaker : Position of the wavemaker [m] (the envelope starts there at t = 0).
-    theory : ``"stream"`` (stream-function theory, valid in every depth up to near breaking),
+    time : array_like
+        Time since the start of wave generation [s], 1-D.
+    x : array_like
+        Positions along the flume [m], 1-D, between ``x_wavemaker`` and ``x_reflector``.
+    period : float
+        Wave period T [s].
+    height : float
+        Target crest-to-trough height H of the steady incident wave [m].
+    depth : float
+        Still water depth h [m].
+    reflection : float, default 0.2
+        Reflection coefficient Kr of the first harmonic [-], 0 ≤ Kr ≤ 1.
+    reflection_phase : float, default 0
+        Phase added to the reflected wave at the reflector [rad].
+    x_reflector : float, default 0
+        Position of the reflector (flap) [m].
+    ramp_waves : float, default :data:`RAMP_WAVES`
+        Ramp length in wave periods [-]: the envelope at the wavemaker is
+        :func:`ramp_envelope` with ramp time ``ramp_waves``·T. The default with the travel
+        time from the wavemaker makes the records quasi-steady (Brito et al. 2020, §2.5
+        criterion) after about 35 waves at the probes and at the flap for T = 3.5 s, as in
+        the paper.
+    second_order : bool, default True
+        Include the bound harmonics (``theory`` "stream" when True, "linear" when False,
+        unless ``theory`` is given).
+    x_wavemaker : float, default -32.7
+        Position of the wavemaker [m] (the envelope starts there at t = 0).
+    theory : str, optional
+        ``"stream"`` (stream-function theory, valid in every depth up to near breaking),
         ``"stokes2"`` (second-order Stokes, valid for Ursell numbers ≲ 26) or ``"linear"``;
         see :func:`wave_harmonics`.
-    beach : The wave returning from the flume's beach (:class:`Beach`); None: no beach
-        reflection (a perfect absorber).
-    g : Gravitational acceleration [m s-2].
+    beach : Beach, optional
+        The wave returning from the flume's beach; None: no beach reflection (a perfect
+        absorber).
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Dataset over ("x", "time") with ``eta_incident``, ``eta_reflected`` (from the reflector),
-    ``eta_beach`` (from the beach, 0 without one) and ``eta`` (their sum) [m]. ``attrs`` hold
-    the truth: ``incident_amplitude`` (first harmonic a1), ``bound_amplitude`` (second
-    harmonic a2, 0 if linear), ``harmonic_amplitudes`` (a_n of the incident wave),
-    ``reflection_coefficient``: the first-harmonic amplitude of everything travelling towards
-    the wavemaker (reflector and beach) over a1 at ``x_reflector``, which is what a separation
-    measures; ``flap_reflection_coefficient`` (``reflection``), ``reflection_phase``,
-    ``beach_reflection_coefficient``, ``beach_transmission``, ``x_beach``, ``beach_phase``,
-    ``wave_height`` (H), ``wave_period``, ``wave_number`` (of the incident wave's first
-    harmonic: the nonlinear one for "stream"), ``reflected_wave_number``,
-    ``linear_wave_number``, ``wavelength``,
-    ``group_velocity``, ``ursell_number``, ``wave_theory`` and the geometry.
+    xarray.Dataset
+        Over ("x", "time"): ``eta_incident``, ``eta_reflected`` (from the reflector),
+        ``eta_beach`` (from the beach, 0 without one) and ``eta`` (their sum) [m]. ``attrs``
+        hold the truth: ``incident_amplitude`` (first harmonic a1 [m]), ``bound_amplitude``
+        (second harmonic a2 [m], 0 if linear), ``harmonic_amplitudes`` (a_n of the incident
+        wave [m]), ``reflection_coefficient``: the first-harmonic amplitude of everything
+        travelling towards the wavemaker (reflector and beach) over a1 at ``x_reflector``,
+        which is what a separation measures; ``flap_reflection_coefficient``
+        (``reflection``), ``reflection_phase``, ``beach_reflection_coefficient``,
+        ``beach_transmission``, ``x_beach``, ``beach_phase``, ``wave_height`` (H),
+        ``wave_period``, ``wave_number`` (of the incident wave's first harmonic: the
+        nonlinear one for "stream"), ``reflected_wave_number``, ``linear_wave_number``,
+        ``wavelength``, ``group_velocity``, ``ursell_number``, ``wave_theory`` and the
+        geometry.
+
+    Raises
+    ------
+    ValueError
+        If a length or period is not positive, Kr lies outside [0, 1], the wavemaker is not
+        upstream of the reflector, a position lies outside them or ``theory`` is unknown.
 
     Notes
     -----
@@ -299,6 +385,21 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     incident-reflected interaction terms are omitted, as are re-reflections at the wavemaker
     (active absorption). Second-order Stokes theory is valid for Ursell numbers
     H L² / h³ ≲ 26; the flume's longer waves reach 65, which the stream function covers.
+
+    References
+    ----------
+    Dean, R. G. & Dalrymple, R. A. (1991). Water Wave Mechanics for Engineers and Scientists.
+    World Scientific (§11.3).
+    Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
+    wave surge converter in unidirectional waves. Energies 13, 5417 (§2.1-2.5).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ds = regular_wave_field(np.arange(0, 200, 0.04), [-2.0], period=2.0, height=0.1,
+    ...                         depth=0.825, reflection=0.0, theory="linear")
+    >>> round(float(ds.eta.isel(time=slice(-50, None)).max()), 4)
+    0.05
     """
     _check_positive(period=period, height=height, depth=depth, ramp_waves=ramp_waves)
     if not 0 <= reflection <= 1:
@@ -429,7 +530,7 @@ def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3,
 def random_phase_components(repeat_period: float, hm0: float, peak_period: float,
                             gamma: float, seed: int, band: tuple[float, float]
                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The wavemaker's components of a JONSWAP sea by the random-phase method.
+    """Return the wavemaker's components of a JONSWAP sea by the random-phase method.
 
     Parameters
     ----------
@@ -467,6 +568,7 @@ def random_phase_components(repeat_period: float, hm0: float, peak_period: float
     Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
     sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
     118-122.
+
     Examples
     --------
     >>> import numpy as np
@@ -492,27 +594,46 @@ def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: floa
                          reflection_phase: float = 0.0, x_reflector: float = 0.0,
                          rng: np.random.Generator | int | None = None,
                          f_max: float | None = None, g: float = G) -> xr.Dataset:
-    """Linear irregular (JONSWAP) incident and reflected waves with random phases.
+    """Synthesise linear irregular (JONSWAP) incident and reflected waves with random phases.
 
     Parameters
     ----------
-    time : Uniformly sampled time [s], 1-D (N samples, step Δt).
-    x : Positions [m], 1-D, x ≤ ``x_reflector``.
-    hm0 : Spectral significant height of the incident wave, 4 sqrt(m0) [m].
-    peak_period : Peak period Tp [s].
-    depth : Water depth [m].
-    gamma : JONSWAP peak enhancement factor [-].
-    reflection : Frequency-independent reflection coefficient [-].
-    reflection_phase : Phase added at the reflector [rad].
-    x_reflector : Reflector position [m]; incident phases are referenced to it.
-    rng : numpy Generator or seed (deterministic for a given seed).
-    f_max : Highest component frequency [Hz]; default min(5/Tp, Nyquist).
-    g : Gravitational acceleration [m s-2].
+    time : array_like
+        Uniformly sampled time [s], 1-D (N samples, step Δt).
+    x : array_like
+        Positions [m], 1-D, x ≤ ``x_reflector``.
+    hm0 : float
+        Spectral significant height of the incident wave, 4 sqrt(m0) [m].
+    peak_period : float
+        Peak period Tp [s].
+    depth : float
+        Water depth [m].
+    gamma : float, default 3.3
+        JONSWAP peak enhancement factor [-].
+    reflection : float, default 0.2
+        Frequency-independent reflection coefficient [-].
+    reflection_phase : float, default 0
+        Phase added at the reflector [rad].
+    x_reflector : float, default 0
+        Reflector position [m]; incident phases are referenced to it.
+    rng : numpy.random.Generator or int, optional
+        Random generator or seed of the phases (deterministic for a given seed).
+    f_max : float, optional
+        Highest component frequency [Hz]; default min(5/Tp, Nyquist).
+    g : float
+        Gravitational acceleration [m s-2].
 
     Returns
     -------
-    Dataset over ("x", "time") with ``eta_incident``, ``eta_reflected``, ``eta`` [m]; the truth in
-    ``attrs`` (``hm0`` of the incident wave exactly, ``reflection_coefficient``, ...).
+    xarray.Dataset
+        Over ("x", "time"): ``eta_incident``, ``eta_reflected``, ``eta`` [m]; the truth in
+        ``attrs`` (``hm0`` of the incident wave exactly, ``reflection_coefficient``, ...).
+
+    Raises
+    ------
+    ValueError
+        If Hm0, Tp, the depth or γ is not positive, Kr lies outside [0, 1], the time is not
+        uniform or holds fewer than 8 components below ``f_max``.
 
     Notes
     -----
@@ -520,6 +641,22 @@ def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: floa
     periodic (no leakage), with deterministic amplitudes a_n = sqrt(2 S(f_n) Δf) and uniform
     random phases: η_I = Σ a_n cos(ω_n t - k_n (x - x_r) + ψ_n),
     η_R = Kr Σ a_n cos(ω_n t + k_n (x - x_r) + ψ_n + φ).
+
+    References
+    ----------
+    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
+    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
+    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
+    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
+    118-122.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ds = irregular_wave_field(np.arange(0, 600, 0.04), [-2.0, 0.0], hm0=0.1,
+    ...                           peak_period=2.0, depth=0.825, rng=1)
+    >>> round(4 * float(ds.eta_incident.std("time")[0]), 6)
+    0.1
     """
     _check_positive(hm0=hm0, peak_period=peak_period, depth=depth, gamma=gamma)
     if not 0 <= reflection <= 1:
