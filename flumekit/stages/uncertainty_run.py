@@ -45,10 +45,9 @@ def run_uncertainty(inputs, outputs, params) -> None:
                                counts_per_metre=(campaign.encoder.counts_per_metre
                                                  if campaign.encoder else None),
                                flap="flap" in inputs)
+    # recorded in the dataset, where the make summary reads them (a worker prints nothing)
     recorded = [f"{inputs['campaign']}: {w.message}" for w in caught
                 if issubclass(w.category, UserWarning)]
-    for w in recorded:
-        print(f"warning: run {params['run']}: {w}")
     record = kw = None
     if "flap" in inputs:
         raw = read_dataset(inputs["flap"])
