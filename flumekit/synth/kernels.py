@@ -112,3 +112,42 @@ def flume_torque(j, th, om, p, st, rec):
     ma = m * p[_AREA]
     r[4], r[5], r[6], r[7], r[8], r[9] = p_v, ma * p_v, p_c, ma * p_c, p_k, ma * p_k
     return t_d + t_w + t_o + t_b + ma * p_v + ma * p_c + ma * p_k
+
+
+@njit(cache=True)
+def wave_sums(amps, vel, ch, sh, env, cos_t, sin_t, eta, u, w):
+    """Sum the harmonics of one wave at every (time, position) of a 2-D grid, in place.
+
+    η = Σ_n a_n Re pⁿ, u = Σ_n V_n C_n Re pⁿ, w = Σ_n V_n S_n Im pⁿ with p = e (cos θ + i sin θ)
+    (:func:`flumekit.synth.uvp.wave_kinematics`): the powers by repeated multiplication, one
+    point at a time (no array per harmonic).
+
+    Parameters
+    ----------
+    amps, vel : ndarray
+        a_n [m] and V_n [m s-1], n = 1..N.
+    ch, sh : ndarray
+        C_n and S_n [-], shape (1 or T, P, N): the depth functions at each position.
+    env, cos_t, sin_t : ndarray
+        Envelope e [-] and cos θ, sin θ, shape (T, P).
+    eta, u, w : ndarray
+        Outputs [m], [m s-1], shape (T, P).
+    """
+    nt, npos = env.shape
+    nh = amps.size
+    by_time = ch.shape[0] > 1
+    for i in range(nt):
+        iz = i if by_time else 0
+        for j in range(npos):
+            e = env[i, j]
+            p1 = complex(e * cos_t[i, j], e * sin_t[i, j])
+            pn = p1
+            ev = amps[0] * pn.real
+            uv = (vel[0] * ch[iz, j, 0]) * pn.real
+            wv = (vel[0] * sh[iz, j, 0]) * pn.imag
+            for n in range(1, nh):
+                pn = pn * p1
+                ev += amps[n] * pn.real
+                uv += (vel[n] * ch[iz, j, n]) * pn.real
+                wv += (vel[n] * sh[iz, j, n]) * pn.imag
+            eta[i, j], u[i, j], w[i, j] = ev, uv, wv

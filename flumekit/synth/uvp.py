@@ -71,21 +71,33 @@ def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
     """Sum η, u, w of one wave along its direction of travel.
 
     Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ, V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so
-    that harmonic n carries eⁿ; the powers by repeated multiplication in place (no
-    transcendental function per harmonic).
+    that harmonic n carries eⁿ; the powers by repeated multiplication (no transcendental
+    function per harmonic), compiled (:func:`flumekit.synth.kernels.wave_sums`) on a 2-D grid
+    of time and position. η has the shape of the phase's arrays, u and w that of everything
+    broadcast with z_b.
     """
-    ch, sh = _depth_functions(k, amps.size, depth, zb)
-    p1 = np.asarray(env * cos_t + 1j * (env * sin_t))
-    pn = p1.copy()
-    eta = amps[0] * pn.real
-    u = (vel[0] * ch[..., 0]) * pn.real
-    w = (vel[0] * sh[..., 0]) * pn.imag
-    for n in range(1, amps.size):  # the harmonics kept (about ten)
-        pn *= p1
-        eta += amps[n] * pn.real
-        u += (vel[n] * ch[..., n]) * pn.real
-        w += (vel[n] * sh[..., n]) * pn.imag
-    return eta, u, w
+    from flumekit.synth.kernels import wave_sums
+
+    nh = amps.size
+    ch, sh = _depth_functions(k, nh, depth, zb)
+    b = np.broadcast_shapes(np.shape(env), np.shape(cos_t), np.shape(sin_t), np.shape(zb))
+    grid = b if len(b) >= 2 else (1,) * (2 - len(b)) + b
+    cols = grid[-1]
+    zs = (1,) * (len(grid) - np.ndim(zb)) + np.shape(zb)
+    if all(d == 1 for d in zs[:-1]):  # the depth functions vary along the last axis at most
+        ch, sh = (np.broadcast_to(a.reshape(-1, nh), (cols, nh))[None] for a in (ch, sh))
+    else:
+        ch, sh = (np.broadcast_to(a, grid + (nh,)).reshape(-1, cols, nh) for a in (ch, sh))
+    pshape = np.broadcast_shapes(np.shape(env), np.shape(cos_t), np.shape(sin_t))
+    env2, cos2, sin2 = (np.ascontiguousarray(np.broadcast_to(a, grid), dtype=float).reshape(
+        -1, cols) for a in (env, cos_t, sin_t))
+    eta, u, w = (np.empty(env2.shape) for _ in range(3))
+    wave_sums(np.asarray(amps, float), np.asarray(vel, float), ch, sh, env2, cos2, sin2, eta,
+              u, w)
+    # η depends on the wave's phase only, not on the elevation above the bed
+    pad = (1,) * (len(b) - len(pshape)) + pshape
+    eta = eta.reshape(b)[tuple(slice(0, 1) if p < n else slice(None) for p, n in zip(pad, b))]
+    return eta.reshape(pshape), u.reshape(b), w.reshape(b)
 
 
 def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
