@@ -195,6 +195,13 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
     n1 = last - first
     hh, h6 = 0.5 * h, h / 6.0
     xt = 0.0
+
+    def stage(t, th, om, torque, s0, s1):
+        # θ̈ at a later stage: ``torque`` is the excitation (and extra torque) minus the
+        # memory torque there; the restoring and drag torques of θ, θ̇ are subtracted here
+        return accel(t, th, om, torque - (cc * math.sin(th) if sine else cc * th)
+                     - cd * om * abs(om), s0, s1, pto_params)[0]
+
     for n in range(first, last):
         k = n - first
         t = n * h
@@ -215,25 +222,17 @@ def steps(first, last, exc, state, body, final, begin, finish, mem_c, mem_r, acc
         # stages 2 and 3 at t + h/2, 4 at t + h
         om2 = om + hh * a1
         th2 = th + hh * om
-        a2 = accel(t + hh, th2, om2, te_h - (p_half + w21 * om + w22 * om2)
-                   - (cc * math.sin(th2) if sine else cc * th2) - cd * om2 * abs(om2), zm, hm,
-                   pto_params)[0]
-        if not math.isfinite(a2):
-            return 1, n, th2
+        a2 = stage(t + hh, th2, om2, te_h - (p_half + w21 * om + w22 * om2), zm, hm)
         om3 = om + hh * a2
         th3 = th + hh * om2
-        a3 = accel(t + hh, th3, om3, te_h - (p_half + w32 * om2 + w33 * om3)
-                   - (cc * math.sin(th3) if sine else cc * th3) - cd * om3 * abs(om3), zm, hm,
-                   pto_params)[0]
-        if not math.isfinite(a3):
-            return 1, n, th3
+        a3 = stage(t + hh, th3, om3, te_h - (p_half + w32 * om2 + w33 * om3), zm, hm)
         om4 = om + h * a3
         th4 = th + h * om3
-        a4 = accel(t + h, th4, om4, te_f - (p_full + w41 * om + w43 * om3 + w44 * om4)
-                   - (cc * math.sin(th4) if sine else cc * th4) - cd * om4 * abs(om4), ze, he,
-                   pto_params)[0]
-        if not math.isfinite(a4):
-            return 1, n, th4
+        a4 = stage(t + h, th4, om4, te_f - (p_full + w41 * om + w43 * om3 + w44 * om4), ze, he)
+        if not (math.isfinite(a2) and math.isfinite(a3) and math.isfinite(a4)):
+            # the first stage that failed names its angle (a NaN carries to the later ones)
+            return 1, n, th2 if not math.isfinite(a2) else (th3 if not math.isfinite(a3)
+                                                            else th4)
         finish(om, om2, om3, om4, mem_c, mem_r)
         th_new = th + h6 * (om + 2.0 * (om2 + om3) + om4)
         om_new = om + h6 * (a1 + 2.0 * (a2 + a3) + a4)
