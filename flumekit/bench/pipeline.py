@@ -106,6 +106,68 @@ def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
         len(graph.rules)
 
 
+def loading(files, work: Path, copies: int = 41, repeat: int = 3) -> list[tuple[str, float, str]]:
+    """Rows of the table: opening a stage's runs with :func:`flumekit.open_processed` against
+    xarray's concatenation of the files, in the same process.
+
+    ``files`` (a built campaign's flap files, as the flap stage writes them) are repeated
+    under distinct run names up to ``copies`` files in ``work``; each is also written as the
+    flap stage wrote them before it stored its records uncompressed (zlib level 1 with
+    shuffle), the files that xarray's concatenation is timed on as the baseline. Each way is
+    timed ``repeat`` times in turn (best kept), so that a load that comes and goes on the
+    machine weighs on each alike; the results are checked equal.
+    """
+    import statistics
+
+    import xarray as xr
+
+    from flumekit.io.netcdf import read_dataset, write_dataset
+    from flumekit.io.processed import open_processed
+
+    files = sorted(Path(f) for f in files)
+    now, before = work / "now", work / "before"
+    now.mkdir(parents=True)
+    before.mkdir(parents=True)
+    for k in range(copies):
+        f = files[k % len(files)]
+        name = f"{f.stem}_copy{k // len(files)}.nc"
+        shutil.copyfile(f, now / name)
+        write_dataset(read_dataset(f), before / name, compress=True)
+
+    def concat(folder):
+        runs = [read_dataset(f) for f in sorted(folder.glob("*.nc"))]
+        return xr.concat(runs, dim="run", join="outer", combine_attrs="drop_conflicts",
+                         coords="different", compat="equals")
+
+    ways = {"xarray, files as written before": lambda: concat(before),
+            "open_processed, files as written before": lambda: open_processed(before),
+            "xarray, files as written now": lambda: concat(now),
+            "open_processed, files as written now": lambda: open_processed(now)}
+    times: dict[str, list[float]] = {k: [] for k in ways}
+    results = {}
+    for _ in range(repeat):
+        for name, fn in ways.items():
+            results.pop(name, None)  # the last result freed before the next is made
+            t0 = time.perf_counter()
+            results[name] = fn()
+            times[name].append(time.perf_counter() - t0)
+        ref = results["xarray, files as written before"]
+        for ds in results.values():
+            xr.testing.assert_identical(ds.drop_attrs(deep=False), ref.drop_attrs(deep=False))
+        results.clear()
+    size = {k: sum(f.stat().st_size for f in d.glob("*.nc")) / 1e6
+            for k, d in (("before", before), ("now", now))}
+    base = min(times["xarray, files as written before"])
+    rows = []
+    for name, ts in times.items():
+        which = "before" if "before" in name else "now"
+        rows.append((f"{name} ({copies} flap files)", min(ts),
+                     f"{base / min(ts):.1f} x faster than xarray on the files as written "
+                     f"before; median {statistics.median(ts):.2f} s; "
+                     f"{size[which]:.0f} MB of files"))
+    return rows
+
+
 def run(quick: bool = False) -> str:
     from flumekit.synth.campaign import write_campaign
 
@@ -131,6 +193,10 @@ def run(quick: bool = False) -> str:
             rows.append(("make again (no-op)", *_make(project)))
             rows.append(("make -F -j 2 (processes)", *_make(project, "-F", "-j", "2")))
             rows.append(("make -n (dry run)", *_make(project, "-n")))
+            # the small campaign's flap files, repeated under other run names up to the
+            # default campaign's 41 (its own records are 218-413 s long, these 218-364 s)
+            rows += loading(sorted((project / "processed/small/flap").glob("*.nc")),
+                            project / "loading")
     width = max(len(r[0]) for r in rows)
     lines = [f"{'step':<{width}}  {'wall [s]':>8}  result", "-" * (width + 40)]
     lines += [f"{name:<{width}}  {sec:8.2f}  {msg}" for name, sec, msg in rows]

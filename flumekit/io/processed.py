@@ -96,7 +96,7 @@ def _metadata(nc) -> tuple[dict, dict, set]:
 
 
 def _values(var, fill):
-    """The values of a netCDF4 variable as xarray decodes what flumekit writes.
+    """Read a netCDF4 variable's values as xarray decodes what flumekit writes.
 
     Floats are NaN where a non-NaN ``_FillValue`` stands; variable-length strings become a
     numpy string array; times stay seconds, as :func:`read_dataset` keeps them.
@@ -147,8 +147,9 @@ def stack_files(files) -> xr.Dataset:
     variable is read straight into its place in one preallocated array (a slice wherever a
     run's coordinate values are contiguous in the union, as records sampled on one clock
     are), NaN where a run has no value (integers padded so become floats, as xarray promotes
-    them), and attributes kept where every run agrees. A 1-D coordinate that is equal in
-    every run is not stacked (``x`` of the probes); a scalar one is (``wave_period``).
+    them: 32-bit for 8- and 16-bit integers), and attributes kept where every run agrees. A
+    1-D coordinate that is equal in every run is not stacked (``x`` of the probes); a scalar
+    one is (``wave_period``).
 
     Parameters
     ----------
@@ -172,8 +173,10 @@ def stack_files(files) -> xr.Dataset:
 
 
 def _placement(values, union):
-    """Where a run's dimension coordinate ``values`` sit in the sorted ``union``: a slice
-    when they are one contiguous stretch of it, else their indices."""
+    """Locate a run's dimension coordinate ``values`` in the sorted ``union``.
+
+    A slice when they are one contiguous stretch of it, else their indices.
+    """
     import numpy as np
 
     at = np.searchsorted(union, values)
@@ -235,8 +238,10 @@ def _stack(ncs, metas) -> xr.Dataset:
             dtype = read[have[0]].dtype
         else:
             dtype = np.dtype(var0.dtype)
-        if padded and dtype.kind in "iub":
-            dtype = np.dtype(float)
+        if padded and dtype.kind in "iu":  # as xarray promotes them to hold NaN
+            dtype = np.dtype(np.float32 if dtype.itemsize <= 2 else float)
+        elif padded and dtype.kind == "b":
+            dtype = np.dtype(object)
         if dtype.kind == "U":
             if padded:
                 dtype = np.dtype(object)
