@@ -74,8 +74,9 @@ def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
     (pipe.raw / "campaign.toml").write_text(campaign_toml("paper"))
     for r in virtual.runs:
         r.path.mkdir(parents=True)
+        sea = None if r.sea_state is None else dict(r.sea_state.__dict__)  # irregular runs
         (r.path / "run.toml").write_text(run_toml(r.kind, r.period, r.height, r.repeat,
-                                                  r.uvp_elevation, r.probe_x))
+                                                  r.uvp_elevation, r.probe_x, sea=sea))
     from flumekit.campaign import load_campaign
 
     graph = Graph(build_rules(Context(load_campaign(pipe.raw), pipe.processed, pipe.stages,
