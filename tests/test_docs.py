@@ -117,7 +117,11 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
 
 @pytest.mark.parametrize("module", ["flumekit.waves.records", "flumekit.waves.separation",
                                     "flumekit.waves.calibration", "flumekit.waves.spectra",
-                                    "flumekit.waves.statistics"])
+                                    "flumekit.waves.statistics",
+                                    "flumekit.io.atomic", "flumekit.io.netcdf",
+                                    "flumekit.io.instruments", "flumekit.io.mfprof",
+                                    "flumekit.io.tables", "flumekit.io.dialects",
+                                    "flumekit.io.processed"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

@@ -403,7 +403,8 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
     if jt is not None:
         # a time column of numbers (the usual case) is parsed by pandas' C parser with the
         # others; the text path (datetimes, and the messages naming a bad time cell) only
-        # when that fails. Parsing it as text and converting cost 5x the whole numeric read
+        # when that fails: parsing a column as text and converting it costs several times
+        # the whole numeric read
         try:
             t = read_text(path, **kw)
         except InputError:

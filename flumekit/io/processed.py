@@ -13,7 +13,7 @@ __all__ = ["open_processed", "processed_names", "stack_files"]
 
 
 def processed_names(processed: str | Path) -> list[str]:
-    """Names :func:`open_processed` accepts for a processed campaign folder.
+    """List the names :func:`open_processed` accepts for a processed campaign folder.
 
     Parameters
     ----------
@@ -160,6 +160,20 @@ def stack_files(files) -> xr.Dataset:
     -------
     xarray.Dataset
         Loaded; the files are closed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     files = [Path(folder) / f"run{n}.nc" for n in (1, 2)]
+    ...     for n, f in zip((1, 2), files):
+    ...         run = xr.Dataset({"theta": ("time", np.ones(n))}, {"time": np.arange(n) / 100})
+    ...         run.to_netcdf(f)
+    ...     ds = stack_files(files)
+    >>> ds["theta"].values
+    array([[ 1., nan],
+           [ 1.,  1.]])
     """
     from contextlib import ExitStack
 
