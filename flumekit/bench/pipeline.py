@@ -107,16 +107,19 @@ def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
         len(graph.rules)
 
 
-def loading(files, work: Path, copies: int = 41, repeat: int = 3) -> list[tuple[str, float, str]]:
-    """Rows of the table: opening a stage's runs with :func:`flumekit.open_processed` against
-    xarray's concatenation of the files, in the same process.
+def loading(files, work: Path, copies: int = 41, repeat: int = 3,
+            what: str = "") -> list[tuple[str, float, str]]:
+    """Time opening a stage's runs with :func:`flumekit.open_processed` against xarray.
 
-    ``files`` (a built campaign's flap files, as the flap stage writes them) are repeated
-    under distinct run names up to ``copies`` files in ``work``; each is also written as the
+    The baseline is xarray's concatenation of the files (what ``open_processed`` did before
+    it read the runs itself), in the same process. ``files`` (a built campaign's flap files,
+    as the flap stage writes them) are repeated under distinct file names (the run labels
+    inside repeat too) up to ``copies`` files in ``work``; each is also written as the
     flap stage wrote them before it stored its records uncompressed (zlib level 1 with
     shuffle), the files that xarray's concatenation is timed on as the baseline. Each way is
     timed ``repeat`` times in turn (best kept), so that a load that comes and goes on the
-    machine weighs on each alike; the results are checked equal.
+    machine weighs on each alike; the results are checked equal. ``what`` is said of the
+    files in the table.
     """
     import statistics
 
@@ -166,12 +169,13 @@ def loading(files, work: Path, copies: int = 41, repeat: int = 3) -> list[tuple[
     size = {k: sum(f.stat().st_size for f in d.glob("*.nc")) / 1e6
             for k, d in (("before", before), ("now", now))}
     base = min(times["xarray, files as written before"])
-    rows = [(f"xr.open_mfdataset(...).load(), files as written before ({copies} flap files)",
+    rows = [(f"xr.open_mfdataset(...).load(), files as written before ({copies} flap "
+             f"files{what})",
              recipe, f"{base / recipe:.2f} x faster than xarray's concatenation; timed once; "
              f"{size['before']:.0f} MB of files")]
     for name, ts in times.items():
         which = "before" if "before" in name else "now"
-        rows.append((f"{name} ({copies} flap files)", min(ts),
+        rows.append((f"{name} ({copies} flap files{what})", min(ts),
                      f"{base / min(ts):.1f} x faster than xarray on the files as written "
                      f"before; median {statistics.median(ts):.2f} s; "
                      f"{size[which]:.0f} MB of files"))
@@ -205,8 +209,9 @@ def run(quick: bool = False) -> str:
             rows.append(("make -n (dry run)", *_make(project, "-n")))
             # the small campaign's flap files, repeated under other run names up to the
             # default campaign's 41 (its own records are 218-413 s long, these 218-364 s)
-            rows += loading(sorted((project / "processed/small/flap").glob("*.nc")),
-                            project / "loading")
+            flap = sorted((project / "processed/small/flap").glob("*.nc"))
+            rows += loading(flap, project / "loading",
+                            what=f": the small campaign's {len(flap)}, repeated")
     width = max(len(r[0]) for r in rows)
     lines = [f"{'step':<{width}}  {'wall [s]':>8}  result", "-" * (width + 40)]
     lines += [f"{name:<{width}}  {sec:8.2f}  {msg}" for name, sec, msg in rows]
