@@ -156,7 +156,11 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.synth.flume", "flumekit.synth.irregular",
                                     "flumekit.synth.uvp", "flumekit.synth.waves",
                                     "flumekit.hydro.simulation", "flumekit.flap.simulator",
-                                    "flumekit.figures.registry"])
+                                    "flumekit.figures.registry",
+                                    "flumekit.io.atomic", "flumekit.io.netcdf",
+                                    "flumekit.io.instruments", "flumekit.io.mfprof",
+                                    "flumekit.io.tables", "flumekit.io.dialects",
+                                    "flumekit.io.processed"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
     assert result.attempted > 0 and result.failed == 0

@@ -516,6 +516,24 @@ def test_readme_recipe_keeps_every_run_and_its_coordinates(built_once, stage):
                     f, c, got, one[c].values)
 
 
+def test_flap_records_are_stored_as_they_are(built_once):
+    """The flap stage's records, which open_processed reads in full for every run, are stored
+    contiguous and not deflated: its float records deflate by a third only, and inflating them
+    was most of the cost of opening the stage's runs."""
+    import netCDF4
+
+    files = sorted((built_once / "processed/small/flap").glob("*.nc"))
+    assert files
+    for f in files:
+        with netCDF4.Dataset(f) as nc:
+            records = [v for v in nc.variables.values() if v.dimensions == ("time",)]
+            assert len(records) > 20
+            for var in records:
+                assert var.chunking() == "contiguous", (f.name, var.name)
+                assert not any(var.filters()[k] for k in ("zlib", "shuffle", "zstd")), (
+                    f.name, var.name)
+
+
 # --- CF (issue 12, point 7) ---------------------------------------------------------------------
 
 def _cf_errors(paths) -> dict[str, list[str]]:

@@ -17,6 +17,7 @@ _LAZY = {
     "read_mfprof": "mfprof", "write_mfprof": "mfprof",
     "read_dataset": "netcdf", "write_dataset": "netcdf",
     "open_processed": "processed", "processed_names": "processed",
+    "stack_files": "processed", "write_product": "netcdf",
 }
 
 __all__ = sorted(_LAZY)

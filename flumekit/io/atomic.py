@@ -43,12 +43,27 @@ class Written:
     digest: str
 
     def __fspath__(self) -> str:
+        """Return the path written, so that the object opens as a path."""
         return os.fspath(self.path)
 
 
 def umask() -> int:
-    """The process umask, read without changing it (``os.umask`` sets it, which races with
-    threads writing files meanwhile)."""
+    """Return the process umask, read without changing it.
+
+    ``os.umask`` can only read the mask by setting it, which races with threads writing
+    files meanwhile; ``/proc/self/status`` says it without touching it (Linux), else the
+    mask is read by setting and restoring it.
+
+    Returns
+    -------
+    int
+        The file mode creation mask (e.g. ``0o022``).
+
+    Examples
+    --------
+    >>> 0 <= umask() <= 0o777
+    True
+    """
     try:
         with open("/proc/self/status") as f:
             for line in f:
@@ -70,6 +85,25 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     left as it was: a failed write never leaves a partial output. The file gets the mode a plain
     ``open`` would give it (0666 minus the umask), not ``mkstemp``'s private 0600, which would
     otherwise survive the rename and hide shared outputs from colleagues.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write; its folder is created if missing.
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary file to write to (it exists, empty).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     with atomic_path(Path(folder) / "a.txt") as tmp:
+    ...         _ = tmp.write_text("done")
+    ...     print((Path(folder) / "a.txt").read_text())
+    done
     """
     import tempfile  # here: a no-op make writes nothing and need not import it
 
@@ -93,8 +127,11 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
 
 def remove_active() -> None:
-    """Remove the temporaries this process is writing (called by a process about to die of a
-    signal, which will not unwind through :func:`atomic_path`)."""
+    """Remove the temporaries this process is writing.
+
+    Called by a process about to die of a signal, which will not unwind through
+    :func:`atomic_path`.
+    """
     for tmp in list(_ACTIVE):
         try:
             os.unlink(tmp)
@@ -103,9 +140,20 @@ def remove_active() -> None:
 
 
 def remove_orphans(folder: Path) -> list[Path]:
-    """Remove the temporary files of :func:`atomic_path` that a killed process left in
-    ``folder`` (recursively). Call it only while no other writer can be active there (under the
-    build lock)."""
+    """Remove the temporary files of :func:`atomic_path` that a killed process left behind.
+
+    Call it only while no other writer can be active there (under the build lock).
+
+    Parameters
+    ----------
+    folder : pathlib.Path
+        Searched recursively; a missing folder has none.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files removed.
+    """
     if not folder.is_dir():
         return []
     gone = [p for p in folder.rglob(f".*{TMP_MARK}.*") if p.is_file()]

@@ -22,7 +22,17 @@ from flumekit.units import UNITS
 
 @dataclass(frozen=True)
 class Dialect:
-    """How an instrument file is written. Defaults: the raw campaign's own CSV format."""
+    """How an instrument file is written. Defaults: the raw campaign's own CSV format.
+
+    The keys of ``[files.<instrument>]`` in campaign.toml (raw/README.md); each field's
+    comment says what it holds.
+
+    Examples
+    --------
+    >>> d = Dialect.from_dict({"delimiter": ";", "decimal": ",", "units": {"pressure": "kPa"}})
+    >>> d.delimiter, d.unit("pressure"), d.unit("encoder"), d.column("encoder", 0)
+    (';', 'kPa', None, 'encoder')
+    """
 
     format: str = "csv"  # csv | tdms | hdf5 | netcdf
     delimiter: str = ","  # csv: one character, or "whitespace"
@@ -40,14 +50,17 @@ class Dialect:
 
     @classmethod
     def from_dict(cls, d: dict | None) -> Dialect:
+        """Make a dialect from a campaign's table; keys that are no field are ignored."""
         names = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in (d or {}).items() if k in names})
 
     @property
     def declares_columns(self) -> bool:
+        """Whether the dialect maps channels to columns."""
         return self.columns is not None
 
     def column(self, channel: str, index: int) -> str | int:
+        """Return the column (name or 1-based number) of the ``index``-th channel ``channel``."""
         if isinstance(self.columns, dict):
             return self.columns.get(channel, channel)
         if isinstance(self.columns, list):
@@ -55,6 +68,7 @@ class Dialect:
         return channel
 
     def unit(self, channel: str) -> str | None:
+        """Return the unit the dialect declares for ``channel``, or None."""
         if isinstance(self.units, str):
             return None if channel == "time" else self.units
         if isinstance(self.units, dict):
@@ -96,11 +110,47 @@ START_ATTRIBUTES = ("record_start", "time_coverage_start", "start_time")
 
 def read_channels(path: str | Path, dialect: Dialect, channels: list[Channel],
                   strict: str = "") -> Record:
-    """Read ``channels`` from ``path`` as ``dialect`` says; convert to SI, check units.
+    r"""Read ``channels`` from ``path`` as ``dialect`` says; convert to SI, check units.
 
-    ``strict`` (an instrument name, for the message): when the dialect does not map columns to
-    channels, a text file's columns must be exactly the channels and time (the raw campaign's
-    own format names every column; another is a typo or a wrong file).
+    A file whose first bytes prove another format than the declared one is an error naming
+    the real format (a CSV declaration pointing at an HDF5 file).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The instrument file.
+    dialect : Dialect
+        How it is written.
+    channels : list of Channel
+        The channels to read, in order.
+    strict : str, optional
+        An instrument name, for the message: when the dialect does not map columns to
+        channels, a text file's columns must be exactly the channels and time (the raw
+        campaign's own format names every column; another is a typo or a wrong file).
+
+    Returns
+    -------
+    Record
+        The channels' values in SI units (channel, sample), the time [s] (None when the
+        dialect takes it from the sampling rate), the units recorded, and the record's start
+        where the file gives it.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the file (and line, column or channel) for a missing or unreadable file,
+        another format than declared, a missing column, a unit that is unknown or of the
+        wrong quantity, a non-finite value or channels of different lengths.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "flap.csv"
+    ...     _ = f.write_text("time [s],pressure [kPa]\n0.0,1.5\n0.01,2.0\n")
+    ...     rec = read_channels(f, Dialect(), [Channel("pressure", "pressure")])
+    >>> rec.values, rec.units, rec.time
+    (array([[1500., 2000.]]), ('kPa',), array([0.  , 0.01]))
     """
     path = Path(path)
     if not path.exists():
@@ -148,7 +198,19 @@ FOREIGN = ((b"PK\x03\x04", "a ZIP archive (an Excel .xlsx workbook?)"),
 
 
 def sniff_format(path: Path) -> str | None:
-    """The format a file's first bytes prove (:data:`SIGNATURES`), or None."""
+    """Return the format a file's first bytes prove (:data:`SIGNATURES`), or None.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+
+    Returns
+    -------
+    str or None
+        ``"hdf5"`` (also netCDF-4), ``"tdms"`` or ``"netcdf"`` (classic); None for text and
+        anything else.
+    """
     with open(path, "rb") as f:
         head = f.read(8)
     for sig, fmt in SIGNATURES:
@@ -159,7 +221,7 @@ def sniff_format(path: Path) -> str | None:
 
 def _si(path: Path, ch: Channel, label: str, declared: str | None, found: str | None,
         line: int | None = None) -> tuple[str, float]:
-    """The unit of a channel (declared > found in the file > the channel's default), checked."""
+    """Return a channel's unit (declared > found in the file > the channel's default), checked."""
     if declared and found and declared != found:
         raise InputError(path, f"column '{label}' is declared in [{declared}] but the file says "
                          f"[{found}]", line=line, field=ch.name)
@@ -179,8 +241,25 @@ def _si(path: Path, ch: Channel, label: str, declared: str | None, found: str | 
 
 
 def iso_instant(t, utc: bool) -> str:
-    """ISO 8601 of an instant (numpy datetime64), to the nanosecond it holds (trailing zeros of
-    the fraction dropped), with ``Z`` when it is in UTC."""
+    """Format an instant as ISO 8601, to the nanosecond it holds.
+
+    Parameters
+    ----------
+    t : numpy.datetime64 or str
+        The instant.
+    utc : bool
+        Whether it is in UTC (then the text ends in ``Z``).
+
+    Returns
+    -------
+    str
+        ISO 8601, trailing zeros of the fraction dropped.
+
+    Examples
+    --------
+    >>> iso_instant(np.datetime64("2024-03-05T10:12:01.500"), True)
+    '2024-03-05T10:12:01.5Z'
+    """
     s = np.datetime_as_string(np.datetime64(t, "ns"), unit="ns")
     return s.rstrip("0").rstrip(".") + ("Z" if utc else "")
 
@@ -209,10 +288,11 @@ _OFFSET = re.compile(r"\d[T ]\d{2}:\d{2}(?::\d{2}(?:\.\d*)?)?\s*(?:Z|[+-]\d{2}:?
 def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
              first_line: int | None = None, header_line: int | None = None,
              utc: bool = True, timezone: str = "", line_of=None) -> tuple[np.ndarray, str | None]:
-    """Time in seconds, and the record's start (the instant of time 0, ISO 8601) when the
-    column gives it: datetimes count from the first (which is the start; ``utc`` says whether
-    datetime64 values are UTC), numbers in ``unit`` or in CF units ``<unit> since <instant>``
-    (then the start is that instant).
+    """Convert a time column to seconds, with the record's start when the column gives it.
+
+    The start is the instant of time 0 (ISO 8601). Datetimes count from the first (which is
+    the start; ``utc`` says whether datetime64 values are UTC), numbers are in ``unit`` or in
+    CF units ``<unit> since <instant>`` (then the start is that instant).
 
     Text stamps with a UTC offset (ISO 8601, ``2024-03-31T01:59:59.96+01:00``) are read in
     UTC, whatever offsets they mix (a daylight-saving change); stamps without one are the
@@ -271,9 +351,11 @@ def _seconds(path: Path, values: np.ndarray, label: str, unit: str | None,
 
 
 def _localise(path: Path, dt, label: str, timezone: str, s, line_of):
-    """Naive local stamps in the IANA zone ``timezone``, in UTC: an hour repeated when the
-    clocks go back is told apart by the stamps' order; a stamp in the hour skipped when they go
-    forward is an error naming its line."""
+    """Put naive local stamps in the IANA zone ``timezone`` on UTC.
+
+    An hour repeated when the clocks go back is told apart by the stamps' order; a stamp in
+    the hour skipped when they go forward is an error naming its line.
+    """
     import zoneinfo
 
     try:
@@ -321,7 +403,8 @@ def _read_csv(path: Path, d: Dialect, channels: list[Channel]) -> Record:
     if jt is not None:
         # a time column of numbers (the usual case) is parsed by pandas' C parser with the
         # others; the text path (datetimes, and the messages naming a bad time cell) only
-        # when that fails. Parsing it as text and converting cost 5x the whole numeric read
+        # when that fails: parsing a column as text and converting it costs several times
+        # the whole numeric read
         try:
             t = read_text(path, **kw)
         except InputError:
@@ -373,10 +456,14 @@ def _split_spec(spec: str | int, group: str) -> tuple[str, str]:
 
 
 def _read_tdms(path: Path, d: Dialect, channels: list[Channel]) -> Record:
-    """LabVIEW TDMS. A waveform channel's own timing (``wf_increment`` [s], ``wf_start_time``
-    in UTC) is trusted and checked: the channels read must agree on both, the caller checks the
-    increment against the declared rate (:attr:`Record.step`), and where the dialect leaves the
-    time at its default and the group has no ``time`` channel, the increment gives the time."""
+    """Read channels of a LabVIEW TDMS file.
+
+    A waveform channel's own timing (``wf_increment`` [s], ``wf_start_time`` in UTC) is
+    trusted and checked: the channels read must agree on both, the caller checks the
+    increment against the declared rate (:attr:`Record.step`), and where the dialect leaves
+    the time at its default and the group has no ``time`` channel, the increment gives the
+    time.
+    """
     import dataclasses
 
     from nptdms import TdmsFile
@@ -485,8 +572,10 @@ def _read_netcdf(path: Path, d: Dialect, channels: list[Channel]) -> Record:
 
 
 def _start_attribute(path: Path, attrs: dict) -> np.datetime64 | None:
-    """The start a file or group attribute gives (:data:`START_ATTRIBUTES`), in UTC (a time
-    without a zone is taken as UTC, as CF and ACDD say)."""
+    """Return the start a file or group attribute gives (:data:`START_ATTRIBUTES`), in UTC.
+
+    A time without a zone is taken as UTC, as CF and ACDD say.
+    """
     for name in START_ATTRIBUTES:
         v = attrs.get(name)
         if v is not None:
@@ -496,9 +585,12 @@ def _start_attribute(path: Path, attrs: dict) -> np.datetime64 | None:
 
 
 def _samples(path: Path, label: str, data, ch: Channel, unit: str) -> np.ndarray:
-    """A binary file's channel as float64 samples, its shape and dtype checked: one dimension
-    ((n, 1) and (1, n) are squeezed), numbers; integers only for a channel in counts (a voltage
-    written as integers is a logger's raw ADC counts, which no declared unit converts)."""
+    """Return a binary file's channel as float64 samples, its shape and dtype checked.
+
+    One dimension ((n, 1) and (1, n) are squeezed), numbers; integers only for a channel in
+    counts (a voltage written as integers is a logger's raw ADC counts, which no declared unit
+    converts).
+    """
     data = np.asarray(data)
     expected = (f"expected one dataset per channel of shape (n,) holding {ch.quantity}s "
                 f"[{unit}] as " + ("integers or floats" if ch.quantity == "count"
@@ -528,9 +620,12 @@ def _samples(path: Path, label: str, data, ch: Channel, unit: str) -> np.ndarray
 
 
 def _binary(path: Path, d: Dialect, channels: list[Channel], get, first_sample=None) -> Record:
-    """Channels through ``get(spec) -> (label, data, unit)``; ``first_sample(labels)`` gives the
-    instant of the first sample that the file records beside the channels (datetime64, in
-    UTC: TDMS ``wf_start_time``, an HDF5 or netCDF start attribute) or None."""
+    """Read channels through ``get(spec) -> (label, data, unit)``.
+
+    ``first_sample(labels)`` gives the instant of the first sample that the file records
+    beside the channels (datetime64, in UTC: TDMS ``wf_start_time``, an HDF5 or netCDF start
+    attribute) or None.
+    """
     values, units, labels = [], [], []
     for i, c in enumerate(channels):
         label, data, found = get(d.column(c.name, i))

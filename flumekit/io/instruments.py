@@ -69,8 +69,11 @@ def _time(path: Path, rec: Record, sampling_rate: float, time_offset: float) -> 
 
 def _dataset(data_vars: dict, coords: dict, path: Path, rec: Record, sampling_rate: float,
              time_offset: float) -> xr.Dataset:
-    """The instrument's dataset, CF-annotated; the record's start, where the file gives it, on
-    the time coordinate (``record_start``: the instant of time 0 before the clock offset)."""
+    """Build the instrument's dataset, CF-annotated.
+
+    The record's start, where the file gives it, goes on the time coordinate
+    (``record_start``: the instant of time 0 before the clock offset).
+    """
     ds = conventions.annotate(xr.Dataset(data_vars, coords=coords,
                                          attrs=_attrs(path, rec, sampling_rate, time_offset)))
     if rec.start is not None:
@@ -87,7 +90,42 @@ def _attrs(path: Path, rec: Record, sampling_rate: float, time_offset: float) ->
 
 def read_calibration(path: str | Path, probes: tuple[str, ...],
                      dialect: Dialect | dict | None = None) -> xr.Dataset:
-    """Static calibration: voltage of each probe at known water levels (relative to still water)."""
+    r"""Read a static calibration: each probe's voltage at known water levels.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The calibration file (``calibration/probes.csv`` of a raw campaign): ``level [m]``,
+        the still-water level of each static submersion relative to the test's still-water
+        level, then one voltage column per probe.
+    probes : tuple of str
+        Probe names, in the campaign's order.
+    dialect : Dialect or dict, optional
+        How the file is written (default: the raw campaign's CSV); a calibration file has no
+        time column.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``calibration_voltage`` [V], dims (sample, probe), with the coordinate ``level`` [m]
+        along ``sample``.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When the file is missing or unreadable, a unit is not a voltage (a length for
+        ``level``), or fewer than two distinct levels were recorded.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "probes.csv"
+    ...     _ = f.write_text("level [m],WP1 [V]\n-0.05,0.5\n0.0,1.0\n0.05,1.5\n")
+    ...     cal = read_calibration(f, ("WP1",))
+    >>> cal["calibration_voltage"].values.ravel(), cal["level"].values
+    (array([0.5, 1. , 1.5]), array([-0.05,  0.  ,  0.05]))
+    """
     path = Path(path)
     d = _dialect(dialect)
     if d.time == "time":  # a calibration file has no time column
@@ -107,19 +145,49 @@ def read_calibration(path: str | Path, probes: tuple[str, ...],
 def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
                 dialect: Dialect | dict | None = None, *, units: str = "V",
                 time_offset: float = 0.0) -> xr.Dataset:
-    """Wave probe records, dims (probe, time).
+    r"""Read a run's wave probe records.
 
     Parameters
     ----------
-    path : The run's probe file.
-    probes : Probe names, in the campaign's order.
-    sampling_rate : Declared sampling rate [Hz] (checked against a time column, or the time axis
-        when the dialect has none).
-    dialect : How the file is written (default: the raw campaign's CSV).
-    units : Unit of channels whose unit the file does not state: a voltage unit gives
-        ``probe_voltage`` [V] (to calibrate), a length unit ``probe_elevation`` [m] (calibrated,
-        still-water level not yet removed).
-    time_offset : Declared clock offset added to the time stamps [s].
+    path : str or pathlib.Path
+        The run's probe file.
+    probes : tuple of str
+        Probe names, in the campaign's order.
+    sampling_rate : float
+        Declared sampling rate [Hz]: checked against a time column (or a TDMS waveform's own
+        increment), or the time axis when the dialect has none.
+    dialect : Dialect or dict, optional
+        How the file is written (default: the raw campaign's CSV).
+    units : str, optional
+        Unit of channels whose unit the file does not state: a voltage unit gives
+        ``probe_voltage`` [V] (to calibrate), a length unit ``probe_elevation`` [m]
+        (calibrated, still-water level not yet removed).
+    time_offset : float, optional
+        Declared clock offset [s], added to the time stamps and recorded.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``probe_voltage`` [V] or ``probe_elevation`` [m], dims (probe, time), time [s] from
+        the record's start; the record's start instant, where the file gives it, in the time
+        coordinate's ``record_start``.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When the file is missing or unreadable, a column or unit is missing or wrong, the time
+        stamps are irregular or contradict ``sampling_rate``, or a value is not finite; the
+        message names the file, and the line or column where it can.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "probes.csv"
+    ...     _ = f.write_text("time [s],WP1 [V],WP2 [V]\n0.00,1.0,2.0\n0.01,1.5,2.5\n")
+    ...     ds = read_probes(f, ("WP1", "WP2"), sampling_rate=100.0)
+    >>> ds["probe_voltage"].dims, ds["probe_voltage"].values[1], ds["time"].values
+    (('probe', 'time'), array([2. , 2.5]), array([0.  , 0.01]))
     """
     path = Path(path)
     d = _dialect(dialect)
@@ -135,7 +203,40 @@ def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
 
 def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | None = None, *,
               time_offset: float = 0.0) -> xr.Dataset:
-    """Encoder counts and cylinder chamber gauge pressure [Pa], dim time."""
+    r"""Read a run's flap record: encoder counts and the cylinder chamber's gauge pressure.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The run's flap file (``time [s]``, ``encoder [counts]``, ``pressure [<unit>]`` in the
+        raw campaign's CSV).
+    sampling_rate : float
+        Declared sampling rate [Hz], checked as :func:`read_probes` checks it.
+    dialect : Dialect or dict, optional
+        How the file is written (default: the raw campaign's CSV).
+    time_offset : float, optional
+        Declared clock offset [s], added to the time stamps and recorded.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``encoder_counts`` (integers) and ``chamber_pressure`` [Pa], dim time [s].
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        As :func:`read_probes`, and when an encoder count is not a whole number.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "flap.csv"
+    ...     _ = f.write_text("time [s],encoder [counts],pressure [kPa]\n0.0,0,1.0\n0.01,3,1.2\n")
+    ...     ds = read_flap(f, sampling_rate=100.0)
+    >>> ds["encoder_counts"].values, ds["chamber_pressure"].values
+    (array([0, 3]), array([1000., 1200.]))
+    """
     path = Path(path)
     d = _dialect(dialect)
     rec = read_channels(path, d, CHANNELS["flap"], strict="flap")

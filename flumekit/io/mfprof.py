@@ -86,12 +86,38 @@ def _typed(text: str) -> int | float | str:
 
 
 def parse_parameters(block: bytes, encoding: str = "cp1252") -> dict[str, dict[str, object]]:
-    """Parse the INI-style parameter block into ``{section: {key: value}}`` (§4.1).
+    r"""Parse the INI-style parameter block into ``{section: {key: value}}`` (§4.1).
 
     A value ending with a backslash continues on the next line; the backslash stands for a line
     break inside the value. Numbers become ``int`` (unbounded) or ``float``; the free-text keys
     (``Comment``, ``MeasurementProtocol``) and the multiplexer ``Table`` stay text. Values are
     decoded one by one with ``encoding`` and ``errors="replace"``.
+
+    Parameters
+    ----------
+    block : bytes
+        The parameter block of a ``.mfprof`` file (from the header's ``param_offset`` on).
+    encoding : str, optional
+        Code page of the free-text values.
+
+    Returns
+    -------
+    dict
+        Section name -> {key -> int, float or str}; keys before any section under ``""``.
+
+    Raises
+    ------
+    ValueError
+        For a line that is neither a section, a ``key=value`` pair nor blank.
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``, §4.1.
+
+    Examples
+    --------
+    >>> parse_parameters(b"[UVP_PARAMETER]\nFrequency=4000000\nComment=two\\\nlines\n")
+    {'UVP_PARAMETER': {'Frequency': 4000000, 'Comment': 'two\nlines'}}
     """
     sections: dict[str, dict[str, object]] = {}
     current: dict[str, object] = sections.setdefault("", {})
@@ -150,7 +176,35 @@ def _format_value(value: object) -> str:
 
 def format_parameters(uvp: Mapping[str, object], mux: Mapping[str, object],
                       encoding: str = "cp1252") -> bytes:
-    """Write the parameter block: ``[UVP_PARAMETER]`` then ``[MUX_PARAMETER]`` (§4.1)."""
+    r"""Format the parameter block: ``[UVP_PARAMETER]`` then ``[MUX_PARAMETER]`` (§4.1).
+
+    The inverse of :func:`parse_parameters`: a line break inside a value is written as a
+    trailing backslash; integral floats are written as integers.
+
+    Parameters
+    ----------
+    uvp : mapping
+        The ``UVP_PARAMETER`` keys and values, in the order to write.
+    mux : mapping
+        The ``MUX_PARAMETER`` keys and values.
+    encoding : str, optional
+        Code page of the block (unencodable characters replaced).
+
+    Returns
+    -------
+    bytes
+        The block, ending with a line break.
+
+    Raises
+    ------
+    ValueError
+        For a value that is not finite.
+
+    Examples
+    --------
+    >>> format_parameters({"Frequency": 4e6}, {"NumberOfCycles": 1})
+    b'[UVP_PARAMETER]\nFrequency=4000000\n[MUX_PARAMETER]\nNumberOfCycles=1\n'
+    """
     out = []
     for section, values in (("UVP_PARAMETER", uvp), ("MUX_PARAMETER", mux)):
         out.append(f"[{section}]")
@@ -164,21 +218,57 @@ def format_parameters(uvp: Mapping[str, object], mux: Mapping[str, object],
 # --------------------------------------------------------------------------------------------
 
 def velocity_range(sound_speed: float, frequency: float, maximum_depth: float) -> float:
-    """Full velocity range V_range = c² / (4 f0 d_max) [m s-1] (FORMAT.md §5.1).
+    """Compute the full velocity range V_range = c² / (4 f0 d_max) of a pulsed Doppler profiler.
 
     Parameters
     ----------
-    sound_speed : Speed of sound c [m s-1].
-    frequency : Emitting frequency f0 [Hz].
-    maximum_depth : Maximum measurable depth d_max = c / (2 PRF) [m].
+    sound_speed : float
+        Speed of sound c [m s-1].
+    frequency : float
+        Emitting frequency f0 [Hz].
+    maximum_depth : float
+        Maximum measurable depth d_max = c / (2 PRF) [m].
+
+    Returns
+    -------
+    float
+        V_range [m s-1]: the raw Doppler range maps onto it.
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``, §5.1.
+
+    Examples
+    --------
+    >>> velocity_range(1480.0, 4e6, 0.5)
+    0.2738
     """
     return sound_speed**2 / (4.0 * frequency * maximum_depth)
 
 
 def velocity_resolution(params: Mapping[str, object]) -> float:
-    """ΔV = V_range / RawDataRange [m s-1 per count] from file parameters (FORMAT.md §5.1).
+    """Compute the velocity of one raw Doppler count, ΔV = V_range / RawDataRange.
 
-    ``RawDataRange`` defaults to the writer's template value (256) when absent.
+    Parameters
+    ----------
+    params : mapping
+        File parameters by their key names: ``SoundSpeed`` [m s-1], ``Frequency`` [Hz],
+        ``MaximumDepth`` [mm] and ``RawDataRange`` [counts] (default: the writer's template
+        value, 256).
+
+    Returns
+    -------
+    float
+        ΔV [m s-1 per count].
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``, §5.1.
+
+    Examples
+    --------
+    >>> velocity_resolution({"SoundSpeed": 1480.0, "Frequency": 4e6, "MaximumDepth": 500})
+    0.00106953125
     """
     return velocity_range(float(params["SoundSpeed"]), float(params["Frequency"]),
                           float(params["MaximumDepth"]) * 1e-3) / float(
@@ -186,7 +276,29 @@ def velocity_resolution(params: Mapping[str, object]) -> float:
 
 
 def channel_distance(params: Mapping[str, object], n_channels: int) -> np.ndarray:
-    """Distance of each channel from the transducer face [m] (FORMAT.md §6)."""
+    """Compute each channel's distance from the transducer face.
+
+    Parameters
+    ----------
+    params : mapping
+        File parameters: ``StartChannel`` and ``ChannelDistance`` [mm].
+    n_channels : int
+        Number of channels.
+
+    Returns
+    -------
+    numpy.ndarray
+        (StartChannel + k ChannelDistance) for k = 0 .. n_channels - 1, in [m].
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``, §6.
+
+    Examples
+    --------
+    >>> channel_distance({"StartChannel": 10.0, "ChannelDistance": 0.74}, 3)
+    array([0.01   , 0.01074, 0.01148])
+    """
     k = np.arange(n_channels)
     return (float(params["StartChannel"]) + k * float(params["ChannelDistance"])) * 1e-3
 
@@ -246,29 +358,58 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
 
     Parameters
     ----------
-    path : File to read.
-    positive : Meaning of a positive along-beam velocity, ``"away_from_transducer"`` (default,
-        the convention of Eqs. (4)-(6) in Brito et al. 2020) or ``"towards_transducer"``. It
-        only labels the data (FORMAT.md §5.4: the file does not say); numbers are not changed.
-    transducer : For multiplexed files (``UseMultiplexer=1``, FORMAT.md §7), the transducer
-        (socket) number whose records to return. Required for such files; ignored otherwise.
-    angle_correction : Divide by sin(``Angle``) as other readers do (§5.3). Off by default:
+    path : str or pathlib.Path
+        File to read.
+    positive : {"away_from_transducer", "towards_transducer"}, optional
+        Meaning of a positive along-beam velocity; the default is the convention of
+        Eqs. (4)-(6) in Brito et al. (2020). It only labels the data (FORMAT.md §5.4: the
+        file does not say); numbers are not changed.
+    transducer : int, optional
+        For multiplexed files (``UseMultiplexer=1``, FORMAT.md §7), the transducer (socket)
+        number whose records to return. Required for such files; ignored otherwise.
+    angle_correction : bool, optional
+        Divide by sin(``Angle``) as other readers do (§5.3). Off by default:
         ``beam_velocity`` is the velocity along the beam.
-    encoding : Code page of free-text parameters (``Comment``, ``MeasurementProtocol``).
+    encoding : str, optional
+        Code page of free-text parameters (``Comment``, ``MeasurementProtocol``).
 
     Returns
     -------
-    Dataset with dims ``(time, channel)``: ``beam_velocity`` [m s-1], ``amplitude`` [counts]
-    when stored; coordinates ``time`` [s] since the file's start time (only ``status == 0``
-    records), ``channel``, ``distance`` [m] from the transducer face and ``record`` (index of
-    the record in the file). Every file parameter is an attribute ``mfprof_<Key>``; derived
-    attributes: ``velocity_resolution`` [m s-1], ``velocity_range`` [m s-1],
-    ``pulse_repetition_frequency`` [Hz], ``start_time`` (ISO, time zone unknown).
+    xarray.Dataset
+        Dims ``(time, channel)``: ``beam_velocity`` [m s-1], ``amplitude`` [counts] when
+        stored; coordinates ``time`` [s] since the file's start time (only ``status == 0``
+        records), ``channel``, ``distance`` [m] from the transducer face and ``record``
+        (index of the record in the file). Every file parameter is an attribute
+        ``mfprof_<Key>``; derived attributes: ``velocity_resolution`` [m s-1],
+        ``velocity_range`` [m s-1], ``pulse_repetition_frequency`` [Hz], ``start_time`` (ISO,
+        time zone unknown).
 
     Raises
     ------
-    InputError : naming the file and the failed check (signature, header consistency, size,
+    flumekit.errors.InputError
+        Naming the file and the failed check (signature, header consistency, size,
         parameters, record contents, multiplexer table).
+    ValueError
+        For an unknown ``positive``.
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``.
+    .. [2] Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
+       Experimental investigation of the flow field in the vicinity of an oscillating wave
+       surge converter. J. Mar. Sci. Eng. 8, Eqs. (4)-(6).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> params = dict(Frequency=4e6, SoundSpeed=1480.0, StartChannel=10.0,
+    ...               ChannelDistance=0.74, ChannelWidth=0.74)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = write_mfprof(Path(folder) / "a.mfprof", {"time": np.arange(3) * 0.05,
+    ...                      "beam_velocity": np.zeros((3, 4))}, params)
+    ...     ds = read_mfprof(f)
+    >>> ds["beam_velocity"].dims, ds["time"].values, ds["distance"].values
+    (('time', 'channel'), array([0.  , 0.05, 0.1 ]), array([0.01   , 0.01074, 0.01148, 0.01222]))
     """
     path = Path(path)
     if positive not in POSITIVE_CHOICES:
@@ -318,7 +459,7 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
 
 
 def _read_header(f, path: Path, size: int) -> np.void:
-    """The 104-byte header (§2), checked for signature and consistency with the file size."""
+    """Read the 104-byte header (§2), checked for signature and consistency with the file size."""
     head = np.frombuffer(f.read(HEADER_SIZE), dtype=_HEADER)[0]
     sig = bytes(head["signature"])
     if not sig.startswith(SIGNATURE):
@@ -343,8 +484,10 @@ def _read_header(f, path: Path, size: int) -> np.void:
 
 def _read_parameters(block: bytes, path: Path, encoding: str
                      ) -> tuple[dict[str, object], dict[str, object]]:
-    """The ``[UVP_PARAMETER]`` and ``[MUX_PARAMETER]`` sections of the parameter block (§4),
-    with the acoustic and channel parameters checked positive."""
+    """Read the ``[UVP_PARAMETER]`` and ``[MUX_PARAMETER]`` sections of the parameter block (§4).
+
+    The acoustic and channel parameters are checked positive.
+    """
     if not block.strip():
         raise InputError(path, "parameter block is missing (file truncated after the records)")
     try:
@@ -363,8 +506,10 @@ def _read_parameters(block: bytes, path: Path, encoding: str
 
 
 def _check_layout(path: Path, head: np.void, uvp: Mapping[str, object]) -> bool:
-    """Check the header's record layout against the parameters (§3); whether the records hold
-    an amplitude block."""
+    """Check the header's record layout against the parameters (§3).
+
+    Returns whether the records hold an amplitude block.
+    """
     flags, record_size, n_channels = (int(head["flags"]), int(head["record_size"]),
                                       int(head["n_channels"]))
     if int(uvp["ProfileLength"]) != n_channels:
@@ -387,8 +532,11 @@ def _check_layout(path: Path, head: np.void, uvp: Mapping[str, object]) -> bool:
 
 def _valid_records(path: Path, rec: np.ndarray, uvp: Mapping[str, object],
                    mux: Mapping[str, object], transducer: int | None) -> np.ndarray:
-    """Indices of the records to return: valid (status 0, §3.4), of ``transducer`` in a
-    multiplexed file (§7), with strictly increasing times."""
+    """Select the records to return, as indices.
+
+    They are valid (status 0, §3.4), of ``transducer`` in a multiplexed file (§7), with
+    strictly increasing times.
+    """
     keep = rec["status"] == 0
     if int(uvp.get("UseMultiplexer", 0)):
         owner = _mux_assignment(path, mux, rec.size)
@@ -416,8 +564,10 @@ def _valid_records(path: Path, rec: np.ndarray, uvp: Mapping[str, object],
 
 def _velocity(path: Path, raw: np.ndarray, uvp: Mapping[str, object],
               angle_correction: bool) -> np.ndarray:
-    """Along-beam velocity [m s-1] from raw Doppler counts: ΔV scale (§5.1), interpreting mode
-    (§5.2), optional division by sin(Angle) (§5.3)."""
+    """Convert raw Doppler counts to the along-beam velocity [m s-1].
+
+    ΔV scale (§5.1), interpreting mode (§5.2), optional division by sin(Angle) (§5.3).
+    """
     lo, hi = int(uvp.get("RawDataMin", -128)), int(uvp.get("RawDataMax", 127))
     rmin, rmax = int(raw.min()), int(raw.max())
     if rmin < lo or rmax > hi:
@@ -447,8 +597,10 @@ def _velocity(path: Path, raw: np.ndarray, uvp: Mapping[str, object],
 
 def _attributes(path: Path, head: np.void, uvp: Mapping[str, object],
                 mux: Mapping[str, object]) -> dict[str, object]:
-    """Every file parameter as ``mfprof_<Key>`` and the derived attributes of
-    :func:`read_mfprof`."""
+    """Collect every file parameter as ``mfprof_<Key>`` and the derived attributes.
+
+    Those of :func:`read_mfprof`'s dataset.
+    """
     start_ticks = int(head["start_time"])
     dv = velocity_resolution(uvp)
     attrs: dict[str, object] = {f"{ATTR_PREFIX}{k}": v for k, v in uvp.items()}
@@ -473,8 +625,24 @@ def _attributes(path: Path, head: np.void, uvp: Mapping[str, object],
 # --------------------------------------------------------------------------------------------
 
 def parameters_from_attrs(attrs: Mapping[str, object]) -> dict[str, object]:
-    """File parameters (key names of FORMAT.md §4.2) from a dataset's ``mfprof_*`` attributes,
-    as :func:`read_mfprof` stores them."""
+    """Recover the file parameters from a dataset's ``mfprof_*`` attributes.
+
+    Parameters
+    ----------
+    attrs : mapping
+        Attributes as :func:`read_mfprof` stores them.
+
+    Returns
+    -------
+    dict
+        File parameters by their key names (FORMAT.md §4.2), without the attributes the
+        reader derives from the header.
+
+    Examples
+    --------
+    >>> parameters_from_attrs({"mfprof_Frequency": 4e6, "mfprof_records_stored": 3, "x": 1})
+    {'Frequency': 4000000.0}
+    """
     skip = {"mfprof_start_time_filetime", "mfprof_records_stored"}
     return {k[len(ATTR_PREFIX):]: v for k, v in attrs.items()
             if k.startswith(ATTR_PREFIX) and k not in skip}
@@ -485,25 +653,51 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
                  n_records: int | None = None, encoding: str = "cp1252") -> Path:
     """Write a ``.mfprof`` file atomically (temporary file in the same folder, then rename).
 
+    Velocities are quantised to counts of ΔV (§5.1); a velocity beyond the raw range raises
+    ``ValueError`` (alias it first if that is what the instrument would do). Times are rounded
+    to 100 ns ticks.
+
     Parameters
     ----------
-    path : Output file.
-    data : A dataset as returned by :func:`read_mfprof` (``time``, ``beam_velocity`` and
+    path : str or pathlib.Path
+        Output file.
+    data : xarray.Dataset or mapping
+        A dataset as returned by :func:`read_mfprof` (``time``, ``beam_velocity`` and
         optionally ``amplitude``), or a mapping with arrays ``time`` [s] (n,) and
         ``beam_velocity`` [m s-1] (n, n_channels), optionally ``amplitude`` [counts].
-    params : File parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
+    params : mapping, optional
+        File parameters by their file key names (``Frequency`` [Hz], ``SoundSpeed``
         [m s-1], ``MaximumDepth`` [mm], ``StartChannel`` [mm], ``ChannelDistance`` [mm],
         ``ChannelWidth`` [mm], ``SampleTime`` [ms], ..., and the MUX keys). Default: the
         ``mfprof_*`` attributes of ``data`` (:func:`parameters_from_attrs`); keys not given
         come from the UVP Monitor template.
-    start_time : Absolute start as a Windows FILETIME [100 ns ticks since 1601]; default the
+    start_time : int, optional
+        Absolute start as a Windows FILETIME [100 ns ticks since 1601]; default the
         dataset's ``mfprof_start_time_filetime`` attribute, else 2020-01-01T00:00:00.
-    n_records : Records to allocate (≥ number of profiles); the extra records are written
-        unfilled (status 3, zeros), as when a measurement is stopped early (FORMAT.md §3.4).
+    n_records : int, optional
+        Records to allocate (≥ number of profiles); the extra records are written unfilled
+        (status 3, zeros), as when a measurement is stopped early (FORMAT.md §3.4).
+    encoding : str, optional
+        Code page of the parameter block.
 
-    Velocities are quantised to counts of ΔV (§5.1); a velocity beyond the raw range raises
-    ``ValueError`` (alias it first if that is what the instrument would do). Times are rounded
-    to 100 ns ticks.
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        For data of the wrong shape, non-finite or out-of-range velocities, times that do not
+        increase, or missing geometry and acoustic parameters.
+
+    References
+    ----------
+    .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``.
+
+    Examples
+    --------
+    See :func:`read_mfprof`.
     """
     path = Path(path)
     attrs = dict(data.attrs) if isinstance(data, xr.Dataset) else {}
@@ -552,9 +746,11 @@ def write_mfprof(path: str | Path, data: xr.Dataset | Mapping[str, np.ndarray],
 def _complete_parameters(given: Mapping[str, object], time: np.ndarray, n_channels: int,
                          total: int, amp_stored: bool
                          ) -> tuple[dict[str, object], dict[str, object]]:
-    """The UVP and MUX sections to write: the template (§4.2, §4.3) overlaid with ``given``,
-    the layout keys set from the data, and the smallest ``MaximumDepth`` covering every channel
-    when none is given."""
+    """Complete the UVP and MUX sections to write.
+
+    The template (§4.2, §4.3) overlaid with ``given``, the layout keys set from the data, and
+    the smallest ``MaximumDepth`` covering every channel when none is given.
+    """
     uvp = {k: given.get(k, v) for k, v in _UVP_TEMPLATE.items()}
     uvp.update({k: v for k, v in given.items() if k not in _MUX_KEYS})
     mux = {k: given.get(k, v) for k, v in _MUX_TEMPLATE.items()}
@@ -578,7 +774,7 @@ def _complete_parameters(given: Mapping[str, object], time: np.ndarray, n_channe
 
 def _records(uvp: Mapping[str, object], ticks: np.ndarray, vel: np.ndarray, amp,
              total: int) -> np.ndarray:
-    """The ``total`` records (§3): the profiles as counts of ΔV, then unfilled ones."""
+    """Build the ``total`` records (§3): the profiles as counts of ΔV, then unfilled ones."""
     n, n_channels = vel.shape
     dv = velocity_resolution(uvp)
     counts = np.rint(vel / dv)
@@ -616,6 +812,7 @@ class MfprofBackendEntrypoint(BackendEntrypoint):
     def open_dataset(self, filename_or_obj, *, drop_variables=None,
                      positive: str = "away_from_transducer", transducer: int | None = None,
                      angle_correction: bool = False, encoding: str = "cp1252") -> xr.Dataset:
+        """Open a ``.mfprof`` file as :func:`read_mfprof` does, without ``drop_variables``."""
         ds = read_mfprof(filename_or_obj, positive=positive, transducer=transducer,
                          angle_correction=angle_correction, encoding=encoding)
         if drop_variables:
@@ -623,6 +820,7 @@ class MfprofBackendEntrypoint(BackendEntrypoint):
         return ds
 
     def guess_can_open(self, filename_or_obj) -> bool:
+        """Tell whether a path is a ``.mfprof`` file: by its suffix, else its signature."""
         try:
             p = Path(os.fspath(filename_or_obj))
         except TypeError:

@@ -56,11 +56,14 @@ _COMMENTS = {"unknown": "the record's start time is not known: the origin of the
 
 
 def _cf_time(ds: xr.Dataset) -> xr.Dataset:
-    """``time`` in seconds since the record's start, as CF 4.4 wants a time coordinate: the
-    start the raw file or the run gave (its ``record_start`` attribute), else a nominal origin
-    said to stand for the start of the record (``record_start = "unknown"``). Another time axis
-    in seconds that knows its record's start (a UVP beam's own) is encoded so too.
-    :func:`read_dataset` does not decode them, so code and analysts keep plain seconds."""
+    """Give ``time`` the units seconds since the record's start, as CF 4.4 wants.
+
+    The start is the one the raw file or the run gave (its ``record_start`` attribute), else a
+    nominal origin said to stand for the start of the record (``record_start = "unknown"``).
+    Another time axis in seconds that knows its record's start (a UVP beam's own) is encoded
+    so too. :func:`read_dataset` does not decode them, so code and analysts keep plain
+    seconds.
+    """
     names = [n for n in ds.coords if ds[n].dtype.kind in "fiu" and (
         n == "time" or (ds[n].attrs.get("units") == "s"
                         and ds[n].attrs.get(conventions.RECORD_START)))]
@@ -80,8 +83,11 @@ def _cf_time(ds: xr.Dataset) -> xr.Dataset:
 
 
 def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
-    """Unsigned bytes whose values fit (QARTOD flags 1-9) as signed bytes, ``flag_values``
-    too: CF 1.8 knows no unsigned types (compliance-checker: "the datatype is uint8")."""
+    """Store unsigned bytes whose values fit (QARTOD flags 1-9) as signed bytes.
+
+    ``flag_values`` too: CF 1.8 knows no unsigned types (compliance-checker: "the datatype is
+    uint8").
+    """
     names = [n for n, v in ds.data_vars.items()
              if v.dtype == np.uint8 and (v.size == 0 or int(v.max()) <= np.iinfo(np.int8).max)]
     if not names:
@@ -98,14 +104,42 @@ def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
 def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) -> Written:
     """Check CF attributes and write ``ds`` to ``path`` atomically (temporary file, then rename).
 
-    Returns the :class:`~flumekit.io.atomic.Written` file: its path and the content digest of
-    the dataset (:func:`flumekit.conventions.content_digest`), for the caller to hand on to the
-    pipeline (a stage's action returns it).
+    Variables take their units and names from :mod:`flumekit.conventions` (annotated, then
+    checked: CF 1.8); the provenance attributes are added; ``time`` is stored in seconds since
+    the record's start (CF 4.4). A failure at any point leaves no file at ``path`` (nor a
+    temporary one behind). The same dataset gives the same bytes.
 
-    A failure at any point leaves no file at ``path`` (nor a temporary one behind).
-    ``compress``: float arrays of more than 4096 values are deflated (zlib level 1); False
-    writes them as they are (an intermediate product read once, whose float records of
-    measured noise deflate little and slowly: 7 ms for 36 000 values).
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        With the global attributes ``Conventions``, ``title``, ``source`` and ``history``
+        (:func:`write_product` sets them); no complex variables.
+    path : str or pathlib.Path
+        The netCDF-4 file to write.
+    compress : bool, optional
+        Deflate float arrays of more than 4096 values (zlib level 1 with shuffle, one chunk
+        per variable). False stores them contiguous, as they are: for dense float records of
+        measured noise, which deflate by a third only, and slowly, and are read whole.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file's path and the content digest of the dataset
+        (:func:`flumekit.conventions.content_digest`), for the caller to hand on to the
+        pipeline (a stage's action returns it).
+
+    Raises
+    ------
+    ValueError
+        When a global attribute is missing, or a variable lacks ``units`` or ``long_name``
+        (and the registry of :mod:`flumekit.conventions` does not give them).
+    TypeError
+        For a complex variable (store its real and imaginary parts).
+
+    See Also
+    --------
+    write_product : Sets the global attributes, then writes.
+    read_dataset : Reads the file back.
     """
     path = Path(path)
     ds = conventions.annotate(ds)
@@ -122,16 +156,65 @@ def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) ->
 
 def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
                   parameters: dict | None = None, *, compress: bool = True) -> Written:
-    """Write a product of flumekit: the global attributes of
-    :func:`flumekit.conventions.global_attrs` (title, source, history with the parameters) set
-    on ``ds``, then :func:`write_dataset` (whose :class:`~flumekit.io.atomic.Written` it
-    returns)."""
+    """Write a product of flumekit: its global attributes set, then :func:`write_dataset`.
+
+    The global attributes are those of :func:`flumekit.conventions.global_attrs` (title,
+    source, history with the parameters); they are set on ``ds`` itself.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The product; variable names from :mod:`flumekit.conventions`.
+    path : str or pathlib.Path
+        The netCDF-4 file to write.
+    title : str
+        What the dataset holds (the CF ``title``).
+    source : str
+        How it was made (the CF ``source``).
+    parameters : dict, optional
+        The parameters it was made with, recorded in ``history``.
+    compress : bool, optional
+        As :func:`write_dataset`.
+
+    Returns
+    -------
+    flumekit.io.atomic.Written
+        The file's path and the content digest of the dataset.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> ds = xr.Dataset({"theta": ("time", np.zeros(3))}, coords={"time": np.arange(3) / 100})
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     written = write_product(ds, Path(folder) / "x.nc", "Example", "a docstring")
+    ...     back = read_dataset(written)
+    >>> back["theta"].attrs["units"], back["time"].values
+    ('rad', array([0.  , 0.01, 0.02]))
+    """
     ds.attrs.update(conventions.global_attrs(title, source, parameters))
     return write_dataset(ds, path, compress=compress)
 
 
 def read_dataset(path: str | Path) -> xr.Dataset:
-    """Open a flumekit netCDF file fully into memory (the file is closed on return)."""
+    """Open a flumekit netCDF file fully into memory (the file is closed on return).
+
+    Times are not decoded: a time coordinate stays seconds since the record's start, as the
+    code and analysts use it (its units attribute says since when).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A netCDF file written by :func:`write_dataset`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded, with the file's attributes; strings keep no fixed width from the file.
+
+    See Also
+    --------
+    flumekit.open_processed : Every run of a stage along ``run``.
+    """
     with xr.open_dataset(path, engine="netcdf4", decode_times=False,
                          decode_timedelta=False) as ds:
         ds = ds.load()

@@ -13,7 +13,7 @@ __all__ = ["open_processed", "processed_names", "stack_files"]
 
 
 def processed_names(processed: str | Path) -> list[str]:
-    """Names :func:`open_processed` accepts for a processed campaign folder.
+    """List the names :func:`open_processed` accepts for a processed campaign folder.
 
     Parameters
     ----------
@@ -79,33 +79,36 @@ def open_processed(processed: str | Path, name: str | None = None) -> xr.Dataset
     return stack_files(files)
 
 
-def _read_variables(path: Path) -> tuple[dict, dict, dict, set]:
-    """Read every variable of a flumekit netCDF file.
+def _metadata(nc) -> tuple[dict, dict, set]:
+    """Describe the variables of an open flumekit netCDF file without reading their values.
 
-    Returns (name -> (dims, values, attrs)), the global attributes, the dimension sizes and
-    the names its variables list as coordinates. Floats with a ``_FillValue`` are NaN there,
-    as xarray decodes them; nothing else needs decoding in what flumekit writes (times stay
-    seconds, as :func:`read_dataset` keeps them).
+    Returns (name -> (dims, shape, attrs, fill)), the global attributes and the names its
+    variables list as coordinates. ``attrs`` lacks ``_FillValue`` (``fill``, None if unset)
+    and ``coordinates``, which xarray takes out of the attributes too.
     """
-    import netCDF4
+    out, coords = {}, set()
+    for name, var in nc.variables.items():
+        attrs = {k: var.getncattr(k) for k in var.ncattrs()}
+        fill = attrs.pop("_FillValue", None)
+        coords.update(attrs.pop("coordinates", "").split())
+        out[name] = (var.dimensions, var.shape, attrs, fill)
+    return out, {k: nc.getncattr(k) for k in nc.ncattrs()}, coords
+
+
+def _values(var, fill):
+    """Read a netCDF4 variable's values as xarray decodes what flumekit writes.
+
+    Floats are NaN where a non-NaN ``_FillValue`` stands; variable-length strings become a
+    numpy string array; times stay seconds, as :func:`read_dataset` keeps them.
+    """
     import numpy as np
 
-    out, coords = {}, set()
-    with netCDF4.Dataset(path) as nc:
-        nc.set_auto_mask(False)
-        for name, var in nc.variables.items():
-            attrs = {k: var.getncattr(k) for k in var.ncattrs()}
-            values = np.asarray(var[...])
-            fill = attrs.pop("_FillValue", None)
-            if fill is not None and values.dtype.kind == "f" and not np.isnan(fill):
-                values = np.where(values == fill, np.nan, values)
-            coords.update(attrs.pop("coordinates", "").split())
-            if values.dtype.kind == "O":  # variable-length strings
-                values = values.astype(str)
-            out[name] = (var.dimensions, np.asarray(values), attrs)
-        globals_ = {k: nc.getncattr(k) for k in nc.ncattrs()}
-        sizes = {d: len(v) for d, v in nc.dimensions.items()}
-    return out, globals_, sizes, coords
+    values = np.asarray(var[...])
+    if fill is not None and values.dtype.kind == "f" and not np.isnan(fill):
+        values = np.where(values == fill, np.nan, values)
+    if values.dtype.kind == "O":  # variable-length strings
+        values = values.astype(str)
+    return values
 
 
 def _common_attrs(dicts: list[dict]) -> dict:
@@ -135,16 +138,18 @@ def _equal(a, b) -> bool:
 
 
 def stack_files(files) -> xr.Dataset:
-    """Per-run datasets stacked along a new ``run`` dimension, read with netCDF4 directly.
+    """Stack per-run datasets along a new ``run`` dimension, read with netCDF4 directly.
 
     The result is that of ``xr.concat([read_dataset(f) for f in files], dim="run",
     join="outer", combine_attrs="drop_conflicts", coords="different", compat="equals")``
     (a test holds them equal) at about the cost of reading the bytes: the runs' dimension
     coordinates (``time``, ``frequency``, ...) are joined (their union, sorted), every
-    variable is placed into one preallocated array, NaN where a run has no value (integers
-    padded so become floats, as xarray promotes them), and attributes kept where every run
-    agrees. A 1-D coordinate that is equal in every run is not stacked (``x`` of the
-    probes); a scalar one is (``wave_period``).
+    variable is read straight into its place in one preallocated array (a slice wherever a
+    run's coordinate values are contiguous in the union, as records sampled on one clock
+    are), NaN where a run has no value (integers padded so become floats, as xarray promotes
+    them: 32-bit for 8- and 16-bit integers), and attributes kept where every run agrees. A
+    1-D coordinate that is equal in every run is not stacked (``x`` of the probes); a scalar
+    one is (``wave_period``).
 
     Parameters
     ----------
@@ -155,68 +160,124 @@ def stack_files(files) -> xr.Dataset:
     -------
     xarray.Dataset
         Loaded; the files are closed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import numpy as np
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     files = [Path(folder) / f"run{n}.nc" for n in (1, 2)]
+    ...     for n, f in zip((1, 2), files):
+    ...         run = xr.Dataset({"theta": ("time", np.ones(n))}, {"time": np.arange(n) / 100})
+    ...         run.to_netcdf(f)
+    ...     ds = stack_files(files)
+    >>> ds["theta"].values
+    array([[ 1., nan],
+           [ 1.,  1.]])
+    """
+    from contextlib import ExitStack
+
+    import netCDF4
+
+    with ExitStack() as stack:
+        ncs = [stack.enter_context(netCDF4.Dataset(Path(f))) for f in files]
+        for nc in ncs:
+            nc.set_auto_mask(False)
+        return _stack(ncs, [_metadata(nc) for nc in ncs])
+
+
+def _placement(values, union):
+    """Locate a run's dimension coordinate ``values`` in the sorted ``union``.
+
+    A slice when they are one contiguous stretch of it, else their indices.
     """
     import numpy as np
 
-    parts = [_read_variables(Path(f)) for f in files]
-    n = len(parts)
+    at = np.searchsorted(union, values)
+    if at.size and at[-1] - at[0] + 1 == at.size and np.all(np.diff(at) == 1):
+        return slice(int(at[0]), int(at[-1]) + 1)
+    return at
+
+
+def _stack(ncs, metas) -> xr.Dataset:
+    """Stack the open files ``ncs`` described by ``metas`` (:func:`_metadata`)."""
+    import numpy as np
+
+    n = len(ncs)
     names: list[str] = []
-    for variables, *_ in parts:
+    for variables, *_ in metas:
         names += [k for k in variables if k not in names]
-    coord_names = set().union(*(c for *_, c in parts))
-    dims = {name: parts[0][0][name][0] for name in names if name in parts[0][0]}
-    for variables, *_ in parts[1:]:
+    coord_names = set().union(*(c for *_, c in metas))
+    dims: dict[str, tuple] = {}
+    for variables, *_ in metas:
         for name, (d, *_) in variables.items():
             dims.setdefault(name, d)
+
+    def values(i, name):
+        return _values(ncs[i].variables[name], metas[i][0][name][3])
+
     # dimension coordinates: the union of the runs' values (an outer join)
     index = {}
     for name in names:
         if dims[name] == (name,):
-            values = [p[0][name][1] for p in parts if name in p[0]]
-            if all(_equal(v, values[0]) for v in values[1:]):
-                index[name] = (values[0], None)
+            have = [i for i in range(n) if name in metas[i][0]]
+            runs = {i: values(i, name) for i in have}
+            first = runs[have[0]]
+            if all(_equal(v, first) for v in runs.values()):
+                index[name] = (first, None)
             else:
-                union = np.unique(np.concatenate(values))
-                index[name] = (union, [np.searchsorted(union, p[0][name][1])
-                                       if name in p[0] else None for p in parts])
+                union = np.unique(np.concatenate(list(runs.values())))
+                index[name] = (union, [_placement(runs[i], union) if i in runs else None
+                                       for i in range(n)])
     data_vars, coords = {}, {}
     for name in names:
-        present = [p[0].get(name) for p in parts]
+        present = [m[0].get(name) for m in metas]
         attrs = _common_attrs([v[2] for v in present if v is not None])
         if name in index:
             coords[name] = xr.Variable((name,), index[name][0], attrs)
             continue
         d = dims[name]
-        sample = next(v[1] for v in present if v is not None)
-        if (all(v is not None for v in present) and name in coord_names
-                and all(_equal(v[1], sample) for v in present[1:])):
-            coords[name] = xr.Variable(d, sample, attrs)  # equal in every run: not stacked
+        have = [i for i, v in enumerate(present) if v is not None]
+        var0 = ncs[have[0]].variables[name]
+        small = name in coord_names or var0.dtype is str or not d
+        read = {i: values(i, name) for i in have} if small else {}
+        if (len(have) == n and name in coord_names
+                and all(_equal(read[i], read[have[0]]) for i in have[1:])):
+            coords[name] = xr.Variable(d, read[have[0]], attrs)  # equal in every run
             continue
-        shape = tuple(index[k][0].size if k in index else sample.shape[i]
-                      for i, k in enumerate(d))
-        padded = any(v is None or v[1].shape != shape for v in present)
-        dtype = sample.dtype
-        if padded and dtype.kind in "iub":
-            dtype = np.dtype(float)
+        shape = tuple(index[k][0].size if k in index else present[have[0]][1][j]
+                      for j, k in enumerate(d))
+        padded = any(v is None or tuple(v[1]) != shape for v in present)
+        if read:
+            dtype = read[have[0]].dtype
+        else:
+            dtype = np.dtype(var0.dtype)
+        if padded and dtype.kind in "iu":  # as xarray promotes them to hold NaN
+            dtype = np.dtype(np.float32 if dtype.itemsize <= 2 else float)
+        elif padded and dtype.kind == "b":
+            dtype = np.dtype(object)
         if dtype.kind == "U":
             if padded:
                 dtype = np.dtype(object)
             else:  # the widest of the runs' strings
-                dtype = np.result_type(*(v[1].dtype for v in present))
-        if dtype.kind in "fcO":
+                dtype = np.result_type(*(v.dtype for v in read.values()))
+        if not padded:
+            out = np.empty((n, *shape), dtype)
+        elif dtype.kind in "fcO":
             out = np.full((n, *shape), np.nan, dtype)
         else:
             out = np.zeros((n, *shape), dtype)
-        for i, v in enumerate(present):
-            if v is None:
-                continue
+        for i in have:
+            v = read[i] if read else values(i, name)
             if not d:
-                out[i] = v[1]
+                out[i] = v
                 continue
-            where = np.ix_(*(index[k][1][i] if k in index and index[k][1] is not None
-                             else np.arange(shape[j]) for j, k in enumerate(d)))
-            out[i][where] = v[1]
+            where = tuple(index[k][1][i] if k in index and index[k][1] is not None
+                          else slice(0, shape[j]) for j, k in enumerate(d))
+            if not all(isinstance(w, slice) for w in where):
+                where = np.ix_(*(np.arange(shape[j])[w] if isinstance(w, slice) else w
+                                 for j, w in enumerate(where)))
+            out[i][where] = v
         var = xr.Variable(("run", *d), out, attrs)
         (coords if name in coord_names else data_vars)[name] = var
-    ds = xr.Dataset(data_vars, coords=coords, attrs=_common_attrs([p[1] for p in parts]))
-    return ds
+    return xr.Dataset(data_vars, coords=coords, attrs=_common_attrs([m[1] for m in metas]))

@@ -47,7 +47,7 @@ def _numeric_line(line: str, delimiter: str, decimal: str) -> bool:
 
 
 def _wrong_delimiter(path: Path, line: str, number: int, delimiter: str) -> InputError | None:
-    """A line without the declared delimiter but with another one: say which to declare."""
+    """Diagnose a line without the declared delimiter but with another one: say which to declare."""
     if delimiter == "whitespace" or delimiter in line:
         return None
     for other in (";", "\t", ",", "|"):
@@ -153,7 +153,7 @@ def _cut_last_cell(body: str, delimiter: str, decimal: str, comment: str,
 
 
 def _codec(path: Path, encoding: str) -> str:
-    """The Python codec of a declared encoding; UTF-8 with its byte-order mark tolerated."""
+    """Return the Python codec of a declared encoding; UTF-8 with its byte-order mark tolerated."""
     import codecs
 
     try:
@@ -165,8 +165,33 @@ def _codec(path: Path, encoding: str) -> str:
 
 
 def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
-    """``data`` (a text file's bytes) decoded; an undecodable byte is an error naming its line
-    and the ``encoding`` key of the file's dialect."""
+    r"""Decode a text file's bytes; an undecodable byte is an error naming its line.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file, for messages.
+    data : bytes
+        Its content.
+    encoding : str, optional
+        The declared encoding (the ``encoding`` key of the file's dialect); a UTF-8
+        byte-order mark is accepted.
+
+    Returns
+    -------
+    str
+        The text.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        For an unknown encoding, or a byte that is not text in it (naming its line).
+
+    Examples
+    --------
+    >>> decode(Path("a.csv"), "level [m]\n0,5".encode("cp1252"), "cp1252")
+    'level [m]\n0,5'
+    """
     try:
         return data.decode(_codec(path, encoding))
     except UnicodeDecodeError as e:
@@ -180,9 +205,29 @@ def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
 
 def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
               encoding: str = "utf-8") -> int:
-    """File line of data row ``k`` (0-based) of a table whose first data row is on line
-    ``first_line``: blank and comment lines between rows are not rows (for messages only: it
-    reads the file again)."""
+    """Return the file line of a table's data row ``k``, for messages.
+
+    Blank and comment lines between rows are not rows. It reads the file again: for the
+    message of an error only.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file.
+    first_line : int
+        The 1-based file line of the first data row.
+    k : int
+        The data row, 0-based.
+    comment : str, optional
+        Lines starting with this are comments.
+    encoding : str, optional
+        The file's text encoding.
+
+    Returns
+    -------
+    int
+        The 1-based file line.
+    """
     lines = pd.Series(decode(path, path.read_bytes(), encoding).split("\n")[first_line - 1:])
     keep = lines.str.strip() != ""
     if comment:
@@ -193,7 +238,34 @@ def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
 
 def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_lines: int = 0,
                   header: bool = True, encoding: str = "utf-8") -> list[str]:
-    """Column labels from the header line (names without ``[unit]``), or "1".."n" without one."""
+    """Return the column labels of a table's header line.
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file (its first 64 KiB are read).
+    delimiter : str, optional
+        One character, or ``"whitespace"``.
+    comment : str, optional
+        Lines starting with this are skipped.
+    skip_lines : int, optional
+        Preamble lines before the header.
+    header : bool, optional
+        Whether a header row names the columns.
+    encoding : str, optional
+        The file's text encoding.
+
+    Returns
+    -------
+    list of str
+        The names without their ``[unit]``; ``"1"`` .. ``"n"`` without a header.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        When the file is missing or empty, or the header holds another delimiter than the
+        declared one.
+    """
     try:
         text = path.read_bytes()[:1 << 16].decode(_codec(path, encoding), errors="replace")
     except FileNotFoundError:
@@ -217,7 +289,7 @@ def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_l
 
 
 def _label(cell: str) -> tuple[str, str | None]:
-    """('name', 'unit') of a header cell 'name [unit]'; ('name', None) without brackets."""
+    """Split a header cell 'name [unit]' into ('name', 'unit'); ('name', None) without brackets."""
     cell = cell.strip().strip('"').strip()
     m = _HEADER.match(cell)
     return (m.group(1), m.group(2).strip()) if m else (cell, None)
@@ -226,8 +298,49 @@ def _label(cell: str) -> tuple[str, str | None]:
 def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", comment: str = "",
               skip_lines: int = 0, header: bool = True,
               text_columns: tuple[int, ...] = (), encoding: str = "utf-8") -> Text:
-    """Read a delimited table. ``text_columns`` (0-based) may hold non-numbers (datetimes).
-    ``encoding``: the file's text encoding (UTF-8: a lab PC's byte-order mark is accepted)."""
+    r"""Read a delimited text table and check every cell.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    delimiter : str, optional
+        One character, or ``"whitespace"``.
+    decimal : str, optional
+        ``"."`` or ``","``.
+    comment : str, optional
+        Lines starting with this are skipped.
+    skip_lines : int, optional
+        Preamble lines before the header (or the first row).
+    header : bool, optional
+        Whether a header row of ``name [unit]`` cells names the columns.
+    text_columns : tuple of int, optional
+        Columns (0-based) that may hold non-numbers (date-time stamps).
+    encoding : str, optional
+        The file's text encoding (UTF-8: a lab PC's byte-order mark is accepted).
+
+    Returns
+    -------
+    Text
+        Labels, header units, the columns (float64; object for ``text_columns``) and the
+        file line of the first data row.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        For a missing, empty or undecodable file, a wrong delimiter, a malformed or
+        non-finite cell, or a last line cut short; naming the line and the column.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "probes.csv"
+    ...     _ = f.write_text("time [s];WP1 [V]\n0;1,5\n0,04;1,25\n")
+    ...     t = read_text(f, delimiter=";", decimal=",")
+    >>> t.labels, t.units, t.columns[1], t.first_line
+    (['time', 'WP1'], ['s', 'V'], array([1.5 , 1.25]), 2)
+    """
     path = Path(path)
     try:
         data = path.read_bytes()
@@ -297,8 +410,10 @@ def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", com
 def _locate_bad_cell(path: Path, body: str, first: int, ncol: int, delimiter: str,
                      decimal: str, text_columns: tuple[int, ...] = (),
                      comment: str = "") -> InputError:
-    """Slow path, run only after the fast parser failed: find the first malformed line (blank
-    and comment lines are no rows)."""
+    """Find the first malformed line, once the fast parser failed (the slow path).
+
+    Blank and comment lines are no rows.
+    """
     lines = body.split("\n")
     for k, line in enumerate(lines):
         i = first + k + 1
@@ -328,7 +443,33 @@ def _locate_bad_cell(path: Path, body: str, first: int, ncol: int, delimiter: st
 
 def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
                first_line: int = 2) -> None:
-    """Time must increase strictly and, if a rate is given, step by 1/rate (within 1 %)."""
+    """Check that time increases strictly and, if a rate is given, steps by 1/rate (within 1 %).
+
+    Parameters
+    ----------
+    path : pathlib.Path
+        The file, for messages.
+    time : numpy.ndarray
+        Time stamps [s].
+    sampling_rate : float, optional
+        Declared sampling rate [Hz].
+    first_line : int, optional
+        The file line of the first sample, for messages.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        Naming the line where time stops increasing or steps otherwise than the rate says
+        (an hour's jump is said to be a daylight-saving change).
+
+    Examples
+    --------
+    >>> check_time(Path("a.csv"), np.array([0.0, 0.04, 0.08]), 25.0)
+    >>> check_time(Path("a.csv"), np.array([0.0, 0.04, 0.04]), 25.0)
+    Traceback (most recent call last):
+    ...
+    flumekit.errors.InputError: a.csv, line 4: time is not increasing (0.04 s then 0.04 s)
+    """
     if time.size < 2:
         raise InputError(path, "fewer than two samples")
     dt = np.diff(time)
@@ -355,8 +496,24 @@ def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
 
 def write_table(path: str | Path, columns: list[tuple[str, str]], data: np.ndarray,
                 fmt: str | list[str] = "%.6f") -> Path:
-    """Write an instrument CSV atomically. ``columns`` are (name, unit); ``data`` is in those
-    units."""
+    """Write an instrument CSV atomically, in the raw campaign's own format.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file to write.
+    columns : list of (str, str)
+        (name, unit) of each column: the header cells ``name [unit]``.
+    data : numpy.ndarray
+        (sample, column), in those units.
+    fmt : str or list of str, optional
+        ``numpy.savetxt`` format of the cells.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
     path = Path(path)
     header = ",".join(f"{n} [{u}]" for n, u in columns)
     with atomic_path(path) as tmp:

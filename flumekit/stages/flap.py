@@ -12,7 +12,7 @@ from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
 
-VERSION = "4"
+VERSION = "5"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
 DEFAULTS = {"cutoff": 4.0, "tolerance": 0.02, "n_phase": 100, "max_flagged_fraction": 0.0,
             "record_length_tolerance": 0.2}
@@ -146,8 +146,12 @@ def build(inputs, outputs, params) -> Written:
     except ValueError as e:  # a stuck encoder, a record too short: name the file
         raise InputError(raw.attrs.get(SOURCE_FILE, inputs["flap"]),
                          f"encoder and pressure record: {e}") from None
+    # stored as they are: these dense float records (computed from measured noise) deflate by
+    # a third only, and inflating them would be most of the cost of opening the stage's runs
+    # (open_processed reads every run's records)
     return write_run(ds, outputs, params, "Flap dynamics, PTO and power",
-                     f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw)
+                     f"flumekit flap stage from {inputs['flap']} and {inputs['waves']}", record=raw,
+                     compress=False)
 
 
 def summary(inputs, outputs, params) -> Written:
