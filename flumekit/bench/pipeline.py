@@ -1,5 +1,10 @@
-"""Pipeline benchmark: synthesis, a full build serial and with 2 processes, the no-op build,
-and the planning cost of a paper-size campaign against a bare ``flumekit --version``.
+"""Pipeline benchmark: the make engine's costs, the README's main job and loading results.
+
+Synthesis, a full build serial and with 2 processes, the no-op build, and the planning cost of
+a paper-size campaign against a bare ``flumekit --version``; the main job (``flumekit make``
+on the default campaign from nothing) with the rule time of each stage and the mean figure
+time; opening the default campaign's flap files with :func:`flumekit.open_processed` against
+xarray.
 
 Run time is what the make engine adds or saves; accuracy is not traded here, so the table
 reports wall-clock seconds and how many targets ran. The paper-size no-op is measured on the
@@ -35,9 +40,11 @@ def _make(project: Path, *args: str, pipeline: str = "pipelines/small.toml") -> 
 
 def _timed(cmds: list[list[str]], cwd: Path, repeat: int = 9,
            before=lambda: None) -> list[tuple[float, float]]:
-    """(best, median) wall-clock seconds of each command, run in turn ``repeat`` times (in
-    turn, so that a load that comes and goes on the machine weighs on each alike); ``before``
-    runs untimed before each command."""
+    """Time commands: (best, median) wall-clock seconds of each.
+
+    Each command runs ``repeat`` times, in turn with the others, so that a load that comes and
+    goes on the machine weighs on each alike; ``before`` runs untimed before each command.
+    """
     import os
     import statistics
 
@@ -57,10 +64,13 @@ def _timed(cmds: list[list[str]], cwd: Path, repeat: int = 9,
 
 
 def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
-    """(best, median) seconds of ``flumekit --version`` and of the no-op make: as it runs after
-    a make ("noop"), without the record of that make ("checked": every target checked, the
-    graph from its cache) and without the graph's cache either ("rebuilt"); and the number of
-    targets, on a paper-size campaign's graph."""
+    """Time the no-op make of a paper-size campaign against ``flumekit --version``.
+
+    Returns (best, median) seconds of ``flumekit --version`` and of the no-op make: as it runs
+    after a make ("noop"), without the record of that make ("checked": every target checked,
+    the graph from its cache) and without the graph's cache either ("rebuilt"); and the number
+    of targets of the paper campaign's graph.
+    """
     from flumekit.pipeline.config import load_pipeline
     from flumekit.pipeline.engine import Graph
     from flumekit.pipeline.state import State
@@ -108,8 +118,11 @@ def paper_noop(project: Path) -> tuple[dict[str, tuple[float, float]], int]:
 
 
 def _stage_rows(processed: Path) -> list[tuple[str, float, str]]:
-    """Rule seconds per stage of the last build (the engine records each rule's run time), the
-    stages that cost most first, and the mean time of a figure (PNG at 300 dpi and PDF)."""
+    """Sum the rule seconds per stage of the last build in ``processed``.
+
+    The engine records each rule's run time; the stages that cost most come first, then the
+    mean time of a figure (PNG at 300 dpi and PDF).
+    """
     import json
 
     targets = json.loads((processed / ".flumekit-state.json").read_text())["targets"]
@@ -127,8 +140,10 @@ def _stage_rows(processed: Path) -> list[tuple[str, float, str]]:
 
 
 def _main_job(project: Path) -> list[tuple[str, float, str]]:
-    """The README's main job on a fresh project: ``flumekit make`` (default -j), synthesis of the
-    default campaign included, then the rule times of that build."""
+    """Time the README's main job on a fresh project, and the stages of its build.
+
+    ``flumekit make`` (default -j) on the default campaign, its synthesis included.
+    """
     sec, msg = _make(project, pipeline="pipelines/default.toml")
     return [("flumekit make, default campaign from nothing", sec, msg + " (target < 60 s)"),
             *_stage_rows(project / "processed" / "default")]
@@ -210,6 +225,18 @@ def loading(files, work: Path, copies: int = 41, repeat: int = 3,
 
 
 def run(quick: bool = False) -> str:
+    """Run the benchmark and return its table as text.
+
+    Parameters
+    ----------
+    quick : bool
+        Only the no-op makes (no synthesis, no build).
+
+    Returns
+    -------
+    str
+        The printed table.
+    """
     from flumekit.synth.campaign import write_campaign
 
     rows = []
