@@ -109,13 +109,19 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,
-                               dir=path.parent)
+    # the temporary is registered before a signal handler can run (one arriving between its
+    # creation and its registration would leave it behind): Ctrl-C and SIGTERM wait meanwhile
+    masked = _mask_signals()
     try:
-        os.fchmod(fd, 0o666 & ~umask())
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,
+                                   dir=path.parent)
+        _ACTIVE.add(tmp)
+        try:
+            os.fchmod(fd, 0o666 & ~umask())
+        finally:
+            os.close(fd)
     finally:
-        os.close(fd)
-    _ACTIVE.add(tmp)
+        _unmask_signals(masked)
     try:
         yield Path(tmp)
         os.replace(tmp, path)
@@ -124,6 +130,26 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         raise
     finally:
         _ACTIVE.discard(tmp)
+
+
+def _mask_signals():
+    """Block SIGINT and SIGTERM in this thread and return the previous mask.
+
+    None where the platform has no signal masks.
+    """
+    import signal
+
+    if not hasattr(signal, "pthread_sigmask"):
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
+
+
+def _unmask_signals(previous) -> None:
+    """Restore the mask of :func:`_mask_signals`; a signal that waited is delivered now."""
+    import signal
+
+    if previous is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def remove_active() -> None:
