@@ -17,7 +17,8 @@ what is particular to it (the inputs it reads, the outputs it writes, its own pa
     only named in messages) and the ones it writes (``dataset`` unless the rule says
     otherwise); ``params`` are the rule's parameters (JSON-able, units as in the stage's
     ``DOCS``). It returns the :class:`~flumekit.io.atomic.Written` (file and content digest)
-    its writer returned, for the engine (:mod:`flumekit.pipeline.rules`), and raises
+    its writer returned, for the engine (:mod:`flumekit.pipeline.rules`; a list for several
+    files, None: the engine identifies the outputs by their bytes), and raises
     :class:`~flumekit.errors.InputError` naming the file for input it cannot analyse.
 
 A stage with parameters declares them in ``DEFAULTS`` and documents each in ``DOCS`` (with its
