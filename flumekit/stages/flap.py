@@ -10,7 +10,8 @@ from __future__ import annotations
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
+from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.summaries import stack_runs, summary_rule
 
 VERSION = "5"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)

@@ -20,7 +20,8 @@ from flumekit.stages.context import Context
 
 # the parameters (DEFAULTS, DOCS) and the choices of linear_pto_damping, in their own module
 from flumekit.stages.models_params import DEFAULTS, DOCS, LINEAR_PTO_DAMPING  # noqa: F401
-from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
+from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.summaries import stack_runs, summary_rule
 
 VERSION = "6"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
