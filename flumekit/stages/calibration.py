@@ -18,8 +18,8 @@ DOCS = {"order": "order of the calibration polynomial, level [m] against voltage
 def rules(ctx: Context, params: dict) -> list[Rule]:
     """Return the rule ``calibration``; none for probes recorded in length units.
 
-    The stage protocol is that of :mod:`flumekit.stages`; the rule's parameters add the
-    ``probes`` and the calibration file's ``dialect``.
+    Protocol: :mod:`flumekit.stages`; the rule's parameters add the ``probes`` and the
+    calibration file's ``dialect`` to the stage's.
     """
     if ctx.campaign.probes.calibrated:  # probes recorded in length units need no calibration
         return []

@@ -20,8 +20,8 @@ VERSION = "3"
 def rules(ctx: Context, params: dict) -> list[Rule]:
     """Return one rule per run, ``eta/<run>``: the surface elevation at every probe.
 
-    The stage protocol is that of :mod:`flumekit.stages`; the stage has no parameters of its
-    own, each rule carries the probes, their positions, the still-water rule and the run's.
+    Protocol: :mod:`flumekit.stages`; the stage has no parameters of its own, each rule carries
+    the probes, their positions, the still-water rule and the run's parameters.
     """
     c = ctx.campaign
     calibrated = c.probes.calibrated

@@ -131,6 +131,6 @@ def compare(inputs, outputs, params) -> Written:
 
 
 def summary(inputs, outputs, params) -> Written:
-    """Stack every run's ``comparison/<run>.nc`` along ``run`` (phase dropped), the summary."""
+    """Stack every run's ``comparison/<run>.nc`` along ``run`` (without ``phase``), the summary."""
     return stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
                       keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))

@@ -70,9 +70,10 @@ def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
                      ) -> tuple[float, float]:
     """Return the start and period [s] of a run's phase average with the rule's parameters.
 
-    :func:`flumekit.uvp.run_window.averaging_window` with ``params`` of the uvp rule
-    (``n_cycles``, ``qc``, ``time_offset``, ``run``); no clean window of ``n_cycles`` periods is
-    an :class:`~flumekit.errors.InputError` naming the files of ``beams`` (name -> path).
+    :func:`flumekit.uvp.run_window.averaging_window`, whose arguments these are, with ``params``
+    of the uvp rule (``n_cycles``, ``qc``, ``time_offset``, ``run``); no clean window of
+    ``n_cycles`` periods is an :class:`~flumekit.errors.InputError` naming the files of ``beams``
+    (name -> path).
     """
     from flumekit.errors import InputError
     from flumekit.uvp import run_window
@@ -87,7 +88,10 @@ def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
 
 
 def clean_beam(beam, qc, name: str, copy: bool = True):
-    """Return the beam cleaned with its QC flags (:func:`flumekit.uvp.run_window.clean_beam`)."""
+    """Return the beam cleaned with its QC flags (:func:`flumekit.uvp.run_window.clean_beam`).
+
+    The arguments are those of the domain function.
+    """
     from flumekit.uvp.run_window import clean_beam
 
     return clean_beam(beam, qc, name, copy)
