@@ -1,28 +1,47 @@
 """Stages: thin rules that read datasets, call domain functions, attach metadata and write.
 
-Each stage module has ``rules(ctx, params) -> list[Rule]`` (cheap: no heavy imports; ``params``
-are its ``[stages.<name>]`` parameters over its ``DEFAULTS``, from :func:`build_rules`) and action
-functions ``action(inputs, outputs, params)`` that do the work when a rule runs. A stage with
-parameters declares them in ``DEFAULTS`` and documents each in ``DOCS`` (with its unit):
-:func:`parameters` collects them for ``flumekit params`` and docs/parameters.md.
+Every stage module follows one protocol, documented here once; its own docstrings say only
+what is particular to it (the inputs it reads, the outputs it writes, its own parameters):
+
+``rules(ctx, params) -> list[Rule]``
+    Declare the stage's rules (:class:`flumekit.pipeline.Rule`) for a campaign: each names
+    its target, its action ``"flumekit.stages.<module>:<action>"``, its input and output
+    files, its parameters and the stage's ``VERSION``. Cheap: no heavy imports. ``ctx`` is
+    the :class:`~flumekit.stages.context.Context` (the campaign, the processed folder under
+    which ``ctx.out(...)`` names the products, the pipeline's ``[stages]`` table and scenes);
+    ``params`` are the stage's ``[stages.<name>]`` parameters over its ``DEFAULTS``, from
+    :func:`build_rules`. An empty list when the campaign or pipeline has nothing for it.
+``action(inputs, outputs, params) -> Written``
+    Do a rule's work when it runs. ``inputs`` and ``outputs`` are dicts of str to
+    :class:`pathlib.Path`: the files the rule reads (products of other rules, raw files, some
+    only named in messages) and the ones it writes (``dataset`` unless the rule says
+    otherwise); ``params`` are the rule's parameters (JSON-able, units as in the stage's
+    ``DOCS``). It returns the :class:`~flumekit.io.atomic.Written` (file and content digest)
+    its writer returned, for the engine (:mod:`flumekit.pipeline.rules`; a list for several
+    files, None: the engine identifies the outputs by their bytes), and raises
+    :class:`~flumekit.errors.InputError` naming the file for input it cannot analyse.
+
+A stage with parameters declares them in ``DEFAULTS`` and documents each in ``DOCS`` (with its
+unit): :func:`parameters` collects them for ``flumekit params`` and docs/parameters.md
+(:mod:`flumekit.stages.catalogue`, with the order of the stages, :data:`STAGES`).
 
 A stage declares rules only for the instruments the campaign has (``Campaign.instruments``):
 probes alone give calibration (probes in volts only), elevation, waves and their figures; the
 flap instruments (flap, PTO, encoder and pressure) add flap, models and comparison; the UVP adds
 the velocity field. A stage that needs an instrument beyond the probes says so in ``NEEDS``,
 and :func:`build_rules` asks for its rules only when the campaign has it.
+
+Examples
+--------
+>>> STAGES[:4]
+('calibration', 'qc', 'eta', 'waves')
 """
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from flumekit.pipeline.rules import Rule
+from flumekit.stages.catalogue import STAGES, check_stage_params, parameters, parameters_markdown
 from flumekit.stages.context import Context
-
-#: stage modules in the order their rules are declared
-STAGES = ("calibration", "qc", "eta", "waves", "flap", "uvp", "models", "performance",
-          "ballscrew", "figures", "uncertainty")
 
 
 def build_rules(ctx: Context) -> list[Rule]:
@@ -64,90 +83,6 @@ def build_rules(ctx: Context) -> list[Rule]:
         if getattr(mod, "NEEDS", "probes") in ctx.campaign.instruments:
             out += mod.rules(ctx, params)
     return out
-
-
-def parameters() -> dict[str, dict[str, tuple[object, str]]]:
-    """Return the parameters of every stage that has some.
-
-    Returns
-    -------
-    dict
-        Stage -> parameter -> ``(default, description with unit)``.
-
-    Examples
-    --------
-    >>> default, doc = parameters()["flap"]["cutoff"]
-    >>> default, doc.endswith("[Hz]")
-    (4.0, True)
-    """
-    import importlib
-
-    out = {}
-    for name in STAGES:
-        mod = importlib.import_module(f"flumekit.stages.{name}")
-        defaults = getattr(mod, "DEFAULTS", None)
-        if defaults:
-            docs = getattr(mod, "DOCS", {})
-            out[name] = {k: (v, docs.get(k, "")) for k, v in defaults.items()}
-    return out
-
-
-def check_stage_params(stages: dict, path: Path) -> None:
-    """Check that every ``[stages.<name>]`` of a pipeline file names a stage and its parameters.
-
-    All problems are reported at once, each with the closest known name.
-
-    Parameters
-    ----------
-    stages : dict
-        The pipeline's ``[stages]`` table: stage -> parameters.
-    path : pathlib.Path
-        The pipeline file, named in the error.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Listing every unknown stage and parameter.
-    """
-    from flumekit.schema import Problem, raise_problems, suggest
-
-    known = parameters()
-    problems = []
-    for stage, given in stages.items():
-        if stage not in known:
-            problems.append(Problem(path, f"stages.{stage}", "unknown stage (or a stage without "
-                                    f"parameters); known: {', '.join(known)}"
-                                    + suggest(stage, list(known))))
-            continue
-        for k in given:
-            if k not in known[stage]:
-                problems.append(Problem(path, f"stages.{stage}.{k}", "unknown parameter; known: "
-                                        f"{', '.join(known[stage])} (`flumekit params {stage}`)"
-                                        + suggest(k, list(known[stage]))))
-    raise_problems(path, problems)
-
-
-def _show(v) -> str:
-    return "none" if v is None else repr(v).replace("True", "true").replace("False", "false")
-
-
-def parameters_markdown() -> str:
-    """Return the reference of every stage parameter as Markdown (docs/parameters.md).
-
-    Returns
-    -------
-    str
-        One table per stage: parameter, default, meaning.
-    """
-    lines = ["# Stage parameters", "",
-             "Set in a pipeline file under `[stages.<stage>]`; `flumekit params STAGE` prints "
-             "one stage. Generated by `flumekit params --markdown`; do not edit by hand.", ""]
-    for stage, params in parameters().items():
-        lines += [f"## `[stages.{stage}]`", "", "| parameter | default | meaning |",
-                  "| --- | --- | --- |"]
-        lines += [f"| `{k}` | `{_show(d)}` | {doc} |" for k, (d, doc) in params.items()]
-        lines.append("")
-    return "\n".join(lines)
 
 
 __all__ = ["STAGES", "build_rules", "check_stage_params", "parameters", "parameters_markdown"]

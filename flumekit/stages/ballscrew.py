@@ -7,6 +7,15 @@ The study needs no instrument and no run, so it is part of a pipeline only when 
 asks for it (:func:`wanted`): a ``[stages.ballscrew]`` table, or a scene naming its targets
 (an entry beginning ``ballscrew/`` or ``figure/bs_fig``). A wave-flume campaign's pipeline
 that asks for neither lists no ``ballscrew/*`` or ``figure/bs_fig*`` target.
+
+Each step's action follows the protocol of :mod:`flumekit.stages`, reads the previous step's
+dataset (``previous``; none for the kinematics) and writes ``ballscrew/<step>.nc``.
+
+References
+----------
+Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
+multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
+9358.
 """
 
 from __future__ import annotations
@@ -34,38 +43,17 @@ PREFIXES = ("ballscrew/", "figure/bs_fig")
 def wanted(ctx: Context) -> bool:
     """Return whether the pipeline asks for the ball-screw study.
 
-    It does with a ``[stages.ballscrew]`` table, or a scene entry beginning with one of
-    :data:`PREFIXES`.
-
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The pipeline's parameters and scenes.
-
-    Returns
-    -------
-    bool
-        True when the study's rules are to be declared.
+    It does with a ``[stages.ballscrew]`` table in ``ctx.params``, or a scene entry beginning
+    with one of :data:`PREFIXES`.
     """
     return "ballscrew" in ctx.params or any(
         t.startswith(PREFIXES) for targets in ctx.scenes.values() for t in targets)
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
-    """Return the rules of the ball-screw study: one per step of :data:`STEPS`.
+    """Return one rule per step of :data:`STEPS`; none unless the pipeline asks (:func:`wanted`).
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    p : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        Each step reads the previous step's dataset; none when the pipeline does not ask for the
-        study (:func:`wanted`).
+    Protocol: :mod:`flumekit.stages`; each step's rule carries only the parameters it uses.
     """
     if not wanted(ctx):
         return []
@@ -100,28 +88,7 @@ def _previous(inputs):
 
 
 def kinematics(inputs, outputs, params) -> Written:
-    """Compute the buoy's reference motion and the linkage kinematics.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        None (the first step).
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``ballscrew/kinematics.nc``.
-    params : dict
-        ``amplitude`` [m], ``period`` [s], ``samples_per_period`` [-], ``lead`` [m].
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358.
-    """
+    """Compute the buoy's reference motion and the linkage kinematics (the first step)."""
     from flumekit.ballscrew import buoy
 
     motion = buoy.reference_motion(params["amplitude"], params["period"],
@@ -138,26 +105,8 @@ def _knobs(params, part: str) -> dict:
 def efficiency(inputs, outputs, params) -> Written:
     """Compute the PTO force, lubrication regime and efficiency of the ball screw.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``previous``: the kinematics dataset.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``ballscrew/efficiency.nc``.
-    params : dict
-        The ``screw_*``, ``lubricant_*`` and ``pto_*`` knobs a pipeline set (None: the
-        model's default).
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358.
+    From the kinematics, with the ``screw_*``, ``lubricant_*`` and ``pto_*`` knobs a pipeline set
+    (:data:`MODEL_KNOBS`; unset: the model's default).
     """
     from flumekit.ballscrew import screw as ballscrew
 
@@ -170,28 +119,9 @@ def efficiency(inputs, outputs, params) -> Written:
 
 
 def thermal_lumped(inputs, outputs, params) -> Written:
-    """Run the lumped thermal model of the ball-screw PTO.
+    """Run the lumped thermal model of the ball-screw PTO on the efficiency's losses.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``previous``: the efficiency dataset.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``ballscrew/thermal_lumped.nc``.
-    params : dict
-        ``cycle_duration`` [s], ``total_duration`` [s], ``lumped_time_step`` [s] and the
-        ``thermal_*`` knobs a pipeline set.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358.
+    With the ``thermal_*`` knobs a pipeline set (:data:`MODEL_KNOBS`).
     """
     from flumekit.ballscrew.thermal.lumped import LumpedThermal
     from flumekit.ballscrew.thermal.lumped import thermal_lumped as run
@@ -203,29 +133,7 @@ def thermal_lumped(inputs, outputs, params) -> Written:
 
 
 def thermal_fem(inputs, outputs, params) -> Written:
-    """Run the axisymmetric finite-element thermal model of the ball screw.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``previous``: the lumped thermal dataset.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``ballscrew/thermal_fem.nc``.
-    params : dict
-        ``fem_time_step`` [s], ``radial_cell_size`` [m], ``axial_cell_size`` [m],
-        ``fem_order`` [-].
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358.
-    """
+    """Run the axisymmetric finite-element thermal model of the ball screw (the last step)."""
     from flumekit.ballscrew.thermal.fem import thermal_fem as run
 
     return _write(run(_previous(inputs), time_step=params["fem_time_step"],

@@ -16,19 +16,10 @@ DOCS = {"order": "order of the calibration polynomial, level [m] against voltage
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
-    """Return the calibration rule, for probes recorded in volts.
+    """Return the rule ``calibration``; none for probes recorded in length units.
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        One rule, ``calibration``; none when the probes are recorded in length units.
+    Protocol: :mod:`flumekit.stages`; the rule's parameters add the ``probes`` and the
+    calibration file's ``dialect`` to the stage's.
     """
     if ctx.campaign.probes.calibrated:  # probes recorded in length units need no calibration
         return []
@@ -42,24 +33,9 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     """Fit each probe's calibration polynomial to its static submersions and write it.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``calibration``: the raw calibration file.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``calibration.nc``.
-    params : dict
-        ``order`` [-], ``min_r2`` [-], ``warn_r2`` [-], ``probes``, ``dialect``.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        When a probe's fit is below ``min_r2`` or not monotonic over its voltages.
+    An action of :mod:`flumekit.stages`: reads the raw ``calibration`` file, writes
+    ``calibration.nc``. A probe whose fit is below ``min_r2`` or not monotonic over its
+    voltages is an :class:`~flumekit.errors.InputError`; below ``warn_r2``, a recorded warning.
     """
     import warnings
 

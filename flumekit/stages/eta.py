@@ -18,19 +18,10 @@ VERSION = "3"
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
-    """Return one rule per run: the surface elevation at every probe, ``eta/<run>``.
+    """Return one rule per run, ``eta/<run>``: the surface elevation at every probe.
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        The runs' elevation rules.
+    Protocol: :mod:`flumekit.stages`; the stage has no parameters of its own, each rule carries
+    the probes, their positions, the still-water rule and the run's parameters.
     """
     c = ctx.campaign
     calibrated = c.probes.calibrated
@@ -55,27 +46,10 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     """Compute the surface elevation at every probe of a run and write it.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``probes``: the quality-controlled probe record; ``calibration``: the calibration
-        dataset (probes recorded in volts only).
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``eta/<run>.nc``.
-    params : dict
-        The probes, their positions ``probe_x`` [m], the ``still_water`` rule and the run's
-        parameters (:func:`flumekit.stages.runs.run_params`).
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        When a calibration is not monotonic over the recorded voltages, or the
-        still-water rule does not apply.
+    An action of :mod:`flumekit.stages`: reads the QC'd ``probes`` record (and the
+    ``calibration`` dataset for probes in volts), writes ``eta/<run>.nc`` with the positions
+    ``probe_x`` [m] as ``x``. A calibration not monotonic over the recorded voltages, or a
+    still-water rule that does not apply, is an :class:`~flumekit.errors.InputError`.
     """
     import numpy as np
 

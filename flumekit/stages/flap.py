@@ -10,7 +10,8 @@ from __future__ import annotations
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
+from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.summaries import stack_runs, summary_rule
 
 VERSION = "5"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
@@ -30,20 +31,7 @@ DOCS = {
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
-    """Return one rule per run, ``flap/<run>``, and the summary ``flap_summary``.
-
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        The runs' flap rules and the summary rule.
-    """
+    """Return one rule per run, ``flap/<run>``, and ``flap_summary`` (:mod:`flumekit.stages`)."""
     c = ctx.campaign
     out = []
     for run in c.runs:
@@ -71,34 +59,13 @@ def _span(t) -> float:
 def build(inputs, outputs, params) -> Written:
     """Analyse a run's flap angle, PTO forces, torque balance and power and write them.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``flap``: the quality-controlled encoder and pressure record; ``waves``: the run's
-        waves product; ``campaign``: ``campaign.toml``; ``probes``: the raw probe file
-        (named in messages).
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``flap/<run>.nc``.
-    params : dict
-        ``cutoff`` [Hz], ``tolerance`` [-], ``n_phase`` [-], ``max_flagged_fraction`` [-],
-        ``record_length_tolerance`` [-] and the run's parameters.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        When the records' durations disagree, an irregular run's waves product
-        lacks the analysed span or energy flux, or the encoder record cannot be analysed.
-
-
-    References
-    ----------
-    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
-    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    An action of :mod:`flumekit.stages`: reads the QC'd encoder and pressure record ``flap``,
+    the run's ``waves`` product and the ``campaign`` file, writes ``flap/<run>.nc``;
+    ``probes`` (the raw probe file) is only named in messages. Records whose durations
+    disagree, an irregular run's waves product without the analysed span or energy flux, and
+    an encoder record that cannot be analysed are an :class:`~flumekit.errors.InputError`.
+    The analyses and their references are :func:`flumekit.flap.analyse_run` and
+    :func:`flumekit.flap.analyse_irregular_run`.
     """
     from pathlib import Path
 
@@ -155,20 +122,5 @@ def build(inputs, outputs, params) -> Written:
 
 
 def summary(inputs, outputs, params) -> Written:
-    """Stack the flap products of every run along ``run``.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Run -> its ``flap/<run>.nc``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``flap_summary.nc``.
-    params : dict
-        Unused.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-    """
+    """Stack every run's ``flap/<run>.nc`` along ``run`` into ``flap_summary.nc``."""
     return stack_runs(inputs, outputs, "Flap amplitudes, torques and power of every run")

@@ -1,15 +1,15 @@
 """Stage: the flume's runs against the linear model and the time-domain simulator.
 
-``models/hydro``: the hydrodynamic coefficients of the campaign's flap over a frequency grid,
-as one container (with A∞ from the Ogilvie relation) used by both the linear model and the
-simulator: the Renzi–Dias thin plate in the flume's channel (default,
-:func:`flumekit.flap.renzi_dias.model.channel_container`), or, with
-``[stages.models] coefficients = "bem"`` and Capytaine installed, the real thick flap on its
-foundation by BEM (:func:`flumekit.flap.comparison.bem_container`).
-``comparison/<run>``: the experiment, the linear model (Eq. A1) and the simulator side by side
-along a ``source`` dimension (:func:`flumekit.flap.comparison.compare_run`); for an irregular
-run the spectral sum of the linear model and the simulator driven by the measured incident wave
-over the analysed span (:func:`flumekit.flap.comparison.compare_irregular_run`).
+``models/hydro``: the flap's hydrodynamic coefficients over a frequency grid, one container
+(with A∞ from the Ogilvie 1964 relation) for the linear model and the simulator: the Renzi &
+Dias (2012) thin plate in the flume's channel (default,
+:func:`flumekit.flap.renzi_dias.model.channel_container`), or with ``coefficients = "bem"``
+and Capytaine installed the thick flap on its foundation by BEM
+(:func:`flumekit.flap.comparison.bem_container`). ``comparison/<run>``: the experiment, the
+linear model (Eq. A1) and the simulator side by side along ``source``
+(:func:`flumekit.flap.comparison.compare_run`); for an irregular run the spectral sum of the
+linear model and the simulator driven by the measured incident wave over the analysed span
+(:func:`flumekit.flap.comparison.compare_irregular_run`).
 """
 
 from __future__ import annotations
@@ -17,62 +17,21 @@ from __future__ import annotations
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
+
+# the parameters (DEFAULTS, DOCS) and the choices of linear_pto_damping, in their own module
+from flumekit.stages.models_params import DEFAULTS, DOCS, LINEAR_PTO_DAMPING  # noqa: F401
+from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.summaries import stack_runs, summary_rule
 
 VERSION = "6"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
-DEFAULTS = {"coefficients": "renzi_dias", "omega_min": 0.4, "omega_max": 25.0, "n_omega": 400,
-            "bem_omega_min": 1.0, "bem_omega_max": 12.0, "bem_n_omega": 40,
-            "bem_panel_size": 0.05, "dt": 0.04, "simulator": True, "friction": True,
-            "spin_up_periods": 20, "irf_duration": 30.0,
-            "linear_pto_damping": "energy_equivalent"}
-DOCS = {
-    "coefficients": "hydrodynamic coefficients: 'renzi_dias' (thin plate in the channel) or "
-                    "'bem' (Capytaine, thick flap, open water)",
-    "omega_min": "Renzi-Dias frequency grid: lowest angular frequency [rad s-1]",
-    "omega_max": "Renzi-Dias frequency grid: highest angular frequency [rad s-1]",
-    "n_omega": "Renzi-Dias frequency grid: number of frequencies [-]",
-    "bem_omega_min": "BEM frequency grid: lowest angular frequency [rad s-1]",
-    "bem_omega_max": "BEM frequency grid: highest angular frequency [rad s-1]",
-    "bem_n_omega": "BEM frequency grid: number of frequencies [-]",
-    "bem_panel_size": "BEM panel size [m]",
-    "dt": "time step of the time-domain simulator [s]",
-    "simulator": "run the time-domain simulator beside the linear model",
-    "friction": "include the campaign's LuGre PTO friction in the simulator",
-    "spin_up_periods": "periods of the incident wave the simulator runs before the compared "
-                       "window [-]",
-    "irf_duration": "length of the radiation impulse response K(t) of the simulator [s]",
-    "linear_pto_damping": "PTO damping of the linear model (Eq. A1): 'energy_equivalent' "
-                          "(measured mean power / mean(theta_dot^2)) or 'optimal' (maximum "
-                          "power at the run's period, Renzi & Dias 2012 Eq. 2.40)",
-}
-
-
-#: the choices of ``linear_pto_damping``: :data:`flumekit.flap.comparison.LINEAR_PTO_DAMPING`,
-#: repeated here so that planning does not import flumekit.flap (numpy, scipy, xarray), which
-#: would cost planning more than the rules themselves (tests/stages checks that the two agree)
-LINEAR_PTO_DAMPING = ("energy_equivalent", "optimal")
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
-    """Return the rules of the models stage.
+    """Return ``models/hydro``, one ``comparison/<run>`` per run and ``comparison_summary``.
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    p : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        ``models/hydro``, one ``comparison/<run>`` per run and ``comparison_summary``.
-
-    Raises
-    ------
-    flumekit.errors.FlumekitError
-        For an unknown ``coefficients`` or ``linear_pto_damping`` choice.
+    Protocol: :mod:`flumekit.stages`. An unknown ``coefficients`` or ``linear_pto_damping``
+    choice is a :class:`~flumekit.errors.FlumekitError`.
     """
     from flumekit.errors import FlumekitError
 
@@ -113,33 +72,9 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
 def hydro(inputs, outputs, params) -> Written:
     """Compute the flap's hydrodynamic coefficients over a frequency grid and write them.
 
-    The Renzi–Dias thin plate in the flume's channel, or the thick flap by BEM
-    (Capytaine); stored with the radiation impulse response and A∞ from the Ogilvie
-    relation (:func:`flumekit.flap.comparison.stored_container`).
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        None.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``models/hydro.nc``.
-    params : dict
-        The flume and flap geometry (``depth``, ``flap_width``, ``hinge_height``,
-        ``channel_width``, ``thickness`` [m]; ``stiffness`` [N m rad-1], ``inertia``
-        [kg m2]), ``coefficients`` and its frequency grid [rad s-1], ``irf_duration`` [s].
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy
-    converter in a channel. J. Fluid Mech. 701, 482-510.
-
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. 5th Symposium on Naval Hydrodynamics.
+    An action of :mod:`flumekit.stages` writing ``models/hydro.nc`` (module notes) from the
+    geometry ``depth``, ``flap_width``, ``hinge_height``, ``channel_width``, ``thickness`` [m]
+    and ``stiffness`` [N m rad-1], with a radiation impulse response of ``irf_duration`` [s].
     """
     from flumekit.flap.comparison import stored_container
     from flumekit.io.netcdf import write_product
@@ -168,21 +103,8 @@ def hydro(inputs, outputs, params) -> Written:
 def compare(inputs, outputs, params) -> Written:
     """Compare a run's experiment with the linear model and the simulator and write it.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``flap``, ``waves``: the run's products; ``hydro``: ``models/hydro.nc``;
-        ``campaign``: ``campaign.toml``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``comparison/<run>.nc``.
-    params : dict
-        ``dt`` [s], ``simulator``, ``friction``, ``spin_up_periods`` [-],
-        ``linear_pto_damping`` and the run's parameters.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
+    An action of :mod:`flumekit.stages`: reads the run's ``flap`` and ``waves`` products,
+    ``hydro`` (``models/hydro.nc``) and the ``campaign`` file, writes ``comparison/<run>.nc``.
     """
     from pathlib import Path
 
@@ -209,21 +131,6 @@ def compare(inputs, outputs, params) -> Written:
 
 
 def summary(inputs, outputs, params) -> Written:
-    """Stack the comparisons of every run along ``run`` (phase-resolved variables dropped).
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Run -> its ``comparison/<run>.nc``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``comparison_summary.nc``.
-    params : dict
-        Unused.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-    """
+    """Stack every run's ``comparison/<run>.nc`` along ``run`` (without ``phase``), the summary."""
     return stack_runs(inputs, outputs, "Experiment, linear model and simulator for every run",
                       keep=lambda ds: list(ds.data_vars), drop_dims=("phase",))

@@ -10,13 +10,17 @@ rule when the campaign has no irregular run.
 The bin edges are parameters; unset, each distinct target of the runs (``hm0``; ``te``, or
 the Te of the JONSWAP spectrum of the declared ``tp`` and ``gamma``) gets its own bin, with
 edges halfway between neighbouring targets and the outer edges as far out (±10 % of a lone
-target).
+target, :func:`flumekit.stages.power_bins.edges_around`):
+
+>>> edges_around([1.0, 2.0, 2.0, 4.0])
+[0.5, 1.5, 3.0, 5.0]
 """
 
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
+from flumekit.stages.power_bins import edges_around, target_te
 
 VERSION = "1"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)
@@ -30,20 +34,7 @@ DOCS = {
 
 
 def rules(ctx: Context, p: dict) -> list[Rule]:
-    """Return the power-matrix rule over the campaign's irregular runs.
-
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    p : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        One rule, ``power_matrix``; none without irregular runs.
-    """
+    """Return the rule ``power_matrix``; none without irregular runs (:mod:`flumekit.stages`)."""
     irregular = [r for r in ctx.campaign.runs if r.irregular]
     if not irregular:
         return []
@@ -61,101 +52,15 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
                  version=VERSION)]
 
 
-def target_te(target: dict) -> float:
-    """Return the energy period of a target sea state.
-
-    Parameters
-    ----------
-    target : dict
-        ``te`` [s] when declared, else ``tp`` [s] and ``gamma`` [-] (default 3.3) of a
-        JONSWAP spectrum.
-
-    Returns
-    -------
-    float
-        Te = m_-1 / m0 [s], the declared one or that of the JONSWAP spectrum (integrated
-        to 20 fp).
-
-    References
-    ----------
-    IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
-    Part 100: Electricity producing wave energy converters - Power performance assessment.
-
-    Examples
-    --------
-    >>> target_te({"te": 2.5})
-    2.5
-    >>> round(target_te({"tp": 2.0, "gamma": 3.3}) / 2.0, 2)
-    0.9
-    """
-    import numpy as np
-
-    from flumekit.synth.waves import jonswap
-
-    if target.get("te"):
-        return float(target["te"])
-    tp = float(target["tp"])
-    f = np.linspace(0.0, 20.0 / tp, 20001)[1:]  # to 20 fp: the f^-5 tail beyond is < 1e-5
-    s = jonswap(f, 1.0, tp, target.get("gamma") or 3.3)
-    return float(np.trapezoid(s / f, f) / np.trapezoid(s, f))
-
-
-def edges_around(values) -> list[float]:
-    """Return bin edges that give each distinct value its own bin.
-
-    Inner edges lie halfway between neighbours, the outer edges as far out as the nearest
-    inner one (±10 % around a lone value).
-
-    Parameters
-    ----------
-    values : array_like
-        The values (e.g. target Hm0 [m] or Te [s]); equal to 9 decimals counts as one.
-
-    Returns
-    -------
-    list of float
-        Increasing edges, one more than the distinct values.
-
-    Examples
-    --------
-    >>> edges_around([1.0, 2.0, 2.0, 4.0])
-    [0.5, 1.5, 3.0, 5.0]
-    >>> edges_around([2.0])
-    [1.8, 2.2]
-    """
-    import numpy as np
-
-    v = np.unique(np.round(np.asarray(values, dtype=float), 9))
-    if v.size == 1:
-        return [float(v[0] * 0.9), float(v[0] * 1.1)]
-    mid = 0.5 * (v[1:] + v[:-1])
-    return [float(2 * v[0] - mid[0]), *map(float, mid), float(2 * v[-1] - mid[-1])]
-
-
 def build(inputs, outputs, params) -> None:
     """Bin the irregular runs' power by incident Hm0 and Te and write the power matrix.
 
-    A run outside the bins is in no cell: it is named in the product and warned about.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``waves:<run>``, ``flap:<run>``, ``comparison:<run>``: the products of each irregular
-        run.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``power_matrix.nc``.
-    params : dict
-        ``hm0_edges`` [m] and ``te_edges`` [s] (None: from the targets), ``targets``, ``runs``.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        When a product lacks a variable, or the runs' comparison sources differ.
-
-    References
-    ----------
-    IEC TS 62600-100:2012, Power performance assessment of electricity producing wave
-    energy converters.
+    An action of :mod:`flumekit.stages` (returning None: the engine identifies the output by its
+    bytes): reads each irregular run's ``waves:<run>``, ``flap:<run>`` and ``comparison:<run>``,
+    writes ``power_matrix.nc`` with the bins ``hm0_edges`` [m] and ``te_edges`` [s] (None: from
+    the ``targets``; IEC TS 62600-100). A run outside the bins is in no cell: it is named in the
+    product and warned about. A product lacking a variable, or runs whose comparison sources
+    differ, is an :class:`~flumekit.errors.InputError`.
     """
     import numpy as np
     import xarray as xr

@@ -30,23 +30,9 @@ VERSION = "5"
 def rules(ctx: Context, params: dict) -> list[Rule]:
     """Return the quality-control rules of every run and the campaign's QC summary.
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        ``qc/probes/<run>`` (and ``qc/flap/<run>`` with the flap instruments) per run, and
-        ``qc_summary``.
-
-    References
-    ----------
-    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
-    data.
+    Protocol: :mod:`flumekit.stages`. Per run ``qc/probes/<run>`` (and ``qc/flap/<run>`` with the
+    flap instruments), each with the stage's QARTOD thresholds (U.S. IOOS 2020, QARTOD manual for
+    in-situ surface wave data), the run's parameters and its raw reading; then ``qc_summary``.
     """
     c = ctx.campaign
     out = []

@@ -43,34 +43,11 @@ def _stuck(ds, name, path, max_gap):
 def probes(inputs, outputs, params) -> Written:
     """Quality-control a run's probe record and check it against the run's metadata.
 
-    Dead, stuck or noise-only probes are errors; the record's kind (regular or
-    irregular) and dominant period [s] must agree with the declared ones.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``probes``: the raw probe file; ``run``: the run's ``run.toml``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``qc/probes/<run>.nc``.
-    params : dict
-        The QARTOD thresholds and checks of ``[stages.qc]``, the raw reading
-        (:func:`flumekit.stages.common.raw_reading`) and the run's parameters.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Naming the file and probe, for a dead probe, or a kind or period that
-        contradicts ``run.toml``.
-
-    References
-    ----------
-    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
-    data.
+    An action of :mod:`flumekit.stages`: reads the raw ``probes`` file, writes
+    ``qc/probes/<run>.nc``, with the ``[stages.qc]`` thresholds (U.S. IOOS 2020, QARTOD manual
+    for in-situ surface wave data). A dead, stuck or noise-only probe, or a kind (regular or
+    irregular) or dominant period [s] that contradicts ``run`` (run.toml), is an
+    :class:`~flumekit.errors.InputError` naming the file and probe.
     """
     from pathlib import Path
 
@@ -120,31 +97,10 @@ def probes(inputs, outputs, params) -> Written:
 def flap(inputs, outputs, params) -> Written:
     """Quality-control a run's encoder and chamber-pressure record.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``flap``: the raw flap file; ``run``: the run's ``run.toml``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``qc/flap/<run>.nc``.
-    params : dict
-        The QARTOD thresholds and checks of ``[stages.qc]``, the raw reading and the run's
-        parameters.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Naming the file and channel, for a dead or stuck channel, a masked span
-        longer than ``max_gap`` [s], or a period that contradicts ``run.toml``.
-
-    References
-    ----------
-    U.S. IOOS (2020). QARTOD manual for real-time quality control of in-situ surface wave
-    data.
+    An action of :mod:`flumekit.stages`: reads the raw ``flap`` file, writes ``qc/flap/<run>.nc``,
+    as :func:`probes` does. A dead or stuck channel, a masked span longer than ``max_gap`` [s] or
+    a period that contradicts ``run`` (run.toml) is an :class:`~flumekit.errors.InputError`
+    naming the file and channel.
     """
     from pathlib import Path
 

@@ -17,19 +17,9 @@ def summary(inputs, outputs, params) -> Written:
     each run is the attribute ``clock_reference``), and every warning of the QC datasets.
     A campaign without the flap instruments has the probe counts only.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``probes/<run>`` and ``flap/<run>``: the QC products of each run.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``qc_summary.nc``.
-    params : dict
-        ``clock_tolerance`` [s] and ``conditions``: run -> ``[period [s], height [m]]``.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest.
+    An action of :mod:`flumekit.stages`: reads each run's QC products ``probes/<run>`` and
+    ``flap/<run>``, writes ``qc_summary.nc``; ``conditions`` maps run -> ``[period [s], height
+    [m]]``.
     """
     import numpy as np
     import xarray as xr

@@ -3,6 +3,10 @@
 from __future__ import annotations
 
 from flumekit.io.atomic import Written
+from flumekit.stages.record_start import declared_start
+
+# the summaries' stacking, here too for the callers that import it from the run helpers
+from flumekit.stages.summaries import stack_runs  # noqa: F401
 
 
 def run_params(run, campaign=None) -> dict:
@@ -128,104 +132,9 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
         ds["time"].attrs[conventions.RECORD_START] = carried
     declared = params.get("start")
     if declared and "time" in ds.coords:
-        ds = _declared_start(ds, declared, params["run"])
+        ds = declared_start(ds, declared, params["run"])
     return write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source,
                          params, compress=compress)
-
-
-def _declared_start(ds, declared: str, run: str):
-    """Return ``ds`` with the start run.toml declares, where its record gives none.
-
-    A record whose own start departs from the declared one by more than 1 s (both in UTC, or
-    both on the lab's clock) is an error: metadata that contradicts the record is not used
-    silently.
-    """
-    import numpy as np
-
-    from flumekit import conventions
-    from flumekit.errors import InputError
-
-    found = conventions.record_start(ds)
-    if found is None:
-        ds = ds.copy()
-        ds["time"].attrs[conventions.RECORD_START] = declared
-        return ds
-    if found.endswith("Z") == declared.endswith("Z"):
-        gap = abs(np.datetime64(found.rstrip("Z"), "ns") - np.datetime64(declared.rstrip("Z"),
-                                                                         "ns"))
-        if gap > np.timedelta64(1, "s"):
-            raise InputError(ds.attrs.get(conventions.SOURCE_FILE) or f"run {run}",
-                             f"the record starts at {found}, but run.toml of run {run} declares "
-                             f"start = {declared}: correct or remove 'start' in run.toml",
-                             field="start")
-    return ds
-
-
-def summary_rule(ctx, stage: str, version: str, module: str | None = None):
-    """Return the summary rule of a per-run stage.
-
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The stage context.
-    stage : str
-        The stage; the rule ``<stage>_summary`` reads every ``<stage>/<run>.nc``.
-    version : str
-        The stage's rule version.
-    module : str, optional
-        The stage module whose ``summary`` builds it (default: the stage's name).
-
-    Returns
-    -------
-    flumekit.pipeline.Rule
-        The summary rule.
-    """
-    from flumekit.pipeline.rules import Rule
-
-    return Rule(f"{stage}_summary", f"flumekit.stages.{module or stage}:summary",
-                inputs={r.id: ctx.out(stage, f"{r.id}.nc") for r in ctx.campaign.runs},
-                outputs={"dataset": ctx.out(f"{stage}_summary.nc")}, version=version)
-
-
-def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=()) -> Written:
-    """Write the per-run datasets stacked along ``run`` (a campaign summary).
-
-    Every run's warnings are kept, each naming its run once.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Run -> its product.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: the summary file.
-    title : str
-        The summary's title.
-    keep : callable, optional
-        ``keep(ds)`` names the variables to keep (default: every scalar).
-    drop_dims : sequence of str, optional
-        Dimensions dropped first.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest.
-    """
-    import xarray as xr
-
-    from flumekit.conventions import WARNINGS, run_warnings
-    from flumekit.io.netcdf import read_dataset, write_product
-
-    rows, warned = [], []
-    for name in sorted(inputs):
-        ds = read_dataset(inputs[name]).drop_dims(list(drop_dims), errors="ignore")
-        warned += run_warnings(name, ds.attrs.get(WARNINGS, ""))
-        names = keep(ds) if keep else [v for v in ds.data_vars if ds[v].ndim == 0]
-        rows.append(ds[list(names)].expand_dims("run"))
-    out = xr.concat(rows, dim="run", coords="all", compat="override")
-    # every run's warnings kept where a campaign is read, each naming its run once
-    out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
-    return write_product(out, outputs["dataset"], title,
-                         f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
 
 
 def __getattr__(name: str):

@@ -32,18 +32,9 @@ DOCS = {
 def rules(ctx: Context, params: dict) -> list[Rule]:
     """Declare the per-run propagation, the conditions and the budget figure (module notes).
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign and the output folders.
-    params : dict
-        ``[stages.uncertainty]`` parameters (:data:`DEFAULTS`, :data:`DOCS`).
-
-    Returns
-    -------
-    list of flumekit.pipeline.rules.Rule
-        ``uncertainty/<run>`` per regular run (with draws), ``conditions`` and
-        ``figure/uncertainty_budget``.
+    Protocol: :mod:`flumekit.stages`. ``uncertainty/<run>`` per regular run (with draws), each
+    with the waves and flap stages' own parameters, ``conditions`` and
+    ``figure/uncertainty_budget``.
     """
     import zlib
 

@@ -13,18 +13,9 @@ def run_uncertainty(inputs, outputs, params) -> None:
 
     :func:`flumekit.uncertainty.propagation.propagate` (JCGM 101:2008 Monte Carlo, JCGM
     100:2008 linear propagation) of the campaign's Type B components through the run's waves
-    and flap analyses.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``campaign`` (campaign.toml), ``eta`` (the run's elevation), optionally
-        ``calibration`` and the raw ``flap`` record.
-    outputs : dict of str to pathlib.Path
-        The run's uncertainty dataset.
-    params : dict
-        The rule's parameters: ``run``, ``depth`` [m], ``period`` [s], the waves and flap
-        stages' parameters, ``draws``, ``seed``, ``directions``, ``linear``.
+    and flap analyses. An action of :mod:`flumekit.stages`: reads ``campaign``, ``eta`` and
+    optionally ``calibration`` and the raw ``flap`` record; its parameters carry the waves and
+    flap stages' own beside ``draws``, ``seed``, ``directions`` and ``linear``.
     """
     import warnings
     from pathlib import Path
@@ -73,14 +64,9 @@ def run_uncertainty(inputs, outputs, params) -> None:
 def conditions(inputs, outputs, params) -> None:
     """Write the repeat statistics per condition with the runs' uncertainties, and the budget.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``waves`` and optionally ``flap`` summaries, and ``run:<id>`` uncertainty datasets.
-    outputs : dict of str to pathlib.Path
-        ``dataset`` (conditions.nc) and ``budget`` (budget.nc).
-    params : dict
-        The rule's parameters, optionally ``scale`` (the Froude scale of the report).
+    An action of :mod:`flumekit.stages`: reads the ``waves`` (and ``flap``) summaries and each
+    run's ``run:<id>`` uncertainty dataset, writes ``dataset`` (conditions.nc) and ``budget``
+    (budget.nc); optional ``scale``: the Froude scale of the report.
     """
     import xarray as xr
 

@@ -34,18 +34,8 @@ DOCS = {
 def rules(ctx: Context, params: dict) -> list[Rule]:
     """Return one rule per UVP run, ``uvp/<run>``, and the campaign's field, ``uvp_field``.
 
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        The UVP runs' rules (each also writes ``qc/uvp/<run>.nc``) and the field rule; none
-        without UVP runs.
+    Protocol: :mod:`flumekit.stages`. A run's rule also writes the beams' QC flags,
+    ``qc/uvp/<run>.nc``, with the ``[stages.qc]`` parameters of the beams; none without UVP runs.
     """
     from flumekit.stages.qc_params import DEFAULTS as QC_DEFAULTS
     from flumekit.stages.qc_params import UVP_PARAMS
@@ -78,43 +68,12 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 
 def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
                      ) -> tuple[float, float]:
-    """Return the start and period of a run's phase average with the rule's parameters.
+    """Return the start and period [s] of a run's phase average with the rule's parameters.
 
-    See :func:`flumekit.uvp.run_window.averaging_window`.
-
-    Parameters
-    ----------
-    waves : xarray.Dataset
-        The run's waves product.
-    qc : xarray.Dataset or None
-        The beams' QC flags; None: the beams are not considered.
-    theta : xarray.DataArray
-        The flap angle [rad].
-    beams : dict of str to path-like
-        Beam name -> its file, named in errors.
-    params : dict
-        The uvp rule's parameters (``n_cycles``, ``qc``, ``time_offset``, ``run``).
-    pad : float
-        Margin kept clean around the window [s].
-    span : tuple of float, optional
-        Analysed span of the waves [s].
-
-    Returns
-    -------
-    start : float
-        Start of the averaged window [s].
-    period : float
-        The measured wave period [s].
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Naming the beam files, when no clean window of ``n_cycles`` periods exists.
-
-    References
-    ----------
-    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
-    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    :func:`flumekit.uvp.run_window.averaging_window`, whose arguments these are, with ``params``
+    of the uvp rule (``n_cycles``, ``qc``, ``time_offset``, ``run``); no clean window of
+    ``n_cycles`` periods is an :class:`~flumekit.errors.InputError` naming the files of ``beams``
+    (name -> path).
     """
     from flumekit.errors import InputError
     from flumekit.uvp import run_window
@@ -131,21 +90,7 @@ def averaging_window(waves, qc, theta, beams, params, pad: float, span=None
 def clean_beam(beam, qc, name: str, copy: bool = True):
     """Return the beam cleaned with its QC flags (:func:`flumekit.uvp.run_window.clean_beam`).
 
-    Parameters
-    ----------
-    beam : xarray.Dataset
-        A beam record.
-    qc : xarray.Dataset
-        The beams' QC flags.
-    name : str
-        The beam's name.
-    copy : bool, default True
-        Leave ``beam`` untouched.
-
-    Returns
-    -------
-    xarray.Dataset
-        The beam with failed samples masked.
+    The arguments are those of the domain function.
     """
     from flumekit.uvp.run_window import clean_beam
 
@@ -155,24 +100,9 @@ def clean_beam(beam, qc, name: str, copy: bool = True):
 def field(inputs, outputs, params) -> Written:
     """Assemble the phase-averaged (phase, z, x) velocity field of every UVP run and write it.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Run -> its ``uvp/<run>.nc``; ``campaign``: ``campaign.toml``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``uvp_field.nc``.
-    params : dict
-        ``method`` ('least_squares' or 'paired'), ``dx`` [m], ``height`` [m], ``period`` [s].
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    References
-    ----------
-    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
-    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    An action of :mod:`flumekit.stages`: reads every run's ``uvp/<run>.nc`` (keyed by run) and
+    the ``campaign`` file, writes ``uvp_field.nc`` with ``method`` and grid spacing ``dx`` [m]
+    (:func:`flumekit.uvp.velocity_field`; Brito et al. 2020).
     """
     from pathlib import Path
 

@@ -70,34 +70,13 @@ def build(inputs, outputs, params) -> list[Written]:
 
     The beams are read once, checked where the average reads them
     (:func:`flumekit.uvp.run_window.checked_window`, the flags written), cleaned and
-    phase-averaged (:func:`flumekit.uvp.phase_average_beams`).
+    phase-averaged (:func:`flumekit.uvp.phase_average_beams`; Brito et al. 2020).
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Beam name -> its ``.mfprof`` file; ``waves``, ``flap``: the run's products;
-        ``campaign``: ``campaign.toml``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``uvp/<run>.nc``; ``qc``: ``qc/uvp/<run>.nc``.
-    params : dict
-        The uvp stage's parameters (``n_cycles``, ``n_phase``, ``cutoff`` [Hz], ``order``,
-        ``margin`` [m], ``min_amplitude``), ``qc``, ``time_offset`` [s] and the run's.
-
-    Returns
-    -------
-    list of flumekit.io.atomic.Written
-        The flags file and the phase-averaged product.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Naming the files, when the waves product has no analysed span or no clean window
-        of ``n_cycles`` periods exists.
-
-    References
-    ----------
-    Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of an
-    oscillating wave surge converter. J. Mar. Sci. Eng. 8.
+    An action of :mod:`flumekit.stages`: reads each beam's ``.mfprof`` file (keyed by beam), the
+    run's ``waves`` and ``flap`` products and the ``campaign`` file; writes ``dataset``
+    (``uvp/<run>.nc``) and ``qc`` (``qc/uvp/<run>.nc``), returning both. A waves product without
+    an analysed span, or no clean window of ``n_cycles`` periods, is an
+    :class:`~flumekit.errors.InputError` naming the files.
     """
     from pathlib import Path
 

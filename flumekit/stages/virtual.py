@@ -63,16 +63,10 @@ def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
 
 
 def base(inputs, outputs, params) -> None:
-    """Write the campaign-wide raw files of a virtual campaign.
+    """Write the campaign-wide raw files of a virtual campaign (``campaign.toml``, calibration).
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        None.
-    outputs : dict of str to pathlib.Path
-        The campaign-wide raw files (``campaign.toml``, the probe calibration).
-    params : dict
-        ``root``, ``size``, ``seed``.
+    An action of :mod:`flumekit.stages` (a source rule: it reads nothing), into ``root`` with the
+    campaign's ``size`` and ``seed``.
     """
     from flumekit.synth.campaign import write_virtual_base
 
@@ -80,16 +74,9 @@ def base(inputs, outputs, params) -> None:
 
 
 def run(inputs, outputs, params) -> None:
-    """Write the raw files of one run of a virtual campaign.
+    """Write the raw files of run ``run`` of the virtual campaign in ``root``.
 
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``campaign``: ``campaign.toml``.
-    outputs : dict of str to pathlib.Path
-        The run's raw files.
-    params : dict
-        ``root``, ``run``.
+    An action of :mod:`flumekit.stages` (a source rule), after ``campaign`` (campaign.toml).
     """
     from flumekit.synth.campaign import write_virtual_run
 

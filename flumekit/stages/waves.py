@@ -5,7 +5,8 @@ from __future__ import annotations
 from flumekit.io.atomic import Written
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.runs import run_params, stack_runs, summary_rule, write_run
+from flumekit.stages.runs import run_params, write_run
+from flumekit.stages.summaries import stack_runs, summary_rule
 
 VERSION = "6"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
@@ -56,20 +57,7 @@ DOCS = {
 
 
 def rules(ctx: Context, params: dict) -> list[Rule]:
-    """Return one rule per run, ``waves/<run>``, and the summary ``waves_summary``.
-
-    Parameters
-    ----------
-    ctx : flumekit.stages.context.Context
-        The campaign, the processed folder and the pipeline's parameters.
-    params : dict
-        The stage's ``[stages.<stage>]`` parameters over its ``DEFAULTS``.
-
-    Returns
-    -------
-    list of flumekit.pipeline.Rule
-        The runs' waves rules and the summary rule.
-    """
+    """Return one rule per run, ``waves/<run>``, and ``waves_summary`` (:mod:`flumekit.stages`)."""
     c = ctx.campaign
     out = []
     for run in c.runs:
@@ -87,39 +75,11 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 def build(inputs, outputs, params) -> Written:
     """Separate a run's incident and reflected waves, compute its statistics and write them.
 
-    A declared height or sea state that disagrees with the measured one beyond its
-    warning level is a recorded warning, beyond its tolerance an error.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        ``eta``: the run's elevation product; ``run``: its ``run.toml``; ``probes``: the raw
-        probe file (named in messages).
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``waves/<run>.nc``.
-    params : dict
-        The stage's parameters (:data:`DEFAULTS`), ``depth`` [m], ``density`` [kg m-3],
-        ``separation_probes`` and the run's parameters.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-
-    Raises
-    ------
-    flumekit.errors.InputError
-        Naming the probe file, for a record the analysis cannot use, or the
-        ``run.toml``, for a declared height or sea state beyond tolerance.
-
-    References
-    ----------
-    Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected spectra
-    using a least squares method. Proc. 17th Coastal Engineering Conference, 154-172.
-
-    Zelt, J. A. & Skjelbreia, J. E. (1992). Estimating incident and reflected wave fields
-    using an arbitrary number of wave gauges. Proc. 23rd Coastal Engineering Conference,
-    777-789.
+    An action of :mod:`flumekit.stages`: reads ``eta``, writes ``waves/<run>.nc``; a record the
+    analysis cannot use is an :class:`~flumekit.errors.InputError` naming ``probes`` (the raw
+    file); a declared height or sea state off the measured one beyond its warning level is a
+    recorded warning, beyond its tolerance an error naming ``run`` (run.toml). Analyses and
+    references: :func:`flumekit.waves.analyse_run`, :func:`flumekit.waves.analyse_irregular_run`.
     """
     import warnings
 
@@ -140,9 +100,8 @@ def build(inputs, outputs, params) -> Written:
     # kept in the dataset, where the make summary, the summaries and the report find them
     recorded = [f"{inputs['probes']}: {w.message}" for w in caught
                 if issubclass(w.category, UserWarning)]
-    # the declared height (sea state) only labels the run (the analysis uses the measured
-    # one), so a moderate disagreement is a warning and a gross one an error; an undeclared
-    # one is not checked
+    # the declared height (sea state) only labels the run (the analysis uses the measured one):
+    # a moderate disagreement is a warning, a gross one an error; an undeclared one is unchecked
     warned = []
     if params["height"] is not None:
         warned.append(check_height(params["height"], float(ds["incident_height"]),
@@ -166,18 +125,10 @@ def build(inputs, outputs, params) -> Written:
 
 
 def report(path) -> str:
-    """Return one line of a run's wave statistics for the make summary.
+    """Return one line of the statistics of a run's waves product ``path``, for the make summary.
 
-    Parameters
-    ----------
-    path : path-like
-        The run's waves product.
-
-    Returns
-    -------
-    str
-        Kr, incident height [m] and period [s] of a regular run; Kr, Hm0 [m], Tp and Te [s]
-        of an irregular one.
+    Kr, incident height [m] and period [s] of a regular run; Kr, Hm0 [m], Tp and Te [s] of an
+    irregular one.
     """
     from flumekit.io.netcdf import read_dataset
 
@@ -194,20 +145,5 @@ def report(path) -> str:
 
 
 def summary(inputs, outputs, params) -> Written:
-    """Stack the waves products of every run along ``run``.
-
-    Parameters
-    ----------
-    inputs : dict of str to pathlib.Path
-        Run -> its ``waves/<run>.nc``.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: ``waves_summary.nc``.
-    params : dict
-        Unused.
-
-    Returns
-    -------
-    flumekit.io.atomic.Written
-        The file written and its content digest, for the engine.
-    """
+    """Stack every run's ``waves/<run>.nc`` along ``run`` into ``waves_summary.nc``."""
     return stack_runs(inputs, outputs, "Wave statistics of every run")
