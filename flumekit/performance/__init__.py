@@ -6,7 +6,8 @@ pitching flap and a heaving buoy alike (IEC TS 62600-100, IEC TS 62600-103).
 """
 
 from flumekit.performance.capture import capture_width, capture_width_ratio
-from flumekit.performance.matrix import power_matrix
+from flumekit.performance.matrix import edges_around, power_matrix, target_te
 from flumekit.performance.statistics import motion_statistics
 
-__all__ = ["capture_width", "capture_width_ratio", "motion_statistics", "power_matrix"]
+__all__ = ["capture_width", "capture_width_ratio", "edges_around", "motion_statistics",
+           "power_matrix", "target_te"]

@@ -10,7 +10,7 @@ rule when the campaign has no irregular run.
 The bin edges are parameters; unset, each distinct target of the runs (``hm0``; ``te``, or
 the Te of the JONSWAP spectrum of the declared ``tp`` and ``gamma``) gets its own bin, with
 edges halfway between neighbouring targets and the outer edges as far out (±10 % of a lone
-target, :func:`flumekit.stages.power_bins.edges_around`):
+target, :func:`flumekit.performance.matrix.edges_around`):
 
 >>> edges_around([1.0, 2.0, 2.0, 4.0])
 [0.5, 1.5, 3.0, 5.0]
@@ -18,9 +18,9 @@ target, :func:`flumekit.stages.power_bins.edges_around`):
 
 from __future__ import annotations
 
+from flumekit.performance.matrix import edges_around, target_te
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
-from flumekit.stages.power_bins import edges_around, target_te
 
 VERSION = "1"
 NEEDS = "flap"  # the instrument this stage reads (stages.build_rules)

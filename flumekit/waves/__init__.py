@@ -27,7 +27,7 @@ from flumekit.waves.records import (
 )
 from flumekit.waves.separation import SeparationWarning, separate
 from flumekit.waves.spectra import energy_flux as spectral_energy_flux
-from flumekit.waves.spectra import spectral_parameters, spectrum
+from flumekit.waves.spectra import jonswap, spectral_parameters, spectrum
 from flumekit.waves.statistics import wave_statistics
 from flumekit.waves.theory import (
     energy_flux,
@@ -44,5 +44,5 @@ __all__ = [
     "check_layout", "condition_number", "energy_flux", "group_velocity",
     "harmonic_energy_fraction", "phase_velocity", "probe_record", "probe_spacing",
     "refine_frequency", "separate", "stokes2_coefficient", "wavelength", "wavenumber",
-    "spectral_energy_flux", "spectral_parameters", "spectrum", "wave_statistics",
+    "spectral_energy_flux", "spectral_parameters", "spectrum", "wave_statistics", "jonswap",
 ]
