@@ -89,9 +89,20 @@ class Figure:
 
     @property
     def description(self) -> str:
-        """What the figure shows: the first paragraph of its function's docstring, one line."""
-        doc = inspect.getdoc(self.function) or ""
-        return " ".join(doc.split("\n\n", 1)[0].split())
+        """Say what the figure shows, from its function's docstring, as one line.
+
+        The summary without its imperative verb ("Draw the power matrix" reads "The power
+        matrix") and the paragraph after it, if that is prose rather than a numpydoc section.
+        """
+        blocks = (inspect.getdoc(self.function) or "").split("\n\n")
+        text = blocks[0]
+        if text.startswith("Draw "):
+            text = text[len("Draw "):]
+            text = text[:1].upper() + text[1:]  # "(a) the ..." keeps its panel letter
+        more = blocks[1].splitlines() if len(blocks) > 1 else []
+        if more and not (len(more) > 1 and set(more[1].strip()) == {"-"}):  # not a section
+            text += " " + " ".join(more)
+        return " ".join(text.split())
 
 
 FIGURES: dict[str, Figure] = {}

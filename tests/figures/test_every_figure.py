@@ -293,3 +293,18 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
                   params={"figures": {"formats": ["jpg"]}})
     with pytest.raises(FlumekitError, match="formats"):
         stage.rules(ctx, ctx.stage_params("figures", stage.DEFAULTS))
+
+
+def test_captions_read_as_what_the_figure_shows():
+    """A figure's caption (its files' Description, the report's caption) is its docstring's
+    summary without the imperative verb, and the prose paragraph after it."""
+    from flumekit.figures.registry import FIGURES, figure
+
+    figure("qc")  # loads every figure module
+    for name, entry in FIGURES.items():
+        caption = entry.description
+        assert caption and not caption.startswith("Draw "), (name, caption)
+        assert "Parameters" not in caption and "----" not in caption, (name, caption)
+    qc = figure("qc").description
+    assert qc.startswith("The raw (grey) and QC'd (black) records")
+    assert "suspect, failed and missing samples" in qc  # the paragraph after the summary
