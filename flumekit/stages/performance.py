@@ -12,13 +12,13 @@ the Te of the JONSWAP spectrum of the declared ``tp`` and ``gamma``) gets its ow
 edges halfway between neighbouring targets and the outer edges as far out (±10 % of a lone
 target, :func:`flumekit.performance.matrix.edges_around`):
 
+>>> from flumekit.performance.matrix import edges_around
 >>> edges_around([1.0, 2.0, 2.0, 4.0])
 [0.5, 1.5, 3.0, 5.0]
 """
 
 from __future__ import annotations
 
-from flumekit.performance.matrix import edges_around, target_te
 from flumekit.pipeline.rules import Rule
 from flumekit.stages.context import Context
 
@@ -69,6 +69,7 @@ def build(inputs, outputs, params) -> None:
     from flumekit.errors import InputError
     from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.performance import power_matrix
+    from flumekit.performance.matrix import edges_around, target_te
 
     runs = params["runs"]
     names = ("mean_power", "capture_width", "capture_width_ratio")
