@@ -283,8 +283,10 @@ def _figures(root: Path) -> str:
         links = "".join(f' <a href="{_esc(o)}">{_esc(Path(o).suffix[1:].upper())}</a>'
                         for o in others)
         meta = _png_text(p) if p.suffix.lower() == ".png" else {}
-        caption = " ".join(_esc(_plain(meta[k])) for k in ("Title", "Description")
-                           if meta.get(k))
+        # the title as a sentence of its own, then what the figure shows
+        parts = [_plain(meta[k]).strip() for k in ("Title", "Description") if meta.get(k)]
+        caption = " ".join(_esc(t if t.endswith((".", ":", "?", "!")) or t is parts[-1]
+                                else t + ".") for t in parts)
         width = _png_width(p) if p.suffix.lower() == ".png" else None
         size = f' style="width:{width:.2f}in"' if width else ""
         out.append(f'<figure id="{_esc(rel)}"{size}><a href="{_esc(rel)}">'

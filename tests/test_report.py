@@ -173,7 +173,7 @@ def test_captions_from_the_figures_and_their_printed_width(tmp_path):
              description="What it shows, from :func:`flumekit.waves.separate` and ``x``.")
     page = write_report(root, title="Lab campaign 2026").read_text(encoding="utf-8")
     assert "<h1>Lab campaign 2026</h1>" in page
-    assert "Spectra of run r: Hm0 = 0.1 m, narrow What it shows, from separate and x." in page
+    assert "Spectra of run r: Hm0 = 0.1 m, narrow. What it shows, from separate and x." in page
     assert 'style="width:3.50in"' in page and 'style="width:7.00in"' in page
 
 
