@@ -671,7 +671,8 @@ def parser() -> argparse.ArgumentParser:
     m.add_argument("-n", "--dry-run", action="store_true", help="print what would run and why")
     m.add_argument("-j", "--jobs", type=int, default=None,
                    help="rules run in parallel locally (default: one per CPU this process may "
-                        "use; -j 1 runs them one after another in this process)")
+                        "use, at most one per GiB of memory; -j 1 runs them one after another "
+                        "in this process)")
     m.add_argument("-k", "--keep-going", action="store_true",
                    help="after a failure, build everything that does not depend on it; list "
                         "the failures at the end (exit status 1)")
