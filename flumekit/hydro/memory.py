@@ -210,11 +210,6 @@ class ModalMemory(_Memory):
         """The compiled ``(begin, finish)`` kernels of this model."""
         return _modal_begin, _modal_finish
 
-    @property
-    def y(self) -> np.ndarray:
-        """The scaled modal states y_k [N m] at the start of the next step."""
-        return self.c[5]
-
 
 # layout of the convolution's real state: h, M, K(0), K(h/2), the full-step sums of this step
 # and the last, then K(m h) and K((m + 1/2) h) for m = 0..M+1, K((m + 1) h) and K((m + 1/2) h)
@@ -292,11 +287,6 @@ class ConvolutionMemory(_Memory):
     def kernels(self):
         """The compiled ``(begin, finish)`` kernels of this model."""
         return _convolution_begin, _convolution_finish
-
-    @property
-    def history(self) -> np.ndarray:
-        """The stored velocity history θ̇_n [rad s-1]."""
-        return self.r[-(self.n_steps + 1):]
 
 
 def memory_integrator(radiation, step: float, n_steps: int):
