@@ -194,7 +194,7 @@ def _model(eta, cal, record, campaign, components=None):
                             counts_per_metre=campaign.encoder.counts_per_metre)
     waves_kw = {k: WAVES[k] for k in ("method", "x_ref", "n_harmonics", "bound_harmonics",
                                       "amplitude_dispersion", "tolerance", "min_cycles",
-                                      "noise_factor")}
+                                      "noise_factor", "reflection_tolerance")}
     waves_kw["separation_probes"] = list(campaign.probes.separation)
     flap_kw = {"flap": campaign.flap, "pto": campaign.pto, "encoder": campaign.encoder,
                **{k: FLAP[k] for k in ("cutoff", "tolerance", "n_phase",

@@ -15,6 +15,7 @@ from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
 from flumekit.waves.separation import SeparationWarning, as_probe_time, separate
+from flumekit.waves.steady import reflection_settling
 from flumekit.waves.stream_function import nonlinear_wavenumber
 from flumekit.waves.theory import G, energy_flux
 
@@ -24,8 +25,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                 separation_probes=None, n_harmonics: int = 8,
                 bound_harmonics: bool = True, amplitude_dispersion: bool = True,
                 tolerance: float = 0.02, min_cycles: int = 10,
-                noise_factor: float = 4.0, max_condition: float = MAX_CONDITION,
-                g: float = G) -> xr.Dataset:
+                noise_factor: float = 4.0, reflection_tolerance: float = 0.002,
+                max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
     Parameters
@@ -78,6 +79,16 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         The criterion kept is the ``steady_criterion`` attribute, the tolerance applied
         ``steady_tolerance``; a window holding fewer than half of the periods that follow its
         start is a :class:`~flumekit.waves.SeparationWarning`.
+    reflection_tolerance : float
+        Within the crests' window, the separated first-harmonic reflection must have settled
+        too: the analysis window is the longest run of blocks of whole periods whose complex
+        reflection coefficient lies within this tolerance (or ``noise_factor`` times the blocks'
+        scatter, if larger) of its settled value (:func:`flumekit.waves.steady.
+        reflection_settling`; a beach's wave returning through the device after the crests
+        have settled is what it catches). Where fewer than ``min_cycles`` settled periods
+        remain, or R still changes by more than 5 times this across them (a drift that widens
+        the scatter), the crests' window is kept with a
+        :class:`~flumekit.waves.SeparationWarning` that states the change. 0 skips the test [-].
     max_condition : float
         Largest condition number of the separation accepted per bin [-].
     g : float
@@ -91,9 +102,12 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         window cut to a whole number of periods; NaN (documented fill) outside that window,
         where a regular-wave separation is not defined (ramp-up, reflections still arriving);
         ``amplitude_scale``, ``measured_height`` (probe): per-probe quasi-steady statistics;
-        scalars ``steady_start``, ``steady_end`` [s] (the window where every probe is
-        quasi-steady), ``steady_cycles``, ``measured_period`` [s] and, from the separation of
-        that window cut to a whole number of periods, ``reflection_coefficient`` (first
+        scalars ``steady_start``, ``steady_end`` [s] (the analysis window: every probe
+        quasi-steady and the reflection settled), ``crest_steady_start`` [s] (where every
+        probe's crests are quasi-steady, the paper's criterion), ``reflection_drift`` [-]
+        (the largest change of the reflection outside the window), ``steady_cycles``,
+        ``measured_period`` [s] and, from the separation of that window cut to a whole number
+        of periods, ``reflection_coefficient`` (first
         harmonic), ``incident_height`` / ``reflected_height`` (crest-to-trough of the separated
         harmonic waves), ``incident_amplitude``, ``incident_phase``, ``energy_flux`` (Eq. A2 per
         metre of crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes
@@ -159,6 +173,24 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     windows, start, end, t_meas, n_per = found[criterion]
     # what follows the ramp: whole periods from the first cycle every probe has within the
     # tolerance (the end of the ramp) to the end of the record
+    # the separated reflection settled too (waves.steady): a wave returning from behind the
+    # device after the crests have settled changes Kr but no crest by the tolerance
+    crest_start = start
+    settling = reflection_settling(sep.values, t, sep.x.values, t_meas, depth, start, end,
+                                   tolerance=reflection_tolerance, noise_factor=noise_factor,
+                                   g=g)
+    n_settled = int(np.floor((settling.end - settling.start) / t_meas + 1e-9))
+    if n_settled >= enough and not settling.trend > 5.0 * reflection_tolerance:
+        start, end, n_per = settling.start, min(end, settling.end), n_settled
+    elif reflection_tolerance > 0:
+        change = max(settling.drift, 0.0 if np.isnan(settling.trend) else settling.trend)
+        warnings.warn(f"the separated reflection does not settle within the quasi-steady window "
+                      f"({start:.1f}-{end:.1f} s): it changes by {change:.3f} (tolerance "
+                      f"{settling.tolerance:.3f}; {n_settled} settled periods, {enough} needed, "
+                      f"a trend of at most {5.0 * reflection_tolerance:.3f} across them); Kr is "
+                      "the mean of a changing reflection (a wave still returning from behind "
+                      "the device, a seiche): check the record or lengthen it",
+                      SeparationWarning, stacklevel=2)
     settled = max(w.settled for w in windows)
     following = int(np.floor((t[-1] - settled) / t_meas + 1e-9))
     if n_per >= enough and 2 * n_per < following:
@@ -217,6 +249,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                               {"criterion": criterion}),
          "measured_height": ("probe", [w.height for w in windows]),
          "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
+         "crest_steady_start": ((), float(crest_start)),
+         "reflection_drift": ((), settling.drift, {"tolerance": settling.tolerance}),
          "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
          "energy_flux": ((), float(energy_flux(h_lin, t_meas, depth, g=g)),
                          {"definition": "Eq. (A2) of Brito et al. 2020 per unit crest width, "
@@ -236,6 +270,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                "fundamental_wavenumbers": steady.attrs["fundamental_wavenumbers"],
                "tolerance": tolerance, "min_cycles": min_cycles,
                "noise_factor": noise_factor, "steady_criterion": criterion,
+               "reflection_tolerance": reflection_tolerance,
                "band": steady.attrs["band"],
                "max_condition": max_condition})
     return conventions.annotate(ds)
