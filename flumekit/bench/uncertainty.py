@@ -133,12 +133,11 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
                               "flap": flap}
 
 
-def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str, float]:
+def truth_values(truth: dict, result, campaign) -> dict[str, float]:
     """Return the true H_I, Kr, θ amplitude and C_f of a repeat, by the analysis' definitions.
 
     θ amplitude by :func:`flumekit.signal.cycle_amplitude` of the true θ over the analysed
-    window (``theta_amplitude_lowpass``: of the true θ through the analysis' low-pass at
-    ``cutoff``), C_f as the true mean power over that window over W_I of the true height.
+    window, C_f as the true mean power over that window over W_I of the true height.
 
     Parameters
     ----------
@@ -148,17 +147,15 @@ def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str
         The analysed window: ``flap_period`` [s], ``flap_start`` [s], ``flap_cycles``.
     campaign : flumekit.campaign.Campaign
         The bench campaign (water depth, flap width).
-    cutoff : float
-        The analysis' low-pass cut-off [Hz].
 
     Returns
     -------
     dict of str to float
-        ``incident_height`` [m], ``reflection_coefficient`` [-], ``theta_amplitude`` and
-        ``theta_amplitude_lowpass`` [rad], ``capture_factor`` [-].
+        ``incident_height`` [m], ``reflection_coefficient`` [-], ``theta_amplitude`` [rad],
+        ``capture_factor`` [-].
     """
     from flumekit.flap.power import incident_power
-    from flumekit.signal import cycle_amplitude, smooth_derivatives
+    from flumekit.signal import cycle_amplitude
 
     flap = truth["flap"]
     t = flap.time.values
@@ -167,12 +164,8 @@ def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str
     win = (t >= start) & (t < start + n * period)
     w_i = float(incident_power(truth["height"], period, campaign.flume.water_depth,
                                campaign.flap.width))
-    # the analysis takes θ's amplitude after its derivative low-pass (flap.analysis): the
-    # amplitude of the true θ low-passed alike is the measurand as the analysis defines it
-    smooth = smooth_derivatives(flap.theta.values, 1.0 / (t[1] - t[0]), cutoff)[0]
     return {"incident_height": truth["height"], "reflection_coefficient": truth["reflection"],
             "theta_amplitude": cycle_amplitude(flap.theta.values, t, period, start, n),
-            "theta_amplitude_lowpass": cycle_amplitude(smooth, t, period, start, n),
             "capture_factor": float(np.mean(flap.power.values[win])) / w_i}
 
 
@@ -251,7 +244,7 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
 
     campaign, hydro = _setup()
     sets = {"defaults": None, "virtual": uncertainty_components(VIRTUAL_ERRORS)}
-    names = QUANTITIES + ("theta_amplitude_lowpass",)
+    names = QUANTITIES
     err = {k: {q: [] for q in names} for k in sets}
     u = {k: {q: [] for q in names} for k in sets}
     covered = {k: {q: [] for q in names} for k in sets}
@@ -261,14 +254,12 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
         for key, comps in sets.items():
             model, inputs = _model(eta, cal, record, campaign, comps)
             ds = propagate(model, inputs, draws=draws, seed=[seed, i], linear_check=False)
-            true = truth_values(truth, _flap_window(model), campaign,
-                                model.flap_kw["cutoff"])
+            true = truth_values(truth, _flap_window(model), campaign)
             for q in names:
-                r = q.replace("_lowpass", "")
-                e = float(ds[r]) - true[q]
+                e = float(ds[q]) - true[q]
                 err[key][q].append(e)
-                u[key][q].append(float(ds[f"{r}_uncertainty_type_b"]))
-                covered[key][q].append(abs(e) <= float(ds[f"{r}_expanded_uncertainty"]))
+                u[key][q].append(float(ds[f"{q}_uncertainty_type_b"]))
+                covered[key][q].append(abs(e) <= float(ds[f"{q}_expanded_uncertainty"]))
         if progress:
             progress(i)
     out = {}
@@ -394,10 +385,8 @@ def run(quick: bool = False) -> str:
                       ("defaults", "the campaign's default components (1 mm positions and "
                                    "depth, 2 % inertia: errors the virtual flume has not)")):
         lines.append(f" {what}:")
-        for q in QUANTITIES + ("theta_amplitude_lowpass",):
+        for q in QUANTITIES:
             share, ratio, rms_e, rms_u = cov[key][q]
             lines.append(f"  {q:24s} {share:6.1%}  RMS error {rms_e:.3g}, RMS u {rms_u:.3g} "
                          f"(ratio {ratio:.2f}), mean error {cov[key]['bias'][q]:+.3g}")
-    lines.append("  (theta_amplitude_lowpass: against the true theta through the analysis' "
-                 "derivative low-pass)")
     return "\n".join(lines)

@@ -111,7 +111,8 @@ def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         "encoder_counts": counts, "wire_shortening": wire,
         "domain_flag": wa.out_of_domain.astype(np.int8),
         "theta": theta, "theta_dot": theta_dot, "theta_ddot": theta_ddot,
-        "rod_length": rod.length, "rod_velocity": rod.velocity, "beta": rod.beta,
+        "theta_unfiltered": theta_raw, "rod_length": rod.length, "rod_velocity": rod.velocity,
+        "beta": rod.beta,
         "lever_arm": rod.lever_arm, "chamber_pressure": p,
         "force_pressure": f_p, "force_friction": f_f,
         "bristle_deflection": z_b, "film_thickness_parameter": h_l,
@@ -255,7 +256,8 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                                         "torque_hydrodynamic")}, win,
                    period=period, incident_height=incident_height, depth=depth,
                    flap_width=flap.width, n_phase=n_phase,
-                   ci95=("theta", "torque_hydrodynamic"))
+                   ci95=("theta", "torque_hydrodynamic"),
+                   theta_unfiltered=s["theta_unfiltered"])
     ds = _dataset(m, fit, p_fit, cav, t_p_fit, pto=pto, cutoff=cutoff)
     return _bounded(conventions.annotate(ds.merge(summ)), fit)
 
