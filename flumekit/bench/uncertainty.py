@@ -65,8 +65,8 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     record : dict
         The flap record: ``time`` [s], ``encoder_counts`` [-], ``chamber_pressure`` [Pa].
     truth : dict
-        ``height`` (generated) [m], ``reflection`` (effective Kr at the hinge) [-] and ``flap``
-        (the flap truth dataset).
+        ``height`` (generated) [m], ``period`` (generated) [s], ``reflection`` (effective Kr at
+        the hinge) [-] and ``flap`` (the flap truth dataset).
     """
     import dataclasses
 
@@ -128,7 +128,7 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     record = {"time": t100, "encoder_counts": flap["encoder_counts"].values.astype(float),
               # the CSV's pressure in bar with 6 decimals
               "chamber_pressure": np.round(flap["chamber_pressure"].values / 1e5, 6) * 1e5}
-    return eta, cal, record, {"height": float(field.attrs["wave_height"]),
+    return eta, cal, record, {"height": float(field.attrs["wave_height"]), "period": period,
                               "reflection": float(field.attrs["reflection_coefficient"]),
                               "flap": flap}
 
@@ -162,7 +162,7 @@ def truth_values(truth: dict, result, campaign) -> dict[str, float]:
     period, start = float(result["flap_period"]), float(result["flap_start"])
     n = int(result["flap_cycles"])
     win = (t >= start) & (t < start + n * period)
-    w_i = float(incident_power(truth["height"], period, campaign.flume.water_depth,
+    w_i = float(incident_power(truth["height"], truth["period"], campaign.flume.water_depth,
                                campaign.flap.width))
     return {"incident_height": truth["height"], "reflection_coefficient": truth["reflection"],
             "theta_amplitude": cycle_amplitude(flap.theta.values, t, period, start, n),
@@ -206,7 +206,7 @@ def _flap_window(model) -> dict:
         warnings.simplefilter("ignore")
         w = model.waves({})
         ds = analyse_run(r["time"], r["encoder_counts"], r["chamber_pressure"],
-                         depth=model.depth, period=model.period,
+                         depth=model.depth, period=w["measured_period"],
                          incident_height=w["incident_height"], **model.flap_kw)
     return {"flap_period": float(ds.measured_period), "flap_start": float(ds.steady_start),
             "flap_cycles": int(ds.steady_cycles)}

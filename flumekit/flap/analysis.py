@@ -198,8 +198,9 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     depth : float
         Water depth h [m] (for W_I, Eq. A2).
     period : float
-        Wave period of the run [s] (the quasi-steady window's cycle detection ignores
-        crossings closer than half of it).
+        Wave period of the run [s]: the incident wave's measured period (the waves stage's
+        ``measured_period``), with which W_I's group velocity is taken (Eq. A2); the
+        quasi-steady window's cycle detection ignores crossings closer than half of it.
     incident_height : float
         Incident wave height at the flap from the wave separation [m]; used for
         W_I (Eq. A2) and C_f.

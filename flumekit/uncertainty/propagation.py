@@ -242,8 +242,8 @@ class RunModel:
                              **self.waves_kw)
         return {k: float(ds[k]) for k in WAVES_RESULTS}
 
-    def flap(self, d: dict, incident_height: float) -> dict[str, float]:
-        """Return the flap results with the perturbations ``d`` and the draw's incident height.
+    def flap(self, d: dict, incident_height: float, period: float) -> dict[str, float]:
+        """Return the flap results with the perturbations ``d`` and the draw's incident wave.
 
         Parameters
         ----------
@@ -251,6 +251,8 @@ class RunModel:
             Component name -> its perturbation, in the component's input units.
         incident_height : float
             The draw's incident wave height [m] (so that its uncertainty reaches C_f).
+        period : float
+            The draw's measured wave period [s] (W_I's group velocity, as the flap stage).
 
         Returns
         -------
@@ -274,7 +276,7 @@ class RunModel:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             ds = analyse_run(time, counts, pressure, depth=self.depth
-                             + float(d.get("water_depth", 0.0)), period=self.period,
+                             + float(d.get("water_depth", 0.0)), period=period,
                              incident_height=incident_height, **kw)
         return {k: float(ds[k]) for k in FLAP_RESULTS}
 
@@ -301,7 +303,7 @@ class RunModel:
                 w = self.waves(d)
             out = dict(w)
             if self.flap_record is not None:
-                out.update(self.flap(d, w["incident_height"]))
+                out.update(self.flap(d, w["incident_height"], w["measured_period"]))
         except ValueError:
             return np.full(len(self.results), np.nan)
         if not d:
