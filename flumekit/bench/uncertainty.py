@@ -292,19 +292,20 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
     dict
         Quantity -> (u_MC(n), u_MC(2n), u_linear) [unit of the quantity].
     """
-    from flumekit.uncertainty.propagation import linear, monte_carlo
+    from flumekit.uncertainty.propagation import draws_uncertainty, linear, monte_carlo
 
     campaign, hydro = _setup()
     eta, cal, record, _ = virtual_repeat(0, seed, campaign, hydro)
     model, inputs = _model(eta, cal, record, campaign)
+    base = model({})
     mc = monte_carlo(model, inputs, 2 * draws, seed)
+    mc = mc[np.isfinite(mc).all(axis=1)]
+    u_n = draws_uncertainty(mc[:draws], base)
+    u_2n = draws_uncertainty(mc, base)
     _, contrib = linear(model, inputs, directions, seed)
     u_lin = np.sqrt(np.sum(contrib ** 2, axis=0))
-    out = {}
-    for j, q in enumerate(model.results):
-        out[q] = (float(np.nanstd(mc[:draws, j], ddof=1)), float(np.nanstd(mc[:, j], ddof=1)),
-                  float(u_lin[j]))
-    return out
+    return {q: (float(u_n[j]), float(u_2n[j]), float(u_lin[j]))
+            for j, q in enumerate(model.results)}
 
 
 def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:

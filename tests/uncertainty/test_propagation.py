@@ -144,3 +144,17 @@ def test_campaign_uncertainty_table(tmp_path):
         load_campaign(tmp_path)
     assert "uncertainty.water_depth.distribution" in str(e.value)
     assert "probe_noise" in str(e.value)  # the typo's suggestion
+
+
+def test_draws_uncertainty_is_the_spread_about_the_unperturbed_result():
+    from flumekit.uncertainty.propagation import draws_uncertainty
+
+    rng = np.random.default_rng(4)
+    noise = rng.normal(0.0, 1.0, (4000, 1))
+    # a result linear in the errors: its draws centre on it, u is their standard deviation
+    linear = draws_uncertainty(5.0 + 0.2 * noise, np.array([5.0]))
+    assert linear[0] == pytest.approx(0.2, rel=0.03)
+    # a nonlinear one whose draws shift by 0.3 from it: u = sqrt(0.2² + 0.3²) = 0.36
+    shifted = draws_uncertainty(5.3 + 0.2 * noise, np.array([5.0]))
+    assert shifted[0] == pytest.approx(np.hypot(0.2, 0.3), rel=0.03)
+    assert np.isnan(draws_uncertainty(noise[:1], np.array([0.0]))[0])
