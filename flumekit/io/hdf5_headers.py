@@ -1,15 +1,16 @@
-"""The attributes of a netCDF-4 variable, decoded from its HDF5 object header's bytes.
+"""A netCDF-4 variable's description and attributes, decoded from its HDF5 object header.
 
-Reading a variable's attributes through the HDF5 library costs tens of microseconds each
-(an open, a type and a space query, a read), and opening a file with the netCDF library
-first reads megabytes to recognise its format; a folder of runs has thousands of
-attributes. Small attributes are stored whole in the object header (HDF5 file format
-specification 3.0, sections IV.A.1.b "Version 2 Object Header" and IV.A.2.m "The Attribute
-Message"), so they are decoded here from the header's bytes, into the values the netCDF4
-library returns (``Variable.getncattr``). Only what this module fully understands is
-decoded: anything else (shared or densely stored attributes, variable-length, compound or
-non-IEEE types, version 1 object headers) raises :class:`Unsupported`, and the caller reads
-the file with the netCDF4 library instead.
+Opening a file with the netCDF library first reads megabytes of it to recognise its format,
+and reading an attribute through the HDF5 library costs tens of microseconds (an open, a
+type and a space query, a read); a folder of runs has thousands. A dataset's object header
+holds its shape, type, where its values are and, up to eight, its attributes whole (HDF5
+file format specification 3.0, sections IV.A.1.b "Version 2 Object Header" and IV.A.2), so
+they are decoded here from the header's bytes, the attributes into the values the netCDF4
+library gives (``Variable.getncattr``), after checking each header chunk against its
+checksum as the HDF5 library does. Only what this module fully understands is decoded: it
+leaves the rest to the HDF5 library (attributes stored outside the header or of other types:
+:attr:`Header.attributes` is None) or, for a header it cannot read, raises
+:class:`Unsupported`, and the caller reads the file with the netCDF4 library.
 """
 
 from __future__ import annotations

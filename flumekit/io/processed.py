@@ -106,7 +106,7 @@ def _equal(a, b) -> bool:
 
 
 def stack_files(files) -> xr.Dataset:
-    """Stack per-run datasets along a new ``run`` dimension, read with netCDF4 directly.
+    """Stack per-run datasets along a new ``run`` dimension, read without xarray.
 
     The result is that of ``xr.concat([read_dataset(f) for f in files], dim="run",
     join="outer", combine_attrs="drop_conflicts", coords="different", compat="equals")``
@@ -117,7 +117,9 @@ def stack_files(files) -> xr.Dataset:
     are), NaN where a run has no value (integers padded so become floats, as xarray promotes
     them: 32-bit for 8- and 16-bit integers), and attributes kept where every run agrees. A
     1-D coordinate that is equal in every run is not stacked (``x`` of the probes); a scalar
-    one is (``wave_period``).
+    one is (``wave_period``). The files are read by :func:`flumekit.io.run_files.open_runs`:
+    netCDF-4 files as the netCDF library writes them with h5py, a record with one read
+    straight into its place, anything else with the netCDF4 library.
 
     Parameters
     ----------
