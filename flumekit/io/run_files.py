@@ -153,9 +153,10 @@ class Netcdf4Runs(_Runs):
 def _library_attributes(obj) -> dict:
     """Read an object's attributes with h5py as ``netCDF4`` gives them, one call each.
 
-    For the attributes :func:`flumekit.io.hdf5_headers.object_attributes` does not decode:
-    a file's global attributes, a variable's when it has more than eight (HDF5 stores
-    those outside the header). The dimension scales' reference lists are left out.
+    For the attributes :func:`flumekit.io.hdf5_headers.read_header` does not decode: a
+    file's global attributes, a variable's when it has more than eight (HDF5 stores those
+    outside the header) or one of them is a list of strings. The dimension scales'
+    reference lists are left out.
     """
     import h5py
     from h5py import h5a, h5t
@@ -168,7 +169,7 @@ def _library_attributes(obj) -> dict:
             continue
         null = attr.get_space().get_simple_extent_type() == h5py.h5s.NULL
         if null or space is None or len(space) > 1:
-            raise Unsupported(f"global attribute '{name}'")
+            raise Unsupported(f"attribute '{name}': empty or of more than one dimension")
         if kind.get_class() == h5t.STRING and kind.is_variable_str():
             values = np.empty(space, dtype=h5py.string_dtype())
             attr.read(values)
@@ -186,7 +187,7 @@ def _library_attributes(obj) -> dict:
             values = values.reshape(-1).astype(attr.dtype.newbyteorder("="))
             out[name] = values[0] if values.size == 1 else values
         else:
-            raise Unsupported(f"global attribute '{name}' of HDF5 class {kind.get_class()}")
+            raise Unsupported(f"attribute '{name}' of HDF5 type class {kind.get_class()}")
     return out
 
 
