@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 
 __all__ = ["SKIPPED", "Header", "Unsupported", "check_superblock", "checksums_match",
-           "read_header"]
+           "read_header", "root_attributes"]
 
 #: attributes netCDF-4 keeps for its dimension scales, not a variable's attributes
 SKIPPED = frozenset({"DIMENSION_LIST", "REFERENCE_LIST"})
@@ -227,6 +227,87 @@ class Header(NamedTuple):
     contiguous: tuple[int, int] | None
 
 
+def _parse(buffer, address: int, decoded: dict | None, pieces: list):
+    """Decode an object header: (attributes or None, shape, (kind, size), contiguous)."""
+    decoded = {} if decoded is None else decoded
+    found: list | None = []
+    shape = kind_size = None
+    contiguous: tuple[int, int] | None = None
+    external = False
+    for kind, mflags, order, at, length in _chunks(buffer, address, pieces):
+        if kind == 0x01:
+            shape = _space(buffer, at)
+        elif kind == 0x03:
+            try:
+                kind_size = _type(buffer, at)
+            except Unsupported:
+                kind_size = ("", 0)  # not read here (a netCDF dimension's dummy type)
+        elif kind == 0x07:
+            external = True  # values in other files: left to the HDF5 library
+        elif kind == 0x08 and buffer[at] in (3, 4) and buffer[at + 1] == 1:
+            contiguous = struct.unpack_from("<QQ", buffer, at + 2)
+        elif kind == 0x15:  # attribute info: dense storage has a fractal heap address
+            heap, names = struct.unpack_from("<QQ", buffer, at + (4 if buffer[at + 1] & 1 else 2))
+            if heap != _UNDEFINED:
+                try:
+                    dense = _dense(buffer, heap, names, pieces)
+                except Unsupported:
+                    found = None  # for the HDF5 library to read
+                    continue
+                for order, at_, length_ in dense:
+                    found = _collect(found, buffer, at_, length_, order, decoded)
+                    if found is None:
+                        break
+        elif kind == 0x0C and found is not None:
+            # a shared message is for the HDF5 library to read
+            found = None if mflags & 0x02 else _collect(found, buffer, at, length, order,
+                                                        decoded)
+    if external or (contiguous is not None and contiguous[0] == _UNDEFINED):
+        contiguous = None
+    if found is not None:
+        if all(order is not None for order, _ in found):
+            found.sort(key=lambda x: x[0])
+        found = {a[0]: _copy(a[1]) for _, a in found if a is not None}
+    return found, shape, kind_size, contiguous
+
+
+def root_attributes(buffer, decoded: dict | None = None, pieces: list | None = None):
+    """Decode the root group's attributes (a netCDF file's global attributes).
+
+    Parameters
+    ----------
+    buffer : bytes-like
+        The file's bytes (a memory map), from its start, with a superblock
+        :func:`check_superblock` accepts.
+    decoded, pieces
+        As for :func:`read_header`.
+
+    Returns
+    -------
+    dict or None
+        As :attr:`Header.attributes`.
+
+    Examples
+    --------
+    >>> import mmap, tempfile
+    >>> import h5py
+    >>> with tempfile.NamedTemporaryFile(suffix=".h5") as f:
+    ...     with h5py.File(f.name, "w", libver="latest") as h:
+    ...         h.attrs["title"] = np.bytes_(b"run 1")
+    ...     with open(f.name, "rb") as raw:
+    ...         with mmap.mmap(raw.fileno(), 0, access=mmap.ACCESS_READ) as m:
+    ...             root_attributes(m)
+    {'title': 'run 1'}
+    """
+    checked_here = pieces is None
+    pieces = [] if pieces is None else pieces
+    (address,) = struct.unpack_from("<Q", buffer, 36)  # in a version 2 or 3 superblock
+    found = _parse(buffer, address, decoded, pieces)[0]
+    if checked_here and not checksums_match(pieces).all():
+        raise Unsupported("an object header does not match its checksum")
+    return found
+
+
 def read_header(buffer, address: int, decoded: dict | None = None,
                 pieces: list | None = None) -> Header:
     """Decode a dataset's object header: its attributes, shape, type and where its values are.
@@ -276,56 +357,103 @@ def read_header(buffer, address: int, decoded: dict | None = None,
     >>> header.attributes, header.shape, header.dtype
     ({'units': 'm'}, (2,), dtype('float64'))
     """
-    decoded = {} if decoded is None else decoded
     checked_here = pieces is None
     pieces = [] if pieces is None else pieces
-    found: list | None = []
-    shape = kind_size = None
-    contiguous: tuple[int, int] | None = None
-    external = False
-    for kind, mflags, order, at, length in _chunks(buffer, address, pieces):
-        if kind == 0x01:
-            shape = _space(buffer, at)
-        elif kind == 0x03:
-            try:
-                kind_size = _type(buffer, at)
-            except Unsupported:
-                kind_size = ("", 0)  # not read here (a netCDF dimension's dummy type)
-        elif kind == 0x07:
-            external = True  # values in other files: left to the HDF5 library
-        elif kind == 0x08 and buffer[at] in (3, 4) and buffer[at + 1] == 1:
-            contiguous = struct.unpack_from("<QQ", buffer, at + 2)
-        elif kind == 0x15:  # attribute info: dense storage has a fractal heap address
-            heap = struct.unpack_from("<Q", buffer, at + (4 if buffer[at + 1] & 1 else 2))[0]
-            if heap != _UNDEFINED:
-                found = None
-        elif kind == 0x0C and found is not None:
-            if mflags & 0x02:
-                found = None  # a shared message: for the HDF5 library to read
-                continue
-            key = bytes(buffer[at:at + length])
-            try:
-                if key not in decoded:
-                    decoded[key] = _attribute(buffer, at)
-            except Unsupported:
-                found = None  # for the HDF5 library to read
-            else:
-                found.append((order, decoded[key]))
+    found, shape, kind_size, contiguous = _parse(buffer, address, decoded, pieces)
     if checked_here and not checksums_match(pieces).all():
         raise Unsupported("an object header does not match its checksum")
     if shape is None or kind_size is None:
         raise Unsupported("not a dataset")
-    if external or (contiguous is not None and contiguous[0] == _UNDEFINED):
-        contiguous = None
-    attributes = None
-    if found is not None:
-        if all(order is not None for order, _ in found):
-            found.sort(key=lambda x: x[0])
-        attributes = {a[0]: _copy(a[1]) for _, a in found if a is not None}
     kind, size = kind_size
     dtype = (None if kind in ("", "S") else np.dtype(object) if kind == "O"
              else np.dtype(f"{kind}{size}"))
-    return Header(attributes, shape, dtype, contiguous)
+    return Header(found, shape, dtype, contiguous)
+
+
+def _collect(found: list | None, buffer, at: int, length: int, order, decoded: dict):
+    """Append the attribute message at ``at`` to ``found``; None if it is not decoded here."""
+    if found is None:
+        return None
+    key = bytes(buffer[at:at + length])
+    try:
+        if key not in decoded:
+            decoded[key] = _attribute(buffer, at)
+    except Unsupported:
+        return None  # for the HDF5 library to read
+    found.append((order, decoded[key]))
+    return found
+
+
+def _dense(buffer, heap: int, btree: int, pieces: list) -> list[tuple[int, int, int]]:
+    """Locate the attributes an object stores densely: (creation order, address, size).
+
+    Their messages are objects of a fractal heap, found through the records of a version 2
+    B-tree indexing their names (HDF5 file format specification 3.0, sections III.G "Fractal
+    Heap" and III.A.2 "Version 2 B-trees"); only a B-tree of one leaf node (fewer than
+    about 30 attributes) and objects in the heap's direct blocks are located here.
+    """
+    if bytes(buffer[btree:btree + 6]) != b"BTHD\x00\x08":
+        raise Unsupported("not a version 2 B-tree of attribute names")
+    record, depth, root, count = struct.unpack_from("<HHxxQH", buffer, btree + 10)
+    pieces.append(bytes(buffer[btree:btree + 38]))
+    if depth != 0 or record != 17 or bytes(buffer[root:root + 6]) != b"BTLF\x00\x08":
+        raise Unsupported("attribute names in a B-tree of more than one node")
+    pieces.append(bytes(buffer[root:root + 6 + count * record + 4]))
+    if bytes(buffer[heap:heap + 5]) != b"FRHP\x00":
+        raise Unsupported("not a fractal heap")
+    id_size, filters, flags, max_object = struct.unpack_from("<HHBI", buffer, heap + 5)
+    huge, tiny = struct.unpack_from("<Q", buffer, heap + 86)[0], struct.unpack_from(
+        "<Q", buffer, heap + 102)[0]
+    width, start, max_direct, max_bits, _, block, rows = struct.unpack_from(
+        "<HQQHHQH", buffer, heap + 110)
+    pieces.append(bytes(buffer[heap:heap + 146]))
+    if filters or huge or tiny or not flags & 0x02:
+        raise Unsupported("a fractal heap with filters, huge or tiny objects or unchecked blocks")
+    offset_bytes = -(-max_bits // 8)
+    length_bytes = min((max_direct.bit_length() - 1 + 7) // 8,
+                       (max_object.bit_length() - 1) // 8 + 1)
+    # the direct blocks: (offset in the heap, size, address)
+    if rows == 0:
+        blocks = [(0, start, block)]
+    else:
+        if bytes(buffer[block:block + 5]) != b"FHIB\x00":
+            raise Unsupported("not a fractal heap indirect block")
+        direct_rows = (max_direct.bit_length() - start.bit_length()) + 2
+        if rows > direct_rows:
+            raise Unsupported("a fractal heap with indirect blocks below its root")
+        at = block + 13 + offset_bytes
+        addresses = struct.unpack_from(f"<{rows * width}Q", buffer, at)
+        pieces.append(bytes(buffer[block:at + 8 * rows * width + 4]))
+        blocks, offset = [], 0
+        for k, address in enumerate(addresses):
+            size = start * 2 ** max(k // width - 1, 0)
+            if address != _UNDEFINED:
+                blocks.append((offset, size, address))
+            offset += size
+    for _, size, address in blocks:
+        if bytes(buffer[address:address + 5]) != b"FHDB\x00":
+            raise Unsupported("not a fractal heap direct block")
+        at = address + 13 + offset_bytes  # its checksum, computed with the field zeroed
+        data = bytes(buffer[address:address + size])
+        pieces.append(data[:at - address] + bytes(4) + data[at - address + 4:]
+                      + data[at - address:at - address + 4])
+    found = []
+    for k in range(count):
+        at = root + 6 + k * record
+        ident = bytes(buffer[at:at + id_size])
+        mflags, order = struct.unpack_from("<BI", buffer, at + 8)
+        if ident[0] != 0 or mflags & 0x02:
+            raise Unsupported("an attribute that is not a managed object of the heap")
+        offset = int.from_bytes(ident[1:1 + offset_bytes], "little")
+        length = int.from_bytes(ident[1 + offset_bytes:1 + offset_bytes + length_bytes],
+                                "little")
+        for start_, size, address in blocks:
+            if start_ <= offset and offset + length <= start_ + size:
+                found.append((order, address + offset - start_, length))
+                break
+        else:
+            raise Unsupported("an attribute outside the heap's direct blocks")
+    return found
 
 
 def _copy(value):

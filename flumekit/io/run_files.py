@@ -28,6 +28,7 @@ from flumekit.io.hdf5_headers import (
     check_superblock,
     checksums_match,
     read_header,
+    root_attributes,
 )
 
 __all__ = ["Hdf5Runs", "Netcdf4Runs", "open_runs"]
@@ -269,7 +270,8 @@ class Hdf5Runs(_Runs):
             fill = attrs.pop("_FillValue", None)
             coords.update(attrs.pop("coordinates", "").split())
             variables[name] = (dims, header.shape, attrs, fill, header.dtype)
-        globals_ = _library_attributes(root)
+        globals_ = root_attributes(buffer, self._decoded, self._pieces)
+        globals_ = _library_attributes(root) if globals_ is None else globals_
         globals_.pop("_NCProperties", None)
         if any(k.startswith("_") for k in globals_):
             raise Unsupported(f"{path}: global attributes {sorted(globals_)}")

@@ -105,6 +105,7 @@ def _rich_run(i: int) -> xr.Dataset:
     n = 50 + 10 * i
     t = np.arange(n) / 100.0
     many = {f"note{k}": f"attribute {k}" for k in range(10)}  # stored outside the header
+    more = {f"extra{k}": float(k) for k in range(40)}  # names indexed in a B-tree of nodes
     ds = xr.Dataset(
         {"theta": ("time", np.sin(t), {"units": "rad", "long_name": "angle",
                                        "valid_range": np.array([-1.0, 1.0])}),
@@ -113,7 +114,8 @@ def _rich_run(i: int) -> xr.Dataset:
          "flag": ("time", np.ones(n, np.int8), {"flag_values": np.array([1, 4], np.int8),
                                                "flag_meanings": "pass fail"}),
          "field": (("time", "probe"), np.ones((n, 3)), {"units": "m", **many}),
-         "bins": ("bin", np.arange(4.0), {"units": "1"}),  # a dimension without coordinate
+         "bins": ("bin", np.arange(4.0), {"units": "1", **more}),  # a dimension without
+         # coordinate
          "text": ("time", t, {"units": "m", "probes": ["a", "bb"],  # a list of strings
                               "comment": "déjà vu"}),  # not ASCII: a variable-length string
          "mean_power": ((), float(i), {"units": "W", "fit": np.int32(3)})},
