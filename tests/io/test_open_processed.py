@@ -169,14 +169,16 @@ def test_a_file_with_a_group_is_read_by_the_netcdf4_library(tmp_path):
     xr.testing.assert_identical(open_processed(tmp_path, "stage"), _concat(files))
 
 
-def test_a_damaged_header_is_no_silent_wrong_attribute(tmp_path):
-    """A byte changed in an attribute stored in a header: the checksum no longer matches,
+@pytest.mark.parametrize("text", [b"pass fail", b"attribute 3"])
+def test_a_damaged_header_is_no_silent_wrong_attribute(tmp_path, text):
+    """A byte changed in an attribute stored in an object header (``pass fail``) or in the
+    heap of a variable's many attributes (``attribute 3``): the checksum no longer matches,
     the HDF5 reader declines and the netCDF4 library refuses the file as HDF5 does."""
     files = _write(tmp_path / "stage", [_rich_run(i) for i in range(2)], ("time", "probe"))
     data = bytearray(files[1].read_bytes())
-    at = data.index(b"pass fail")
-    data[at:at + 4] = b"PASS"
+    at = data.index(text)
+    data[at:at + 4] = text[:4].upper()
     files[1].write_bytes(bytes(data))
     with pytest.raises(Exception) as caught:
         open_processed(tmp_path, "stage")
-    assert "PASS" not in str(caught.value)
+    assert text[:4].upper().decode() not in str(caught.value)
