@@ -1,14 +1,15 @@
-"""A netCDF-4 variable's description and attributes, decoded from its HDF5 object header.
+"""A netCDF-4 variable's description and attributes, decoded from the HDF5 file's bytes.
 
 Opening a file with the netCDF library first reads megabytes of it to recognise its format,
 and reading an attribute through the HDF5 library costs tens of microseconds (an open, a
 type and a space query, a read); a folder of runs has thousands. A dataset's object header
-holds its shape, type, where its values are and, up to eight, its attributes whole (HDF5
-file format specification 3.0, sections IV.A.1.b "Version 2 Object Header" and IV.A.2), so
-they are decoded here from the header's bytes, the attributes into the values the netCDF4
-library gives (``Variable.getncattr``), after checking each header chunk against its
-checksum as the HDF5 library does. Only what this module fully understands is decoded: it
-leaves the rest to the HDF5 library (attributes stored outside the header or of other types:
+holds its shape, type, where its values are and its attributes: up to eight whole, more in a
+fractal heap indexed by a version 2 B-tree of their names (HDF5 file format specification
+3.0, sections III.A.2, III.G, IV.A.1.b and IV.A.2). They are decoded here from the file's
+bytes, the attributes into the values the netCDF4 library gives (``Variable.getncattr``),
+after checking every block read against its checksum as the HDF5 library does. Only what
+this module fully understands is decoded: it leaves the rest to the HDF5 library
+(attributes of other types, such as lists of strings, or indexed by a deeper B-tree:
 :attr:`Header.attributes` is None) or, for a header it cannot read, raises
 :class:`Unsupported`, and the caller reads the file with the netCDF4 library.
 """
@@ -216,7 +217,7 @@ def _value(name: str, kind: str, size: int, space, buffer, at: int):
 class Header(NamedTuple):
     """What an object header says of a dataset (:func:`read_header`)."""
 
-    #: name -> value as the netCDF4 library gives it; None when stored outside the header
+    #: name -> value as the netCDF4 library gives it; None when not decoded here
     attributes: dict | None
     #: the dimensions' sizes; () for a scalar
     shape: tuple[int, ...]
@@ -334,8 +335,8 @@ def read_header(buffer, address: int, decoded: dict | None = None,
         string, a NumPy scalar, or a 1-D array for several values), the netCDF-4
         bookkeeping attributes included (``_Netcdf4Dimid``, ``CLASS``, ...) except the
         dimension scales' reference lists (``DIMENSION_LIST``, ``REFERENCE_LIST``); None
-        when some are stored outside the header (more than eight) or not decoded here
-        (variable-length strings, ...), for the HDF5 library to read.
+        when one is not decoded here (a list of strings, a shared message, about thirty
+        attributes or more), for the HDF5 library to read.
 
     Raises
     ------

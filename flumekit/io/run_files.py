@@ -6,13 +6,14 @@ stacking in :mod:`flumekit.io.processed` places them. Values and attributes are 
 ``xr.open_dataset(path, engine="netcdf4", decode_times=False)`` gives: floats NaN where
 their ``_FillValue`` stands, variable-length strings as a NumPy string array.
 
-Two readers give the same description. The HDF5 one reads the files with h5py, their
-attributes from the object headers' bytes (:mod:`flumekit.io.hdf5_headers`) and contiguous
-records with one read each into place; the netCDF-C library's own open reads megabytes of
-each file to recognise its format and costs more than the rest together. It takes the
-netCDF-4 files the netCDF library writes; for anything it does not know (groups,
-user-defined types, attributes stored outside the header, attributes xarray would decode
-such as ``scale_factor``) it declines, and the netCDF4 reader reads the files.
+Two readers give the same description. The HDF5 one lists each file's variables with h5py,
+decodes their headers and attributes from the file's bytes (:mod:`flumekit.io.hdf5_headers`)
+and reads a contiguous record with one system call into place; the netCDF-C library's own
+open reads megabytes of each file to recognise its format and costs more than all that. It
+takes the netCDF-4 files the netCDF library writes; for anything it does not know (groups,
+user-defined types, big-endian records, attributes xarray would decode such as
+``scale_factor``, a block that does not match its checksum) it declines, and the netCDF4
+reader reads the files.
 """
 
 from __future__ import annotations
@@ -154,10 +155,9 @@ class Netcdf4Runs(_Runs):
 def _library_attributes(obj) -> dict:
     """Read an object's attributes with h5py as ``netCDF4`` gives them, one call each.
 
-    For the attributes :func:`flumekit.io.hdf5_headers.read_header` does not decode: a
-    file's global attributes, a variable's when it has more than eight (HDF5 stores those
-    outside the header) or one of them is a list of strings. The dimension scales'
-    reference lists are left out.
+    For the attributes :mod:`flumekit.io.hdf5_headers` does not decode (one is a list of
+    strings, or there are thirty or more). The dimension scales' reference lists are left
+    out.
     """
     import h5py
     from h5py import h5a, h5t
