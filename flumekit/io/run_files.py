@@ -310,6 +310,10 @@ class Hdf5Runs(_Runs):
                 or not view.flags.c_contiguous or header.contiguous[1] != view.nbytes):
             return super().read_into(i, name, view)
         raw.seek(header.contiguous[0])
-        if raw.readinto(memoryview(view).cast("B")) != view.nbytes:
-            raise OSError(f"{raw.name}: variable '{name}' ends before its declared size")
+        target, done = memoryview(view).cast("B"), 0
+        while done < view.nbytes:  # one read but for more than the system gives at once
+            got = raw.readinto(target[done:])
+            if not got:
+                raise OSError(f"{raw.name}: variable '{name}' ends before its declared size")
+            done += got
         _decoded(view, self.metas[i][0][name][3])
