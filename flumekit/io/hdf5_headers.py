@@ -292,12 +292,12 @@ def root_attributes(buffer, decoded: dict | None = None, pieces: list | None = N
     --------
     >>> import mmap, tempfile
     >>> import h5py
-    >>> with tempfile.NamedTemporaryFile(suffix=".h5") as f:
-    ...     with h5py.File(f.name, "w", libver="latest") as h:
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = f"{folder}/run.h5"
+    ...     with h5py.File(path, "w", libver="latest") as h:
     ...         h.attrs["title"] = np.bytes_(b"run 1")
-    ...     with open(f.name, "rb") as raw:
-    ...         with mmap.mmap(raw.fileno(), 0, access=mmap.ACCESS_READ) as m:
-    ...             root_attributes(m)
+    ...     with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+    ...         print(root_attributes(m))
     {'title': 'run 1'}
     """
     checked_here = pieces is None
