@@ -79,38 +79,6 @@ def open_processed(processed: str | Path, name: str | None = None) -> xr.Dataset
     return stack_files(files)
 
 
-def _metadata(nc) -> tuple[dict, dict, set]:
-    """Describe the variables of an open flumekit netCDF file without reading their values.
-
-    Returns (name -> (dims, shape, attrs, fill)), the global attributes and the names its
-    variables list as coordinates. ``attrs`` lacks ``_FillValue`` (``fill``, None if unset)
-    and ``coordinates``, which xarray takes out of the attributes too.
-    """
-    out, coords = {}, set()
-    for name, var in nc.variables.items():
-        attrs = {k: var.getncattr(k) for k in var.ncattrs()}
-        fill = attrs.pop("_FillValue", None)
-        coords.update(attrs.pop("coordinates", "").split())
-        out[name] = (var.dimensions, var.shape, attrs, fill)
-    return out, {k: nc.getncattr(k) for k in nc.ncattrs()}, coords
-
-
-def _values(var, fill):
-    """Read a netCDF4 variable's values as xarray decodes what flumekit writes.
-
-    Floats are NaN where a non-NaN ``_FillValue`` stands; variable-length strings become a
-    numpy string array; times stay seconds, as :func:`read_dataset` keeps them.
-    """
-    import numpy as np
-
-    values = np.asarray(var[...])
-    if fill is not None and values.dtype.kind == "f" and not np.isnan(fill):
-        values = np.where(values == fill, np.nan, values)
-    if values.dtype.kind == "O":  # variable-length strings
-        values = values.astype(str)
-    return values
-
-
 def _common_attrs(dicts: list[dict]) -> dict:
     """Keep the attributes whose values agree wherever set (xarray's ``drop_conflicts``)."""
     import numpy as np
@@ -138,7 +106,7 @@ def _equal(a, b) -> bool:
 
 
 def stack_files(files) -> xr.Dataset:
-    """Stack per-run datasets along a new ``run`` dimension, read with netCDF4 directly.
+    """Stack per-run datasets along a new ``run`` dimension, read without xarray.
 
     The result is that of ``xr.concat([read_dataset(f) for f in files], dim="run",
     join="outer", combine_attrs="drop_conflicts", coords="different", compat="equals")``
@@ -149,7 +117,9 @@ def stack_files(files) -> xr.Dataset:
     are), NaN where a run has no value (integers padded so become floats, as xarray promotes
     them: 32-bit for 8- and 16-bit integers), and attributes kept where every run agrees. A
     1-D coordinate that is equal in every run is not stacked (``x`` of the probes); a scalar
-    one is (``wave_period``).
+    one is (``wave_period``). The files are read by :func:`flumekit.io.run_files.open_runs`:
+    netCDF-4 files as the netCDF library writes them with h5py, a record with one read
+    straight into its place, anything else with the netCDF4 library.
 
     Parameters
     ----------
@@ -175,15 +145,10 @@ def stack_files(files) -> xr.Dataset:
     array([[ 1., nan],
            [ 1.,  1.]])
     """
-    from contextlib import ExitStack
+    from flumekit.io.run_files import open_runs
 
-    import netCDF4
-
-    with ExitStack() as stack:
-        ncs = [stack.enter_context(netCDF4.Dataset(Path(f))) for f in files]
-        for nc in ncs:
-            nc.set_auto_mask(False)
-        return _stack(ncs, [_metadata(nc) for nc in ncs])
+    with open_runs(files) as runs:
+        return _stack(runs)
 
 
 def _placement(values, union):
@@ -199,11 +164,12 @@ def _placement(values, union):
     return at
 
 
-def _stack(ncs, metas) -> xr.Dataset:
-    """Stack the open files ``ncs`` described by ``metas`` (:func:`_metadata`)."""
+def _stack(runs) -> xr.Dataset:
+    """Stack the open files ``runs`` (:func:`flumekit.io.run_files.open_runs`)."""
     import numpy as np
 
-    n = len(ncs)
+    metas = runs.metas
+    n = len(metas)
     names: list[str] = []
     for variables, *_ in metas:
         names += [k for k in variables if k not in names]
@@ -213,21 +179,27 @@ def _stack(ncs, metas) -> xr.Dataset:
         for name, (d, *_) in variables.items():
             dims.setdefault(name, d)
 
-    def values(i, name):
-        return _values(ncs[i].variables[name], metas[i][0][name][3])
+    values = runs.values
 
     # dimension coordinates: the union of the runs' values (an outer join)
     index = {}
     for name in names:
         if dims[name] == (name,):
             have = [i for i in range(n) if name in metas[i][0]]
-            runs = {i: values(i, name) for i in have}
-            first = runs[have[0]]
-            if all(_equal(v, first) for v in runs.values()):
+            axes = {i: values(i, name) for i in have}
+            first = axes[have[0]]
+            longest = max(axes.values(), key=len)
+            if all(_equal(v, first) for v in axes.values()):
                 index[name] = (first, None)
+            elif (longest.dtype.kind in "iuf" and np.all(np.diff(longest) > 0)
+                  and all(_equal(v, longest[:v.size]) for v in axes.values())):
+                # each run's axis begins the longest (records sampled on one clock): their
+                # union is the longest, sorted as np.unique would give it
+                index[name] = (longest, [slice(0, axes[i].size) if i in axes else None
+                                         for i in range(n)])
             else:
-                union = np.unique(np.concatenate(list(runs.values())))
-                index[name] = (union, [_placement(runs[i], union) if i in runs else None
+                union = np.unique(np.concatenate(list(axes.values())))
+                index[name] = (union, [_placement(axes[i], union) if i in axes else None
                                        for i in range(n)])
     data_vars, coords = {}, {}
     for name in names:
@@ -238,8 +210,8 @@ def _stack(ncs, metas) -> xr.Dataset:
             continue
         d = dims[name]
         have = [i for i, v in enumerate(present) if v is not None]
-        var0 = ncs[have[0]].variables[name]
-        small = name in coord_names or var0.dtype is str or not d
+        dtype = present[have[0]][4]
+        small = name in coord_names or dtype.kind == "O" or not d
         read = {i: values(i, name) for i in have} if small else {}
         if (len(have) == n and name in coord_names
                 and all(_equal(read[i], read[have[0]]) for i in have[1:])):
@@ -250,8 +222,6 @@ def _stack(ncs, metas) -> xr.Dataset:
         padded = any(v is None or tuple(v[1]) != shape for v in present)
         if read:
             dtype = read[have[0]].dtype
-        else:
-            dtype = np.dtype(var0.dtype)
         if padded and dtype.kind in "iu":  # as xarray promotes them to hold NaN
             dtype = np.dtype(np.float32 if dtype.itemsize <= 2 else float)
         elif padded and dtype.kind == "b":
@@ -261,23 +231,30 @@ def _stack(ncs, metas) -> xr.Dataset:
                 dtype = np.dtype(object)
             else:  # the widest of the runs' strings
                 dtype = np.result_type(*(v.dtype for v in read.values()))
-        if not padded:
-            out = np.empty((n, *shape), dtype)
-        elif dtype.kind in "fcO":
-            out = np.full((n, *shape), np.nan, dtype)
-        else:
-            out = np.zeros((n, *shape), dtype)
-        for i in have:
-            v = read[i] if read else values(i, name)
+        pad = np.nan if dtype.kind in "fcO" else 0
+        out = np.empty((n, *shape), dtype)
+        for i in range(n):
+            if i not in have:
+                out[i] = pad
+                continue
             if not d:
-                out[i] = v
+                out[i] = read[i]
                 continue
             where = tuple(index[k][1][i] if k in index and index[k][1] is not None
-                          else slice(0, shape[j]) for j, k in enumerate(d))
+                          else slice(0, present[i][1][j]) for j, k in enumerate(d))
             if not all(isinstance(w, slice) for w in where):
-                where = np.ix_(*(np.arange(shape[j])[w] if isinstance(w, slice) else w
-                                 for j, w in enumerate(where)))
-            out[i][where] = v
+                out[i] = pad
+                out[i][np.ix_(*(np.arange(shape[j])[w] if isinstance(w, slice) else w
+                                for j, w in enumerate(where)))] = (
+                    read[i] if read else values(i, name))
+                continue
+            for j, w in enumerate(where):  # around the run's values: padding
+                out[i][(slice(None),) * j + (slice(0, w.start),)] = pad
+                out[i][(slice(None),) * j + (slice(w.stop, None),)] = pad
+            if read:
+                out[i][where] = read[i]
+            else:  # straight into its place
+                runs.read_into(i, name, out[i][where])
         var = xr.Variable(("run", *d), out, attrs)
         (coords if name in coord_names else data_vars)[name] = var
     return xr.Dataset(data_vars, coords=coords, attrs=_common_attrs([m[1] for m in metas]))

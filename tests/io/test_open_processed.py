@@ -1,13 +1,18 @@
 """Opening a stage's runs (flumekit.open_processed): the dataset xarray's concatenation of the
-files gives, read straight into the stacked arrays (no run held in memory beside them)."""
+files gives, read straight into the stacked arrays (no run held in memory beside them); the
+HDF5 reader (h5py, attributes decoded from the object headers' bytes) describes a file as the
+netCDF4 library does, and leaves what it does not know, or a damaged header, to the netCDF4
+library."""
 
 import tracemalloc
 
 import numpy as np
+import pytest
 import xarray as xr
 
 from flumekit.io.netcdf import read_dataset
 from flumekit.io.processed import open_processed
+from flumekit.io.run_files import Hdf5Runs, Netcdf4Runs, open_runs
 
 N_VARS = 8
 
@@ -36,23 +41,33 @@ def _write_runs(folder, lengths):
     """Runs of the given record lengths; the frequencies of odd runs fall between those of
     even runs (not a contiguous stretch of their union), run 1 lacks nothing, run 2 has an
     extra variable."""
+    return _write(folder, [_run(i, n, np.arange(5) * 0.1 + (0.05 if i % 2 else 0.0),
+                                with_extra=i == 2) for i, n in enumerate(lengths)])
+
+
+def _write(folder, runs, axes=("time", "frequency")) -> list:
+    """Write the runs' datasets as netCDF-4 files (dimension coordinates ``axes`` without a
+    fill value, as flumekit writes them)."""
     folder.mkdir()
     files = []
-    for i, n in enumerate(lengths):
-        freq = np.arange(5) * 0.1 + (0.05 if i % 2 else 0.0)
-        ds = _run(i, n, freq, with_extra=i == 2)
+    for i, ds in enumerate(runs):
         path = folder / f"run{i}.nc"
-        ds.to_netcdf(path, engine="netcdf4", encoding={
-            name: {"_FillValue": None} for name in ("time", "frequency")})
+        ds.to_netcdf(path, engine="netcdf4",
+                     encoding={name: {"_FillValue": None} for name in axes})
         files.append(path)
     return files
+
+
+def _concat(files) -> xr.Dataset:
+    """xarray's concatenation of the runs, the dataset open_processed must give."""
+    return xr.concat([read_dataset(f) for f in files], dim="run", join="outer",
+                     combine_attrs="drop_conflicts", coords="different", compat="equals")
 
 
 def test_open_processed_is_xarrays_concatenation_of_the_runs(tmp_path):
     files = _write_runs(tmp_path / "stage", [300, 500, 400, 500])
     got = open_processed(tmp_path, "stage")
-    want = xr.concat([read_dataset(f) for f in files], dim="run", join="outer",
-                     combine_attrs="drop_conflicts", coords="different", compat="equals")
+    want = _concat(files)
     xr.testing.assert_identical(got, want)
     for name in got.variables:
         assert got[name].dtype == want[name].dtype, name
@@ -83,3 +98,87 @@ def test_runs_are_read_straight_into_the_stacked_arrays(tmp_path):
     # beside the result: the coordinates' union (every run's time axis once) and one
     # variable of one run; every run held at once would add the whole payload
     assert peak - ds.nbytes < 0.35 * payload, (peak, ds.nbytes, payload)
+
+
+def _rich_run(i: int) -> xr.Dataset:
+    """A run with every kind of variable and attribute the pipeline writes, and more."""
+    n = 50 + 10 * i
+    t = np.arange(n) / 100.0
+    many = {f"note{k}": f"attribute {k}" for k in range(10)}  # stored outside the header
+    more = {f"extra{k}": float(k) for k in range(40)}  # names indexed in a B-tree of nodes
+    ds = xr.Dataset(
+        {"theta": ("time", np.sin(t), {"units": "rad", "long_name": "angle",
+                                       "valid_range": np.array([-1.0, 1.0])}),
+         "single": ("time", t.astype(np.float32), {"units": "m", "scale": np.float32(2.0)}),
+         "counts": ("time", np.arange(n, dtype=np.int16), {"units": "1"}),
+         "flag": ("time", np.ones(n, np.int8), {"flag_values": np.array([1, 4], np.int8),
+                                               "flag_meanings": "pass fail"}),
+         "field": (("time", "probe"), np.ones((n, 3)), {"units": "m", **many}),
+         "bins": ("bin", np.arange(4.0), {"units": "1", **more}),  # a dimension without
+         # coordinate
+         "text": ("time", t, {"units": "m", "probes": ["a", "bb"],  # a list of strings
+                              "comment": "déjà vu"}),  # not ASCII: a variable-length string
+         "mean_power": ((), float(i), {"units": "W", "fit": np.int32(3)})},
+        coords={"time": ("time", t, {"units": "s", "standard_name": "time"}),
+                "probe": ("probe", [0.0, 0.6, 0.9], {"units": "m"}),
+                "run": f"run{i}", "repeat": np.int32(i)})
+    ds.attrs = {"title": f"run {i}", "Conventions": "CF-1.8", "cutoff": 4.0,
+                "orders": np.array([1, 2, 3], np.int32), "names": ["x", "y"],
+                **{f"global{k}": k for k in range(10)}}
+    return ds
+
+
+def test_the_hdf5_reader_describes_files_as_the_netcdf4_library_does(tmp_path):
+    files = _write(tmp_path / "stage", [_rich_run(i) for i in range(3)], ("time", "probe"))
+    with open_runs(files) as fast, Netcdf4Runs(files) as ref:
+        assert isinstance(fast, Hdf5Runs)
+        for i, ((got, got_attrs, got_coords), (want, want_attrs, want_coords)) in enumerate(
+                zip(fast.metas, ref.metas)):
+            assert list(got) == list(want) and got_coords == want_coords
+            for name in want:
+                (dims, shape, attrs, fill, dtype), w = got[name], want[name]
+                assert (dims, tuple(shape), dtype) == (w[0], tuple(w[1]), w[4]), name
+                assert list(attrs) == list(w[2]), name
+                for key, value in w[2].items():
+                    assert type(attrs[key]) is type(value), (name, key)
+                    np.testing.assert_array_equal(attrs[key], value)
+                    assert np.asarray(attrs[key]).dtype == np.asarray(value).dtype
+                np.testing.assert_array_equal(fill, w[3])
+                values, expected = fast.values(i, name), ref.values(i, name)
+                assert values.dtype == expected.dtype, name
+                np.testing.assert_array_equal(values, expected)
+            assert list(got_attrs) == list(want_attrs)
+            for key, value in want_attrs.items():
+                assert type(got_attrs[key]) is type(value), key
+                np.testing.assert_array_equal(got_attrs[key], value)
+
+
+def test_the_stack_of_such_files_is_still_xarrays_concatenation(tmp_path):
+    files = _write(tmp_path / "stage", [_rich_run(i) for i in range(3)], ("time", "probe"))
+    got = open_processed(tmp_path, "stage")
+    xr.testing.assert_identical(got, _concat(files))
+    assert np.isnan(got["theta"].values[0, 50:]).all()
+
+
+def test_a_file_with_a_group_is_read_by_the_netcdf4_library(tmp_path):
+    runs = [_rich_run(i) for i in range(2)]
+    files = _write(tmp_path / "stage", runs, ("time", "probe"))
+    xr.Dataset({"x": ("y", [1.0, 2.0])}).to_netcdf(files[1], mode="a", group="extra")
+    with open_runs(files) as runs_read:
+        assert isinstance(runs_read, Netcdf4Runs)
+    xr.testing.assert_identical(open_processed(tmp_path, "stage"), _concat(files))
+
+
+@pytest.mark.parametrize("text", [b"pass fail", b"attribute 3"])
+def test_a_damaged_header_is_no_silent_wrong_attribute(tmp_path, text):
+    """A byte changed in an attribute stored in an object header (``pass fail``) or in the
+    heap of a variable's many attributes (``attribute 3``): the checksum no longer matches,
+    the HDF5 reader declines and the netCDF4 library refuses the file as HDF5 does."""
+    files = _write(tmp_path / "stage", [_rich_run(i) for i in range(2)], ("time", "probe"))
+    data = bytearray(files[1].read_bytes())
+    at = data.index(text)
+    data[at:at + 4] = text[:4].upper()
+    files[1].write_bytes(bytes(data))
+    with pytest.raises(Exception) as caught:
+        open_processed(tmp_path, "stage")
+    assert text[:4].upper().decode() not in str(caught.value)
