@@ -56,7 +56,7 @@ def _value(ds: xr.Dataset, q: str, i: int) -> str:
     if not np.isfinite(v):
         return ""
     key = f"{q}_expanded_uncertainty"
-    if key in ds:
+    if key in ds and np.isfinite(float(ds[key].values[i])):
         return f"{_g(v)} ± {_g(float(ds[key].values[i]), 2)}"
     key = f"{q}_uncertainty_type_a"
     if key in ds and np.isfinite(float(ds[key].values[i])):

@@ -124,3 +124,27 @@ def test_report_sections_show_results_budget_and_full_scale():
     assert f"{15.0 * 10 ** 3.5 * 1.025:.4g}" in secs["uncertainty-results"]
     assert "water depth" in secs["uncertainty-budget"]
     assert "repeatability" in secs["uncertainty-budget"]
+
+
+def test_report_shows_a_value_without_uncertainty_as_a_plain_number():
+    # one run of a condition and no Type B propagation for it (an irregular run): the value,
+    # no dangling "±"
+    from flumekit.uncertainty import report_sections
+
+    s = xr.Dataset({"incident_height": ("run", [0.150, 0.152, 0.3])},
+                   coords={"wave_period": ("run", [2.0, 2.0, 3.0]),
+                           "wave_height": ("run", [0.15, 0.15, 0.3])})
+    c = condition_statistics(s)
+    runs = xr.Dataset(
+        {"incident_height_uncertainty_type_b": ("run", [1e-4, 1e-4], {"degrees_of_freedom": 9}),
+         "incident_height_budget": (("run", "uncertainty_component"), [[1e-4], [1e-4]]),
+         "incident_height_sensitivity": (("run", "uncertainty_component"), [[1.0], [1.0]]),
+         "input_units": ("uncertainty_component", ["m"]),
+         "input_standard_uncertainty": ("uncertainty_component", [1e-4])},
+        coords={"wave_period": ("run", [2.0, 2.0]), "wave_height": ("run", [0.15, 0.15]),
+                "uncertainty_component": ["water_depth"]})
+    c, b = combine(c, runs)
+    html = dict((a, h) for a, _, h in report_sections(c, b))["uncertainty-results"]
+    assert ">0.3<" in html
+    assert "0.3 ±" not in html
+    assert "0.151 ±" in html
