@@ -98,6 +98,18 @@ def test_combination_welch_satterthwaite():
     assert list(budget.uncertainty_component.values) == ["a", "b", "repeatability"]
 
 
+def _two_runs_type_b():
+    """The uncertainty datasets of two runs at T = 2 s, H = 0.15 m (water depth only)."""
+    return xr.Dataset(
+        {"incident_height_uncertainty_type_b": ("run", [1e-4, 1e-4], {"degrees_of_freedom": 9}),
+         "incident_height_budget": (("run", "uncertainty_component"), [[1e-4], [1e-4]]),
+         "incident_height_sensitivity": (("run", "uncertainty_component"), [[1.0], [1.0]]),
+         "input_units": ("uncertainty_component", ["m"]),
+         "input_standard_uncertainty": ("uncertainty_component", [1e-4])},
+        coords={"wave_period": ("run", [2.0, 2.0]), "wave_height": ("run", [0.15, 0.15]),
+                "uncertainty_component": ["water_depth"]})
+
+
 def test_report_sections_show_results_budget_and_full_scale():
     from flumekit.uncertainty import report_sections
 
@@ -106,15 +118,7 @@ def test_report_sections_show_results_budget_and_full_scale():
                    coords={"wave_period": ("run", [2.0, 2.0]),
                            "wave_height": ("run", [0.15, 0.15])})
     c = condition_statistics(s)
-    runs = xr.Dataset(
-        {"incident_height_uncertainty_type_b": ("run", [1e-4, 1e-4], {"degrees_of_freedom": 9}),
-         "incident_height_budget": (("run", "uncertainty_component"), [[1e-4], [1e-4]]),
-         "incident_height_sensitivity": (("run", "uncertainty_component"), [[1.0], [1.0]]),
-         "input_units": ("uncertainty_component", ["m"]),
-         "input_standard_uncertainty": ("uncertainty_component", [1e-4])},
-        coords={"wave_period": ("run", [2.0, 2.0]), "wave_height": ("run", [0.15, 0.15]),
-                "uncertainty_component": ["water_depth"]})
-    c, b = combine(c, runs)
+    c, b = combine(c, _two_runs_type_b())
     c.attrs.update(froude_scale=10.0, model_density=1000.0, prototype_density=1025.0)
     secs = dict((a, h) for a, _, h in report_sections(c, b))
     u = float(c.incident_height_expanded_uncertainty[0])
@@ -135,15 +139,7 @@ def test_report_shows_a_value_without_uncertainty_as_a_plain_number():
                    coords={"wave_period": ("run", [2.0, 2.0, 3.0]),
                            "wave_height": ("run", [0.15, 0.15, 0.3])})
     c = condition_statistics(s)
-    runs = xr.Dataset(
-        {"incident_height_uncertainty_type_b": ("run", [1e-4, 1e-4], {"degrees_of_freedom": 9}),
-         "incident_height_budget": (("run", "uncertainty_component"), [[1e-4], [1e-4]]),
-         "incident_height_sensitivity": (("run", "uncertainty_component"), [[1.0], [1.0]]),
-         "input_units": ("uncertainty_component", ["m"]),
-         "input_standard_uncertainty": ("uncertainty_component", [1e-4])},
-        coords={"wave_period": ("run", [2.0, 2.0]), "wave_height": ("run", [0.15, 0.15]),
-                "uncertainty_component": ["water_depth"]})
-    c, b = combine(c, runs)
+    c, b = combine(c, _two_runs_type_b())
     html = dict((a, h) for a, _, h in report_sections(c, b))["uncertainty-results"]
     assert ">0.3<" in html
     assert "0.3 ±" not in html
