@@ -78,7 +78,9 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     -------
     matplotlib.figure.Figure
         η/A_s [-] against t/T [-]. The dash-dotted line is the amplitude scale A_s
-        (η/A_s = 1), the vertical line the start of the quasi-steady window.
+        (η/A_s = 1), the vertical line the start of the quasi-steady window (the paper's
+        crest criterion) and, dashed where it opens later, the start of the analysis window
+        (the separated reflection settled too).
 
     References
     ----------
@@ -92,8 +94,13 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         ax.plot(*thin(tt, eta, fig.get_figwidth()), color=COLOURS["experiment"], lw=0.5,
                 label=f"measured, {p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9,
-                   label="start of the quasi-steady window")
+        crest = float(waves["crest_steady_start"]) if "crest_steady_start" in waves else None
+        ax.axvline((float(waves.steady_start) if crest is None else crest) / period,
+                   color="tab:red", lw=0.9, label="quasi-steady from (crests within "
+                   f"{float(waves.attrs.get('tolerance', 0.02)):.0%})")
+        if crest is not None and float(waves.steady_start) > crest + 0.5 * period:
+            ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9, ls="--",
+                       label="analysis window from (reflection settled)")
         ax.set_xlim(tt[0], tt[-1])
         ax.set_xlabel(_TIME_OVER_PERIOD)
         ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
