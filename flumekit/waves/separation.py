@@ -23,6 +23,7 @@ part; with ``bound_harmonics=True`` the bins of harmonic n ≥ 2 are solved with
 from __future__ import annotations
 
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -311,7 +312,33 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    x_ref = float(x_ref)
+    rec = _prepare(v, t, band, window, regular, period)
+    return _dataset(_separate_prepared(
+        rec, x, probes, depth, method, x_ref, regular=regular,
+        bound_harmonics=bound_harmonics, wavenumbers=wavenumbers, window=window,
+        max_condition=max_condition, warn_fraction=warn_fraction,
+        gauge_weights=gauge_weights, g=g, detection=detection))
+
+
+class _Prepared(NamedTuple):
+    """What the separation of a record needs that does not depend on the wavenumbers.
+
+    The band's Fourier coefficients of the demeaned records and, for a regular record, its
+    period and harmonic fit: the passes of :func:`flumekit.waves.analyse_run` with refined
+    wavenumbers share them.
+    """
+
+    t: np.ndarray  # time [s]
+    freq: np.ndarray  # FFT frequencies [Hz]
+    sel: np.ndarray  # indices of the band's bins
+    rhs: list  # the band's coefficients (F, P), untapered and (with a window) tapered
+    period: float | None  # fundamental period [s] of a regular record
+    coef: np.ndarray | None  # harmonic fit (P, nh) of a regular record (_harmonic_fit)
+
+
+def _prepare(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
+             period: float | None) -> _Prepared:
+    """Prepare checked records (P, N) [m] for :func:`_separate_prepared` (see :func:`separate`)."""
     n = t.size
     freq, sel = _band_bins(t, band)
     f = freq[sel]
@@ -326,11 +353,31 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         w = _sig.get_window(window, n)
         w = w / np.sqrt(np.mean(w * w))
         rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
-
+    coef = None
     if regular:
         if period is None:  # the peak bin, refined: up to half a bin off otherwise
             f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
+        if period > 0:  # else _harmonic_wavenumbers says so
+            f1 = 1.0 / float(period)
+            nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
+            top = max(int(np.rint(f / f1).astype(int).max()), 1)
+            nh = max(min(top, int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
+            # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
+            coef = _harmonic_fit(v, t, f1, nh)
+    return _Prepared(t, freq, sel, rhs, period, coef)
+
+
+def _separate_prepared(rec: _Prepared, x: np.ndarray, probes, depth: float, method: str,
+                       x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
+                       window: str | None, max_condition: float, warn_fraction: float,
+                       gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
+    """Separate a prepared record (:func:`separate`); return its dataset's data, coords, attrs."""
+    t, freq, sel, rhs, period = rec.t, rec.freq, rec.sel, rec.rhs, rec.period
+    x_ref = float(x_ref)
+    n = t.size
+    f = freq[sel]
+    if regular:
         k1 = (None, None) if wavenumbers is None else wavenumbers
         f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
         if k1[1] == k1[0]:  # the reflected wave travels with the same wavenumbers
@@ -373,10 +420,9 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     }
     coords = {"time": t, "frequency": f}
     if regular:
-        nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
-        nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
-        stats, coords["harmonic"] = _regular_statistics(v, t, x, f1, kh[:nh], kh_r[:nh], x_ref,
-                                                        max_condition)
+        nh = rec.coef.shape[1]
+        stats, coords["harmonic"] = _regular_statistics(rec.coef, t, x, f1, kh[:nh], kh_r[:nh],
+                                                        x_ref, max_condition)
         data.update(stats)
     else:
         definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
@@ -387,7 +433,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         for name, m0 in (("incident_height", m0_i), ("reflected_height", m0_r)):
             data[name] = ((), float(4.0 * np.sqrt(m0)), {"definition": definition})
 
-    ds = xr.Dataset(data, coords=coords, attrs={
+    attrs = {
         "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
         "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
         "regular": int(regular), "regular_detection": detection,
@@ -397,7 +443,14 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             "fundamental_wavenumbers": [float(kh[0]), float(kh_r[0])],
             "wavenumber_source": "linear dispersion" if wavenumbers is None else "given"}
            if regular else {}),
-        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
+        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"}
+    return data, coords, attrs
+
+
+def _dataset(parts: tuple[dict, dict, dict]) -> xr.Dataset:
+    """Return the dataset of :func:`separate` from the parts :func:`_separate_prepared` made."""
+    data, coords, attrs = parts
+    ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return conventions.annotate(ds)
 
 
@@ -508,17 +561,17 @@ def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, k_r: np.
     return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
 
 
-def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
+def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
                         kh: np.ndarray, kh_r: np.ndarray, x_ref: float, max_condition: float):
     """Statistics of a regular wave from its harmonics at their exact frequencies.
 
     A least-squares harmonic fit per probe (leakage-free for any record length), separated by
-    the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh``, ``kh_r`` the
-    incident and reflected wavenumbers of each harmonic kept [rad m-1]. Returns the dataset
-    variables (see :func:`separate`) and the ``harmonic`` coordinate.
+    the same core as the bins. ``coef`` (P, nh) the probes' fit (:func:`_harmonic_fit`) [m],
+    ``t`` their time [s], ``kh``, ``kh_r`` the incident and reflected wavenumbers of each
+    harmonic kept [rad m-1]. Returns the dataset variables (see :func:`separate`) and the
+    ``harmonic`` coordinate.
     """
     nh = kh.size
-    coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
     ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
     ph_r = np.exp(1j * kh_r[:, None] * x[None, :])
     sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, ph_r], axis=-1),
