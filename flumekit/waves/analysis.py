@@ -17,11 +17,11 @@ from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
 from flumekit.waves.separation import (
     SeparationWarning,
-    _check_inputs,
-    _dataset,
-    _prepare,
-    _separate_prepared,
     as_probe_time,
+    check_separation_inputs,
+    prepare_separation,
+    separate_prepared,
+    separation_dataset,
 )
 from flumekit.waves.stream_function import nonlinear_wavenumber
 from flumekit.waves.theory import G, energy_flux
@@ -126,7 +126,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                                max_condition=max_condition, g=g)[0]
     if isinstance(parts, ValueError):
         raise parts
-    steady = _dataset(parts)
+    steady = separation_dataset(parts)
     # separated series on the full time axis, defined (not NaN) over the steady window only
     inc = np.full(t.size, np.nan)
     ref = np.full(t.size, np.nan)
@@ -168,6 +168,98 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     return conventions.annotate(ds)
 
 
+#: the scalar results of :func:`variant_results`
+VARIANT_RESULTS = ("incident_height", "reflected_height", "reflection_coefficient",
+                   "incident_amplitude", "measured_period", "energy_flux")
+
+
+def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
+                    method: str = "mansard_funke", separation_probes=None,
+                    n_harmonics: int = 8, bound_harmonics: bool = True,
+                    amplitude_dispersion: bool = True, tolerance: float = 0.02,
+                    min_cycles: int = 10, noise_factor: float = 4.0,
+                    max_condition: float = MAX_CONDITION, g: float = G,
+                    memo: dict | None = None) -> dict:
+    """Return the scalar results of :func:`analyse_run` for many variants of one run at once.
+
+    Each variant (a Monte Carlo draw of the run's records, probe positions and depth) is
+    analysed exactly as :func:`analyse_run` analyses a run (its own quasi-steady window, the
+    same separation passes), without the datasets: the reruns of an uncertainty propagation
+    need these numbers only.
+
+    Parameters
+    ----------
+    etas : sequence of xarray.DataArray
+        The variants' calibrated surface elevations [m] (probe, time) with ``x`` [m].
+    depths : sequence of float
+        Still water depth of each variant [m].
+    period : float
+        Target wave period [s].
+    x_ref : float
+        Position where the incident and reflected waves are returned [m].
+    method, separation_probes, n_harmonics, bound_harmonics, amplitude_dispersion
+        As in :func:`analyse_run`.
+    tolerance, min_cycles, noise_factor, max_condition
+        As in :func:`analyse_run` ([-]).
+    g : float
+        Gravitational acceleration [m s-2].
+    memo : dict, optional
+        Quasi-steady windows found so far, kept by the caller across calls: a variant whose
+        records equal those of one seen before (one that perturbs the probe positions or the
+        depth only) reuses its window, which depends on the records alone.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        :data:`VARIANT_RESULTS` -> one value per variant (units of :func:`analyse_run`), NaN
+        for a variant the analysis refuses (a ValueError of :func:`analyse_run`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.waves.analysis import variant_results
+    >>> from flumekit.waves.theory import wavenumber
+    >>> t = np.arange(4000) / 20.0
+    >>> x = np.array([-3.0, -2.4, -2.1])
+    >>> k = wavenumber(2 * np.pi / 2.0, 0.5)
+    >>> v = 0.05 * np.cos(np.pi * t - k * x[:, None])
+    >>> eta = xr.DataArray(v, dims=("probe", "time"),
+    ...                    coords={"probe": ["a", "b", "c"], "x": ("probe", x), "time": t})
+    >>> r = variant_results([eta, 1.01 * eta], [0.5, 0.5], 2.0)
+    >>> np.round(r["incident_height"], 3).tolist()
+    [0.1, 0.101]
+    """
+    recs, ok = [], []
+    for eta in etas:
+        try:
+            recs.append(_steady_record(eta, period, separation_probes=separation_probes,
+                                       n_harmonics=n_harmonics, tolerance=tolerance,
+                                       min_cycles=min_cycles, noise_factor=noise_factor,
+                                       memo=memo))
+            ok.append(True)
+        except ValueError:
+            recs.append(None)
+            ok.append(False)
+    idx = [i for i in range(len(recs)) if ok[i]]
+    parts = _separation_passes([recs[i] for i in idx], [depths[i] for i in idx], method=method,
+                               x_ref=x_ref, bound_harmonics=bound_harmonics,
+                               amplitude_dispersion=amplitude_dispersion,
+                               max_condition=max_condition, g=g)
+    out = {k: np.full(len(recs), np.nan) for k in VARIANT_RESULTS}
+    for i, part in zip(idx, parts, strict=True):
+        if isinstance(part, ValueError):
+            continue
+        data, t_meas, depth = part[0], recs[i].period, depths[i]
+        for k in ("incident_height", "reflected_height", "reflection_coefficient",
+                  "incident_amplitude"):
+            out[k][i] = float(data[k][1])
+        out["measured_period"][i] = t_meas
+        out["energy_flux"][i] = float(energy_flux(2.0 * float(data["incident_amplitude"][1]),
+                                                  t_meas, depth, g=g))
+    return out
+
+
 class _SteadyRecord(NamedTuple):
     """A run's records checked, and the quasi-steady window the separation analyses."""
 
@@ -188,8 +280,12 @@ class _SteadyRecord(NamedTuple):
 
 def _steady_record(eta, period: float, *, x=None, sampling_rate=None, separation_probes=None,
                    n_harmonics: int = 8, tolerance: float = 0.02, min_cycles: int = 10,
-                   noise_factor: float = 4.0) -> _SteadyRecord:
-    """Check a run's records and find the window the separation analyses (:func:`analyse_run`)."""
+                   noise_factor: float = 4.0, memo: dict | None = None) -> _SteadyRecord:
+    """Check a run's records and find the window the separation analyses (:func:`analyse_run`).
+
+    ``memo``: windows already found, by the digest of the records and the criterion's
+    parameters; records equal to ones seen get their window without a search.
+    """
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
@@ -202,8 +298,23 @@ def _steady_record(eta, period: float, *, x=None, sampling_rate=None, separation
         raise ValueError(f"n_harmonics must be at least 1, got {n_harmonics}")
     eta = eta.transpose("probe", "time")
     sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
-    windows, criterion, t_meas, n_per, i0, n, dt = _steady_window(
-        v, t, probes, period, tolerance, min_cycles, noise_factor)
+    args = (v, t, probes, period, tolerance, min_cycles, noise_factor)
+    if memo is None:
+        found = _steady_window(*args)
+    else:
+        import hashlib
+
+        key = (hashlib.blake2b(v.tobytes() + t.tobytes(), digest_size=16).digest(), v.shape,
+               tuple(probes), float(period), tolerance, min_cycles, noise_factor)
+        if key not in memo:
+            try:
+                memo[key] = _steady_window(*args)
+            except ValueError as e:
+                memo[key] = e
+        found = memo[key]
+        if isinstance(found, ValueError):
+            raise found
+    windows, criterion, t_meas, n_per, i0, n, dt = found
     f1 = 1.0 / t_meas
     band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
     return _SteadyRecord(eta, v, t, x, windows, criterion, t_meas, n_per, i0, n, dt,
@@ -308,7 +419,7 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     -------
     list
         Per record the parts of its separation's dataset
-        (:func:`flumekit.waves.separation._separate_prepared`), or the ValueError that refused
+        (:func:`flumekit.waves.separation.separate_prepared`), or the ValueError that refused
         it.
     """
     kw = dict(regular=True, bound_harmonics=bound_harmonics, window=None,
@@ -317,10 +428,10 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     prepared, out = [], []
     for rec, depth in zip(records, depths, strict=True):
         try:
-            v, t, x, probes = _check_inputs(rec.steady, depth, method, max_condition)
-            p = _prepare(v, t, rec.band, None, True, rec.period)
+            v, t, x, probes = check_separation_inputs(rec.steady, depth, method, max_condition)
+            p = prepare_separation(v, t, rec.band, None, True, rec.period)
             prepared.append((p, x, probes))
-            out.append(_separate_prepared(p, x, probes, depth, method, x_ref, wavenumbers=None,
+            out.append(separate_prepared(p, x, probes, depth, method, x_ref, wavenumbers=None,
                                           **kw))
         except ValueError as e:
             prepared.append(None)
@@ -341,7 +452,7 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
                 continue
             p, x, probes = prepared[i]
             try:
-                out[i] = _separate_prepared(p, x, probes, depths[i], method, x_ref,
+                out[i] = separate_prepared(p, x, probes, depths[i], method, x_ref,
                                             wavenumbers=ks, **kw)
                 still.append(i)
             except ValueError as e:

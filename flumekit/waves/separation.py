@@ -298,7 +298,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     """
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
-    v, t, x, probes = _check_inputs(eta, depth, method, max_condition)
+    v, t, x, probes = check_separation_inputs(eta, depth, method, max_condition)
     detection = "given"
     if regular is None and not bound_harmonics:
         # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
@@ -312,15 +312,15 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    rec = _prepare(v, t, band, window, regular, period)
-    return _dataset(_separate_prepared(
+    rec = prepare_separation(v, t, band, window, regular, period)
+    return separation_dataset(separate_prepared(
         rec, x, probes, depth, method, x_ref, regular=regular,
         bound_harmonics=bound_harmonics, wavenumbers=wavenumbers, window=window,
         max_condition=max_condition, warn_fraction=warn_fraction,
         gauge_weights=gauge_weights, g=g, detection=detection))
 
 
-class _Prepared(NamedTuple):
+class PreparedRecord(NamedTuple):
     """What the separation of a record needs that does not depend on the wavenumbers.
 
     The band's Fourier coefficients of the demeaned records and, for a regular record, its
@@ -336,9 +336,30 @@ class _Prepared(NamedTuple):
     coef: np.ndarray | None  # harmonic fit (P, nh) of a regular record (_harmonic_fit)
 
 
-def _prepare(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
-             period: float | None) -> _Prepared:
-    """Prepare checked records (P, N) [m] for :func:`_separate_prepared` (see :func:`separate`)."""
+def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
+                       period: float | None) -> PreparedRecord:
+    """Prepare checked records for :func:`separate_prepared`: what no wavenumber changes.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Surface elevation (probe, time) [m], checked (:func:`check_separation_inputs`).
+    t : numpy.ndarray
+        Time [s], uniform.
+    band : tuple of float or None
+        Analysis band [Hz] (see :func:`separate`).
+    window : str or None
+        Taper of the spectra (see :func:`separate`).
+    regular : bool
+        Whether the record is separated as a regular wave.
+    period : float or None
+        Fundamental period [s] of a regular record; None: the refined peak.
+
+    Returns
+    -------
+    PreparedRecord
+        The band's Fourier coefficients and, for a regular record, its period and harmonic fit.
+    """
     n = t.size
     freq, sel = _band_bins(t, band)
     f = freq[sel]
@@ -365,14 +386,45 @@ def _prepare(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bo
             nh = max(min(top, int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
             # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
             coef = _harmonic_fit(v, t, f1, nh)
-    return _Prepared(t, freq, sel, rhs, period, coef)
+    return PreparedRecord(t, freq, sel, rhs, period, coef)
 
 
-def _separate_prepared(rec: _Prepared, x: np.ndarray, probes, depth: float, method: str,
-                       x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
-                       window: str | None, max_condition: float, warn_fraction: float,
-                       gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
-    """Separate a prepared record (:func:`separate`); return its dataset's data, coords, attrs."""
+def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, method: str,
+                      x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
+                      window: str | None, max_condition: float, warn_fraction: float,
+                      gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
+    """Separate a prepared record; return the parts of the dataset of :func:`separate`.
+
+    Parameters
+    ----------
+    rec : PreparedRecord
+        The record (:func:`prepare_separation`).
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    depth : float
+        Still water depth [m].
+    method : str
+        Separation method.
+    x_ref : float
+        Position where the waves are returned [m].
+    regular, bound_harmonics, wavenumbers, window, max_condition, warn_fraction, gauge_weights, g
+        As in :func:`separate` (wavenumbers [rad m-1], g [m s-2]).
+    detection : str
+        What the regular-wave detection found ("given" when the caller said).
+
+    Returns
+    -------
+    tuple of dict
+        Data variables, coordinates and attributes of the dataset
+        (:func:`separation_dataset`).
+
+    Raises
+    ------
+    ValueError
+        As :func:`separate`.
+    """
     t, freq, sel, rhs, period = rec.t, rec.freq, rec.sel, rec.rhs, rec.period
     x_ref = float(x_ref)
     n = t.size
@@ -447,15 +499,50 @@ def _separate_prepared(rec: _Prepared, x: np.ndarray, probes, depth: float, meth
     return data, coords, attrs
 
 
-def _dataset(parts: tuple[dict, dict, dict]) -> xr.Dataset:
-    """Return the dataset of :func:`separate` from the parts :func:`_separate_prepared` made."""
+def separation_dataset(parts: tuple[dict, dict, dict]) -> xr.Dataset:
+    """Return the dataset of :func:`separate` from the parts :func:`separate_prepared` made.
+
+    Parameters
+    ----------
+    parts : tuple of dict
+        Data variables, coordinates and attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, annotated (:func:`flumekit.conventions.annotate`).
+    """
     data, coords, attrs = parts
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return conventions.annotate(ds)
 
 
-def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: float):
-    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`."""
+def check_separation_inputs(eta: xr.DataArray, depth: float, method: str,
+                            max_condition: float):
+    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation [m] (probe, time) with ``x`` [m].
+    depth : float
+        Still water depth [m].
+    method : str
+        Separation method (:data:`METHODS`).
+    max_condition : float
+        Largest condition number accepted [-].
+
+    Returns
+    -------
+    tuple
+        Values [m], time [s], positions [m] and probe labels.
+
+    Raises
+    ------
+    ValueError
+        An unknown method, a non-positive depth, a max_condition not above 1, the wrong number
+        of probes, or a record :func:`as_probe_time` refuses.
+    """
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
@@ -543,7 +630,7 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
             f"is ill-conditioned (condition number > {max_condition:.3g}; worst at "
             f"f = {f[worst]:.4g} Hz, k·Δx/π = {np.round(k[worst] * dxs / np.pi, 3).tolist()}). "
             "These bins are excluded from the incident and reflected waves; change the probe "
-            "spacing or narrow the band.", SeparationWarning, stacklevel=3)
+            "spacing or narrow the band.", SeparationWarning, stacklevel=4)
     return e_inc, e_ref, masked_fraction
 
 
