@@ -235,16 +235,54 @@ def _residuals(v, n: int, height: float, period: float, current: str, cosm: np.n
     return np.concatenate([kin, dyn, mean, hgt], axis=-1)
 
 
+def _jacobian(v: np.ndarray, n: int, height: float, period: float, current: str,
+              cosm: np.ndarray, sinm: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Jacobian of :func:`_residuals` at ``v`` (2N + 4,) by complex steps of every unknown.
+
+    The residuals of ``v + 1e-30 i e_j`` for all j in one batched evaluation, as
+    :func:`_residuals` computes them, except that the depth ratios (most of the cost), which
+    only the steps of k and of the η_m change (the latter in the row of point m alone), are
+    computed once for the other steps, once for k's and once per point for η_m's.
+    """
+    vs = v + 1e-30j * np.eye(v.size)  # (M, M): row j steps unknown j
+    k = vs[..., :1]
+    eta = vs[..., 1:n + 2]
+    b = vs[..., None, n + 2:2 * n + 2]
+    c = 2 * np.pi / (k * period)
+    if current == "stokes":  # Eq. (9) with c_S = 0 and h = 1: Q = c
+        ubar, q = vs[..., 2 * n + 2:2 * n + 3], c
+    else:  # Eq. (8) with c_E = 0: ū = c
+        ubar, q = c, vs[..., 2 * n + 2:2 * n + 3]
+    r = vs[..., 2 * n + 3:]
+    jk = k[..., None] * np.arange(1, n + 1)  # (M, 1, N)
+    zb = eta[..., None]  # (M, N+1, 1)
+    other = n + 2  # the step of B_1: neither k nor any η_m moves
+    ch = np.empty(vs.shape[:1] + (n + 1, n), complex)
+    sh = np.empty_like(ch)
+    ch[:], sh[:] = depth_ratios(jk[other], zb[other], 1.0)
+    ch[0], sh[0] = depth_ratios(jk[0], zb[0], 1.0)
+    points = np.arange(n + 1)
+    # the step of η_m: point m's row, at the stepped η_m
+    ch_m, sh_m = depth_ratios(jk[other], eta[1 + points, points][:, None], 1.0)
+    ch[1 + points, points], sh[1 + points, points] = ch_m, sh_m
+    kin = -ubar * eta + np.sum(sh * cosm * b, axis=-1) + q
+    uu = -ubar + np.sum(ch * cosm * jk * b, axis=-1)
+    ww = np.sum(sh * sinm * jk * b, axis=-1)
+    dyn = 0.5 * (uu**2 + ww**2) + eta - r
+    mean = np.sum(weights * eta, axis=-1, keepdims=True) - 1.0
+    hgt = eta[..., :1] - eta[..., -1:] - height
+    return np.concatenate([kin, dyn, mean, hgt], axis=-1).imag.T / 1e-30
+
+
 def _newton(v: np.ndarray, args: tuple, max_iter: int = 40) -> tuple[np.ndarray, float]:
     """Newton's method with the exact Jacobian by complex-step differentiation.
 
-    All unknowns are perturbed at once in one batched evaluation; returns the root and its
-    residual.
+    All unknowns are perturbed at once in one batched evaluation (:func:`_jacobian`); returns
+    the root and its residual.
     """
-    eye = 1e-30j * np.eye(v.size)
     for _ in range(max_iter):
         f = _residuals(v, *args)
-        jac = _residuals(v + eye, *args).imag.T / 1e-30
+        jac = _jacobian(v, *args)
         step = np.linalg.solve(jac, f)
         v = v - step
         if np.max(np.abs(step)) < 1e-13:
