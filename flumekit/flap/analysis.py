@@ -317,35 +317,12 @@ def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s], uniform.
-    encoder_counts : array_like
-        Wire-encoder counts [-].
-    chamber_pressure : array_like
-        Measured gauge pressure in the cylinder chamber [Pa].
-    flap : Flap
-        The flap.
-    pto : PTO
-        The PTO.
-    encoder : Encoder
-        The wire encoder of Eq. (1).
-    depth : float
-        Water depth h [m].
-    period : float
-        Wave period of the run [s].
-    incident_height : float
-        Incident wave height at the flap [m].
-    cutoff : float
-        Cut-off of the low-pass applied to θ before differentiation [Hz].
-    zero_count : float
-        Encoder count at θ = 0.
-    tolerance : float
-        Relative crest tolerance of the quasi-steady window [-].
-    n_phase : int
-        Phase points per cycle of the amplitudes.
-    max_flagged_fraction : float
-        Largest fraction of encoder samples outside the domain of Eq. (1) that may be
-        interpolated.
+    time, encoder_counts, chamber_pressure, flap, pto, encoder, depth, period, incident_height
+        As in :func:`analyse_run`: time [s], counts [-], pressure [Pa], the flap, PTO and
+        encoder, depth [m], period [s], incident height [m].
+    cutoff, zero_count, tolerance, n_phase, max_flagged_fraction
+        As in :func:`analyse_run`: cut-off [Hz], zero count [-], crest tolerance [-], phase
+        points per cycle, largest interpolated fraction [-].
     measured : tuple, optional
         :func:`steady_measured` of these same records and parameters, when the caller has it
         (the reruns that change only the depth or the incident height).

@@ -148,23 +148,10 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s], uniform.
-    series : dict of str to array_like
-        ``{name: values}`` over ``time``, with at least ``theta`` [rad], ``power`` [W] and
-        ``torque_hydrodynamic`` [N m].
-    window : flumekit.signal.SteadyWindow
-        The steady window (:func:`steady_window`).
-    period : float
-        Wave period T of the run [s].
-    incident_height : float
-        Incident wave height H at the flap [m], > 0.
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width L [m] (Eq. A2).
-    n_phase : int, optional
-        Phase points per cycle of the amplitudes.
+    time, series, window, period, incident_height, depth, flap_width, n_phase
+        As in :func:`summary`: time [s], the series (``theta`` [rad], ``power`` [W] and
+        ``torque_hydrodynamic`` [N m] are used), the steady window, period [s], incident
+        height [m], depth [m], flap width [m], phase points per cycle.
 
     Returns
     -------

@@ -6,7 +6,11 @@ depth; encoder resolution, pressure sensor accuracy, flap inertia, clock offset)
 analyses the pipeline runs (:func:`flumekit.waves.analyse_run`, then
 :func:`flumekit.flap.analyse_run` with the draw's incident height, so that H_I's uncertainty
 reaches C_f). The standard uncertainty of a result is the standard deviation of its draws and
-its 95 % coverage interval the probabilistically symmetric one (JCGM 101 §7.7).
+its 95 % coverage interval the probabilistically symmetric one (JCGM 101 §7.7). The draws are
+analysed together, through the results-only paths of those analyses
+(:func:`flumekit.waves.analysis.variant_results`, :func:`flumekit.flap.analysis.run_results`):
+the same computations, without the datasets and the pressure fit that no propagated result
+reads.
 
 The linear propagation of GUM §5.1 is the cross-check and the budget: sensitivity coefficients
 by central differences, ±u of one input at a time; an input with one value per sample (noise,
@@ -224,7 +228,8 @@ class RunModel:
         if "calibration" in d:
             v = v * (1.0 + d["calibration"])[:, None]
         x = self.eta["x"].values + d.get("probe_position", 0.0)
-        return self.eta.copy(data=v).assign_coords(x=("probe", x))
+        # the coordinates are shared, not copied: nothing downstream writes into them
+        return self.eta.copy(deep=False, data=v).assign_coords(x=("probe", x))
 
     def _waves(self, ds: list[dict]) -> np.ndarray:
         """Return the waves results (len(ds), len(WAVES_RESULTS)), NaN where refused."""
