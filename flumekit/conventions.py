@@ -185,6 +185,10 @@ VARIABLES: dict[str, Variable] = {
     "wave_number": _V("rad m-1", "wave number"),
     "steady_start": _V("s", "start of the quasi-steady window"),
     "steady_end": _V("s", "end of the quasi-steady window"),
+    "crest_steady_start": _V("s", "start of the window where every probe's crests are "
+                                  "quasi-steady (Brito et al. 2020, 2.5)"),
+    "reflection_drift": _V("1", "largest change of the first-harmonic complex reflection "
+                                "coefficient outside the quasi-steady window"),
     "measured_period": _V("s", "mean wave period of the quasi-steady window"),
     "measured_height": _V("m", "mean wave height of the quasi-steady window"),
     "amplitude_scale": _V("m", "amplitude scale of the quasi-steady window"),

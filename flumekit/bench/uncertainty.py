@@ -65,8 +65,8 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     record : dict
         The flap record: ``time`` [s], ``encoder_counts`` [-], ``chamber_pressure`` [Pa].
     truth : dict
-        ``height`` (generated) [m], ``reflection`` (effective Kr at the hinge) [-] and ``flap``
-        (the flap truth dataset).
+        ``height`` (generated) [m], ``period`` (generated) [s], ``reflection`` (effective Kr at
+        the hinge) [-] and ``flap`` (the flap truth dataset).
     """
     import dataclasses
 
@@ -128,17 +128,16 @@ def virtual_repeat(index: int, seed: int, campaign, hydro, n_steady: int = 55):
     record = {"time": t100, "encoder_counts": flap["encoder_counts"].values.astype(float),
               # the CSV's pressure in bar with 6 decimals
               "chamber_pressure": np.round(flap["chamber_pressure"].values / 1e5, 6) * 1e5}
-    return eta, cal, record, {"height": float(field.attrs["wave_height"]),
+    return eta, cal, record, {"height": float(field.attrs["wave_height"]), "period": period,
                               "reflection": float(field.attrs["reflection_coefficient"]),
                               "flap": flap}
 
 
-def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str, float]:
+def truth_values(truth: dict, result, campaign) -> dict[str, float]:
     """Return the true H_I, Kr, θ amplitude and C_f of a repeat, by the analysis' definitions.
 
     θ amplitude by :func:`flumekit.signal.cycle_amplitude` of the true θ over the analysed
-    window (``theta_amplitude_lowpass``: of the true θ through the analysis' low-pass at
-    ``cutoff``), C_f as the true mean power over that window over W_I of the true height.
+    window, C_f as the true mean power over that window over W_I of the true height.
 
     Parameters
     ----------
@@ -148,31 +147,25 @@ def truth_values(truth: dict, result, campaign, cutoff: float = 4.0) -> dict[str
         The analysed window: ``flap_period`` [s], ``flap_start`` [s], ``flap_cycles``.
     campaign : flumekit.campaign.Campaign
         The bench campaign (water depth, flap width).
-    cutoff : float
-        The analysis' low-pass cut-off [Hz].
 
     Returns
     -------
     dict of str to float
-        ``incident_height`` [m], ``reflection_coefficient`` [-], ``theta_amplitude`` and
-        ``theta_amplitude_lowpass`` [rad], ``capture_factor`` [-].
+        ``incident_height`` [m], ``reflection_coefficient`` [-], ``theta_amplitude`` [rad],
+        ``capture_factor`` [-].
     """
     from flumekit.flap.power import incident_power
-    from flumekit.signal import cycle_amplitude, smooth_derivatives
+    from flumekit.signal import cycle_amplitude
 
     flap = truth["flap"]
     t = flap.time.values
     period, start = float(result["flap_period"]), float(result["flap_start"])
     n = int(result["flap_cycles"])
     win = (t >= start) & (t < start + n * period)
-    w_i = float(incident_power(truth["height"], period, campaign.flume.water_depth,
+    w_i = float(incident_power(truth["height"], truth["period"], campaign.flume.water_depth,
                                campaign.flap.width))
-    # the analysis takes θ's amplitude after its derivative low-pass (flap.analysis): the
-    # amplitude of the true θ low-passed alike is the measurand as the analysis defines it
-    smooth = smooth_derivatives(flap.theta.values, 1.0 / (t[1] - t[0]), cutoff)[0]
     return {"incident_height": truth["height"], "reflection_coefficient": truth["reflection"],
             "theta_amplitude": cycle_amplitude(flap.theta.values, t, period, start, n),
-            "theta_amplitude_lowpass": cycle_amplitude(smooth, t, period, start, n),
             "capture_factor": float(np.mean(flap.power.values[win])) / w_i}
 
 
@@ -194,7 +187,7 @@ def _model(eta, cal, record, campaign, components=None):
                             counts_per_metre=campaign.encoder.counts_per_metre)
     waves_kw = {k: WAVES[k] for k in ("method", "x_ref", "n_harmonics", "bound_harmonics",
                                       "amplitude_dispersion", "tolerance", "min_cycles",
-                                      "noise_factor")}
+                                      "noise_factor", "reflection_tolerance")}
     waves_kw["separation_probes"] = list(campaign.probes.separation)
     flap_kw = {"flap": campaign.flap, "pto": campaign.pto, "encoder": campaign.encoder,
                **{k: FLAP[k] for k in ("cutoff", "tolerance", "n_phase",
@@ -213,7 +206,7 @@ def _flap_window(model) -> dict:
         warnings.simplefilter("ignore")
         w = model.waves({})
         ds = analyse_run(r["time"], r["encoder_counts"], r["chamber_pressure"],
-                         depth=model.depth, period=model.period,
+                         depth=model.depth, period=w["measured_period"],
                          incident_height=w["incident_height"], **model.flap_kw)
     return {"flap_period": float(ds.measured_period), "flap_start": float(ds.steady_start),
             "flap_cycles": int(ds.steady_cycles)}
@@ -251,7 +244,7 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
 
     campaign, hydro = _setup()
     sets = {"defaults": None, "virtual": uncertainty_components(VIRTUAL_ERRORS)}
-    names = QUANTITIES + ("theta_amplitude_lowpass",)
+    names = QUANTITIES
     err = {k: {q: [] for q in names} for k in sets}
     u = {k: {q: [] for q in names} for k in sets}
     covered = {k: {q: [] for q in names} for k in sets}
@@ -261,14 +254,12 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
         for key, comps in sets.items():
             model, inputs = _model(eta, cal, record, campaign, comps)
             ds = propagate(model, inputs, draws=draws, seed=[seed, i], linear_check=False)
-            true = truth_values(truth, _flap_window(model), campaign,
-                                model.flap_kw["cutoff"])
+            true = truth_values(truth, _flap_window(model), campaign)
             for q in names:
-                r = q.replace("_lowpass", "")
-                e = float(ds[r]) - true[q]
+                e = float(ds[q]) - true[q]
                 err[key][q].append(e)
-                u[key][q].append(float(ds[f"{r}_uncertainty_type_b"]))
-                covered[key][q].append(abs(e) <= float(ds[f"{r}_expanded_uncertainty"]))
+                u[key][q].append(float(ds[f"{q}_uncertainty_type_b"]))
+                covered[key][q].append(abs(e) <= float(ds[f"{q}_expanded_uncertainty"]))
         if progress:
             progress(i)
     out = {}
@@ -394,10 +385,8 @@ def run(quick: bool = False) -> str:
                       ("defaults", "the campaign's default components (1 mm positions and "
                                    "depth, 2 % inertia: errors the virtual flume has not)")):
         lines.append(f" {what}:")
-        for q in QUANTITIES + ("theta_amplitude_lowpass",):
+        for q in QUANTITIES:
             share, ratio, rms_e, rms_u = cov[key][q]
             lines.append(f"  {q:24s} {share:6.1%}  RMS error {rms_e:.3g}, RMS u {rms_u:.3g} "
                          f"(ratio {ratio:.2f}), mean error {cov[key]['bias'][q]:+.3g}")
-    lines.append("  (theta_amplitude_lowpass: against the true theta through the analysis' "
-                 "derivative low-pass)")
     return "\n".join(lines)

@@ -111,7 +111,8 @@ def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         "encoder_counts": counts, "wire_shortening": wire,
         "domain_flag": wa.out_of_domain.astype(np.int8),
         "theta": theta, "theta_dot": theta_dot, "theta_ddot": theta_ddot,
-        "rod_length": rod.length, "rod_velocity": rod.velocity, "beta": rod.beta,
+        "theta_unfiltered": theta_raw, "rod_length": rod.length, "rod_velocity": rod.velocity,
+        "beta": rod.beta,
         "lever_arm": rod.lever_arm, "chamber_pressure": p,
         "force_pressure": f_p, "force_friction": f_f,
         "bristle_deflection": z_b, "film_thickness_parameter": h_l,
@@ -197,8 +198,9 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     depth : float
         Water depth h [m] (for W_I, Eq. A2).
     period : float
-        Wave period of the run [s] (the quasi-steady window's cycle detection ignores
-        crossings closer than half of it).
+        Wave period of the run [s]: the incident wave's measured period (the waves stage's
+        ``measured_period``), with which W_I's group velocity is taken (Eq. A2); the
+        quasi-steady window's cycle detection ignores crossings closer than half of it.
     incident_height : float
         Incident wave height at the flap from the wave separation [m]; used for
         W_I (Eq. A2) and C_f.
@@ -253,7 +255,8 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                                         "torque_hydrodynamic")}, win,
                    period=period, incident_height=incident_height, depth=depth,
                    flap_width=flap.width, n_phase=n_phase,
-                   ci95=("theta", "torque_hydrodynamic"))
+                   ci95=("theta", "torque_hydrodynamic"),
+                   theta_unfiltered=s["theta_unfiltered"])
     ds = _dataset(m, fit, p_fit, cav, t_p_fit, pto=pto, cutoff=cutoff)
     return _bounded(conventions.annotate(ds.merge(summ)), fit)
 
@@ -364,7 +367,8 @@ def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     m, win = measured
     return summary_scalars(m.time, m.series, win, period=period,
                            incident_height=incident_height, depth=depth,
-                           flap_width=flap.width, n_phase=n_phase)
+                           flap_width=flap.width, n_phase=n_phase,
+                           theta_unfiltered=m.series["theta_unfiltered"])
 
 
 def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,

@@ -78,7 +78,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
 
 def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_height: float,
             depth: float, flap_width: float, n_phase: int = 100,
-            ci95: tuple[str, ...] = ()) -> xr.Dataset:
+            ci95: tuple[str, ...] = (), theta_unfiltered=None) -> xr.Dataset:
     """Summarise a run over its steady window: phase averages, amplitudes, power, W_I, C_f.
 
     The one summary of a flap run, measured (:func:`flumekit.flap.analysis.analyse_run`) or
@@ -106,6 +106,12 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
         Phase points per cycle.
     ci95 : tuple of str, optional
         Names of ``series`` that also get ``<name>_phase_ci95``.
+    theta_unfiltered : array_like, optional
+        θ before the derivatives' low-pass [rad], of which ``theta_amplitude`` is taken when
+        given: the low-pass rounds the extremes where the flap stops and turns (the PTO's
+        friction holds it), lowering the amplitude by ~3.5e-4 of it at 4 Hz on the virtual
+        flume, while an encoder's quantisation error (uniform within a count, one draw per
+        cycle's extreme) averages out over the cycles' mean maximum and minimum.
 
     Returns
     -------
@@ -131,7 +137,8 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     """
     scalars = summary_scalars(time, series, window, period=period,
                               incident_height=incident_height, depth=depth,
-                              flap_width=flap_width, n_phase=n_phase)
+                              flap_width=flap_width, n_phase=n_phase,
+                              theta_unfiltered=theta_unfiltered)
     t = np.asarray(time, dtype=float)
     cycles = (window.period, window.start, window.n_cycles)
     pa = {n: sig.phase_average(x, t, *cycles, n_phase=n_phase) for n, x in series.items()}
@@ -143,7 +150,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
 
 def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
                     incident_height: float, depth: float, flap_width: float,
-                    n_phase: int = 100) -> dict:
+                    n_phase: int = 100, theta_unfiltered=None) -> dict:
     """Return the scalars of :func:`summary`: amplitudes, mean power, W_I, C_f and the window.
 
     Parameters
@@ -152,6 +159,8 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
         As in :func:`summary`: time [s], the series (``theta`` [rad], ``power`` [W] and
         ``torque_hydrodynamic`` [N m] are used), the steady window, period [s], incident
         height [m], depth [m], flap width [m], phase points per cycle.
+    theta_unfiltered : array_like, optional
+        As in :func:`summary`: θ before the derivatives' low-pass [rad].
 
     Returns
     -------
@@ -178,7 +187,9 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
     mean_w = window_mean(series["power"], t, window.start, window.end)
     w_i = float(incident_power(incident_height, period, depth, flap_width))
     return {
-        "theta_amplitude": sig.cycle_amplitude(series["theta"], t, *cycles, n_phase),
+        "theta_amplitude": sig.cycle_amplitude(
+            series["theta"] if theta_unfiltered is None else theta_unfiltered, t, *cycles,
+            n_phase),
         "torque_amplitude": sig.cycle_amplitude(series["torque_hydrodynamic"], t, *cycles,
                                                 n_phase),
         "mean_power": mean_w, "incident_height": float(incident_height),

@@ -60,7 +60,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
              "depth": c.flume.water_depth, "separation_probes": list(c.probes.separation),
              "waves": {k: waves_p[k] for k in (
                  "method", "x_ref", "n_harmonics", "bound_harmonics", "amplitude_dispersion",
-                 "tolerance", "min_cycles", "noise_factor")},
+                 "tolerance", "min_cycles", "noise_factor", "reflection_tolerance")},
              "flap": {k: flap_p[k] for k in ("cutoff", "tolerance", "n_phase",
                                              "max_flagged_fraction")} if has_flap else None,
              **run_params(run, c), "linear": bool(params["linear"] and first)}

@@ -11,7 +11,8 @@ from flumekit.stages.summaries import stack_runs, summary_rule
 VERSION = "6"
 DEFAULTS = {"method": "mansard_funke", "x_ref": 0.0, "n_harmonics": 8, "bound_harmonics": True,
             "amplitude_dispersion": True, "tolerance": 0.02, "min_cycles": 10,
-            "noise_factor": 4.0, "height_tolerance": 0.25, "height_warning": 0.1,
+            "noise_factor": 4.0, "reflection_tolerance": 0.002, "height_tolerance": 0.25,
+            "height_warning": 0.1,
             "irregular_method": "zelt_skjelbreia", "gauge_weights": None, "span": None,
             "n_bins": None, "sea_state_tolerance": 0.25, "sea_state_warning": 0.05,
             "low_frequency_warning": 0.05}
@@ -34,6 +35,10 @@ DOCS = {
                     "crests, tested on the median of each cycle and its neighbours (4: the "
                     "heavier-than-Gaussian tail of noisy crests); 0 = the paper's criterion "
                     "only [-]",
+    "reflection_tolerance": "the separated first-harmonic reflection must have settled within "
+                            "the crests' window: largest change of the complex reflection "
+                            "coefficient over blocks of 3 periods (or noise_factor x their "
+                            "scatter) [-]; 0 = not tested",
     "height_tolerance": "declared run height vs the measured incident height: relative "
                         "difference beyond which the run is refused [-]",
     "height_warning": "relative difference beyond which a warning is recorded [-]",

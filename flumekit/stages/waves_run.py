@@ -29,7 +29,8 @@ def regular(eta, params):
                        bound_harmonics=params["bound_harmonics"],
                        amplitude_dispersion=params["amplitude_dispersion"],
                        tolerance=params["tolerance"], min_cycles=params["min_cycles"],
-                       noise_factor=params["noise_factor"])
+                       noise_factor=params["noise_factor"],
+                       reflection_tolerance=params["reflection_tolerance"])
 
 
 def irregular(eta, params):

@@ -199,8 +199,7 @@ class RunModel:
         self.n_flap = 0 if flap_record is None else len(flap_record["time"])
         self._base_waves = None
         self._base = None  # the unperturbed run's results
-        self._windows: dict = {}  # quasi-steady windows of the records seen (variant_results)
-        self._chain = None  # the unperturbed flap record's measured chain and window
+        self._chains: dict = {}  # the unperturbed flap record's chain and window per period
 
     def size(self, inp: Input) -> tuple[int, ...]:
         """Return the shape of one draw of ``inp``.
@@ -239,7 +238,7 @@ class RunModel:
             warnings.simplefilter("ignore")  # the warnings of the unperturbed run are recorded
             r = variant_results([self._eta(d) for d in ds],
                                 [self.depth + float(d.get("water_depth", 0.0)) for d in ds],
-                                self.period, **self.waves_kw, memo=self._windows)
+                                self.period, **self.waves_kw)
         return np.stack([r[k] for k in WAVES_RESULTS], axis=-1)
 
     def waves(self, d: dict) -> dict[str, float]:
@@ -266,8 +265,8 @@ class RunModel:
             raise ValueError("the waves analysis refused the perturbed run")
         return dict(zip(WAVES_RESULTS, w.tolist(), strict=True))
 
-    def flap(self, d: dict, incident_height: float) -> dict[str, float]:
-        """Return the flap results with the perturbations ``d`` and the draw's incident height.
+    def flap(self, d: dict, incident_height: float, period: float) -> dict[str, float]:
+        """Return the flap results with the perturbations ``d`` and the draw's incident wave.
 
         Parameters
         ----------
@@ -275,6 +274,8 @@ class RunModel:
             Component name -> its perturbation, in the component's input units.
         incident_height : float
             The draw's incident wave height [m] (so that its uncertainty reaches C_f).
+        period : float
+            The draw's measured wave period [s] (W_I's group velocity, as the flap stage).
 
         Returns
         -------
@@ -299,18 +300,17 @@ class RunModel:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             if not any(k in FLAP_ONLY for k in d):  # the flap's records and set-up unperturbed
-                if self._chain is None:
+                if period not in self._chains:  # its window depends on the period alone
                     try:
-                        self._chain = steady_measured(time, counts, pressure, **{
-                            k: v for k, v in kw.items() if k != "n_phase"},
-                            period=self.period)
+                        self._chains[period] = steady_measured(time, counts, pressure, **{
+                            k: v for k, v in kw.items() if k != "n_phase"}, period=period)
                     except ValueError as e:
-                        self._chain = e
-                if isinstance(self._chain, ValueError):
-                    raise self._chain
-                kw["measured"] = self._chain
+                        self._chains[period] = e
+                if isinstance(self._chains[period], ValueError):
+                    raise self._chains[period]
+                kw["measured"] = self._chains[period]
             res = run_results(time, counts, pressure, depth=self.depth
-                              + float(d.get("water_depth", 0.0)), period=self.period,
+                              + float(d.get("water_depth", 0.0)), period=period,
                               incident_height=incident_height, **kw)
         return {k: float(res[k]) for k in FLAP_RESULTS}
 
@@ -346,7 +346,8 @@ class RunModel:
             out[i, :nw] = waves[i]
             if self.flap_record is not None:
                 try:
-                    f = self.flap(d, float(waves[i, WAVES_RESULTS.index("incident_height")]))
+                    w = dict(zip(WAVES_RESULTS, waves[i].tolist(), strict=True))
+                    f = self.flap(d, w["incident_height"], w["measured_period"])
                 except ValueError:
                     out[i] = np.nan
                     continue

@@ -46,7 +46,9 @@ def phase_reference(waves: xr.Dataset) -> tuple[np.ndarray, float]:
     """Return the phase reference of a run: up-crossings [s] and the measured period [s].
 
     The zero up-crossings of the separated incident wave at the flap (``eta_incident``) in the
-    waves' analysis window (``steady_start``-``steady_end``, where the separation is defined).
+    waves' analysis window (``steady_start``-``steady_end``, where the separation is defined),
+    placed on the least-squares line through them (t_n = t_0 + n T'), which removes the
+    jitter of single crossings.
 
     Parameters
     ----------
@@ -65,14 +67,23 @@ def phase_reference(waves: xr.Dataset) -> tuple[np.ndarray, float]:
         No up-crossing in the window.
     """
     t = waves["time"].values
-    inside = (t >= float(waves["steady_start"])) & (t <= float(waves["steady_end"]))
+    # steady_end is the end of the last sample's interval: the sample there is outside (NaN)
+    inside = (t >= float(waves["steady_start"])) & (t < float(waves["steady_end"]))
     eta = waves["eta_incident"].values[inside]
     if not np.all(np.isfinite(eta)):
         eta = np.nan_to_num(eta)
     ups = zero_upcrossings(eta, t[inside])
     if ups.size == 0:
         raise ValueError("no zero up-crossing of the incident wave in the quasi-steady window")
-    return ups, float(waves["measured_period"])
+    period = float(waves["measured_period"])
+    if ups.size >= 3:
+        # one crossing jitters by a millisecond or two (the harmonics and the noise left in
+        # the separated wave), which a reference extrapolated to a window elsewhere carries
+        # whole: the crossings on the least-squares line through all of them instead
+        n = np.rint((ups - ups[0]) / period)
+        slope, intercept = np.polyfit(n, ups, 1)
+        ups = intercept + slope * n
+    return ups, period
 
 
 def waves_span(waves: xr.Dataset) -> tuple[float, float]:

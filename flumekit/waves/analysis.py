@@ -23,6 +23,7 @@ from flumekit.waves.separation import (
     separate_prepared,
     separation_dataset,
 )
+from flumekit.waves.steady import reflection_settling
 from flumekit.waves.stream_function import nonlinear_wavenumber
 from flumekit.waves.theory import G, energy_flux
 
@@ -32,8 +33,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                 separation_probes=None, n_harmonics: int = 8,
                 bound_harmonics: bool = True, amplitude_dispersion: bool = True,
                 tolerance: float = 0.02, min_cycles: int = 10,
-                noise_factor: float = 4.0, max_condition: float = MAX_CONDITION,
-                g: float = G) -> xr.Dataset:
+                noise_factor: float = 4.0, reflection_tolerance: float = 0.002,
+                max_condition: float = MAX_CONDITION, g: float = G) -> xr.Dataset:
     """Analyse the probe records of one regular-wave run.
 
     Parameters
@@ -86,6 +87,16 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         The criterion kept is the ``steady_criterion`` attribute, the tolerance applied
         ``steady_tolerance``; a window holding fewer than half of the periods that follow its
         start is a :class:`~flumekit.waves.SeparationWarning`.
+    reflection_tolerance : float
+        Within the crests' window, the separated first-harmonic reflection must have settled
+        too: the analysis window is the longest run of blocks of whole periods whose complex
+        reflection coefficient lies within this tolerance (or ``noise_factor`` times the blocks'
+        scatter, if larger) of its settled value (:func:`flumekit.waves.steady.
+        reflection_settling`; a beach's wave returning through the device after the crests
+        have settled is what it catches). Where fewer than ``min_cycles`` settled periods
+        remain, or R still changes by more than 5 times this across them (a drift that widens
+        the scatter), the crests' window is kept with a
+        :class:`~flumekit.waves.SeparationWarning` that states the change. 0 skips the test [-].
     max_condition : float
         Largest condition number of the separation accepted per bin [-].
     g : float
@@ -99,9 +110,12 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         window cut to a whole number of periods; NaN (documented fill) outside that window,
         where a regular-wave separation is not defined (ramp-up, reflections still arriving);
         ``amplitude_scale``, ``measured_height`` (probe): per-probe quasi-steady statistics;
-        scalars ``steady_start``, ``steady_end`` [s] (the window where every probe is
-        quasi-steady), ``steady_cycles``, ``measured_period`` [s] and, from the separation of
-        that window cut to a whole number of periods, ``reflection_coefficient`` (first
+        scalars ``steady_start``, ``steady_end`` [s] (the analysis window: every probe
+        quasi-steady and the reflection settled), ``crest_steady_start`` [s] (where every
+        probe's crests are quasi-steady, the paper's criterion), ``reflection_drift`` [-]
+        (the largest change of the reflection outside the window), ``steady_cycles``,
+        ``measured_period`` [s] and, from the separation of that window cut to a whole number
+        of periods, ``reflection_coefficient`` (first
         harmonic), ``incident_height`` / ``reflected_height`` (crest-to-trough of the separated
         harmonic waves), ``incident_amplitude``, ``incident_phase``, ``energy_flux`` (Eq. A2 per
         metre of crest with H = 2 a1), ``masked_energy_fraction``; harmonic-resolved amplitudes
@@ -113,13 +127,15 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
         over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
-    rec = _steady_record(eta, period, x=x, sampling_rate=sampling_rate,
+    rec = _steady_record(eta, depth, period, x=x, sampling_rate=sampling_rate,
                          separation_probes=separation_probes, n_harmonics=n_harmonics,
                          tolerance=tolerance, min_cycles=min_cycles,
-                         noise_factor=noise_factor)
+                         noise_factor=noise_factor, reflection_tolerance=reflection_tolerance,
+                         g=g)
     eta, v, t, x = rec.eta, rec.values, rec.time, rec.x
     windows, criterion, t_meas, n_per = rec.windows, rec.criterion, rec.period, rec.cycles
     i0, n, dt = rec.start, rec.samples, rec.step
+    crest_start, settling = rec.crest_start, rec.settling
     parts = _separation_passes([rec], [depth], method=method, x_ref=x_ref,
                                bound_harmonics=bound_harmonics,
                                amplitude_dispersion=amplitude_dispersion,
@@ -144,6 +160,8 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                               {"criterion": criterion}),
          "measured_height": ("probe", [w.height for w in windows]),
          "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
+         "crest_steady_start": ((), float(crest_start)),
+         "reflection_drift": ((), settling.drift, {"tolerance": settling.tolerance}),
          "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
          "energy_flux": ((), float(energy_flux(h_lin, t_meas, depth, g=g)),
                          {"definition": "Eq. (A2) of Brito et al. 2020 per unit crest width, "
@@ -163,6 +181,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                "fundamental_wavenumbers": steady.attrs["fundamental_wavenumbers"],
                "tolerance": tolerance, "min_cycles": min_cycles,
                "noise_factor": noise_factor, "steady_criterion": criterion,
+               "reflection_tolerance": reflection_tolerance,
                "band": steady.attrs["band"],
                "max_condition": max_condition})
     return conventions.annotate(ds)
@@ -178,8 +197,8 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
                     n_harmonics: int = 8, bound_harmonics: bool = True,
                     amplitude_dispersion: bool = True, tolerance: float = 0.02,
                     min_cycles: int = 10, noise_factor: float = 4.0,
-                    max_condition: float = MAX_CONDITION, g: float = G,
-                    memo: dict | None = None) -> dict:
+                    reflection_tolerance: float = 0.002,
+                    max_condition: float = MAX_CONDITION, g: float = G) -> dict:
     """Return the scalar results of :func:`analyse_run` for many variants of one run at once.
 
     Each variant (a Monte Carlo draw of the run's records, probe positions and depth) is
@@ -199,14 +218,10 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
         Position where the incident and reflected waves are returned [m].
     method, separation_probes, n_harmonics, bound_harmonics, amplitude_dispersion
         As in :func:`analyse_run`.
-    tolerance, min_cycles, noise_factor, max_condition
+    tolerance, min_cycles, noise_factor, reflection_tolerance, max_condition
         As in :func:`analyse_run` ([-]).
     g : float
         Gravitational acceleration [m s-2].
-    memo : dict, optional
-        Quasi-steady windows found so far, kept by the caller across calls: a variant whose
-        records equal those of one seen before (one that perturbs the probe positions or the
-        depth only) reuses its window, which depends on the records alone.
 
     Returns
     -------
@@ -231,12 +246,13 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     [0.1, 0.101]
     """
     recs, ok = [], []
-    for eta in etas:
+    for eta, depth in zip(etas, depths, strict=True):
         try:
-            recs.append(_steady_record(eta, period, separation_probes=separation_probes,
+            recs.append(_steady_record(eta, depth, period,
+                                       separation_probes=separation_probes,
                                        n_harmonics=n_harmonics, tolerance=tolerance,
                                        min_cycles=min_cycles, noise_factor=noise_factor,
-                                       memo=memo))
+                                       reflection_tolerance=reflection_tolerance, g=g))
             ok.append(True)
         except ValueError:
             recs.append(None)
@@ -276,16 +292,15 @@ class _SteadyRecord(NamedTuple):
     step: float  # sampling step [s]
     steady: xr.DataArray  # the separation probes' records over the window [m]
     band: tuple  # the separation's band [Hz]
+    crest_start: float  # where every probe's crests are quasi-steady [s]
+    settling: object  # the reflection's settling (waves.steady.reflection_settling)
 
 
-def _steady_record(eta, period: float, *, x=None, sampling_rate=None, separation_probes=None,
-                   n_harmonics: int = 8, tolerance: float = 0.02, min_cycles: int = 10,
-                   noise_factor: float = 4.0, memo: dict | None = None) -> _SteadyRecord:
-    """Check a run's records and find the window the separation analyses (:func:`analyse_run`).
-
-    ``memo``: windows already found, by the digest of the records and the criterion's
-    parameters; records equal to ones seen get their window without a search.
-    """
+def _steady_record(eta, depth: float, period: float, *, x=None, sampling_rate=None,
+                   separation_probes=None, n_harmonics: int = 8, tolerance: float = 0.02,
+                   min_cycles: int = 10, noise_factor: float = 4.0,
+                   reflection_tolerance: float = 0.002, g: float = G) -> _SteadyRecord:
+    """Check a run's records and find the window the separation analyses (:func:`analyse_run`)."""
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
@@ -298,35 +313,23 @@ def _steady_record(eta, period: float, *, x=None, sampling_rate=None, separation
         raise ValueError(f"n_harmonics must be at least 1, got {n_harmonics}")
     eta = eta.transpose("probe", "time")
     sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
-    args = (v, t, probes, period, tolerance, min_cycles, noise_factor)
-    if memo is None:
-        found = _steady_window(*args)
-    else:
-        import hashlib
-
-        key = (hashlib.blake2b(v.tobytes() + t.tobytes(), digest_size=16).digest(), v.shape,
-               tuple(probes), float(period), tolerance, min_cycles, noise_factor)
-        if key not in memo:
-            try:
-                memo[key] = _steady_window(*args)
-            except ValueError as e:
-                memo[key] = e
-        found = memo[key]
-        if isinstance(found, ValueError):
-            raise found
-    windows, criterion, t_meas, n_per, i0, n, dt = found
+    found = _steady_window(v, t, probes, period, tolerance, min_cycles, noise_factor, sep,
+                           depth, reflection_tolerance, g)
+    windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling = found
     f1 = 1.0 / t_meas
     band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
     return _SteadyRecord(eta, v, t, x, windows, criterion, t_meas, n_per, i0, n, dt,
-                         sep.isel(time=slice(i0, i0 + n)), band)
+                         sep.isel(time=slice(i0, i0 + n)), band, crest_start, settling)
 
 
 def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
-                   tolerance: float, min_cycles: int, noise_factor: float):
+                   tolerance: float, min_cycles: int, noise_factor: float, sep: xr.DataArray,
+                   depth: float, reflection_tolerance: float, g: float):
     """Return the common quasi-steady window of the probes (see :func:`analyse_run`).
 
     The probes' windows, the criterion kept, the measured period [s], the whole periods, the
-    first sample and the samples of the window cut to them, and the sampling step [s].
+    first sample and the samples of the window cut to them, the sampling step [s], where the
+    crests' window starts [s] and the reflection's settling.
     """
     # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
     # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
@@ -369,6 +372,24 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
     windows, start, end, t_meas, n_per = found[criterion]
     # what follows the ramp: whole periods from the first cycle every probe has within the
     # tolerance (the end of the ramp) to the end of the record
+    # the separated reflection settled too (waves.steady): a wave returning from behind the
+    # device after the crests have settled changes Kr but no crest by the tolerance
+    crest_start = start
+    settling = reflection_settling(sep.values, t, sep.x.values, t_meas, depth, start, end,
+                                   tolerance=reflection_tolerance, noise_factor=noise_factor,
+                                   g=g)
+    n_settled = int(np.floor((settling.end - settling.start) / t_meas + 1e-9))
+    if n_settled >= enough and not settling.trend > 5.0 * reflection_tolerance:
+        start, end, n_per = settling.start, min(end, settling.end), n_settled
+    elif reflection_tolerance > 0:
+        change = max(settling.drift, 0.0 if np.isnan(settling.trend) else settling.trend)
+        warnings.warn(f"the separated reflection does not settle within the quasi-steady window "
+                      f"({start:.1f}-{end:.1f} s): it changes by {change:.3f} (tolerance "
+                      f"{settling.tolerance:.3f}; {n_settled} settled periods, {enough} needed, "
+                      f"a trend of at most {5.0 * reflection_tolerance:.3f} across them); Kr is "
+                      "the mean of a changing reflection (a wave still returning from behind "
+                      "the device, a seiche): check the record or lengthen it",
+                      SeparationWarning, stacklevel=4)
     settled = max(w.settled for w in windows)
     following = int(np.floor((t[-1] - settled) / t_meas + 1e-9))
     if n_per >= enough and 2 * n_per < following:
@@ -394,7 +415,7 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
     misfit = np.abs(cand * t_meas / dt - np.rint(cand * t_meas / dt))
     n_per = int(cand[misfit <= misfit.min() + 0.02][-1])  # the longest of the best
     n = min(int(round(n_per * t_meas / dt)), t.size - i0)
-    return windows, criterion, t_meas, n_per, i0, n, dt
+    return windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling
 
 
 def _separation_passes(records: list, depths: list, *, method: str, x_ref: float,
