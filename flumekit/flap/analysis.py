@@ -23,7 +23,7 @@ from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
 from flumekit.flap.power import flow_rate, pto_power, window_mean
 from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model, pressure_force
-from flumekit.flap.summary import steady_window, summary
+from flumekit.flap.summary import steady_window, summary, summary_scalars
 from flumekit.flap.torque import (
     friction_torque,
     gravity_torque,
@@ -240,15 +240,13 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     investigation of the flow field in the vicinity of an oscillating wave surge converter.
     J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
     """
-    m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
-                  cutoff=cutoff, zero_count=zero_count,
-                  max_flagged_fraction=max_flagged_fraction)
-    if not (np.isfinite(period) and period > 0):
-        raise ValueError(f"period must be > 0, got {period}")
+    m, win = steady_measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
+                             encoder=encoder, period=period, cutoff=cutoff,
+                             zero_count=zero_count, tolerance=tolerance,
+                             max_flagged_fraction=max_flagged_fraction)
     t, s = m.time, m.series
 
-    # quasi-steady window on θ (§2.5), pressure fit (Eqs. 13-14) inside it
-    win = steady_window(s["theta"], t, period, tolerance)
+    # pressure fit (Eqs. 13-14) inside the quasi-steady window
     inside = (t >= win.start) & (t <= win.end)
     fit, p_fit, cav, t_p_fit = _fitted_pressure(m, inside, pto)
 
@@ -261,6 +259,116 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                    theta_unfiltered=s["theta_unfiltered"])
     ds = _dataset(m, fit, p_fit, cav, t_p_fit, pto=pto, cutoff=cutoff)
     return _bounded(conventions.annotate(ds.merge(summ)), fit)
+
+
+def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
+                    encoder: Encoder, period: float, cutoff: float = DEFAULT_CUTOFF,
+                    zero_count: float = 0.0, tolerance: float = 0.02,
+                    max_flagged_fraction: float = 0.0) -> tuple:
+    """Return the measured chain of a regular run and the quasi-steady window of θ (§2.5).
+
+    What :func:`analyse_run` and :func:`run_results` compute first; it depends neither on the
+    depth nor on the incident height.
+
+    Parameters
+    ----------
+    time, encoder_counts, chamber_pressure, flap, pto, encoder, period
+        As in :func:`analyse_run` (time [s], counts [-], pressure [Pa], period [s]).
+    cutoff : float
+        Cut-off of the low-pass applied to θ before differentiation [Hz].
+    zero_count : float
+        Encoder count at θ = 0.
+    tolerance : float
+        Relative crest tolerance of the quasi-steady window [-].
+    max_flagged_fraction : float
+        Largest fraction of encoder samples outside the domain of Eq. (1) that may be
+        interpolated.
+
+    Returns
+    -------
+    tuple
+        The measured chain (time [s], sampling rate [Hz], the series by name, the compression
+        sign) and the window (:class:`flumekit.signal.SteadyWindow`).
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        More encoder samples outside the domain of Eq. (1) than ``max_flagged_fraction``.
+    ValueError
+        A non-positive period, fewer than two quasi-steady cycles.
+    """
+    m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
+                  cutoff=cutoff, zero_count=zero_count,
+                  max_flagged_fraction=max_flagged_fraction)
+    if not (np.isfinite(period) and period > 0):
+        raise ValueError(f"period must be > 0, got {period}")
+    return m, steady_window(m.series["theta"], m.time, period, tolerance)
+
+
+def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
+                encoder: Encoder, depth: float, period: float, incident_height: float,
+                cutoff: float = DEFAULT_CUTOFF, zero_count: float = 0.0,
+                tolerance: float = 0.02, n_phase: int = 100,
+                max_flagged_fraction: float = 0.0, measured: tuple | None = None
+                ) -> dict[str, float]:
+    """Return the scalar results of :func:`analyse_run` alone, as it computes them.
+
+    The measured chain, the quasi-steady window and the amplitudes, mean power, W_I and C_f
+    of :func:`flumekit.flap.summary.summary_scalars`, without what none of them reads (the
+    time series dataset, the Eq. (13) pressure fit and the phase averages): the many reruns of
+    an uncertainty propagation need these numbers only.
+
+    Parameters
+    ----------
+    time, encoder_counts, chamber_pressure, flap, pto, encoder, depth, period, incident_height
+        As in :func:`analyse_run`: time [s], counts [-], pressure [Pa], the flap, PTO and
+        encoder, depth [m], period [s], incident height [m].
+    cutoff, zero_count, tolerance, n_phase, max_flagged_fraction
+        As in :func:`analyse_run`: cut-off [Hz], zero count [-], crest tolerance [-], phase
+        points per cycle, largest interpolated fraction [-].
+    measured : tuple, optional
+        :func:`steady_measured` of these same records and parameters, when the caller has it
+        (the reruns that change only the depth or the incident height).
+
+    Returns
+    -------
+    dict of str to float
+        ``theta_amplitude`` [rad], ``torque_amplitude`` [N m], ``mean_power`` [W],
+        ``incident_power`` [W], ``capture_factor`` [-] and the window
+        (:func:`flumekit.flap.summary.summary_scalars`), equal to those of
+        :func:`analyse_run`.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        More encoder samples outside the domain of Eq. (1) than ``max_flagged_fraction``.
+    ValueError
+        A non-positive period or incident height, fewer than two quasi-steady cycles.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.2, Eq. (A2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from flumekit.flap.analysis import run_results
+    >>> r = run_results(t, counts, pressure, flap=c.flap, pto=c.pto,  # doctest: +SKIP
+    ...                 encoder=c.encoder, depth=0.825, period=3.5, incident_height=0.25)
+    >>> r["capture_factor"]  # doctest: +SKIP
+    """
+    if measured is None:
+        measured = steady_measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
+                                   encoder=encoder, period=period, cutoff=cutoff,
+                                   zero_count=zero_count, tolerance=tolerance,
+                                   max_flagged_fraction=max_flagged_fraction)
+    m, win = measured
+    return summary_scalars(m.time, m.series, win, period=period,
+                           incident_height=incident_height, depth=depth,
+                           flap_width=flap.width, n_phase=n_phase,
+                           theta_unfiltered=m.series["theta_unfiltered"])
 
 
 def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,

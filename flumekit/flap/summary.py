@@ -135,16 +135,58 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     investigation of the flow field in the vicinity of an oscillating wave surge converter.
     J. Mar. Sci. Eng. 8, §2.5-§3.3, Eq. (A2).
     """
+    scalars = summary_scalars(time, series, window, period=period,
+                              incident_height=incident_height, depth=depth,
+                              flap_width=flap_width, n_phase=n_phase,
+                              theta_unfiltered=theta_unfiltered)
+    t = np.asarray(time, dtype=float)
+    cycles = (window.period, window.start, window.n_cycles)
+    pa = {n: sig.phase_average(x, t, *cycles, n_phase=n_phase) for n, x in series.items()}
+    data = {f"{n}_phase_mean": ("phase", a.mean) for n, a in pa.items()}
+    data.update({f"{n}_phase_ci95": ("phase", pa[n].ci95) for n in ci95})
+    data.update(scalars)
+    return xr.Dataset(data, coords={"phase": pa["theta"].phase, "wave_period": float(period)})
+
+
+def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
+                    incident_height: float, depth: float, flap_width: float,
+                    n_phase: int = 100, theta_unfiltered=None) -> dict:
+    """Return the scalars of :func:`summary`: amplitudes, mean power, W_I, C_f and the window.
+
+    Parameters
+    ----------
+    time, series, window, period, incident_height, depth, flap_width, n_phase
+        As in :func:`summary`: time [s], the series (``theta`` [rad], ``power`` [W] and
+        ``torque_hydrodynamic`` [N m] are used), the steady window, period [s], incident
+        height [m], depth [m], flap width [m], phase points per cycle.
+    theta_unfiltered : array_like, optional
+        As in :func:`summary`: θ before the derivatives' low-pass [rad].
+
+    Returns
+    -------
+    dict of str to float
+        ``theta_amplitude`` [rad], ``torque_amplitude`` [N m], ``mean_power`` [W],
+        ``incident_height`` [m], ``incident_power`` [W], ``capture_factor`` [-],
+        ``steady_start``, ``steady_end``, ``measured_period`` [s] and ``steady_cycles``.
+
+    Raises
+    ------
+    ValueError
+        A non-positive or non-finite incident height.
+
+    References
+    ----------
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §3.2, Eq. (A2).
+    """
     if not (np.isfinite(incident_height) and incident_height > 0):
         raise ValueError(f"incident height must be > 0, got {incident_height}")
     t = np.asarray(time, dtype=float)
     cycles = (window.period, window.start, window.n_cycles)
-    pa = {n: sig.phase_average(x, t, *cycles, n_phase=n_phase) for n, x in series.items()}
     mean_w = window_mean(series["power"], t, window.start, window.end)
     w_i = float(incident_power(incident_height, period, depth, flap_width))
-    data = {f"{n}_phase_mean": ("phase", a.mean) for n, a in pa.items()}
-    data.update({f"{n}_phase_ci95": ("phase", pa[n].ci95) for n in ci95})
-    data.update({
+    return {
         "theta_amplitude": sig.cycle_amplitude(
             series["theta"] if theta_unfiltered is None else theta_unfiltered, t, *cycles,
             n_phase),
@@ -153,8 +195,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
         "mean_power": mean_w, "incident_height": float(incident_height),
         "incident_power": w_i, "capture_factor": float(capture_factor(mean_w, w_i)),
         "steady_start": window.start, "steady_end": window.end,
-        "measured_period": window.period, "steady_cycles": window.n_cycles})
-    return xr.Dataset(data, coords={"phase": pa["theta"].phase, "wave_period": float(period)})
+        "measured_period": window.period, "steady_cycles": window.n_cycles}
 
 
 def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, depth: float,

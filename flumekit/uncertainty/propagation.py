@@ -8,7 +8,10 @@ analyses the pipeline runs (:func:`flumekit.waves.analyse_run`, then
 reaches C_f). The standard uncertainty of a result is the spread of its draws about the
 unperturbed result (their standard deviation and the shift of their mean, in quadrature: a
 nonlinear analysis shifts it) and the quantiles of the draws give the probabilistically
-symmetric 95 % interval (JCGM 101 §7.7).
+symmetric 95 % interval (JCGM 101 §7.7). The draws are analysed together, through the
+results-only paths of those analyses (:func:`flumekit.waves.analysis.variant_results`,
+:func:`flumekit.flap.analysis.run_results`): the same computations, without the datasets and
+the pressure fit that no propagated result reads.
 
 The linear propagation of GUM §5.1 is the cross-check and the budget: sensitivity coefficients
 by central differences, ±u of one input at a time; an input with one value per sample (noise,
@@ -196,6 +199,8 @@ class RunModel:
         self.n_probes, self.n_samples = self.eta.shape
         self.n_flap = 0 if flap_record is None else len(flap_record["time"])
         self._base_waves = None
+        self._base = None  # the unperturbed run's results
+        self._chains: dict = {}  # the unperturbed flap record's chain and window per period
 
     def size(self, inp: Input) -> tuple[int, ...]:
         """Return the shape of one draw of ``inp``.
@@ -213,6 +218,30 @@ class RunModel:
         return {"probe_time": (self.n_probes, self.n_samples), "probe": (self.n_probes,),
                 "scalar": (), "flap_time": (self.n_flap,)}[inp.shape]
 
+    def _eta(self, d: dict) -> xr.DataArray:
+        """Return the records and probe positions perturbed by ``d``."""
+        v = self.eta.values
+        if "probe_noise" in d:
+            v = v + d["probe_noise"]
+        if "probe_resolution" in d:
+            v = v + d["probe_resolution"]
+        if "calibration" in d:
+            v = v * (1.0 + d["calibration"])[:, None]
+        x = self.eta["x"].values + d.get("probe_position", 0.0)
+        # the coordinates are shared, not copied: nothing downstream writes into them
+        return self.eta.copy(deep=False, data=v).assign_coords(x=("probe", x))
+
+    def _waves(self, ds: list[dict]) -> np.ndarray:
+        """Return the waves results (len(ds), len(WAVES_RESULTS)), NaN where refused."""
+        from flumekit.waves.analysis import variant_results
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the warnings of the unperturbed run are recorded
+            r = variant_results([self._eta(d) for d in ds],
+                                [self.depth + float(d.get("water_depth", 0.0)) for d in ds],
+                                self.period, **self.waves_kw)
+        return np.stack([r[k] for k in WAVES_RESULTS], axis=-1)
+
     def waves(self, d: dict) -> dict[str, float]:
         """Return the waves results with the perturbations ``d``.
 
@@ -226,23 +255,16 @@ class RunModel:
         -------
         dict of str to float
             ``WAVES_RESULTS`` of :func:`flumekit.waves.analyse_run` on the perturbed run.
-        """
-        from flumekit.waves import analyse_run
 
-        v = self.eta.values
-        if "probe_noise" in d:
-            v = v + d["probe_noise"]
-        if "probe_resolution" in d:
-            v = v + d["probe_resolution"]
-        if "calibration" in d:
-            v = v * (1.0 + d["calibration"])[:, None]
-        x = self.eta["x"].values + d.get("probe_position", 0.0)
-        eta = self.eta.copy(data=v).assign_coords(x=("probe", x))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")  # the warnings of the unperturbed run are recorded
-            ds = analyse_run(eta, self.depth + float(d.get("water_depth", 0.0)), self.period,
-                             **self.waves_kw)
-        return {k: float(ds[k]) for k in WAVES_RESULTS}
+        Raises
+        ------
+        ValueError
+            When the analysis refuses the perturbed run.
+        """
+        w = self._waves([d])[0]
+        if not np.all(np.isfinite(w)):
+            raise ValueError("the waves analysis refused the perturbed run")
+        return dict(zip(WAVES_RESULTS, w.tolist(), strict=True))
 
     def flap(self, d: dict, incident_height: float, period: float) -> dict[str, float]:
         """Return the flap results with the perturbations ``d`` and the draw's incident wave.
@@ -259,11 +281,12 @@ class RunModel:
         Returns
         -------
         dict of str to float
-            ``FLAP_RESULTS`` of :func:`flumekit.flap.analyse_run` on the perturbed run.
+            ``FLAP_RESULTS`` of :func:`flumekit.flap.analyse_run` on the perturbed run
+            (:func:`flumekit.flap.analysis.run_results`).
         """
         import dataclasses
 
-        from flumekit.flap import analyse_run
+        from flumekit.flap.analysis import run_results, steady_measured
 
         r = self.flap_record
         kw = dict(self.flap_kw)
@@ -277,10 +300,62 @@ class RunModel:
         time = r["time"] + float(d.get("clock_offset", 0.0))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            ds = analyse_run(time, counts, pressure, depth=self.depth
-                             + float(d.get("water_depth", 0.0)), period=period,
-                             incident_height=incident_height, **kw)
-        return {k: float(ds[k]) for k in FLAP_RESULTS}
+            if not any(k in FLAP_ONLY for k in d):  # the flap's records and set-up unperturbed
+                if period not in self._chains:  # its window depends on the period alone
+                    try:
+                        self._chains[period] = steady_measured(time, counts, pressure, **{
+                            k: v for k, v in kw.items() if k != "n_phase"}, period=period)
+                    except ValueError as e:
+                        self._chains[period] = e
+                if isinstance(self._chains[period], ValueError):
+                    raise self._chains[period]
+                kw["measured"] = self._chains[period]
+            res = run_results(time, counts, pressure, depth=self.depth
+                              + float(d.get("water_depth", 0.0)), period=period,
+                              incident_height=incident_height, **kw)
+        return {k: float(res[k]) for k in FLAP_RESULTS}
+
+    def evaluate(self, ds: list[dict]) -> np.ndarray:
+        """Return all results for many sets of perturbations at once.
+
+        The waves analyses of all sets run together (:func:`flumekit.waves.analysis.
+        variant_results`); a set that perturbs flap inputs only reuses the unperturbed run's
+        waves results once they are known.
+
+        Parameters
+        ----------
+        ds : list of dict
+            Each a component name -> its perturbation (see :meth:`__call__`).
+
+        Returns
+        -------
+        numpy.ndarray
+            (len(ds), len(self.results)); a row of NaN where the analysis refuses the set.
+        """
+        out = np.full((len(ds), len(self.results)), np.nan)
+        reuse = self._base_waves is not None
+        need = [i for i, d in enumerate(ds) if not (reuse and all(k in FLAP_ONLY for k in d))]
+        waves = np.empty((len(ds), len(WAVES_RESULTS)))
+        if reuse:
+            waves[:] = [self._base_waves[k] for k in WAVES_RESULTS]
+        if need:
+            waves[need] = self._waves([ds[i] for i in need])
+        nw = len(WAVES_RESULTS)
+        for i, d in enumerate(ds):  # one flap analysis per set
+            if not np.all(np.isfinite(waves[i])):
+                continue
+            out[i, :nw] = waves[i]
+            if self.flap_record is not None:
+                try:
+                    w = dict(zip(WAVES_RESULTS, waves[i].tolist(), strict=True))
+                    f = self.flap(d, w["incident_height"], w["measured_period"])
+                except ValueError:
+                    out[i] = np.nan
+                    continue
+                out[i, nw:] = [f[k] for k in FLAP_RESULTS]
+            if not d and self._base_waves is None:
+                self._base_waves = dict(zip(WAVES_RESULTS, waves[i].tolist(), strict=True))
+        return out
 
     def __call__(self, d: dict) -> np.ndarray:
         """Return all results with the perturbations ``d``.
@@ -297,20 +372,15 @@ class RunModel:
             The results in the order of ``self.results``; NaN where the analysis refuses the
             perturbed run.
         """
-        flap_only = all(k in FLAP_ONLY for k in d)
-        try:
-            if flap_only and self._base_waves is not None:
-                w = self._base_waves
-            else:
-                w = self.waves(d)
-            out = dict(w)
-            if self.flap_record is not None:
-                out.update(self.flap(d, w["incident_height"], w["measured_period"]))
-        except ValueError:
-            return np.full(len(self.results), np.nan)
-        if not d:
-            self._base_waves = w
-        return np.array([out[k] for k in self.results])
+        if d:
+            return self.evaluate([d])[0]
+        if self._base is None:  # the unperturbed run, analysed once
+            self._base = self.evaluate([d])[0]
+        return self._base.copy()
+
+
+#: sets of perturbations analysed together: bounds the memory of the perturbed records
+BLOCK = 32
 
 
 def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.ndarray:
@@ -345,11 +415,14 @@ def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.nd
     model({})  # the unperturbed run, kept for the flap-only components
     children = np.random.SeedSequence(seed).spawn(draws)
     out = np.empty((draws, len(model.results)))
-    for i, child in enumerate(children):  # one analysis per draw
-        rng = np.random.default_rng(child)
-        d = {inp.name: np.asarray(inp.u) * _sample(rng, inp.distribution, model.size(inp))
-             for inp in inputs}
-        out[i] = model(d)
+    for start in range(0, draws, BLOCK):  # the draws of a block analysed together
+        ds = []
+        for child in children[start:start + BLOCK]:
+            rng = np.random.default_rng(child)
+            ds.append({inp.name: np.asarray(inp.u) * _sample(rng, inp.distribution,
+                                                             model.size(inp))
+                       for inp in inputs})
+        out[start:start + len(ds)] = model.evaluate(ds)
     return out
 
 
@@ -388,14 +461,23 @@ def linear(model: RunModel, inputs: list[Input], directions: int, seed
     rng = np.random.default_rng(np.random.SeedSequence(seed).spawn(1)[0])
     sens = np.zeros((len(inputs), base.size))
     contrib = np.zeros((len(inputs), base.size))
-    for i, inp in enumerate(inputs):
+    steps, sets = [], []
+    for inp in inputs:  # the ±u steps of every input, analysed together
         shape = model.size(inp)
         u = np.broadcast_to(np.asarray(inp.u, float), shape if inp.shape == "probe" else ())
         if inp.shape in ("probe", "scalar"):
-            steps = [np.eye(shape[0])[j] * u for j in range(shape[0])] if shape else [u]
+            st = [np.eye(shape[0])[j] * u for j in range(shape[0])] if shape else [u]
         else:  # a random direction of unit variance per element, scaled by u
-            steps = [rng.standard_normal(shape) * u for _ in range(max(1, directions))]
-        d = np.array([(model({inp.name: s}) - model({inp.name: -s})) / 2.0 for s in steps])
+            st = [rng.standard_normal(shape) * u for _ in range(max(1, directions))]
+        steps.append((u, len(st)))
+        sets += [d for s in st for d in ({inp.name: s}, {inp.name: -s})]
+    results = np.concatenate([model.evaluate(sets[i:i + BLOCK])
+                              for i in range(0, len(sets), BLOCK)]) if sets else np.empty(0)
+    first = 0
+    for i, (inp, (u, n_steps)) in enumerate(zip(inputs, steps, strict=True)):
+        r = results[first:first + 2 * n_steps]
+        first += 2 * n_steps
+        d = (r[0::2] - r[1::2]) / 2.0
         c_u_sq = np.sum(d ** 2, axis=0) if inp.shape in ("probe", "scalar") \
             else np.mean(d ** 2, axis=0)
         contrib[i] = np.sqrt(c_u_sq)

@@ -6,6 +6,7 @@ This is the pure function behind the pipeline's per-run waves stage.
 from __future__ import annotations
 
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -14,7 +15,14 @@ from flumekit import conventions
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
-from flumekit.waves.separation import SeparationWarning, as_probe_time, separate
+from flumekit.waves.separation import (
+    SeparationWarning,
+    as_probe_time,
+    check_separation_inputs,
+    prepare_separation,
+    separate_prepared,
+    separation_dataset,
+)
 from flumekit.waves.steady import reflection_settling
 from flumekit.waves.stream_function import nonlinear_wavenumber
 from flumekit.waves.theory import G, energy_flux
@@ -119,6 +127,180 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
         over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
+    rec = _steady_record(eta, depth, period, x=x, sampling_rate=sampling_rate,
+                         separation_probes=separation_probes, n_harmonics=n_harmonics,
+                         tolerance=tolerance, min_cycles=min_cycles,
+                         noise_factor=noise_factor, reflection_tolerance=reflection_tolerance,
+                         g=g)
+    eta, v, t, x = rec.eta, rec.values, rec.time, rec.x
+    windows, criterion, t_meas, n_per = rec.windows, rec.criterion, rec.period, rec.cycles
+    i0, n, dt = rec.start, rec.samples, rec.step
+    crest_start, settling = rec.crest_start, rec.settling
+    parts = _separation_passes([rec], [depth], method=method, x_ref=x_ref,
+                               bound_harmonics=bound_harmonics,
+                               amplitude_dispersion=amplitude_dispersion,
+                               max_condition=max_condition, g=g)[0]
+    if isinstance(parts, ValueError):
+        raise parts
+    steady = separation_dataset(parts)
+    # separated series on the full time axis, defined (not NaN) over the steady window only
+    inc = np.full(t.size, np.nan)
+    ref = np.full(t.size, np.nan)
+    inc[i0:i0 + n] = steady.eta_incident.values
+    ref[i0:i0 + n] = steady.eta_reflected.values
+    fill = {"comment": "NaN outside the quasi-steady window [steady_start, steady_end), where "
+                       "the regular-wave separation is not defined"}
+
+    h_lin = 2.0 * float(steady.incident_amplitude)
+    ds = xr.Dataset(
+        {"eta": (("probe", "time"), v),
+         "eta_incident": ("time", inc, fill), "eta_reflected": ("time", ref, fill),
+         "amplitude_scale": ("probe", [w.amplitude_scale for w in windows]),
+         "steady_tolerance": ("probe", [w.tolerance for w in windows],
+                              {"criterion": criterion}),
+         "measured_height": ("probe", [w.height for w in windows]),
+         "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
+         "crest_steady_start": ((), float(crest_start)),
+         "reflection_drift": ((), settling.drift, {"tolerance": settling.tolerance}),
+         "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
+         "energy_flux": ((), float(energy_flux(h_lin, t_meas, depth, g=g)),
+                         {"definition": "Eq. (A2) of Brito et al. 2020 per unit crest width, "
+                                        "H = 2 a1 (first-harmonic incident height)"}),
+         **{name: steady[name] for name in (
+             "reflection_coefficient", "incident_height", "reflected_height",
+             "incident_amplitude", "incident_phase", "masked_energy_fraction",
+             "incident_harmonic_amplitude", "reflected_harmonic_amplitude",
+             "harmonic_reflection_coefficient", "spectrum_incident", "spectrum_reflected",
+             "condition_number", "masked")}},
+        coords={"probe": eta.probe.values, "x": ("probe", x), "time": t,
+                "frequency": steady.frequency.values, "harmonic": steady.harmonic.values},
+        attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
+               "wave_period": float(period), "separation_probes": steady.attrs["probes"],
+               "n_harmonics": n_harmonics, "bound_harmonics": int(bound_harmonics),
+               "amplitude_dispersion": int(amplitude_dispersion and bound_harmonics),
+               "fundamental_wavenumbers": steady.attrs["fundamental_wavenumbers"],
+               "tolerance": tolerance, "min_cycles": min_cycles,
+               "noise_factor": noise_factor, "steady_criterion": criterion,
+               "reflection_tolerance": reflection_tolerance,
+               "band": steady.attrs["band"],
+               "max_condition": max_condition})
+    return conventions.annotate(ds)
+
+
+#: the scalar results of :func:`variant_results`
+VARIANT_RESULTS = ("incident_height", "reflected_height", "reflection_coefficient",
+                   "incident_amplitude", "measured_period", "energy_flux")
+
+
+def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
+                    method: str = "mansard_funke", separation_probes=None,
+                    n_harmonics: int = 8, bound_harmonics: bool = True,
+                    amplitude_dispersion: bool = True, tolerance: float = 0.02,
+                    min_cycles: int = 10, noise_factor: float = 4.0,
+                    reflection_tolerance: float = 0.002,
+                    max_condition: float = MAX_CONDITION, g: float = G) -> dict:
+    """Return the scalar results of :func:`analyse_run` for many variants of one run at once.
+
+    Each variant (a Monte Carlo draw of the run's records, probe positions and depth) is
+    analysed exactly as :func:`analyse_run` analyses a run (its own quasi-steady window, the
+    same separation passes), without the datasets: the reruns of an uncertainty propagation
+    need these numbers only.
+
+    Parameters
+    ----------
+    etas : sequence of xarray.DataArray
+        The variants' calibrated surface elevations [m] (probe, time) with ``x`` [m].
+    depths : sequence of float
+        Still water depth of each variant [m].
+    period : float
+        Target wave period [s].
+    x_ref : float
+        Position where the incident and reflected waves are returned [m].
+    method, separation_probes, n_harmonics, bound_harmonics, amplitude_dispersion
+        As in :func:`analyse_run`.
+    tolerance, min_cycles, noise_factor, reflection_tolerance, max_condition
+        As in :func:`analyse_run` ([-]).
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        :data:`VARIANT_RESULTS` -> one value per variant (units of :func:`analyse_run`), NaN
+        for a variant the analysis refuses (a ValueError of :func:`analyse_run`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.waves.analysis import variant_results
+    >>> from flumekit.waves.theory import wavenumber
+    >>> t = np.arange(4000) / 20.0
+    >>> x = np.array([-3.0, -2.4, -2.1])
+    >>> k = wavenumber(2 * np.pi / 2.0, 0.5)
+    >>> v = 0.05 * np.cos(np.pi * t - k * x[:, None])
+    >>> eta = xr.DataArray(v, dims=("probe", "time"),
+    ...                    coords={"probe": ["a", "b", "c"], "x": ("probe", x), "time": t})
+    >>> r = variant_results([eta, 1.01 * eta], [0.5, 0.5], 2.0)
+    >>> np.round(r["incident_height"], 3).tolist()
+    [0.1, 0.101]
+    """
+    recs, ok = [], []
+    for eta, depth in zip(etas, depths, strict=True):
+        try:
+            recs.append(_steady_record(eta, depth, period,
+                                       separation_probes=separation_probes,
+                                       n_harmonics=n_harmonics, tolerance=tolerance,
+                                       min_cycles=min_cycles, noise_factor=noise_factor,
+                                       reflection_tolerance=reflection_tolerance, g=g))
+            ok.append(True)
+        except ValueError:
+            recs.append(None)
+            ok.append(False)
+    idx = [i for i in range(len(recs)) if ok[i]]
+    parts = _separation_passes([recs[i] for i in idx], [depths[i] for i in idx], method=method,
+                               x_ref=x_ref, bound_harmonics=bound_harmonics,
+                               amplitude_dispersion=amplitude_dispersion,
+                               max_condition=max_condition, g=g)
+    out = {k: np.full(len(recs), np.nan) for k in VARIANT_RESULTS}
+    for i, part in zip(idx, parts, strict=True):
+        if isinstance(part, ValueError):
+            continue
+        data, t_meas, depth = part[0], recs[i].period, depths[i]
+        for k in ("incident_height", "reflected_height", "reflection_coefficient",
+                  "incident_amplitude"):
+            out[k][i] = float(data[k][1])
+        out["measured_period"][i] = t_meas
+        out["energy_flux"][i] = float(energy_flux(2.0 * float(data["incident_amplitude"][1]),
+                                                  t_meas, depth, g=g))
+    return out
+
+
+class _SteadyRecord(NamedTuple):
+    """A run's records checked, and the quasi-steady window the separation analyses."""
+
+    eta: xr.DataArray  # the records (probe, time) [m]
+    values: np.ndarray  # their values (probe, time) [m], NaN where quality control masked
+    time: np.ndarray  # [s]
+    x: np.ndarray  # probe positions [m]
+    windows: list  # each probe's quasi-steady window (signal.quasi_steady_window)
+    criterion: str  # the criterion kept
+    period: float  # measured period [s]
+    cycles: int  # whole periods of the window
+    start: int  # first sample of the window
+    samples: int  # samples of the window
+    step: float  # sampling step [s]
+    steady: xr.DataArray  # the separation probes' records over the window [m]
+    band: tuple  # the separation's band [Hz]
+    crest_start: float  # where every probe's crests are quasi-steady [s]
+    settling: object  # the reflection's settling (waves.steady.reflection_settling)
+
+
+def _steady_record(eta, depth: float, period: float, *, x=None, sampling_rate=None,
+                   separation_probes=None, n_harmonics: int = 8, tolerance: float = 0.02,
+                   min_cycles: int = 10, noise_factor: float = 4.0,
+                   reflection_tolerance: float = 0.002, g: float = G) -> _SteadyRecord:
+    """Check a run's records and find the window the separation analyses (:func:`analyse_run`)."""
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
@@ -131,7 +313,24 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         raise ValueError(f"n_harmonics must be at least 1, got {n_harmonics}")
     eta = eta.transpose("probe", "time")
     sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
+    found = _steady_window(v, t, probes, period, tolerance, min_cycles, noise_factor, sep,
+                           depth, reflection_tolerance, g)
+    windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling = found
+    f1 = 1.0 / t_meas
+    band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
+    return _SteadyRecord(eta, v, t, x, windows, criterion, t_meas, n_per, i0, n, dt,
+                         sep.isel(time=slice(i0, i0 + n)), band, crest_start, settling)
 
+
+def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
+                   tolerance: float, min_cycles: int, noise_factor: float, sep: xr.DataArray,
+                   depth: float, reflection_tolerance: float, g: float):
+    """Return the common quasi-steady window of the probes (see :func:`analyse_run`).
+
+    The probes' windows, the criterion kept, the measured period [s], the whole periods, the
+    first sample and the samples of the window cut to them, the sampling step [s], where the
+    crests' window starts [s] and the reflection's settling.
+    """
     # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
     # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
     # The noise-aware criterion is also the measure of what follows the ramp: the paper's is
@@ -190,7 +389,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                       f"a trend of at most {5.0 * reflection_tolerance:.3f} across them); Kr is "
                       "the mean of a changing reflection (a wave still returning from behind "
                       "the device, a seiche): check the record or lengthen it",
-                      SeparationWarning, stacklevel=2)
+                      SeparationWarning, stacklevel=4)
     settled = max(w.settled for w in windows)
     following = int(np.floor((t[-1] - settled) / t_meas + 1e-9))
     if n_per >= enough and 2 * n_per < following:
@@ -198,7 +397,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                       f"{following} periods that follow the ramp ({settled:.1f} s to the end of "
                       "the record): crests scatter beyond the tolerance after it (a disturbance, "
                       "a dropout, re-reflection); check the record or the window",
-                      SeparationWarning, stacklevel=2)
+                      SeparationWarning, stacklevel=4)
     if n_per < enough:
         raise ValueError(
             f"the probes' quasi-steady windows overlap over {max(end - start, 0):.3g} s, fewer "
@@ -216,61 +415,68 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
     misfit = np.abs(cand * t_meas / dt - np.rint(cand * t_meas / dt))
     n_per = int(cand[misfit <= misfit.min() + 0.02][-1])  # the longest of the best
     n = min(int(round(n_per * t_meas / dt)), t.size - i0)
+    return windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling
 
-    f1 = 1.0 / t_meas
-    band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
-    kw = dict(method=method, band=band, x_ref=x_ref, regular=True, period=t_meas,
-              bound_harmonics=bound_harmonics, max_condition=max_condition, g=g)
-    steady = separate(sep.isel(time=slice(i0, i0 + n)), depth, **kw)
-    if amplitude_dispersion and bound_harmonics:
-        for _ in range(2):  # the heights move k by < 1e-3 after the first pass
+
+def _separation_passes(records: list, depths: list, *, method: str, x_ref: float,
+                       bound_harmonics: bool, amplitude_dispersion: bool,
+                       max_condition: float, g: float) -> list:
+    """Separate the steady windows of runs (or of draws of one run) as :func:`analyse_run` does.
+
+    The first pass with the linear wavenumbers; with ``amplitude_dispersion`` and
+    ``bound_harmonics`` two more with the nonlinear wavenumbers of the heights just separated.
+    The record's Fourier coefficients and harmonic fit are shared by the passes.
+
+    Parameters
+    ----------
+    records : list of _SteadyRecord
+        The runs' steady windows (:func:`_steady_record`).
+    depths : list of float
+        Still water depth of each [m].
+    method, x_ref, bound_harmonics, amplitude_dispersion, max_condition, g
+        As in :func:`analyse_run`.
+
+    Returns
+    -------
+    list
+        Per record the parts of its separation's dataset
+        (:func:`flumekit.waves.separation.separate_prepared`), or the ValueError that refused
+        it.
+    """
+    kw = dict(regular=True, bound_harmonics=bound_harmonics, window=None,
+              max_condition=max_condition, warn_fraction=0.01, gauge_weights=None, g=g,
+              detection="given")
+    prepared, out = [], []
+    for rec, depth in zip(records, depths, strict=True):
+        try:
+            v, t, x, probes = check_separation_inputs(rec.steady, depth, method, max_condition)
+            p = prepare_separation(v, t, rec.band, None, True, rec.period)
+            prepared.append((p, x, probes))
+            out.append(separate_prepared(p, x, probes, depth, method, x_ref, wavenumbers=None,
+                                          **kw))
+        except ValueError as e:
+            prepared.append(None)
+            out.append(e)
+    if not (amplitude_dispersion and bound_harmonics):
+        return out
+    active = [i for i, o in enumerate(out) if not isinstance(o, ValueError)]
+    for _ in range(2):  # the heights move k by < 1e-3 after the first pass
+        still = []
+        for i in active:
+            data = out[i][0]
             try:
-                ks = [nonlinear_wavenumber(t_meas, float(steady[h]), depth, g)
+                ks = [nonlinear_wavenumber(records[i].period, float(data[h][1]), depths[i], g)
                       for h in ("incident_height", "reflected_height")]
             except ValueError as e:  # beyond the highest steady wave: keep the linear k
                 warnings.warn(f"separation with the linear wavenumber: {e}", SeparationWarning,
-                              stacklevel=2)
-                break
-            steady = separate(sep.isel(time=slice(i0, i0 + n)), depth, wavenumbers=ks, **kw)
-    # separated series on the full time axis, defined (not NaN) over the steady window only
-    inc = np.full(t.size, np.nan)
-    ref = np.full(t.size, np.nan)
-    inc[i0:i0 + n] = steady.eta_incident.values
-    ref[i0:i0 + n] = steady.eta_reflected.values
-    fill = {"comment": "NaN outside the quasi-steady window [steady_start, steady_end), where "
-                       "the regular-wave separation is not defined"}
-
-    h_lin = 2.0 * float(steady.incident_amplitude)
-    ds = xr.Dataset(
-        {"eta": (("probe", "time"), v),
-         "eta_incident": ("time", inc, fill), "eta_reflected": ("time", ref, fill),
-         "amplitude_scale": ("probe", [w.amplitude_scale for w in windows]),
-         "steady_tolerance": ("probe", [w.tolerance for w in windows],
-                              {"criterion": criterion}),
-         "measured_height": ("probe", [w.height for w in windows]),
-         "steady_start": ((), float(t[i0])), "steady_end": ((), float(t[i0 + n - 1] + dt)),
-         "crest_steady_start": ((), float(crest_start)),
-         "reflection_drift": ((), settling.drift, {"tolerance": settling.tolerance}),
-         "steady_cycles": ((), n_per), "measured_period": ((), t_meas),
-         "energy_flux": ((), float(energy_flux(h_lin, t_meas, depth, g=g)),
-                         {"definition": "Eq. (A2) of Brito et al. 2020 per unit crest width, "
-                                        "H = 2 a1 (first-harmonic incident height)"}),
-         **{name: steady[name] for name in (
-             "reflection_coefficient", "incident_height", "reflected_height",
-             "incident_amplitude", "incident_phase", "masked_energy_fraction",
-             "incident_harmonic_amplitude", "reflected_harmonic_amplitude",
-             "harmonic_reflection_coefficient", "spectrum_incident", "spectrum_reflected",
-             "condition_number", "masked")}},
-        coords={"probe": eta.probe.values, "x": ("probe", x), "time": t,
-                "frequency": steady.frequency.values, "harmonic": steady.harmonic.values},
-        attrs={"method": method, "x_ref": float(x_ref), "depth": float(depth),
-               "wave_period": float(period), "separation_probes": steady.attrs["probes"],
-               "n_harmonics": n_harmonics, "bound_harmonics": int(bound_harmonics),
-               "amplitude_dispersion": int(amplitude_dispersion and bound_harmonics),
-               "fundamental_wavenumbers": steady.attrs["fundamental_wavenumbers"],
-               "tolerance": tolerance, "min_cycles": min_cycles,
-               "noise_factor": noise_factor, "steady_criterion": criterion,
-               "reflection_tolerance": reflection_tolerance,
-               "band": steady.attrs["band"],
-               "max_condition": max_condition})
-    return conventions.annotate(ds)
+                              stacklevel=3)
+                continue
+            p, x, probes = prepared[i]
+            try:
+                out[i] = separate_prepared(p, x, probes, depths[i], method, x_ref,
+                                            wavenumbers=ks, **kw)
+                still.append(i)
+            except ValueError as e:
+                out[i] = e
+        active = still
+    return out

@@ -23,6 +23,7 @@ part; with ``bound_harmonics=True`` the bins of harmonic n ≥ 2 are solved with
 from __future__ import annotations
 
 import warnings
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -297,7 +298,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     """
     if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
-    v, t, x, probes = _check_inputs(eta, depth, method, max_condition)
+    v, t, x, probes = check_separation_inputs(eta, depth, method, max_condition)
     detection = "given"
     if regular is None and not bound_harmonics:
         # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
@@ -311,7 +312,54 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    x_ref = float(x_ref)
+    rec = prepare_separation(v, t, band, window, regular, period)
+    return separation_dataset(separate_prepared(
+        rec, x, probes, depth, method, x_ref, regular=regular,
+        bound_harmonics=bound_harmonics, wavenumbers=wavenumbers, window=window,
+        max_condition=max_condition, warn_fraction=warn_fraction,
+        gauge_weights=gauge_weights, g=g, detection=detection))
+
+
+class PreparedRecord(NamedTuple):
+    """What the separation of a record needs that does not depend on the wavenumbers.
+
+    The band's Fourier coefficients of the demeaned records and, for a regular record, its
+    period and harmonic fit: the passes of :func:`flumekit.waves.analyse_run` with refined
+    wavenumbers share them.
+    """
+
+    t: np.ndarray  # time [s]
+    freq: np.ndarray  # FFT frequencies [Hz]
+    sel: np.ndarray  # indices of the band's bins
+    rhs: list  # the band's coefficients (F, P), untapered and (with a window) tapered
+    period: float | None  # fundamental period [s] of a regular record
+    coef: np.ndarray | None  # harmonic fit (P, nh) of a regular record (_harmonic_fit)
+
+
+def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
+                       period: float | None) -> PreparedRecord:
+    """Prepare checked records for :func:`separate_prepared`: what no wavenumber changes.
+
+    Parameters
+    ----------
+    v : numpy.ndarray
+        Surface elevation (probe, time) [m], checked (:func:`check_separation_inputs`).
+    t : numpy.ndarray
+        Time [s], uniform.
+    band : tuple of float or None
+        Analysis band [Hz] (see :func:`separate`).
+    window : str or None
+        Taper of the spectra (see :func:`separate`).
+    regular : bool
+        Whether the record is separated as a regular wave.
+    period : float or None
+        Fundamental period [s] of a regular record; None: the refined peak.
+
+    Returns
+    -------
+    PreparedRecord
+        The band's Fourier coefficients and, for a regular record, its period and harmonic fit.
+    """
     n = t.size
     freq, sel = _band_bins(t, band)
     f = freq[sel]
@@ -326,11 +374,62 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         w = _sig.get_window(window, n)
         w = w / np.sqrt(np.mean(w * w))
         rhs.append((np.fft.rfft(v * w, axis=1)[:, sel] * (2.0 / n)).T)
-
+    coef = None
     if regular:
         if period is None:  # the peak bin, refined: up to half a bin off otherwise
             f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
+        if period > 0:  # else _harmonic_wavenumbers says so
+            f1 = 1.0 / float(period)
+            nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
+            top = max(int(np.rint(f / f1).astype(int).max()), 1)
+            nh = max(min(top, int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
+            # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
+            coef = _harmonic_fit(v, t, f1, nh)
+    return PreparedRecord(t, freq, sel, rhs, period, coef)
+
+
+def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, method: str,
+                      x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
+                      window: str | None, max_condition: float, warn_fraction: float,
+                      gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
+    """Separate a prepared record; return the parts of the dataset of :func:`separate`.
+
+    Parameters
+    ----------
+    rec : PreparedRecord
+        The record (:func:`prepare_separation`).
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    depth : float
+        Still water depth [m].
+    method : str
+        Separation method.
+    x_ref : float
+        Position where the waves are returned [m].
+    regular, bound_harmonics, wavenumbers, window, max_condition, warn_fraction, gauge_weights, g
+        As in :func:`separate` (wavenumbers [rad m-1], g [m s-2]).
+    detection : str
+        What the regular-wave detection found ("given" when the caller said).
+
+    Returns
+    -------
+    tuple of dict
+        Data variables, coordinates and attributes of the dataset
+        (:func:`separation_dataset`).
+
+    Raises
+    ------
+    ValueError
+        As :func:`separate`.
+    """
+    t, freq, sel, rhs, period = rec.t, rec.freq, rec.sel, rec.rhs, rec.period
+    x_ref = float(x_ref)
+    n = t.size
+    f = freq[sel]
+    if regular:
         k1 = (None, None) if wavenumbers is None else wavenumbers
         f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
         if k1[1] == k1[0]:  # the reflected wave travels with the same wavenumbers
@@ -373,10 +472,9 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     }
     coords = {"time": t, "frequency": f}
     if regular:
-        nyq = 0.5 / ((t[-1] - t[0]) / (n - 1))
-        nh = max(min(int(harmonic.max()), int(np.floor(nyq / f1 - 1e-9))), 1)  # below Nyquist
-        stats, coords["harmonic"] = _regular_statistics(v, t, x, f1, kh[:nh], kh_r[:nh], x_ref,
-                                                        max_condition)
+        nh = rec.coef.shape[1]
+        stats, coords["harmonic"] = _regular_statistics(rec.coef, t, x, f1, kh[:nh], kh_r[:nh],
+                                                        x_ref, max_condition)
         data.update(stats)
     else:
         definition = "spectral significant wave height Hm0 = 4 sqrt(m0) over the unmasked band"
@@ -387,7 +485,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         for name, m0 in (("incident_height", m0_i), ("reflected_height", m0_r)):
             data[name] = ((), float(4.0 * np.sqrt(m0)), {"definition": definition})
 
-    ds = xr.Dataset(data, coords=coords, attrs={
+    attrs = {
         "method": method, "x_ref": x_ref, "probes": [str(p) for p in probes],
         "probe_x": x.tolist(), "band": [float(f[0]), float(f[-1])], "window": window or "none",
         "regular": int(regular), "regular_detection": detection,
@@ -397,12 +495,54 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             "fundamental_wavenumbers": [float(kh[0]), float(kh_r[0])],
             "wavenumber_source": "linear dispersion" if wavenumbers is None else "given"}
            if regular else {}),
-        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"})
+        "sign_convention": "incident travels towards +x: coefficient e^(-ikx) with numpy's FFT"}
+    return data, coords, attrs
+
+
+def separation_dataset(parts: tuple[dict, dict, dict]) -> xr.Dataset:
+    """Return the dataset of :func:`separate` from the parts :func:`separate_prepared` made.
+
+    Parameters
+    ----------
+    parts : tuple of dict
+        Data variables, coordinates and attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, annotated (:func:`flumekit.conventions.annotate`).
+    """
+    data, coords, attrs = parts
+    ds = xr.Dataset(data, coords=coords, attrs=attrs)
     return conventions.annotate(ds)
 
 
-def _check_inputs(eta: xr.DataArray, depth: float, method: str, max_condition: float):
-    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`."""
+def check_separation_inputs(eta: xr.DataArray, depth: float, method: str,
+                            max_condition: float):
+    """Check the arguments of :func:`separate`; return the arrays of :func:`as_probe_time`.
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation [m] (probe, time) with ``x`` [m].
+    depth : float
+        Still water depth [m].
+    method : str
+        Separation method (:data:`METHODS`).
+    max_condition : float
+        Largest condition number accepted [-].
+
+    Returns
+    -------
+    tuple
+        Values [m], time [s], positions [m] and probe labels.
+
+    Raises
+    ------
+    ValueError
+        An unknown method, a non-positive depth, a max_condition not above 1, the wrong number
+        of probes, or a record :func:`as_probe_time` refuses.
+    """
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
@@ -490,7 +630,7 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
             f"is ill-conditioned (condition number > {max_condition:.3g}; worst at "
             f"f = {f[worst]:.4g} Hz, k·Δx/π = {np.round(k[worst] * dxs / np.pi, 3).tolist()}). "
             "These bins are excluded from the incident and reflected waves; change the probe "
-            "spacing or narrow the band.", SeparationWarning, stacklevel=3)
+            "spacing or narrow the band.", SeparationWarning, stacklevel=4)
     return e_inc, e_ref, masked_fraction
 
 
@@ -508,17 +648,17 @@ def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, k_r: np.
     return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
 
 
-def _regular_statistics(v: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
+def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
                         kh: np.ndarray, kh_r: np.ndarray, x_ref: float, max_condition: float):
     """Statistics of a regular wave from its harmonics at their exact frequencies.
 
     A least-squares harmonic fit per probe (leakage-free for any record length), separated by
-    the same core as the bins. ``v`` (P, N) demeaned records [m], ``kh``, ``kh_r`` the
-    incident and reflected wavenumbers of each harmonic kept [rad m-1]. Returns the dataset
-    variables (see :func:`separate`) and the ``harmonic`` coordinate.
+    the same core as the bins. ``coef`` (P, nh) the probes' fit (:func:`_harmonic_fit`) [m],
+    ``t`` their time [s], ``kh``, ``kh_r`` the incident and reflected wavenumbers of each
+    harmonic kept [rad m-1]. Returns the dataset variables (see :func:`separate`) and the
+    ``harmonic`` coordinate.
     """
     nh = kh.size
-    coef = _harmonic_fit(v, t, f1, nh)  # (P, nh), a e^(iψ) for cos(2π n f1 (t - t0) + ψ)
     ph_h = np.exp(-1j * kh[:, None] * x[None, :])  # (nh, P)
     ph_r = np.exp(1j * kh_r[:, None] * x[None, :])
     sol_h, cond_h, masked_h = lstsq_normal(np.stack([ph_h, ph_r], axis=-1),

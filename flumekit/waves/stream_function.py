@@ -215,8 +215,21 @@ def _residuals(v, n: int, height: float, period: float, current: str, cosm: np.n
     (the complex step of :func:`_newton`); the current criterion with c = 2π/(kT) gives the
     other of ū and Q.
     """
+    jk, eta = _modes(v, n)
+    ch, sh = depth_ratios(jk, eta[..., None], 1.0)  # (..., N+1, N)
+    return _equations(v, n, height, period, current, cosm, sinm, weights, ch, sh)
+
+
+def _modes(v, n: int):
+    """Return j k (..., 1, N) and η_m (..., N + 1) of the unknowns ``v`` (:func:`_residuals`)."""
+    return v[..., :1, None] * np.arange(1, n + 1), v[..., 1:n + 2]
+
+
+def _equations(v, n: int, height: float, period: float, current: str, cosm: np.ndarray,
+               sinm: np.ndarray, weights: np.ndarray, ch, sh) -> np.ndarray:
+    """Return the residuals of :func:`_residuals` from the depth ratios ``ch``, ``sh``."""
     k = v[..., :1]
-    eta = v[..., 1:n + 2]
+    jk, eta = _modes(v, n)
     b = v[..., None, n + 2:2 * n + 2]
     c = 2 * np.pi / (k * period)
     if current == "stokes":  # Eq. (9) with c_S = 0 and h = 1: Q = c
@@ -224,8 +237,6 @@ def _residuals(v, n: int, height: float, period: float, current: str, cosm: np.n
     else:  # Eq. (8) with c_E = 0: ū = c
         ubar, q = c, v[..., 2 * n + 2:2 * n + 3]
     r = v[..., 2 * n + 3:]
-    jk = k[..., None] * np.arange(1, n + 1)
-    ch, sh = depth_ratios(jk, eta[..., None], 1.0)  # (..., N+1, N)
     kin = -ubar * eta + np.sum(sh * cosm * b, axis=-1) + q
     uu = -ubar + np.sum(ch * cosm * jk * b, axis=-1)
     ww = np.sum(sh * sinm * jk * b, axis=-1)
@@ -235,16 +246,39 @@ def _residuals(v, n: int, height: float, period: float, current: str, cosm: np.n
     return np.concatenate([kin, dyn, mean, hgt], axis=-1)
 
 
+def _jacobian(v: np.ndarray, n: int, height: float, period: float, current: str,
+              cosm: np.ndarray, sinm: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """Jacobian of :func:`_residuals` at ``v`` (2N + 4,) by complex steps of every unknown.
+
+    The residuals of ``v + 1e-30 i e_j`` for all j in one batched evaluation, as
+    :func:`_residuals` computes them, except that the depth ratios (most of the cost), which
+    only the steps of k and of the η_m change (the latter in the row of point m alone), are
+    computed once for the other steps, once for k's and once per point for η_m's.
+    """
+    vs = v + 1e-30j * np.eye(v.size)  # (M, M): row j steps unknown j
+    jk, eta = _modes(vs, n)  # (M, 1, N), (M, N+1)
+    other = n + 2  # the step of B_1: neither k nor any η_m moves
+    ch = np.empty(vs.shape[:1] + (n + 1, n), complex)
+    sh = np.empty_like(ch)
+    ch[:], sh[:] = depth_ratios(jk[other], eta[other, :, None], 1.0)
+    ch[0], sh[0] = depth_ratios(jk[0], eta[0, :, None], 1.0)
+    points = np.arange(n + 1)
+    # the step of η_m: point m's row, at the stepped η_m
+    ch_m, sh_m = depth_ratios(jk[other], eta[1 + points, points][:, None], 1.0)
+    ch[1 + points, points], sh[1 + points, points] = ch_m, sh_m
+    return _equations(vs, n, height, period, current, cosm, sinm, weights, ch,
+                      sh).imag.T / 1e-30
+
+
 def _newton(v: np.ndarray, args: tuple, max_iter: int = 40) -> tuple[np.ndarray, float]:
     """Newton's method with the exact Jacobian by complex-step differentiation.
 
-    All unknowns are perturbed at once in one batched evaluation; returns the root and its
-    residual.
+    All unknowns are perturbed at once in one batched evaluation (:func:`_jacobian`); returns
+    the root and its residual.
     """
-    eye = 1e-30j * np.eye(v.size)
     for _ in range(max_iter):
         f = _residuals(v, *args)
-        jac = _residuals(v + eye, *args).imag.T / 1e-30
+        jac = _jacobian(v, *args)
         step = np.linalg.solve(jac, f)
         v = v - step
         if np.max(np.abs(step)) < 1e-13:

@@ -140,3 +140,23 @@ def test_window_mean_and_gravity_torque():
     d = 1e-6
     slope = (gravity_torque(d, 605.0) - gravity_torque(-d, 605.0)) / (2 * d)
     assert slope == pytest.approx(605.0, rel=1e-10)
+
+
+def test_run_results_are_the_scalars_of_analyse_run(analysed, campaign):
+    # the propagation's results-only path: the same numbers, bit for bit
+    from flumekit.flap.analysis import run_results, steady_measured
+
+    d = device(campaign)
+    for (period, height, _), (t, truth, ds) in analysed.items():
+        args = (t, truth.encoder_counts.values, truth.chamber_pressure.values)
+        r = run_results(*args, **d, period=period, incident_height=height)
+        for k in ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor",
+                  "incident_power", "steady_start", "measured_period"):
+            assert r[k] == float(ds[k]), k
+        # the measured chain reused with another incident height: only W_I and C_f move
+        chain = steady_measured(*args, flap=d["flap"], pto=d["pto"], encoder=d["encoder"],
+                                period=period)
+        r2 = run_results(*args, **d, period=period, incident_height=2 * height,
+                         measured=chain)
+        assert r2["theta_amplitude"] == r["theta_amplitude"]
+        assert r2["capture_factor"] == pytest.approx(r["capture_factor"] / 4, rel=1e-12)

@@ -158,3 +158,24 @@ def test_draws_uncertainty_is_the_spread_about_the_unperturbed_result():
     shifted = draws_uncertainty(5.3 + 0.2 * noise, np.array([5.0]))
     assert shifted[0] == pytest.approx(np.hypot(0.2, 0.3), rel=0.03)
     assert np.isnan(draws_uncertainty(noise[:1], np.array([0.0]))[0])
+
+
+def test_variants_are_analysed_as_runs(clean):
+    # the propagation's batched path gives each variant what analyse_run gives it, bit for
+    # bit: its own window, the same separation passes (with amplitude dispersion), the
+    # refusal of a record without steady waves as NaN
+    from flumekit.waves import analyse_run
+    from flumekit.waves.analysis import VARIANT_RESULTS, variant_results
+
+    rng = np.random.default_rng(5)
+    noisy = _noisy(clean, rng, 5e-4)
+    moved = noisy.assign_coords(x=("probe", X + [1e-3, -2e-3, 0.0]))
+    flat = clean.copy(data=np.zeros(clean.shape))
+    variants, depths = [noisy, moved, flat, clean], [DEPTH, DEPTH, DEPTH, DEPTH + 0.01]
+    r = variant_results(variants, depths, PERIOD, x_ref=0.0)
+    assert np.isnan([r[k][2] for k in VARIANT_RESULTS]).all()
+    for i in (0, 1, 3):
+        ds = analyse_run(variants[i], depths[i], PERIOD, x_ref=0.0)
+        for k in VARIANT_RESULTS:
+            assert r[k][i] == float(ds[k]), (i, k)
+    assert r["incident_height"][1] != r["incident_height"][0]
