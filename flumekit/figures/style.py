@@ -706,10 +706,13 @@ def _font_subsets_cached():
 
 
 @functools.lru_cache(maxsize=4096)
-def _mathtext_parse(parse, output_type: str, s: str, dpi: float, prop, antialiased: bool,
+def _mathtext_parse(output_type: str, s: str, dpi: float, prop, antialiased: bool,
                     load_glyph_flags):
     """One parse of mathtext ``s``, shared by every parser of ``output_type`` in the process."""
-    return parse(output_type, s, dpi, prop, antialiased, load_glyph_flags)
+    from matplotlib.mathtext import MathTextParser
+
+    parser = MathTextParser("path" if output_type == "vector" else "agg")
+    return _MATHTEXT_PARSE(parser, s, dpi, prop, antialiased, load_glyph_flags)
 
 
 @contextmanager
@@ -723,25 +726,25 @@ def _mathtext_cached():
     parser asks. Where matplotlib's private parse cache is not the one expected (another
     matplotlib version), nothing is changed.
     """
+    global _MATHTEXT_PARSE
     try:
         from matplotlib.mathtext import MathTextParser
 
         original = MathTextParser.__dict__["_parse_cached"]
-        uncached = original.__wrapped__
+        _MATHTEXT_PARSE = original.__wrapped__
     except (ImportError, KeyError, AttributeError):
         yield
         return
 
-    def parse(output_type, s, dpi, prop, antialiased, load_glyph_flags):
-        parser = MathTextParser("path" if output_type == "vector" else "agg")
-        return uncached(parser, s, dpi, prop, antialiased, load_glyph_flags)
-
     def cached(self, s, dpi, prop, antialiased, load_glyph_flags):
-        return _mathtext_parse(parse, self._output_type, s, dpi, prop, antialiased,
-                               load_glyph_flags)
+        return _mathtext_parse(self._output_type, s, dpi, prop, antialiased, load_glyph_flags)
 
     MathTextParser._parse_cached = cached
     try:
         yield
     finally:
         MathTextParser._parse_cached = original
+
+
+#: matplotlib's own parse, uncached (set by :func:`_mathtext_cached`)
+_MATHTEXT_PARSE = None
