@@ -631,6 +631,7 @@ def _layout_once(fig):
     try:
         with style(), _mathtext_cached():
             engine.execute(fig)
+            placed = _titles_placed(fig)
     finally:
         fig.set_dpi(dpi)
     fig.set_layout_engine("none")
@@ -638,6 +639,29 @@ def _layout_once(fig):
         yield
     finally:
         fig.set_layout_engine(engine)
+        for ax in placed:
+            ax._autotitlepos = True
+
+
+def _titles_placed(fig) -> list:
+    """Place the axes titles of the laid-out ``fig`` once, and keep them there.
+
+    matplotlib places a title above its axes' top tick labels and offset text in every draw
+    (the figure check, each format), updating the ticks of both axes each time; in the final
+    layout the place is the same. Returns the axes whose titles were fixed (to be freed), none
+    where matplotlib's private placement is not the one expected (another version).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    axes = [ax for ax in fig.axes if getattr(ax, "_autotitlepos", None) is True
+            and hasattr(ax, "_update_title_position")]
+    if not axes:
+        return []
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    for ax in axes:
+        ax._update_title_position(renderer)
+        ax._autotitlepos = False
+    return axes
 
 
 #: font subsets embedded in PDFs, by (font file, face, glyphs): the same labels in figure after
