@@ -186,10 +186,17 @@ def thin(x, y, width: float = TWO_COLUMNS) -> tuple:
     first = np.flatnonzero(np.r_[True, col[1:] != col[:-1]])
     last = np.r_[first[1:] - 1, n - 1]
     finite = np.isfinite(y)
-    # the lowest and highest finite sample of each column: the first of its column in the
-    # order (column, value); the columns keep their sizes, so their starts are ``first``
-    lowest = np.lexsort((np.where(finite, y, np.inf), col))[first]
-    highest = np.lexsort((np.where(finite, -y, np.inf), col))[first]
+    sizes = np.diff(np.r_[first, n])
+
+    def first_at(values, extreme):
+        """Index of the first sample of each column where ``values`` reaches its extreme."""
+        hit = np.flatnonzero(values == np.repeat(extreme.reduceat(values, first), sizes))
+        return hit[np.r_[True, col[hit[1:]] != col[hit[:-1]]]]
+
+    # the lowest and highest finite sample of each column (the first of equal ones; a column
+    # without a finite sample gives its first sample), in one pass over the samples
+    lowest = first_at(np.where(finite, y, np.inf), np.minimum)
+    highest = first_at(np.where(finite, y, -np.inf), np.maximum)
     gap_first = np.flatnonzero(~finite & np.r_[True, finite[:-1]])
     gap_last = np.flatnonzero(~finite & np.r_[finite[1:], True])
     keep = np.unique(np.concatenate([first, last, lowest, highest, gap_first, gap_first - 1,
