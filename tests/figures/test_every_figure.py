@@ -308,3 +308,22 @@ def test_captions_read_as_what_the_figure_shows():
     qc = figure("qc").description
     assert qc.startswith("The raw (grey) and QC'd (black) records")
     assert "suspect, failed and missing samples" in qc  # the paragraph after the summary
+
+
+def test_thin_keeps_each_columns_extremes_and_gaps():
+    """The thinned line keeps, per pixel column, the first lowest and highest finite sample
+    (ties: the first), and the samples around each gap."""
+    from flumekit.figures.style import thin
+
+    rng = np.random.default_rng(3)
+    n = 30000
+    x = np.arange(n) / 50.0
+    y = np.round(rng.normal(size=n), 1)  # many ties
+    y[1000:1500] = np.nan
+    xs, ys = thin(x, y, width=3.5)
+    kept = set(np.searchsorted(x, xs))
+    col = np.minimum((x * (1050 / x[-1])).astype(int), 1049)
+    for c in (0, 17, 300, 1049):
+        idx = np.flatnonzero((col == c) & np.isfinite(y))
+        assert idx[np.argmin(y[idx])] in kept and idx[np.argmax(y[idx])] in kept
+    assert {999, 1000, 1500} <= kept  # the samples around the gap: it stays a gap
