@@ -100,8 +100,9 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
 
     References
     ----------
-    Brito, M. et al. (2020). Experimental investigation on the power capture of an
-    oscillating wave surge converter in unidirectional waves. Coastal Eng. 160, §2.5.
+    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
+    investigation of the flow field in the vicinity of an oscillating wave surge converter.
+    J. Mar. Sci. Eng. 8, §2.5.
     Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected
     spectra using a least squares method. Proc. 17th ICCE, 154-172.
 
