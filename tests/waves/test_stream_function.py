@@ -170,3 +170,16 @@ def test_nonlinear_wavenumber():
     assert nonlinear_wavenumber(3.5, 0.25, H) == stream_function_wave(3.5, 0.25, H).wavenumber
     with pytest.raises(ValueError, match="highest wave"):
         nonlinear_wavenumber(3.5, 0.7, H)
+
+
+@pytest.mark.parametrize("period", [1.2, 2.0, 3.5])
+def test_the_chord_iteration_from_a_grid_wave_finds_newtons_root(period):
+    # the default start (a grid wave, the chord method with its Jacobian fixed) against Newton's
+    # method raised from linear theory in height steps: the same wave to the round-off of the
+    # equations (steep short waves are the worst conditioned)
+    for height in (0.02, 0.1, 0.2, 0.25):
+        fast = stream_function_wave(period, height, H)
+        slow = stream_function_wave(period, height, H, height_steps=4)
+        assert fast.wavenumber == pytest.approx(slow.wavenumber, rel=1e-13, abs=0)
+        assert np.allclose(fast.elevation_coefficients, slow.elevation_coefficients,
+                           rtol=0, atol=1e-13 * height)
