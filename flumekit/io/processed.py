@@ -105,7 +105,7 @@ def _equal(a, b) -> bool:
     return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc" and b.dtype.kind in "fc"))
 
 
-def stack_files(files) -> xr.Dataset:
+def stack_files(files, scalars: bool = False, run_attrs: list | None = None) -> xr.Dataset:
     """Stack per-run datasets along a new ``run`` dimension, read without xarray.
 
     The result is that of ``xr.concat([read_dataset(f) for f in files], dim="run",
@@ -125,6 +125,11 @@ def stack_files(files) -> xr.Dataset:
     ----------
     files : sequence of str or pathlib.Path
         netCDF files written by flumekit, one run each.
+    scalars : bool, default False
+        Stack only the variables without a dimension (a run's results, the rows of a campaign
+        summary), each along ``run``: the records are not read at all.
+    run_attrs : list, optional
+        Filled with each file's global attributes, in the order of ``files``.
 
     Returns
     -------
@@ -148,7 +153,9 @@ def stack_files(files) -> xr.Dataset:
     from flumekit.io.run_files import open_runs
 
     with open_runs(files) as runs:
-        return _stack(runs)
+        if run_attrs is not None:
+            run_attrs += [m[1] for m in runs.metas]
+        return _stack(runs, scalars)
 
 
 def _placement(values, union):
@@ -164,15 +171,20 @@ def _placement(values, union):
     return at
 
 
-def _stack(runs) -> xr.Dataset:
-    """Stack the open files ``runs`` (:func:`flumekit.io.run_files.open_runs`)."""
+def _stack(runs, scalars: bool = False) -> xr.Dataset:
+    """Stack the open files ``runs`` (:func:`flumekit.io.run_files.open_runs`).
+
+    With ``scalars``, only the variables without a dimension, each stacked along ``run``
+    (a coordinate too where every run has the same value, as ``xr.concat(..., coords="all")``).
+    """
     import numpy as np
 
     metas = runs.metas
     n = len(metas)
     names: list[str] = []
     for variables, *_ in metas:
-        names += [k for k in variables if k not in names]
+        names += [k for k, v in variables.items()
+                  if k not in names and not (scalars and v[0])]
     coord_names = set().union(*(c for *_, c in metas))
     dims: dict[str, tuple] = {}
     for variables, *_ in metas:
@@ -213,7 +225,7 @@ def _stack(runs) -> xr.Dataset:
         dtype = present[have[0]][4]
         small = name in coord_names or dtype.kind == "O" or not d
         read = {i: values(i, name) for i in have} if small else {}
-        if (len(have) == n and name in coord_names
+        if (not scalars and len(have) == n and name in coord_names
                 and all(_equal(read[i], read[have[0]]) for i in have[1:])):
             coords[name] = xr.Variable(d, read[have[0]], attrs)  # equal in every run
             continue

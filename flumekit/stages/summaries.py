@@ -54,19 +54,31 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
     flumekit.io.atomic.Written
         The file written and its content digest.
     """
-    import xarray as xr
-
     from flumekit.conventions import WARNINGS, run_warnings
-    from flumekit.io.netcdf import read_dataset, write_product
+    from flumekit.io.netcdf import write_product
 
-    rows, warned = [], []
-    for name in sorted(inputs):
-        ds = read_dataset(inputs[name]).drop_dims(list(drop_dims), errors="ignore")
-        warned += run_warnings(name, ds.attrs.get(WARNINGS, ""))
-        names = keep(ds) if keep else [v for v in ds.data_vars if ds[v].ndim == 0]
-        rows.append(ds[list(names)].expand_dims("run"))
-    out = xr.concat(rows, dim="run", coords="all", compat="override")
+    names = sorted(inputs)
+    if keep is None and not drop_dims:  # the runs' scalars, their records never read
+        from flumekit.io.processed import stack_files
+
+        attrs: list[dict] = []
+        out = stack_files([inputs[name] for name in names], scalars=True, run_attrs=attrs)
+        warned = [w for name, a in zip(names, attrs, strict=True)
+                  for w in run_warnings(name, a.get(WARNINGS, ""))]
+        out.attrs = {}
+    else:
+        import xarray as xr
+
+        from flumekit.io.netcdf import read_dataset
+
+        rows, warned = [], []
+        for name in names:
+            ds = read_dataset(inputs[name]).drop_dims(list(drop_dims), errors="ignore")
+            warned += run_warnings(name, ds.attrs.get(WARNINGS, ""))
+            rows.append(ds[list(keep(ds) if keep else
+                                [v for v in ds.data_vars if ds[v].ndim == 0])].expand_dims("run"))
+        out = xr.concat(rows, dim="run", coords="all", compat="override")
     # every run's warnings kept where a campaign is read, each naming its run once
     out.attrs = {WARNINGS: "\n".join(dict.fromkeys(warned))} if warned else {}
     return write_product(out, outputs["dataset"], title,
-                         f"flumekit campaign summary of {len(rows)} runs", {"runs": sorted(inputs)})
+                         f"flumekit campaign summary of {len(names)} runs", {"runs": names})

@@ -182,3 +182,28 @@ def test_a_damaged_header_is_no_silent_wrong_attribute(tmp_path, text):
     with pytest.raises(Exception) as caught:
         open_processed(tmp_path, "stage")
     assert text[:4].upper().decode() not in str(caught.value)
+
+
+def test_the_runs_scalars_stack_as_a_campaign_summary_concatenates_them(tmp_path):
+    # the summaries' way: every variable without a dimension, each along run (a coordinate too
+    # where every run has the same value), as xr.concat(..., coords="all") gives it; the
+    # records are never read
+    from flumekit.io.processed import stack_files
+
+    runs = [_run(i, 300 + 100 * i, np.arange(5) * 0.1, with_extra=False) for i in range(3)]
+    for ds in runs:
+        ds.coords["repeat"] = np.int32(0)  # equal in every run: stacked all the same
+        ds.attrs["flumekit_warnings"] = f"warning of {ds.attrs['title']}"
+    files = _write(tmp_path / "stage", runs)
+    attrs: list[dict] = []
+    got = stack_files(files, scalars=True, run_attrs=attrs)
+    rows = []
+    for f in files:
+        ds = read_dataset(f)
+        rows.append(ds[[v for v in ds.data_vars if ds[v].ndim == 0]].expand_dims("run"))
+    want = xr.concat(rows, dim="run", coords="all", compat="override")
+    want.attrs = got.attrs
+    want["mean_power"].attrs.pop("note")  # the runs disagree: dropped, not the first run's
+    xr.testing.assert_identical(got, want)
+    assert set(got.dims) == {"run"} and got["repeat"].dims == ("run",)
+    assert [a["flumekit_warnings"] for a in attrs] == [f"warning of run {i}" for i in range(3)]
