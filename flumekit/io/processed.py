@@ -105,7 +105,8 @@ def _equal(a, b) -> bool:
     return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc" and b.dtype.kind in "fc"))
 
 
-def stack_files(files, scalars: bool = False, run_attrs: list | None = None) -> xr.Dataset:
+def stack_files(files, scalars: bool = False, coords: str = "different",
+                run_attrs: list | None = None) -> xr.Dataset:
     """Stack per-run datasets along a new ``run`` dimension, read without xarray.
 
     The result is that of ``xr.concat([read_dataset(f) for f in files], dim="run",
@@ -127,7 +128,10 @@ def stack_files(files, scalars: bool = False, run_attrs: list | None = None) -> 
         netCDF files written by flumekit, one run each.
     scalars : bool, default False
         Stack only the variables without a dimension (a run's results, the rows of a campaign
-        summary), each along ``run``: the records are not read at all.
+        summary): the records are not read at all.
+    coords : {"different", "all"}
+        As xarray's ``concat``: a coordinate equal in every run is not stacked, or every
+        coordinate but the dimensions' is.
     run_attrs : list, optional
         Filled with each file's global attributes, in the order of ``files``.
 
@@ -155,7 +159,7 @@ def stack_files(files, scalars: bool = False, run_attrs: list | None = None) -> 
     with open_runs(files) as runs:
         if run_attrs is not None:
             run_attrs += [m[1] for m in runs.metas]
-        return _stack(runs, scalars)
+        return _stack(runs, scalars, coords == "all")
 
 
 def _placement(values, union):
@@ -171,11 +175,11 @@ def _placement(values, union):
     return at
 
 
-def _stack(runs, scalars: bool = False) -> xr.Dataset:
+def _stack(runs, scalars: bool = False, all_coords: bool = False) -> xr.Dataset:
     """Stack the open files ``runs`` (:func:`flumekit.io.run_files.open_runs`).
 
-    With ``scalars``, only the variables without a dimension, each stacked along ``run``
-    (a coordinate too where every run has the same value, as ``xr.concat(..., coords="all")``).
+    With ``scalars``, only the variables without a dimension; with ``all_coords``, a coordinate
+    equal in every run stacked too (xarray's ``coords="all"``).
     """
     import numpy as np
 
@@ -225,7 +229,7 @@ def _stack(runs, scalars: bool = False) -> xr.Dataset:
         dtype = present[have[0]][4]
         small = name in coord_names or dtype.kind == "O" or not d
         read = {i: values(i, name) for i in have} if small else {}
-        if (not scalars and len(have) == n and name in coord_names
+        if (not all_coords and len(have) == n and name in coord_names
                 and all(_equal(read[i], read[have[0]]) for i in have[1:])):
             coords[name] = xr.Variable(d, read[have[0]], attrs)  # equal in every run
             continue

@@ -62,7 +62,8 @@ def stack_runs(inputs: dict, outputs: dict, title: str, keep=None, drop_dims=())
         from flumekit.io.processed import stack_files
 
         attrs: list[dict] = []
-        out = stack_files([inputs[name] for name in names], scalars=True, run_attrs=attrs)
+        out = stack_files([inputs[name] for name in names], scalars=True, coords="all",
+                          run_attrs=attrs)
         warned = [w for name, a in zip(names, attrs, strict=True)
                   for w in run_warnings(name, a.get(WARNINGS, ""))]
         out.attrs = {}

@@ -71,6 +71,7 @@ def conditions(inputs, outputs, params) -> None:
     import xarray as xr
 
     from flumekit.io.netcdf import read_dataset, write_product
+    from flumekit.io.processed import stack_files
     from flumekit.uncertainty import condition_statistics
     from flumekit.uncertainty.combine import combine
 
@@ -83,8 +84,7 @@ def conditions(inputs, outputs, params) -> None:
     runs = sorted(k for k in inputs if k.startswith("run:"))
     budget = xr.Dataset(coords=cond.coords)
     if runs:
-        stacked = xr.concat([read_dataset(inputs[k]).expand_dims("run") for k in runs],
-                            dim="run", coords="all", compat="override", join="outer")
+        stacked = stack_files([inputs[k] for k in runs], coords="all")
         cond, budget = combine(cond, stacked)
     if params.get("scale"):  # full-scale values in the report (flumekit.scale)
         sc = params["scale"]

@@ -196,7 +196,7 @@ def test_the_runs_scalars_stack_as_a_campaign_summary_concatenates_them(tmp_path
         ds.attrs["flumekit_warnings"] = f"warning of {ds.attrs['title']}"
     files = _write(tmp_path / "stage", runs)
     attrs: list[dict] = []
-    got = stack_files(files, scalars=True, run_attrs=attrs)
+    got = stack_files(files, scalars=True, coords="all", run_attrs=attrs)
     rows = []
     for f in files:
         ds = read_dataset(f)
