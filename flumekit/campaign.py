@@ -873,7 +873,7 @@ def _check_channels(path: Path, files: dict, channels: dict[str, list[str]],
                                         f"columns in channel order {known}, got {len(v)}"))
 
 
-def load_campaign(root: str | Path) -> Campaign:
+def load_campaign(root: str | Path, runs: bool = True) -> Campaign:
     r"""Read ``root/campaign.toml`` and every ``root/runs/*/run.toml``.
 
     Every problem of a file is reported at once (one :class:`~flumekit.errors.InputError`
@@ -884,6 +884,9 @@ def load_campaign(root: str | Path) -> Campaign:
     ----------
     root : str or path-like
         The raw campaign folder.
+    runs : bool, default True
+        Read the runs too; without them (``campaign.toml`` alone, ``runs`` empty) for what
+        needs the set-up only, as a stage's action of one run.
 
     Returns
     -------
@@ -997,10 +1000,12 @@ def load_campaign(root: str | Path) -> Campaign:
                                     float(sc.get("prototype_density", 1025.0))) if sc else None,
                         uncertainty=uncertainty_components(_table(data, "uncertainty")))
     runs_dir = root / "runs"
+    if not runs:
+        return campaign
     run_files = sorted(runs_dir.glob("*/run.toml")) if runs_dir.is_dir() else []
     run_problems: list[Problem] = []
-    runs = [_read_run(rp, campaign, run_problems) for rp in run_files]
+    read = [_read_run(rp, campaign, run_problems) for rp in run_files]
     if run_problems:
         raise_problems(run_problems[0].path if len({q.path for q in run_problems}) == 1
                        else runs_dir, run_problems)
-    return Campaign(**{**campaign.__dict__, "runs": tuple(runs)})
+    return Campaign(**{**campaign.__dict__, "runs": tuple(read)})

@@ -76,7 +76,7 @@ def build(inputs, outputs, params) -> Written:
     from flumekit.io.netcdf import read_dataset
     from flumekit.qc import checks
 
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    campaign = load_campaign(Path(inputs["campaign"]).parent, runs=False)
     raw = read_dataset(inputs["flap"])  # quality-controlled encoder counts and pressure
     waves = read_dataset(inputs["waves"])
     checks.check_durations(

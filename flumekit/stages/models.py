@@ -112,7 +112,7 @@ def compare(inputs, outputs, params) -> Written:
     from flumekit.flap.comparison import compare_irregular_run, compare_run
     from flumekit.io.netcdf import read_dataset
 
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    campaign = load_campaign(Path(inputs["campaign"]).parent, runs=False)
     flap, waves, hydro = (read_dataset(inputs[k]) for k in ("flap", "waves", "hydro"))
     shared = {"flap_params": campaign.flap, "pto": campaign.pto, "dt": params["dt"],
               "simulator": params["simulator"], "friction": params["friction"],

@@ -25,7 +25,7 @@ def run_uncertainty(inputs, outputs, params) -> None:
     from flumekit.io.netcdf import read_dataset
     from flumekit.uncertainty.propagation import RunModel, propagate, resolve_inputs
 
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    campaign = load_campaign(Path(inputs["campaign"]).parent, runs=False)
     cal = read_dataset(inputs["calibration"]) if "calibration" in inputs else None
     eta = read_dataset(inputs["eta"])["eta"]
     if cal is not None and list(cal.probe.values) != list(eta.probe.values):

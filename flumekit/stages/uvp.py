@@ -110,7 +110,7 @@ def field(inputs, outputs, params) -> Written:
     from flumekit.io.netcdf import read_dataset, write_product
     from flumekit.uvp import velocity_field
 
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    campaign = load_campaign(Path(inputs["campaign"]).parent, runs=False)
     runs = [read_dataset(p) for name, p in sorted(inputs.items()) if name != "campaign"]
     ds = velocity_field(runs, campaign.uvp, height=params["height"], period=params["period"],
                         method=params["method"], dx=params["dx"],

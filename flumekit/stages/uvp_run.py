@@ -87,7 +87,7 @@ def build(inputs, outputs, params) -> list[Written]:
     from flumekit.uvp import phase_average_beams
     from flumekit.uvp.run_window import checked_window, clean_beam, waves_span
 
-    campaign = load_campaign(Path(inputs["campaign"]).parent)
+    campaign = load_campaign(Path(inputs["campaign"]).parent, runs=False)
     names = [b.name for b in campaign.uvp.beams]
     raw = {n: read_mfprof(inputs[n]) for n in names}
     waves = read_dataset(inputs["waves"])
