@@ -32,14 +32,26 @@ def _errors(results) -> list[str]:
     return errors
 
 
-def cf_errors(paths) -> dict[str, list[str]]:
-    """:func:`main` on ``paths`` in a new process."""
+def cf_errors(paths, processes: int = 2) -> dict[str, list[str]]:
+    """:func:`main` on ``paths`` in new processes, the files shared out among them.
+
+    The checker takes about a second and a half a file, on one core: the processes check
+    their shares at once.
+    """
+    import os
     import subprocess
 
-    result = subprocess.run([sys.executable, __file__, *map(str, paths)], capture_output=True,
-                            text=True)
-    assert result.returncode == 0, result.stderr
-    return json.loads(result.stdout.strip().splitlines()[-1])
+    paths = [str(p) for p in paths]
+    n = max(1, min(processes, os.cpu_count() or 1, len(paths)))
+    running = [subprocess.Popen([sys.executable, __file__, *paths[i::n]], text=True,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+               for i in range(n)]
+    out: dict[str, list[str]] = {}
+    for proc in running:
+        stdout, stderr = proc.communicate()
+        assert proc.returncode == 0, stderr
+        out.update(json.loads(stdout.strip().splitlines()[-1]))
+    return out
 
 
 if __name__ == "__main__":
