@@ -21,27 +21,28 @@ __all__ = ["REFERENCES", "fill", "filler"]
 
 T = TypeVar("T")
 
-#: works the package cites in more than one docstring: key -> the full citation
+#: works the package cites in more than one docstring: key -> the full citation, without its
+#: closing punctuation (a docstring adds what it cites of the work: ", Eq. (2).")
 REFERENCES: dict[str, str] = {
     "brito2020": (
         "Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). "
         "Experimental\ninvestigation of the flow field in the vicinity of an oscillating "
-        "wave surge converter.\nJ. Mar. Sci. Eng. 8,"),
+        "wave surge converter.\nJ. Mar. Sci. Eng. 8"),
     "renzi_dias2012": (
         "Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy "
-        "converter in\na channel. J. Fluid Mech. 701, 482-510,"),
+        "converter in\na channel. J. Fluid Mech. 701, 482-510"),
     "senatore2022": (
         "Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy "
         "converter:\nmultibody system coupled to fluid-film lubrication model and thermal "
-        "analysis. Energies 15,\n9358. doi:10.3390/en15249358,"),
+        "analysis. Energies 15,\n9358. doi:10.3390/en15249358"),
     "qartod": (
         "U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface "
         "wave data,\nv2.1"),
     "hamrock1991": (
-        "Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255,"),
+        "Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255"),
     "ogilvie1964": (
         "Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of "
-        "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80."),
+        "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80"),
 }
 
 _PLACEHOLDER = re.compile(r"%\((\w+)\)s")
@@ -102,7 +103,9 @@ def filler(snippets: Mapping[str, str] | None = None, **more: str
     snippets : mapping of str to str, optional
         Key -> text, usually one dictionary per module.
     **more : str
-        Further snippets by keyword. :data:`REFERENCES` is always available.
+        Further snippets by keyword. :data:`REFERENCES` is always available: ``%(key)s``
+        is the citation and ``%(references_key)s`` a whole References section opening with
+        it (text after the placeholder continues its last line, e.g. the equation cited).
 
     Returns
     -------
@@ -130,7 +133,9 @@ def filler(snippets: Mapping[str, str] | None = None, **more: str
     >>> print(f.__doc__.splitlines()[-2].strip())
     Water depth h [m].
     """
-    table = {**REFERENCES, **(snippets or {}), **more}
+    table = {**REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
+                              for key, text in REFERENCES.items()},
+             **(snippets or {}), **more}
 
     def decorate(obj: T) -> T:
         obj.__doc__ = fill(obj.__doc__, table)

@@ -31,7 +31,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+_doc = filler()
 
 #: lubrication regimes returned by :func:`lubrication_regime`
 BOUNDARY, MIXED, FULL_FILM = 0, 1, 2
@@ -46,6 +49,7 @@ def _positive(name: str, value) -> np.ndarray:
     return arr
 
 
+@_doc
 def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = None,
                     poisson_b: float | None = None) -> float:
     """Return the effective elastic modulus E' of two bodies in contact (Hamrock's convention).
@@ -73,9 +77,7 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
     ValueError
         For a non-positive modulus or a Poisson's ratio outside (-1, 0.5).
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -91,6 +93,7 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
     return 2.0 / ((1 - poisson_a**2) / young_a + (1 - poisson_b**2) / young_b)
 
 
+@_doc
 def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     """Return the effective radii R_x, R_y of two bodies in contact.
 
@@ -121,9 +124,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
         If a curvature sum is not positive (the surfaces would be conformal or interpenetrating:
         no Hertz contact).
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -139,6 +140,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     return 1.0 / cx, 1.0 / cy
 
 
+@_doc
 def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle: float,
                       conformity: float, race: str) -> tuple[float, float]:
     """Return the effective radii R_x, R_y of a ball on the screw ('inner') or nut ('outer') groove.
@@ -176,9 +178,7 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
     ValueError
         For an unknown ``race``.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -306,6 +306,7 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
     return k, special.ellipk(m), special.ellipe(m)
 
 
+@_doc
 def hertz_contact(load, r_x: float, r_y: float, modulus: float,
                   method: str = "exact") -> HertzContact:
     """Compute the Hertz elliptical contact under a normal load.
@@ -337,9 +338,7 @@ def hertz_contact(load, r_x: float, r_y: float, modulus: float,
     ValueError
         For a negative or non-finite load, or a non-positive radius or modulus.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17-18.
+    %(references_hamrock1991)s, Ch. 17-18.
 
     Examples
     --------
@@ -412,6 +411,7 @@ def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: flo
             np.asarray(load, float) / (modulus * r_x**2))
 
 
+@_doc
 def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosity: float,
                    pressure_viscosity: float) -> tuple[np.ndarray, np.ndarray]:
     """Return the Hamrock-Dowson minimum and central film thickness of an elliptical EHL contact.
@@ -455,7 +455,7 @@ def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosit
     Hamrock, B. J. and Dowson, D. (1977). Isothermal elastohydrodynamic lubrication of point
     contacts, part III. J. Lubr. Technol. 99, 264-276.
 
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 22.
+    %(hamrock1991)s, Ch. 22.
 
     Examples
     --------
@@ -545,6 +545,7 @@ def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
     return np.asarray(min_film_thickness, float) / roughness
 
 
+@_doc
 def lubrication_regime(lam) -> np.ndarray:
     """Return the lubrication regime from the film parameter.
 
@@ -563,9 +564,7 @@ def lubrication_regime(lam) -> np.ndarray:
     numpy.ndarray
         Regime (int8): ``BOUNDARY``, ``MIXED`` or ``FULL_FILM``.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 1.
+    %(references_hamrock1991)s, Ch. 1.
 
     Examples
     --------

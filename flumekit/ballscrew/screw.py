@@ -45,9 +45,13 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.ballscrew import buoy, ehl
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
 
+_doc = filler()
 
+
+@_doc
 @dataclass(frozen=True)
 class BallScrew:
     """Geometry, materials and surfaces of the recirculating ball screw.
@@ -101,11 +105,7 @@ class BallScrew:
         outside (0, 90°), no loaded ball, a non-positive preload, a slip angle outside [0, 90°)
         or a negative rolling resistance.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 2 and §3.1.
+    %(references_senatore2022)s, Sect. 2 and §3.1.
 
     Examples
     --------
@@ -155,6 +155,7 @@ class BallScrew:
         return float(np.arctan(self.rolling_resistance))
 
 
+@_doc
 @dataclass(frozen=True)
 class Lubricant:
     """Lubricant and friction law.
@@ -186,11 +187,7 @@ class Lubricant:
         For a non-positive viscosity or pressure-viscosity coefficient, or unless
         0 ≤ ``friction_full_film`` ≤ ``friction_boundary``.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Fig. 8 and §3.1.
+    %(references_senatore2022)s, Fig. 8 and §3.1.
     """
 
     viscosity: float = 0.07
@@ -206,6 +203,7 @@ class Lubricant:
             raise ValueError("lubricant: need 0 <= full-film friction <= boundary friction")
 
 
+@_doc
 @dataclass(frozen=True)
 class PTOCoefficients:
     """Coefficients of Eq. (3) in physical form.
@@ -230,11 +228,7 @@ class PTOCoefficients:
     ValueError
         For a negative coefficient.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (3).
+    %(references_senatore2022)s, Eq. (3).
     """
 
     damping: float = 6.0e4
@@ -336,6 +330,7 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
 
 # --- Eqs. (4)-(6) --------------------------------------------------------------------------
 
+@_doc
 def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_nut,
                 friction_screw, rho, slip_angle: float, pitch_radius: float,
                 mode: str = "indirect") -> tuple[np.ndarray, np.ndarray]:
@@ -376,11 +371,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     ValueError
         For an unknown ``mode`` or a negative or non-finite friction coefficient or angle.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (5)-(6).
+    %(references_senatore2022)s, Eqs. (5)-(6).
 
     Examples
     --------
@@ -412,6 +403,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     return force, torque
 
 
+@_doc
 def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                         rho=0.0, slip_angle: float = 0.0, strict: bool = False) -> np.ndarray:
     """Return the indirect (back-driving) efficiency η = M ω / (F v), Eqs. (4)-(6).
@@ -449,11 +441,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     ValueError
         With ``strict``, where the screw self-locks.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+    %(references_senatore2022)s, Eqs. (4)-(6).
 
     Examples
     --------
@@ -474,6 +462,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     return np.where(locked, 0.0, m / (f * np.tan(lead_angle_)))
 
 
+@_doc
 def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                       rho=0.0, slip_angle: float = 0.0) -> np.ndarray:
     """Return the direct efficiency η_d = F v / (M ω) (screw drives the nut), Eqs. (4)-(6) reversed.
@@ -498,11 +487,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
     numpy.ndarray
         η_d [-], clipped to [0, 1].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+    %(references_senatore2022)s, Eqs. (4)-(6).
 
     Examples
     --------
@@ -519,6 +504,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
 
 # --- Eq. (3) ---------------------------------------------------------------------------------
 
+@_doc
 def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, viscous: float,
               inertia: float) -> np.ndarray:
     """Return the axial PTO force on the nut, Eq. (3) in Senatore & De Simone 2022.
@@ -550,11 +536,7 @@ def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, vi
     ValueError
         For a negative or non-finite friction force.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (3).
+    %(references_senatore2022)s, Eq. (3).
 
     Examples
     --------
@@ -593,6 +575,7 @@ def _contacts(screw: BallScrew) -> _Contacts:
                      ehl.composite_roughness(screw.roughness_ball, screw.roughness_nut))
 
 
+@_doc
 def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
               lubricant: Lubricant = Lubricant(), pto: PTOCoefficients = PTOCoefficients(),
               iterations: int = 8, tolerance: float = 1e-10) -> dict[str, np.ndarray]:
@@ -640,11 +623,7 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
         For velocity and acceleration not finite or of different shapes, or a motion in which
         the screw self-locks.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (3)-(7), Figs. 6 and 15.
+    %(references_senatore2022)s, Eqs. (3)-(7), Figs. 6 and 15.
 
     Examples
     --------
@@ -741,6 +720,7 @@ def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lu
     return force
 
 
+@_doc
 def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                pto: PTOCoefficients = PTOCoefficients()) -> xr.Dataset:
     """Compute the PTO force, EHL state and ball-screw efficiency at every time step.
@@ -772,11 +752,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     ValueError
         When ``kin`` was computed for another lead.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 3.1 and Fig. 15.
+    %(references_senatore2022)s, Sect. 3.1 and Fig. 15.
 
     Examples
     --------
@@ -811,6 +787,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     return conventions.annotate(ds)
 
 
+@_doc
 def sea_state_motion(wave_height: float, wave_period: float,
                      geometry: buoy.BuoyGeometry = buoy.BuoyGeometry(),
                      screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
@@ -847,11 +824,7 @@ def sea_state_motion(wave_height: float, wave_period: float,
         The :func:`flumekit.ballscrew.buoy.reference_motion` dataset with attributes
         ``wave_height`` [m] and ``lift`` [m].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (2) and Fig. 4.
+    %(references_senatore2022)s, Eq. (2) and Fig. 4.
 
     Examples
     --------

@@ -24,6 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+_doc = filler()
+
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
 #: row groups: the main condition and Fig. 7b's run, the UVP repeats, Table 1's trends
@@ -135,6 +139,7 @@ STATED = {
 }
 
 
+@_doc
 def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     """Return the virtual flume's value of every :data:`STATED` number the built runs allow.
 
@@ -153,11 +158,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     notes : dict of str to str
         Row label -> text.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, §3.3.
+    %(references_brito2020)s, §3.3.
     """
     v: dict[str, float] = {}
     notes: dict[str, str] = {}
@@ -213,6 +214,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     return v, notes
 
 
+@_doc
 def linear_pair(runs: dict) -> dict[str, str]:
     """Return the PTO damping the linear model needs for each of the paper's linear-model numbers.
 
@@ -231,14 +233,9 @@ def linear_pair(runs: dict) -> dict[str, str]:
     dict of str to str
         Row label -> text; empty without the main run's waves.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, §3.3 and Eq. A1.
+    %(references_brito2020)s, §3.3 and Eq. A1.
 
-    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(renzi_dias2012)s.
     """
     import tempfile
 
@@ -280,6 +277,7 @@ def linear_pair(runs: dict) -> dict[str, str]:
                 f"nu_pto {nu37(b):.0f} N m s")}
 
 
+@_doc
 def trends(runs: dict) -> dict[str, str]:
     """Return the linear/measured ratios of T_h, θ and C_f over Table 1, with their trends.
 
@@ -296,11 +294,7 @@ def trends(runs: dict) -> dict[str, str]:
     dict of str to str
         Row label -> ratios and ρ; empty with fewer than three periods built.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, Table 1 and Figs. 8-9.
+    %(references_brito2020)s, Table 1 and Figs. 8-9.
     """
     grid = {_condition(k): r for k, r in runs.items()
             if _condition(k) and k.endswith("_r0") and "cmp" in r}

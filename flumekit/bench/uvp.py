@@ -30,6 +30,10 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+_doc = filler()
+
 PERIOD, HEIGHT, DEPTH, KR, PHI = 3.5, 0.25, 0.825, 0.2, 0.6
 N_WAVES = 100
 ELEVATIONS = tuple(np.round(np.arange(0.20, 0.7201, 0.02), 3))
@@ -110,6 +114,7 @@ def _maxrss_mb(who) -> float:
     return resource.getrusage(who).ru_maxrss / 1024.0  # Linux: kilobytes
 
 
+@_doc
 def part_a(n_runs: int, workers: int) -> list[str]:
     """Process a paper-scale UVP set from raw files to the field, timed; return the report lines.
 
@@ -129,11 +134,7 @@ def part_a(n_runs: int, workers: int) -> list[str]:
     list of str
         Report lines.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3.
+    %(references_brito2020)s, §2.3.
     """
     from flumekit.synth.uvp import true_field
     from flumekit.uvp import velocity_field

@@ -17,6 +17,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit import signal as sig
 from flumekit.campaign import PTO, Encoder, Flap
+from flumekit.docstrings import filler
 from flumekit.errors import InputError
 from flumekit.flap.encoder import angle_from_wire, wire_from_counts
 from flumekit.flap.friction import LuGre, friction_series
@@ -32,6 +33,8 @@ from flumekit.flap.torque import (
     pressure_torque,
 )
 from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
+
+_doc = filler()
 
 #: how far the waves' analysed span may end past the flap's record, which it then ends with
 #: [s]: one step of a probe record sampled at 10 Hz or faster
@@ -174,6 +177,7 @@ def _bounded(ds: xr.Dataset, fit) -> xr.Dataset:
     return ds
 
 
+@_doc
 def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float,
                 incident_height: float, cutoff: float = DEFAULT_CUTOFF,
@@ -234,11 +238,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         A non-positive period or incident height, fewer than two quasi-steady cycles, or a
         pressure record the Eq. (13) fit cannot use.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
+    %(references_brito2020)s, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
     """
     m, win = steady_measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
                              encoder=encoder, period=period, cutoff=cutoff,
@@ -305,6 +305,7 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     return m, steady_window(m.series["theta"], m.time, period, tolerance)
 
 
+@_doc
 def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float, incident_height: float,
                 cutoff: float = DEFAULT_CUTOFF, zero_count: float = 0.0,
@@ -345,11 +346,7 @@ def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     ValueError
         A non-positive period or incident height, fewer than two quasi-steady cycles.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.2, Eq. (A2).
+    %(references_brito2020)s, §2.3, §2.5, §3.2, Eq. (A2).
 
     Examples
     --------

@@ -51,7 +51,10 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import PTO, Flap
+from flumekit.docstrings import filler
 from flumekit.signal import uniform_step
+
+_doc = filler()
 
 #: scalars and phase averages compared along ``source``
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
@@ -210,6 +213,7 @@ def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
     return at
 
 
+@_doc
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
                  stiffness: float, pto_damping: str = "energy_equivalent"
                  ) -> tuple[dict, xr.Dataset]:
@@ -244,13 +248,8 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
     ValueError
         An unknown ``pto_damping``.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A1).
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
+    %(references_brito2020)s, Eq. (A1).
+    %(renzi_dias2012)s, Eq. (2.40).
     """
     from flumekit.hydro.response import optimal_pto_damping, response
 
@@ -427,6 +426,7 @@ def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
     return float(np.sqrt(np.mean(diff**2)) / float(flap["theta_amplitude"]))
 
 
+@_doc
 def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
                 friction: bool = True, spin_up_periods: int = 20,
@@ -471,13 +471,8 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
     ValueError
         An unknown ``linear_pto_damping``.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A1).
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
+    %(references_brito2020)s, Eq. (A1).
+    %(renzi_dias2012)s, Eq. (2.40).
     """
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
     sources["analytical"], extra = linear_model(flap, waves, hydro, flap_params.inertia,
@@ -550,6 +545,7 @@ def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nd
     return f, np.diff(edges), np.where(np.isfinite(s), s, 0.0)
 
 
+@_doc
 def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
                       stiffness: float, pto_damping: float) -> dict:
     """Compute the linear flap response to an irregular sea as a sum over its spectrum.
@@ -591,10 +587,7 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     ValueError
         The spectrum holds no variance, or has fewer than two increasing frequencies.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.37).
+    %(references_renzi_dias2012)s, Eq. (2.37).
     """
     from flumekit.hydro.response import response
 
@@ -638,6 +631,7 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
+@_doc
 def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset,
                            inertia: float, stiffness: float,
                            pto_damping: str = "energy_equivalent") -> tuple[dict, xr.Dataset]:
@@ -676,10 +670,7 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
     ValueError
         An unknown ``pto_damping``, or an empty spectrum.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eqs. (2.37), (2.40).
+    %(references_renzi_dias2012)s, Eqs. (2.37), (2.40).
     """
     from scipy.optimize import minimize_scalar
 

@@ -38,7 +38,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+_doc = filler()
 
 
 class WireAngle(NamedTuple):
@@ -54,6 +57,7 @@ def _check_lengths(L5: float, L7: float) -> None:
             raise GeometryError(f"encoder length {name} must be finite and > 0, got {value} m")
 
 
+@_doc
 def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     """Compute the wire length L(θ) between the encoder and the flap frame.
 
@@ -78,11 +82,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     flumekit.errors.GeometryError
         L5 or L7 not finite and positive.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (1).
+    %(references_brito2020)s, Eq. (1).
 
     Examples
     --------
@@ -96,6 +96,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     return np.sqrt(L7**2 + (2 * L5 * np.sin(th / 2)) ** 2 + 2 * L7 * L5 * np.sin(th))
 
 
+@_doc
 def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
     """Compute the flap angle θ from the wire shortening ΔL7, Eq. (1) in closed form.
 
@@ -123,11 +124,7 @@ def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
     ValueError
         Non-finite samples of the wire shortening.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (1).
+    %(references_brito2020)s, Eq. (1).
 
     Examples
     --------

@@ -34,7 +34,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+_doc = filler()
 
 #: smallest |lever arm| [m] accepted: below this the rod line passes (almost) through the hinge
 _MIN_LEVER = 1e-6
@@ -132,6 +135,7 @@ class RodKinematics:
     lever_arm: np.ndarray  # signed m: torque towards the beach per newton of extending force [m]
 
 
+@_doc
 def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
     """Rod kinematics for a flap motion (see the module notes for the conventions).
 
@@ -159,11 +163,7 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
         coincide or the rod line passes through the hinge (no torque can be transmitted, and
         the torque inversion would divide by zero).
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
+    %(references_brito2020)s, §2.2, Eq. (12).
 
     Examples
     --------

@@ -16,9 +16,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import filler
 from flumekit.waves.theory import G, energy_flux
 
+_doc = filler()
 
+
+@_doc
 def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     """Compute the flow rate out of the chamber, Q = −A ℓ̇.
 
@@ -39,11 +43,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     ValueError
         A non-positive bore area.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------
@@ -56,6 +56,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     return -bore_area * np.asarray(rod_velocity, dtype=float)
 
 
+@_doc
 def pto_power(chamber_pressure, flow) -> np.ndarray:
     """Compute the instantaneous PTO power W_out = P_int Q (§3.2).
 
@@ -71,11 +72,7 @@ def pto_power(chamber_pressure, flow) -> np.ndarray:
     numpy.ndarray
         W_out [W].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------
@@ -130,6 +127,7 @@ def window_mean(values, time, start: float, end: float) -> float:
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)) / (end - start))
 
 
+@_doc
 def incident_power(height, period, depth, width: float, rho: float = 1000.0,
                    g: float = G) -> np.ndarray:
     """Compute the incident power W_I, the period-averaged energy flux times the flap width.
@@ -161,11 +159,7 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     ValueError
         A non-positive flap width.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A2).
+    %(references_brito2020)s, Eq. (A2).
 
     Examples
     --------
@@ -179,6 +173,7 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     return energy_flux(height, period, depth, rho=rho, g=g) * width
 
 
+@_doc
 def capture_factor(mean_power, incident_power_value) -> np.ndarray:
     """Compute the power capture factor C_f = mean W_out / W_I (§3.2).
 
@@ -199,11 +194,7 @@ def capture_factor(mean_power, incident_power_value) -> np.ndarray:
     ValueError
         A non-positive incident power.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------

@@ -36,11 +36,16 @@ from typing import NamedTuple
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+_doc = filler()
+
 #: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
 VAPOUR_PRESSURE = 2339.0
 ATMOSPHERIC_PRESSURE = 101325.0
 
 
+@_doc
 def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                       vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
     """Compute the Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm (Eq. 14).
@@ -64,11 +69,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
     ValueError
         A non-positive atmospheric pressure.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (14).
+    %(references_brito2020)s, Eq. (14).
 
     Examples
     --------
@@ -82,6 +83,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
             - vapour_pressure) / atmospheric_pressure
 
 
+@_doc
 def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: float,
                            fluid_inertia: float, *,
                            atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
@@ -111,11 +113,7 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
     numpy.ndarray
         P_int [Pa], K_p θ̇ abs(θ̇) + I_p θ̈ clamped below at P_v − P_atm.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+    %(references_brito2020)s, Eqs. (13)-(14).
 
     Examples
     --------
@@ -143,6 +141,7 @@ class PressureFit(NamedTuple):
     bounded: bool = False  # a coefficient is held at its bound 0 (the free fit was unphysical)
 
 
+@_doc
 def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                        vapour_pressure: float = VAPOUR_PRESSURE, compression_sign: int = 1,
@@ -186,11 +185,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
         Non-finite input, mismatched shapes, too few non-cavitating samples, or a constant
         pressure.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+    %(references_brito2020)s, Eqs. (13)-(14).
     Lawson, C. L. & Hanson, R. J. (1974). Solving Least Squares Problems. Prentice-Hall,
     Chapter 23 (non-negative least squares).
 
@@ -247,6 +242,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        bool(np.any(coef == 0)))
 
 
+@_doc
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     """Compute the pressure force pushing the rod out, F_p = A P_int.
 
@@ -267,11 +263,7 @@ def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     ValueError
         A non-positive bore area.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.2.
+    %(references_brito2020)s, §2.2.
 
     Examples
     --------

@@ -22,9 +22,13 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit import signal as sig
+from flumekit.docstrings import filler
 from flumekit.flap.power import capture_factor, incident_power, window_mean
 
+_doc = filler()
 
+
+@_doc
 def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.SteadyWindow:
     """Find the quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
 
@@ -54,11 +58,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     ValueError
         Fewer than two quasi-steady cycles.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5.
+    %(references_brito2020)s, §2.5.
 
     Examples
     --------
@@ -76,6 +76,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     return win
 
 
+@_doc
 def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_height: float,
             depth: float, flap_width: float, n_phase: int = 100,
             ci95: tuple[str, ...] = (), theta_unfiltered=None) -> xr.Dataset:
@@ -129,11 +130,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
         A non-positive or non-finite incident height: without an incident wave there is no
         capture factor, and a zero height means the separation failed.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5-§3.3, Eq. (A2).
+    %(references_brito2020)s, §2.5-§3.3, Eq. (A2).
     """
     scalars = summary_scalars(time, series, window, period=period,
                               incident_height=incident_height, depth=depth,
@@ -148,6 +145,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     return xr.Dataset(data, coords={"phase": pa["theta"].phase, "wave_period": float(period)})
 
 
+@_doc
 def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
                     incident_height: float, depth: float, flap_width: float,
                     n_phase: int = 100, theta_unfiltered=None) -> dict:
@@ -174,11 +172,7 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
     ValueError
         A non-positive or non-finite incident height.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2, Eq. (A2).
+    %(references_brito2020)s, §3.2, Eq. (A2).
     """
     if not (np.isfinite(incident_height) and incident_height > 0):
         raise ValueError(f"incident height must be > 0, got {incident_height}")
@@ -198,6 +192,7 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
         "measured_period": window.period, "steady_cycles": window.n_cycles}
 
 
+@_doc
 def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, depth: float,
                   flap_width: float, tolerance: float = 0.02, n_phase: int = 100) -> xr.Dataset:
     """Summarise a simulated run as :func:`summary`, in the experimental analysis's names.
@@ -230,11 +225,7 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
     ValueError
         Fewer than two quasi-steady cycles, or a non-positive incident height.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5-§3.3.
+    %(references_brito2020)s, §2.5-§3.3.
     """
     t = sim["time"].values
     win = steady_window(sim["theta"].values, t, period, tolerance)

@@ -33,7 +33,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import filler
 
+_doc = filler()
+
+
+@_doc
 def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     """Compute the net gravity-buoyancy resisting torque T_g = C sin θ.
 
@@ -49,11 +54,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     numpy.ndarray
         T_g [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11) and Appendix A.
+    %(references_brito2020)s, Eq. (11) and Appendix A.
 
     Examples
     --------
@@ -65,6 +66,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
 
+@_doc
 def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     """Compute the inertia torque I θ̈ of the flap.
 
@@ -85,11 +87,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     ValueError
         A non-positive moment of inertia.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11).
+    %(references_brito2020)s, Eq. (11).
 
     Examples
     --------
@@ -102,6 +100,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     return inertia * np.asarray(theta_ddot, dtype=float)
 
 
+@_doc
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
 
@@ -119,11 +118,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     numpy.ndarray
         T_p [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (12).
+    %(references_brito2020)s, Eq. (12).
 
     Examples
     --------
@@ -134,6 +129,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
 
+@_doc
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
 
@@ -151,11 +147,7 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     numpy.ndarray
         T_f [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (12).
+    %(references_brito2020)s, Eq. (12).
 
     Examples
     --------
@@ -166,6 +158,7 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
 
+@_doc
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
                         buoyancy_stiffness: float) -> np.ndarray:
     """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).
@@ -193,11 +186,7 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
     ValueError
         A non-positive moment of inertia.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11).
+    %(references_brito2020)s, Eq. (11).
 
     Examples
     --------

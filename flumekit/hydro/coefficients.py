@@ -43,7 +43,10 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.errors import FlumekitError
+
+_doc = filler()
 
 DIM = "angular_frequency"
 
@@ -130,6 +133,7 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
     return conventions.annotate(ds)
 
 
+@_doc
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
@@ -153,10 +157,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     numpy.ndarray of complex
         K̂(ω) [N m s], shape of ``omega``: B(ω) = Re K̂ and A(ω) − A∞ = −Im K̂ / ω.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
 
     Examples
     --------
@@ -171,6 +172,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     return np.sum(a * z / (z * z + be * be), axis=-1)
 
 
+@_doc
 def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
                 added_inertia_infinite: float, excitation_torque,
                 hydrostatic_stiffness: float) -> xr.Dataset:
@@ -206,10 +208,7 @@ def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
     HydroError
         As :func:`hydro_dataset`.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
 
     Examples
     --------
@@ -330,6 +329,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
                      f"expected one of {list(names)} (complex, or _real/_imag parts)")
 
 
+@_doc
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
     """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
@@ -355,10 +355,7 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
         No ``period`` or ``angular_frequency`` dimension, no excitation torque, or values that
         :func:`hydro_dataset` rejects.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(references_renzi_dias2012)s.
     """
     dim = "period" if "period" in coefficients.dims else DIM
     if dim not in coefficients.dims:
@@ -599,6 +596,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     return out
 
 
+@_doc
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
     """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
@@ -634,10 +632,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
         B), ``full_spread`` = (max − min)/abs(median) [-], ``rms_spread`` = std/abs(median)
         [-].
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     from flumekit.hydro.radiation import impulse_response, sine_transform
 
@@ -657,6 +652,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     return conventions.annotate(out)
 
 
+@_doc
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:
@@ -689,10 +685,7 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         The damping is negative somewhere, the spread exceeds ``max_spread``, or
         ``at_frequency`` lies outside the coefficients' range.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     check_passive(hydro)
     est = infinite_frequency_inertia(hydro, **irf_options)

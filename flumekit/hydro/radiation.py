@@ -51,6 +51,9 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
+
+_doc = filler()
 
 DIM = "angular_frequency"
 
@@ -206,6 +209,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
     return np.concatenate([ww, wt]), np.concatenate([bb, bt]), info
 
 
+@_doc
 def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
                      tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
@@ -238,8 +242,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
     ----------
     Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
     101-109.
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(ogilvie1964)s.
 
     Examples
     --------
@@ -286,6 +289,7 @@ def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     return filon(irf["lag"].values, irf.values, omega, "cos")
 
 
+@_doc
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 
@@ -301,10 +305,7 @@ def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     numpy.ndarray
         S(ω) [N m s], shape of ``omega``.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     return filon(irf["lag"].values, irf.values, omega, "sin")
 

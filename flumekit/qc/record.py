@@ -15,6 +15,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import filler
 from flumekit.qc import qartod
 from flumekit.qc.despike import despike_flags
 from flumekit.qc.fill import fill_gaps, gap_spans
@@ -30,6 +31,8 @@ from flumekit.qc.flags import (
     choose,
     flag_attrs,
 )
+
+_doc = filler()
 
 #: profiles on each side of a boundary echo also left out of the despiking
 BOUNDARY_PROFILES = 1
@@ -117,6 +120,7 @@ class Thresholds:
                       if f.name in params})
 
 
+@_doc
 def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                  gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                  floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:
@@ -150,10 +154,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         Test name (``gap``, ``gross_range``, ``spike``, ``rate_of_change``, ``flat_line``,
         ``dropout``, ``noise``) -> its flags, of x's shape.
 
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1.
+    %(references_qartod)s.
 
     Examples
     --------

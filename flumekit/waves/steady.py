@@ -24,8 +24,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flumekit.docstrings import filler
 from flumekit.waves.separation import lstsq_normal
 from flumekit.waves.theory import G, wavenumber
+
+_doc = filler()
 
 __all__ = ["BLOCK_PERIODS", "ReflectionSettling", "reflection_settling"]
 
@@ -61,6 +64,7 @@ class ReflectionSettling:
     trend: float
 
 
+@_doc
 def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period: float,
                         depth: float, start: float, end: float, *, tolerance: float = 0.002,
                         noise_factor: float = 4.0, g: float = G) -> ReflectionSettling:
@@ -98,11 +102,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         The settled window (start, end), the tolerance applied, the drift outside it and
         R_settled.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5.
+    %(references_brito2020)s, §2.5.
     Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected
     spectra using a least squares method. Proc. 17th ICCE, 154-172.
 
