@@ -17,7 +17,7 @@ import re
 from collections.abc import Callable, Mapping
 from typing import TypeVar
 
-__all__ = ["REFERENCES", "fill", "filler"]
+__all__ = ["REFERENCES", "doc", "fill", "filler"]
 
 T = TypeVar("T")
 
@@ -46,18 +46,24 @@ REFERENCES: dict[str, str] = {
 }
 
 _PLACEHOLDER = re.compile(r"%\((\w+)\)s")
+#: what every docstring can name: each citation as ``key`` and as a References section
+#: opening with it, ``references_key``
+_CITATIONS = {**REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
+                               for key, text in REFERENCES.items()}}
 
 
-def fill(doc: str | None, snippets: Mapping[str, str]) -> str | None:
+def fill(doc: str | None, snippets: Mapping[str, str] | None = None) -> str | None:
     r"""Replace the ``%(key)s`` placeholders of a docstring by their snippets.
 
     Parameters
     ----------
     doc : str or None
         The docstring; None (as under ``python -OO``) is returned as it is.
-    snippets : mapping of str to str
-        Key -> text. A snippet's second and later lines are indented to the column at which
-        its placeholder starts.
+    snippets : mapping of str to str, optional
+        Key -> text; default the citations of :data:`REFERENCES` (see :func:`filler`). A
+        snippet's second and later lines are indented to the column at which its placeholder
+        starts. Assigning ``__doc__ = fill(__doc__)`` after a module's imports fills the
+        module's own docstring.
 
     Returns
     -------
@@ -80,6 +86,7 @@ def fill(doc: str | None, snippets: Mapping[str, str]) -> str | None:
     """
     if doc is None:
         return None
+    snippets = _CITATIONS if snippets is None else snippets
 
     def one(match: re.Match) -> str:
         key = match.group(1)
@@ -133,12 +140,14 @@ def filler(snippets: Mapping[str, str] | None = None, **more: str
     >>> print(f.__doc__.splitlines()[-2].strip())
     Water depth h [m].
     """
-    table = {**REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
-                              for key, text in REFERENCES.items()},
-             **(snippets or {}), **more}
+    table = {**_CITATIONS, **(snippets or {}), **more}
 
     def decorate(obj: T) -> T:
         obj.__doc__ = fill(obj.__doc__, table)
         return obj
 
     return decorate
+
+
+#: the decorator of a module that needs no snippets of its own: the citations only
+doc = filler()

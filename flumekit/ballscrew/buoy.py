@@ -27,16 +27,14 @@ import xarray as xr
 from scipy import integrate, optimize
 
 from flumekit import conventions
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.errors import GeometryError
-
-_doc = filler()
 
 WATER_DENSITY = 1025.0  # [kg m-3] sea water
 GRAVITY = 9.81  # [m s-2]
 
 
-@_doc
+@doc
 @dataclass(frozen=True)
 class BuoyGeometry:
     """Geometry and mass of the buoy, arm and PTO linkage (hinge at the origin).
@@ -126,7 +124,7 @@ class BuoyGeometry:
 
 # --- hydrostatics (Fig. 3) ---------------------------------------------------------------------
 
-@_doc
+@doc
 def displaced_volume(draft, radius: float) -> np.ndarray:
     """Return the volume of water displaced by a hemispherical float (Fig. 3).
 
@@ -300,7 +298,7 @@ def screw_speed(nut_velocity, lead: float) -> np.ndarray:
 
 # --- scenario: kinematics --------------------------------------------------------------------
 
-@_doc
+@doc
 def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int = 1,
                      samples_per_period: int = 380) -> xr.Dataset:
     """Return the sinusoidal heave z(t) = A sin(2π t/T) of the buoy CoG and its exact derivatives.
@@ -360,7 +358,7 @@ def _derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.gradient(x, t, edge_order=2)
 
 
-@_doc
+@doc
 def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
                lead: float = 0.02, water_elevation: xr.DataArray | None = None) -> xr.Dataset:
     """Compute the linkage kinematics and hydrostatics of the buoy for a kinematic input z(t).
@@ -479,7 +477,7 @@ def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
 
 # --- dynamics --------------------------------------------------------------------------------
 
-@_doc
+@doc
 def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.Dataset:
     """Compute the wave (hydrodynamic) force that realises the kinematic input.
 
@@ -528,7 +526,7 @@ def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.D
                       coords={"time": kin["time"].values})
 
 
-@_doc
+@doc
 def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: float,
                      inertia: float = 0.0, friction_force: float = 0.0,
                      friction_velocity: float = 1e-3, initial_heave: float = 0.0,
@@ -612,7 +610,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
 
 # --- energy balance algorithm (Fig. 4) ---------------------------------------------------------
 
-@_doc
+@doc
 def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
                         gravity: float = GRAVITY) -> np.ndarray:
     """Return the energy per unit horizontal area of a linear wave, E = ρ g H² / 16.
@@ -696,7 +694,7 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     return work, float(kin["waterplane_area"].mean())
 
 
-@_doc
+@doc
 def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: BuoyGeometry,
                              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
                              lead: float = 0.02, samples: int = 256) -> float:

@@ -31,10 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.errors import GeometryError
-
-_doc = filler()
 
 #: lubrication regimes returned by :func:`lubrication_regime`
 BOUNDARY, MIXED, FULL_FILM = 0, 1, 2
@@ -49,7 +47,7 @@ def _positive(name: str, value) -> np.ndarray:
     return arr
 
 
-@_doc
+@doc
 def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = None,
                     poisson_b: float | None = None) -> float:
     """Return the effective elastic modulus E' of two bodies in contact (Hamrock's convention).
@@ -93,7 +91,7 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
     return 2.0 / ((1 - poisson_a**2) / young_a + (1 - poisson_b**2) / young_b)
 
 
-@_doc
+@doc
 def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     """Return the effective radii R_x, R_y of two bodies in contact.
 
@@ -140,7 +138,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     return 1.0 / cx, 1.0 / cy
 
 
-@_doc
+@doc
 def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle: float,
                       conformity: float, race: str) -> tuple[float, float]:
     """Return the effective radii R_x, R_y of a ball on the screw ('inner') or nut ('outer') groove.
@@ -306,7 +304,7 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
     return k, special.ellipk(m), special.ellipe(m)
 
 
-@_doc
+@doc
 def hertz_contact(load, r_x: float, r_y: float, modulus: float,
                   method: str = "exact") -> HertzContact:
     """Compute the Hertz elliptical contact under a normal load.
@@ -411,7 +409,7 @@ def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: flo
             np.asarray(load, float) / (modulus * r_x**2))
 
 
-@_doc
+@doc
 def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosity: float,
                    pressure_viscosity: float) -> tuple[np.ndarray, np.ndarray]:
     """Return the Hamrock-Dowson minimum and central film thickness of an elliptical EHL contact.
@@ -545,7 +543,7 @@ def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
     return np.asarray(min_film_thickness, float) / roughness
 
 
-@_doc
+@doc
 def lubrication_regime(lam) -> np.ndarray:
     """Return the lubrication regime from the film parameter.
 

@@ -24,9 +24,7 @@ import xarray as xr
 
 from flumekit.ballscrew import buoy, ehl, screw
 from flumekit.ballscrew.thermal import fem, lumped
-from flumekit.docstrings import filler
-
-_doc = filler()
+from flumekit.docstrings import doc
 
 #: The regions of the FEM section that belong to the EMRG (electro-mechanical reciprocating
 #: generator): its stator, the air gap and its rotor on the screw shaft.
@@ -78,7 +76,7 @@ class StatedResult:
         return bool(self.low <= self.value <= self.high)
 
 
-@_doc
+@doc
 def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
                        samples_per_period: int = 380) -> tuple[xr.Dataset, xr.Dataset,
                                                                xr.Dataset]:
@@ -116,7 +114,7 @@ def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
     return eff, th, fem.thermal_fem(th)
 
 
-@_doc
+@doc
 def steady_fraction_lumped(th: xr.Dataset) -> np.ndarray:
     """Return each lump's temperature rise over the last cycle as a fraction of its steady rise.
 
@@ -166,7 +164,7 @@ def hottest_region(fem_ds: xr.Dataset) -> str:
     return str(fem_ds["region"].values[region[hottest_cell]])
 
 
-@_doc
+@doc
 def stated_results(eff: xr.Dataset, th: xr.Dataset, fem_ds: xr.Dataset) -> list[StatedResult]:
     """Compare each statement of the paper about its scenario with flumekit's value.
 

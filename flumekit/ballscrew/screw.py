@@ -45,13 +45,11 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.ballscrew import buoy, ehl
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.errors import GeometryError
 
-_doc = filler()
 
-
-@_doc
+@doc
 @dataclass(frozen=True)
 class BallScrew:
     """Geometry, materials and surfaces of the recirculating ball screw.
@@ -155,7 +153,7 @@ class BallScrew:
         return float(np.arctan(self.rolling_resistance))
 
 
-@_doc
+@doc
 @dataclass(frozen=True)
 class Lubricant:
     """Lubricant and friction law.
@@ -203,7 +201,7 @@ class Lubricant:
             raise ValueError("lubricant: need 0 <= full-film friction <= boundary friction")
 
 
-@_doc
+@doc
 @dataclass(frozen=True)
 class PTOCoefficients:
     """Coefficients of Eq. (3) in physical form.
@@ -330,7 +328,7 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
 
 # --- Eqs. (4)-(6) --------------------------------------------------------------------------
 
-@_doc
+@doc
 def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_nut,
                 friction_screw, rho, slip_angle: float, pitch_radius: float,
                 mode: str = "indirect") -> tuple[np.ndarray, np.ndarray]:
@@ -403,7 +401,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     return force, torque
 
 
-@_doc
+@doc
 def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                         rho=0.0, slip_angle: float = 0.0, strict: bool = False) -> np.ndarray:
     """Return the indirect (back-driving) efficiency η = M ω / (F v), Eqs. (4)-(6).
@@ -462,7 +460,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     return np.where(locked, 0.0, m / (f * np.tan(lead_angle_)))
 
 
-@_doc
+@doc
 def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                       rho=0.0, slip_angle: float = 0.0) -> np.ndarray:
     """Return the direct efficiency η_d = F v / (M ω) (screw drives the nut), Eqs. (4)-(6) reversed.
@@ -504,7 +502,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
 
 # --- Eq. (3) ---------------------------------------------------------------------------------
 
-@_doc
+@doc
 def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, viscous: float,
               inertia: float) -> np.ndarray:
     """Return the axial PTO force on the nut, Eq. (3) in Senatore & De Simone 2022.
@@ -575,7 +573,7 @@ def _contacts(screw: BallScrew) -> _Contacts:
                      ehl.composite_roughness(screw.roughness_ball, screw.roughness_nut))
 
 
-@_doc
+@doc
 def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
               lubricant: Lubricant = Lubricant(), pto: PTOCoefficients = PTOCoefficients(),
               iterations: int = 8, tolerance: float = 1e-10) -> dict[str, np.ndarray]:
@@ -720,7 +718,7 @@ def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lu
     return force
 
 
-@_doc
+@doc
 def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                pto: PTOCoefficients = PTOCoefficients()) -> xr.Dataset:
     """Compute the PTO force, EHL state and ball-screw efficiency at every time step.
@@ -787,7 +785,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     return conventions.annotate(ds)
 
 
-@_doc
+@doc
 def sea_state_motion(wave_height: float, wave_period: float,
                      geometry: buoy.BuoyGeometry = buoy.BuoyGeometry(),
                      screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),

@@ -24,9 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flumekit.docstrings import filler
-
-_doc = filler()
+from flumekit.docstrings import doc
 
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
@@ -139,7 +137,7 @@ STATED = {
 }
 
 
-@_doc
+@doc
 def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     """Return the virtual flume's value of every :data:`STATED` number the built runs allow.
 
@@ -214,7 +212,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     return v, notes
 
 
-@_doc
+@doc
 def linear_pair(runs: dict) -> dict[str, str]:
     """Return the PTO damping the linear model needs for each of the paper's linear-model numbers.
 
@@ -277,7 +275,7 @@ def linear_pair(runs: dict) -> dict[str, str]:
                 f"nu_pto {nu37(b):.0f} N m s")}
 
 
-@_doc
+@doc
 def trends(runs: dict) -> dict[str, str]:
     """Return the linear/measured ratios of T_h, θ and C_f over Table 1, with their trends.
 

@@ -12,10 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.bench import best_time
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.flap.renzi_dias import model as rd
-
-_doc = filler()
 
 H, W, C, B = 0.825, 1.31, 0.10, 1.5
 PERIODS = np.arange(2.0, 4.001, 0.25)
@@ -45,7 +43,7 @@ def _knob_table(title, channel, ref_opts, knob, values, repeat) -> list[str]:
     return rows
 
 
-@_doc
+@doc
 def run(quick: bool = False) -> str:
     """Run the benchmark and return its tables: default accuracy and speed, then per order.
 

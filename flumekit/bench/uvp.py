@@ -30,9 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from flumekit.docstrings import filler
-
-_doc = filler()
+from flumekit.docstrings import doc
 
 PERIOD, HEIGHT, DEPTH, KR, PHI = 3.5, 0.25, 0.825, 0.2, 0.6
 N_WAVES = 100
@@ -114,7 +112,7 @@ def _maxrss_mb(who) -> float:
     return resource.getrusage(who).ru_maxrss / 1024.0  # Linux: kilobytes
 
 
-@_doc
+@doc
 def part_a(n_runs: int, workers: int) -> list[str]:
     """Process a paper-scale UVP set from raw files to the field, timed; return the report lines.
 

@@ -17,7 +17,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit import signal as sig
 from flumekit.campaign import PTO, Encoder, Flap
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.flap.encoder import angle_from_wire, wire_from_counts
 from flumekit.flap.friction import LuGre, friction_series
@@ -33,8 +33,6 @@ from flumekit.flap.torque import (
     pressure_torque,
 )
 from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
-
-_doc = filler()
 
 #: how far the waves' analysed span may end past the flap's record, which it then ends with
 #: [s]: one step of a probe record sampled at 10 Hz or faster
@@ -177,7 +175,7 @@ def _bounded(ds: xr.Dataset, fit) -> xr.Dataset:
     return ds
 
 
-@_doc
+@doc
 def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float,
                 incident_height: float, cutoff: float = DEFAULT_CUTOFF,
@@ -305,7 +303,7 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     return m, steady_window(m.series["theta"], m.time, period, tolerance)
 
 
-@_doc
+@doc
 def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float, incident_height: float,
                 cutoff: float = DEFAULT_CUTOFF, zero_count: float = 0.0,

@@ -33,13 +33,8 @@ the spectral sum of Eq. (A1) over the incident spectrum (:func:`spectral_respons
 simulator is driven by the separated incident wave over the analysed span, and the three give
 the mean power, capture width and capture width ratio with the same J.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Appendix A.
-Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-channel. J. Fluid Mech. 701, 482-510 (RD12).
+%(references_brito2020)s, Appendix A.
+%(renzi_dias2012)s (RD12).
 """
 
 from __future__ import annotations
@@ -51,10 +46,10 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import PTO, Flap
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 from flumekit.signal import uniform_step
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 #: scalars and phase averages compared along ``source``
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
@@ -213,7 +208,7 @@ def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
     return at
 
 
-@_doc
+@doc
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
                  stiffness: float, pto_damping: str = "energy_equivalent"
                  ) -> tuple[dict, xr.Dataset]:
@@ -426,7 +421,7 @@ def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
     return float(np.sqrt(np.mean(diff**2)) / float(flap["theta_amplitude"]))
 
 
-@_doc
+@doc
 def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
                 friction: bool = True, spin_up_periods: int = 20,
@@ -545,7 +540,7 @@ def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nd
     return f, np.diff(edges), np.where(np.isfinite(s), s, 0.0)
 
 
-@_doc
+@doc
 def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
                       stiffness: float, pto_damping: float) -> dict:
     """Compute the linear flap response to an irregular sea as a sum over its spectrum.
@@ -631,7 +626,7 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
-@_doc
+@doc
 def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset,
                            inertia: float, stiffness: float,
                            pto_damping: str = "energy_equivalent") -> tuple[dict, xr.Dataset]:

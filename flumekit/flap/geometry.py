@@ -21,11 +21,7 @@ hinge-to-anchor line, which differs from the flap plane by the constant angle at
 The signed lever arm m is also the rod's kinematic ratio (virtual work): ℓ̇ = m θ̇.
 For the default campaign m ≈ −0.46 m: leaning to the beach shortens the rod (compression).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
+%(references_brito2020)s, §2.2, Eq. (12).
 """
 
 from __future__ import annotations
@@ -34,10 +30,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 from flumekit.errors import GeometryError
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 #: smallest |lever arm| [m] accepted: below this the rod line passes (almost) through the hinge
 _MIN_LEVER = 1e-6
@@ -135,7 +131,7 @@ class RodKinematics:
     lever_arm: np.ndarray  # signed m: torque towards the beach per newton of extending force [m]
 
 
-@_doc
+@doc
 def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
     """Rod kinematics for a flap motion (see the module notes for the conventions).
 

@@ -11,11 +11,7 @@ signatures of :mod:`flumekit.hydro.stepping` and take their parameters as one fl
 This module imports numba; :mod:`flumekit.flap` imports it only inside the functions that run
 a loop.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (12)-(14) and Appendix B.
+%(references_brito2020)s, Eqs. (12)-(14) and Appendix B.
 """
 
 from __future__ import annotations
@@ -25,7 +21,10 @@ import math
 import numpy as np
 from numba import njit
 
+from flumekit.docstrings import fill
 from flumekit.hydro.stepping import ACCEL, ADVANCE, PREDICT
+
+__doc__ = fill(__doc__)
 
 __all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_predict",
            "friction_loop", "lugre_advance", "lugre_force", "lugre_step"]

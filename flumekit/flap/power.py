@@ -5,24 +5,20 @@ chamber (positive while the rod is pushed in). On the compression stroke P_int >
 on the suction stroke both are negative: W_out ≥ 0 whenever the chamber pressure opposes the
 motion, as it does for a dissipative PTO.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
+%(references_brito2020)s.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 from flumekit.waves.theory import G, energy_flux
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 
-@_doc
+@doc
 def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     """Compute the flow rate out of the chamber, Q = −A ℓ̇.
 
@@ -56,7 +52,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     return -bore_area * np.asarray(rod_velocity, dtype=float)
 
 
-@_doc
+@doc
 def pto_power(chamber_pressure, flow) -> np.ndarray:
     """Compute the instantaneous PTO power W_out = P_int Q (§3.2).
 
@@ -127,7 +123,7 @@ def window_mean(values, time, start: float, end: float) -> float:
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)) / (end - start))
 
 
-@_doc
+@doc
 def incident_power(height, period, depth, width: float, rho: float = 1000.0,
                    g: float = G) -> np.ndarray:
     """Compute the incident power W_I, the period-averaged energy flux times the flap width.
@@ -173,7 +169,7 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     return energy_flux(height, period, depth, rho=rho, g=g) * width
 
 
-@_doc
+@doc
 def capture_factor(mean_power, incident_power_value) -> np.ndarray:
     """Compute the power capture factor C_f = mean W_out / W_I (§3.2).
 

@@ -23,11 +23,7 @@ fluid inertia to an absolute vapour pressure: while the chamber cavitates its va
 decouples the piston from the fluid column, so the chamber pressure is the vapour pressure
 (P_v − P_atm in gauge terms) and the inertia term does not act on the piston.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+%(references_brito2020)s, Eqs. (13)-(14).
 """
 
 from __future__ import annotations
@@ -36,16 +32,16 @@ from typing import NamedTuple
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 #: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
 VAPOUR_PRESSURE = 2339.0
 ATMOSPHERIC_PRESSURE = 101325.0
 
 
-@_doc
+@doc
 def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                       vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
     """Compute the Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm (Eq. 14).
@@ -83,7 +79,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
             - vapour_pressure) / atmospheric_pressure
 
 
-@_doc
+@doc
 def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: float,
                            fluid_inertia: float, *,
                            atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
@@ -141,7 +137,7 @@ class PressureFit(NamedTuple):
     bounded: bool = False  # a coefficient is held at its bound 0 (the free fit was unphysical)
 
 
-@_doc
+@doc
 def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                        vapour_pressure: float = VAPOUR_PRESSURE, compression_sign: int = 1,
@@ -242,7 +238,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        bool(np.any(coef == 0)))
 
 
-@_doc
+@doc
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     """Compute the pressure force pushing the rod out, F_p = A P_int.
 

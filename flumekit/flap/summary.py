@@ -8,11 +8,7 @@ difference of the mean per-cycle maximum and minimum (Fig. 8), the mean PTO powe
 window, W_I of Eq. (A2) from the incident height, C_f = W̄_out / W_I, and phase averages over
 the window with cycles starting at a zero up-crossing of θ (Fig. 10).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
+%(references_brito2020)s.
 """
 
 from __future__ import annotations
@@ -22,13 +18,13 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit import signal as sig
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 from flumekit.flap.power import capture_factor, incident_power, window_mean
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 
-@_doc
+@doc
 def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.SteadyWindow:
     """Find the quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
 
@@ -76,7 +72,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     return win
 
 
-@_doc
+@doc
 def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_height: float,
             depth: float, flap_width: float, n_phase: int = 100,
             ci95: tuple[str, ...] = (), theta_unfiltered=None) -> xr.Dataset:
@@ -145,7 +141,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     return xr.Dataset(data, coords={"phase": pa["theta"].phase, "wave_period": float(period)})
 
 
-@_doc
+@doc
 def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
                     incident_height: float, depth: float, flap_width: float,
                     n_phase: int = 100, theta_unfiltered=None) -> dict:
@@ -192,7 +188,7 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
         "measured_period": window.period, "steady_cycles": window.n_cycles}
 
 
-@_doc
+@doc
 def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, depth: float,
                   flap_width: float, tolerance: float = 0.02, n_phase: int = 100) -> xr.Dataset:
     """Summarise a simulated run as :func:`summary`, in the experimental analysis's names.

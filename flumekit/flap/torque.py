@@ -22,23 +22,19 @@ extension rate, so the net extending force is F_p − F_f and its torque on the 
 m (F_p − F_f) with m the signed lever arm of :mod:`flumekit.flap.geometry` (|m| = r sin β,
 the lever arm that Eq. 12 omits). As resisting torques: T_p = −m F_p, T_f = +m F_f.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (11)-(12) and Appendix A.
+%(references_brito2020)s, Eqs. (11)-(12) and Appendix A.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 
-@_doc
+@doc
 def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     """Compute the net gravity-buoyancy resisting torque T_g = C sin θ.
 
@@ -66,7 +62,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
 
-@_doc
+@doc
 def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     """Compute the inertia torque I θ̈ of the flap.
 
@@ -100,7 +96,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     return inertia * np.asarray(theta_ddot, dtype=float)
 
 
-@_doc
+@doc
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
 
@@ -129,7 +125,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
 
-@_doc
+@doc
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
 
@@ -158,7 +154,7 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
 
-@_doc
+@doc
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
                         buoyancy_stiffness: float) -> np.ndarray:
     """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).

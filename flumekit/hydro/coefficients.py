@@ -24,15 +24,9 @@ passivity (B ≥ 0, :func:`check_passive`, explicit fix
 :func:`make_passive`) and the infinite-frequency inertia from the Ogilvie (1964) relation at
 every frequency with its spread (:func:`infinite_frequency_inertia`).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Appendix A.
-Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-channel. J. Fluid Mech. 701, 482-510.
-Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+%(references_brito2020)s, Appendix A.
+%(renzi_dias2012)s.
+%(ogilvie1964)s.
 """
 
 from __future__ import annotations
@@ -43,10 +37,10 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 from flumekit.errors import FlumekitError
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 DIM = "angular_frequency"
 
@@ -133,7 +127,7 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
     return conventions.annotate(ds)
 
 
-@_doc
+@doc
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
@@ -172,7 +166,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     return np.sum(a * z / (z * z + be * be), axis=-1)
 
 
-@_doc
+@doc
 def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
                 added_inertia_infinite: float, excitation_torque,
                 hydrostatic_stiffness: float) -> xr.Dataset:
@@ -329,7 +323,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
                      f"expected one of {list(names)} (complex, or _real/_imag parts)")
 
 
-@_doc
+@doc
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
     """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
@@ -596,7 +590,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     return out
 
 
-@_doc
+@doc
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
     """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
@@ -652,7 +646,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     return conventions.annotate(out)
 
 
-@_doc
+@doc
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:

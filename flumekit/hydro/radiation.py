@@ -37,8 +37,7 @@ References
 ----------
 Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
 101-109.
-Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+%(ogilvie1964)s.
 Kung, S.-Y. (1978). A new identification and model reduction algorithm via singular value
 decomposition. Proc. 12th Asilomar Conference on Circuits, Systems and Computers, 705-714.
 """
@@ -51,9 +50,9 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc, fill
 
-_doc = filler()
+__doc__ = fill(__doc__)
 
 DIM = "angular_frequency"
 
@@ -209,7 +208,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
     return np.concatenate([ww, wt]), np.concatenate([bb, bt]), info
 
 
-@_doc
+@doc
 def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
                      tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
@@ -289,7 +288,7 @@ def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     return filon(irf["lag"].values, irf.values, omega, "cos")
 
 
-@_doc
+@doc
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 

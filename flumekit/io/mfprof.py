@@ -28,12 +28,10 @@ import xarray as xr
 from xarray.backends import BackendEntrypoint
 
 from flumekit import conventions
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
 from flumekit.io.dialects import iso_instant
-
-_doc = filler()
 
 HEADER_SIZE = 104
 RECORD_HEADER_SIZE = 16
@@ -354,7 +352,7 @@ def _mux_assignment(path: Path, mux: Mapping[str, object], n_profiles: int) -> n
     return np.tile(per_cycle, cycles)
 
 
-@_doc
+@doc
 def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
                 transducer: int | None = None, angle_correction: bool = False,
                 encoding: str = "cp1252") -> xr.Dataset:

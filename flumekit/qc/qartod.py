@@ -26,11 +26,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SUSPECT, choose
-
-_doc = filler()
 
 
 def resolution(x: np.ndarray) -> np.ndarray:
@@ -132,7 +130,7 @@ def _local_test_start(x, min_samples: int, floor):
     return x, f, resolution(x) if floor is None else floor
 
 
-@_doc
+@doc
 def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
                      suspect_span: tuple[float, float] | None = None) -> np.ndarray:
     """Flag samples outside the sensor's and the user's limits (QARTOD gross range test).
@@ -178,7 +176,7 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     return f
 
 
-@_doc
+@doc
 def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: int = 250,
                floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
     """Flag spikes (QARTOD spike test, the "average" method), robust and local.
@@ -248,7 +246,7 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
     return f
 
 
-@_doc
+@doc
 def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
                         floor: np.ndarray | float | None = None) -> np.ndarray:
     """Flag excessive rates of change (QARTOD rate of change test).
@@ -305,7 +303,7 @@ def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
     return np.cumsum(mark, axis=-1)[:, :n] > 0
 
 
-@_doc
+@doc
 def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float = 1.0,
                    fail_seconds: float = 2.0, tolerance: float = 0.0,
                    exempt_leading: bool = True) -> np.ndarray:
@@ -564,7 +562,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     return f.reshape(shape)
 
 
-@_doc
+@doc
 def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:
     """Flag samples after a gap in time (QARTOD gap, or timing, test).
 

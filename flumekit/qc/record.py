@@ -15,7 +15,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 import xarray as xr
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.qc import qartod
 from flumekit.qc.despike import despike_flags
 from flumekit.qc.fill import fill_gaps, gap_spans
@@ -31,8 +31,6 @@ from flumekit.qc.flags import (
     choose,
     flag_attrs,
 )
-
-_doc = filler()
 
 #: profiles on each side of a boundary echo also left out of the despiking
 BOUNDARY_PROFILES = 1
@@ -120,7 +118,7 @@ class Thresholds:
                       if f.name in params})
 
 
-@_doc
+@doc
 def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                  gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                  floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:

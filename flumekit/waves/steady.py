@@ -24,11 +24,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import doc
 from flumekit.waves.separation import lstsq_normal
 from flumekit.waves.theory import G, wavenumber
-
-_doc = filler()
 
 __all__ = ["BLOCK_PERIODS", "ReflectionSettling", "reflection_settling"]
 
@@ -64,7 +62,7 @@ class ReflectionSettling:
     trend: float
 
 
-@_doc
+@doc
 def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period: float,
                         depth: float, start: float, end: float, *, tolerance: float = 0.002,
                         noise_factor: float = 4.0, g: float = G) -> ReflectionSettling:
