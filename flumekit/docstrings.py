@@ -17,7 +17,7 @@ import re
 from collections.abc import Callable, Mapping
 from typing import TypeVar
 
-__all__ = ["REFERENCES", "doc", "fill", "filler"]
+__all__ = ["PARAMETERS", "REFERENCES", "doc", "fill", "filler"]
 
 T = TypeVar("T")
 
@@ -45,10 +45,92 @@ REFERENCES: dict[str, str] = {
         "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80"),
 }
 
+#: parameters documented alike in several modules: key -> the numpydoc entry
+PARAMETERS: dict[str, str] = {
+    "angles": ("angles : array_like\n"
+               "    Beam angles above the horizontal [rad], shape (n_beam,)."),
+    "bore_area": ("bore_area : float\n"
+                  "    Bore area A [m2], > 0."),
+    "campaign_run": ("run : flumekit.campaign.Run\n"
+                     "    The run."),
+    "chamber_pressure": ("chamber_pressure : array_like\n"
+                         "    Chamber gauge pressure P_int [Pa]."),
+    "contact_angle": ("contact_angle : float\n"
+                      "    Contact angle β [rad]."),
+    "dataset_output": ("outputs : dict of str to pathlib.Path\n"
+                       "    ``dataset``: the file to write."),
+    "depth": ("depth : float\n"
+              "    Still water depth h [m]."),
+    "depth_array": ("depth : array_like\n"
+                    "    Still water depth h [m]."),
+    "dt": ("dt : float\n"
+           "    Time step [s]."),
+    "dt_sampling": ("dt : float\n"
+                    "    Sampling interval [s]."),
+    "eta": ("eta : xarray.DataArray or array_like\n"
+            "    Surface elevation [m]: a DataArray with a uniformly sampled ``time`` dimension "
+            "[s] and\n"
+            "    any other dimensions (``probe``, ``run``, ...), each analysed as one record, or a "
+            "1-D\n"
+            "    array with ``sampling_rate``. Non-finite samples are an error."),
+    "flap_width": ("flap_width : float\n"
+                   "    Flap width w [m]."),
+    "fluid_inertia": ("fluid_inertia : float\n"
+                      "    I_p [Pa s2 rad-1]."),
+    "g": ("g : float\n"
+          "    Gravitational acceleration [m s-2]."),
+    "hydro": ("hydro : xarray.Dataset\n"
+              "    Coefficient container (:mod:`flumekit.hydro.coefficients`)."),
+    "lead": ("lead : float\n"
+             "    Screw lead [m]."),
+    "max_iterations": ("max_iterations : int\n"
+                       "    Iterations at most."),
+    "nut_velocity": ("nut_velocity : float or array_like\n"
+                     "    Nut velocity v [m s-1]."),
+    "output_step": ("output_step : float, optional\n"
+                    "    Output interval [s], a multiple of ``dt`` (default every step)."),
+    "path": ("path : pathlib.Path\n"
+             "    The file."),
+    "period": ("period : float\n"
+               "    Wave period [s]."),
+    "period_array": ("period : array_like\n"
+                     "    Wave period T [s]."),
+    "probe_positions": ("x : sequence of float, optional\n"
+                        "    Probe positions [m] when ``eta`` does not carry them."),
+    "record": ("x : array_like\n"
+               "    Record, time along the last axis [any unit]."),
+    "rho": ("rho : float\n"
+            "    Water density [kg m-3]."),
+    "sampling_rate": ("sampling_rate : float\n"
+                      "    Sampling rate [Hz]."),
+    "sampling_rate_array": ("sampling_rate : float, optional\n"
+                            "    Sampling rate [Hz]; required for an array."),
+    "sampling_rate_eta": ("sampling_rate : float, optional\n"
+                          "    Sampling rate [Hz] when ``eta`` has no time coordinate."),
+    "seed": ("seed : int\n"
+             "    Random seed of the campaign."),
+    "size": ("size : str\n"
+             "    Campaign size (\"small\", \"default\", \"paper\")."),
+    "target_period": ("period : float\n"
+                      "    Target wave period [s]."),
+    "theta": ("theta : array_like\n"
+              "    Flap angle [rad], positive towards the beach."),
+    "theta_dot": ("theta_dot : array_like\n"
+                  "    Flap angular velocity [rad s-1]."),
+    "time": ("time : numpy.ndarray\n"
+             "    Sample times [s]."),
+    "time_uniform": ("time : array_like\n"
+                     "    Sample times [s], uniform."),
+    "wave_height": ("wave_height : float\n"
+                    "    Wave height H [m]."),
+    "wave_period": ("wave_period : float\n"
+                    "    Wave period T [s]."),
+}
+
 _PLACEHOLDER = re.compile(r"%\((\w+)\)s")
-#: what every docstring can name: each citation as ``key`` and as a References section
-#: opening with it, ``references_key``
-_CITATIONS = {**REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
+#: what every docstring can name: the shared parameters, each citation as ``key`` and as a
+#: References section opening with it, ``references_key``
+_CITATIONS = {**PARAMETERS, **REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
                                for key, text in REFERENCES.items()}}
 
 

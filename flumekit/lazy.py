@@ -9,21 +9,29 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable
 
+from flumekit.docstrings import filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    namespace=("namespace : dict\n"
+               "    The package's ``globals()``: a name, once loaded, is kept there."),
+    package=("package : str\n"
+             "    The package's ``__name__``."))
+
 __all__ = ["attach", "lazy_names"]
 
 
+@_doc
 def lazy_names(package: str, names: dict[str, str], namespace: dict
                ) -> tuple[Callable[[str], object], Callable[[], list[str]]]:
     """Return the module ``__getattr__`` and ``__dir__`` of a package whose names load lazily.
 
     Parameters
     ----------
-    package : str
-        The package's ``__name__``.
+    %(package)s
     names : dict of str to str
         Public name -> the module of ``package`` that defines it.
-    namespace : dict
-        The package's ``globals()``: a name, once loaded, is kept there.
+    %(namespace)s
 
     Returns
     -------
@@ -55,6 +63,7 @@ def lazy_names(package: str, names: dict[str, str], namespace: dict
     return __getattr__, __dir__
 
 
+@_doc
 def attach(package: str, namespace: dict, **submodule_names: list[str]
            ) -> tuple[Callable[[str], object], Callable[[], list[str]], list[str]]:
     """Return a package's ``__getattr__``, ``__dir__`` and ``__all__``, names grouped by module.
@@ -64,10 +73,8 @@ def attach(package: str, namespace: dict, **submodule_names: list[str]
 
     Parameters
     ----------
-    package : str
-        The package's ``__name__``.
-    namespace : dict
-        The package's ``globals()``: a name, once loaded, is kept there.
+    %(package)s
+    %(namespace)s
     **submodule_names : list of str
         Submodule of ``package`` -> the public names it defines.
 

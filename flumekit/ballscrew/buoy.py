@@ -27,14 +27,25 @@ import xarray as xr
 from scipy import integrate, optimize
 
 from flumekit import conventions
-from flumekit.docstrings import doc
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    draft=("draft : float or array_like\n"
+           "    Draft d of the float [m]."),
+    geometry=("geometry : BuoyGeometry\n"
+              "    The geometry."),
+    period_2=("period : float\n"
+              "    Period T [s]."),
+    radius=("radius : float\n"
+            "    Float radius R [m]."))
 
 WATER_DENSITY = 1025.0  # [kg m-3] sea water
 GRAVITY = 9.81  # [m s-2]
 
 
-@doc
+@_doc
 @dataclass(frozen=True)
 class BuoyGeometry:
     """Geometry and mass of the buoy, arm and PTO linkage (hinge at the origin).
@@ -124,7 +135,7 @@ class BuoyGeometry:
 
 # --- hydrostatics (Fig. 3) ---------------------------------------------------------------------
 
-@doc
+@_doc
 def displaced_volume(draft, radius: float) -> np.ndarray:
     """Return the volume of water displaced by a hemispherical float (Fig. 3).
 
@@ -133,10 +144,8 @@ def displaced_volume(draft, radius: float) -> np.ndarray:
 
     Parameters
     ----------
-    draft : float or array_like
-        Draft d of the float [m].
-    radius : float
-        Float radius R [m].
+    %(draft)s
+    %(radius)s
 
     Returns
     -------
@@ -155,15 +164,14 @@ def displaced_volume(draft, radius: float) -> np.ndarray:
     return np.pi * d**2 * (3 * radius - d) / 3.0
 
 
+@_doc
 def waterplane_area(draft, radius: float) -> np.ndarray:
     """Return the waterplane area of the hemispherical float, π(2Rd - d²).
 
     Parameters
     ----------
-    draft : float or array_like
-        Draft d of the float [m].
-    radius : float
-        Float radius R [m].
+    %(draft)s
+    %(radius)s
 
     Returns
     -------
@@ -265,15 +273,14 @@ def actuator_length(theta, geometry: BuoyGeometry) -> tuple[np.ndarray, np.ndarr
     return s, ds, dds
 
 
+@_doc
 def screw_speed(nut_velocity, lead: float) -> np.ndarray:
     """Return the screw angular speed ω = 2π v / lead.
 
     Parameters
     ----------
-    nut_velocity : float or array_like
-        Nut velocity v [m s-1].
-    lead : float
-        Screw lead [m].
+    %(nut_velocity)s
+    %(lead)s
 
     Returns
     -------
@@ -298,7 +305,7 @@ def screw_speed(nut_velocity, lead: float) -> np.ndarray:
 
 # --- scenario: kinematics --------------------------------------------------------------------
 
-@doc
+@_doc
 def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int = 1,
                      samples_per_period: int = 380) -> xr.Dataset:
     """Return the sinusoidal heave z(t) = A sin(2π t/T) of the buoy CoG and its exact derivatives.
@@ -309,8 +316,7 @@ def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int
     ----------
     amplitude : float
         Heave amplitude A [m].
-    period : float
-        Period T [s].
+    %(period_2)s
     n_periods : int
         Number of periods.
     samples_per_period : int
@@ -358,7 +364,7 @@ def _derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.gradient(x, t, edge_order=2)
 
 
-@doc
+@_doc
 def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
                lead: float = 0.02, water_elevation: xr.DataArray | None = None) -> xr.Dataset:
     """Compute the linkage kinematics and hydrostatics of the buoy for a kinematic input z(t).
@@ -477,7 +483,7 @@ def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
 
 # --- dynamics --------------------------------------------------------------------------------
 
-@doc
+@_doc
 def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.Dataset:
     """Compute the wave (hydrodynamic) force that realises the kinematic input.
 
@@ -526,7 +532,7 @@ def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.D
                       coords={"time": kin["time"].values})
 
 
-@doc
+@_doc
 def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: float,
                      inertia: float = 0.0, friction_force: float = 0.0,
                      friction_velocity: float = 1e-3, initial_heave: float = 0.0,
@@ -545,8 +551,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
         Times [s], increasing.
     net_vertical_force : array_like
         F_z at those times [N].
-    geometry : BuoyGeometry
-        The geometry.
+    %(geometry)s
     damping : float
         Viscous PTO coefficient K on the nut [N s m-1].
     inertia : float
@@ -610,7 +615,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
 
 # --- energy balance algorithm (Fig. 4) ---------------------------------------------------------
 
-@doc
+@_doc
 def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
                         gravity: float = GRAVITY) -> np.ndarray:
     """Return the energy per unit horizontal area of a linear wave, E = ρ g H² / 16.
@@ -650,6 +655,7 @@ def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
     return water_density * gravity * h**2 / 16.0
 
 
+@_doc
 def nut_work(lift: float, period: float, geometry: BuoyGeometry,
              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
              samples: int = 256, lead: float = 0.02) -> tuple[float, float]:
@@ -659,17 +665,14 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     ----------
     lift : float
         Heave amplitude h [m].
-    period : float
-        Period T [s].
-    geometry : BuoyGeometry
-        The geometry.
+    %(period_2)s
+    %(geometry)s
     pto_force : callable
         (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N].
     samples : int
         Samples of the cycle (the rectangle rule on a periodic integrand is spectrally
         accurate).
-    lead : float
-        Screw lead [m].
+    %(lead)s
 
     Returns
     -------
@@ -694,7 +697,7 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     return work, float(kin["waterplane_area"].mean())
 
 
-@doc
+@_doc
 def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: BuoyGeometry,
                              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
                              lead: float = 0.02, samples: int = 256) -> float:
@@ -707,17 +710,14 @@ def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: B
 
     Parameters
     ----------
-    wave_height : float
-        Wave height H [m].
-    wave_period : float
-        Wave period T [s].
+    %(wave_height)s
+    %(wave_period)s
     geometry : BuoyGeometry
         Buoy geometry (limits h below the static draft and the arm reach).
     pto_force : callable
         (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N], e.g.
         :func:`flumekit.ballscrew.screw.pto_force_function`.
-    lead : float
-        Screw lead [m].
+    %(lead)s
     samples : int
         Samples per cycle of the work integral.
 

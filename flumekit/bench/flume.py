@@ -24,7 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-from flumekit.docstrings import doc
+from flumekit.docstrings import filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    runs=("runs : dict\n"
+          "    The built runs (:func:`built_runs`)."))
 
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
@@ -137,7 +142,7 @@ STATED = {
 }
 
 
-@doc
+@_doc
 def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     """Return the virtual flume's value of every :data:`STATED` number the built runs allow.
 
@@ -146,8 +151,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
 
     Parameters
     ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(runs)s
 
     Returns
     -------
@@ -212,7 +216,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     return v, notes
 
 
-@doc
+@_doc
 def linear_pair(runs: dict) -> dict[str, str]:
     """Return the PTO damping the linear model needs for each of the paper's linear-model numbers.
 
@@ -223,8 +227,7 @@ def linear_pair(runs: dict) -> dict[str, str]:
 
     Parameters
     ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(runs)s
 
     Returns
     -------
@@ -275,7 +278,7 @@ def linear_pair(runs: dict) -> dict[str, str]:
                 f"nu_pto {nu37(b):.0f} N m s")}
 
 
-@doc
+@_doc
 def trends(runs: dict) -> dict[str, str]:
     """Return the linear/measured ratios of T_h, θ and C_f over Table 1, with their trends.
 
@@ -284,8 +287,7 @@ def trends(runs: dict) -> dict[str, str]:
 
     Parameters
     ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(runs)s
 
     Returns
     -------
@@ -337,13 +339,13 @@ def _fmt(key: str, x: float) -> str:
     return f"{x:.3f}"
 
 
+@_doc
 def table(runs: dict) -> list[tuple[str, str, str, str]]:
     """Return the paper's stated numbers against the virtual flume's, as rows of text.
 
     Parameters
     ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(runs)s
 
     Returns
     -------

@@ -30,7 +30,12 @@ from pathlib import Path
 
 import numpy as np
 
-from flumekit.docstrings import doc
+from flumekit.docstrings import filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    workers=("workers : int\n"
+             "    Worker processes."))
 
 PERIOD, HEIGHT, DEPTH, KR, PHI = 3.5, 0.25, 0.825, 0.2, 0.6
 N_WAVES = 100
@@ -112,7 +117,7 @@ def _maxrss_mb(who) -> float:
     return resource.getrusage(who).ru_maxrss / 1024.0  # Linux: kilobytes
 
 
-@doc
+@_doc
 def part_a(n_runs: int, workers: int) -> list[str]:
     """Process a paper-scale UVP set from raw files to the field, timed; return the report lines.
 
@@ -124,8 +129,7 @@ def part_a(n_runs: int, workers: int) -> list[str]:
     ----------
     n_runs : int
         Runs (cycling through the 27 elevations).
-    workers : int
-        Worker processes.
+    %(workers)s
 
     Returns
     -------
@@ -203,6 +207,7 @@ def _knob_run(job):
     return out
 
 
+@_doc
 def part_b(quick: bool, workers: int) -> list[str]:
     """Return the run time and field error against the UVP processing's knobs, as report lines.
 
@@ -213,8 +218,7 @@ def part_b(quick: bool, workers: int) -> list[str]:
     ----------
     quick : bool
         Fewer knob settings.
-    workers : int
-        Worker processes.
+    %(workers)s
 
     Returns
     -------

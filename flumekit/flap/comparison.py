@@ -46,8 +46,35 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import PTO, Flap
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
 from flumekit.signal import uniform_step
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    dt_2=("dt : float\n"
+          "    Simulator time step [s]."),
+    dt_3=("dt : float, optional\n"
+          "    Simulator time step [s]."),
+    flap_params=("flap_params : flumekit.campaign.Flap\n"
+                 "    The flap (inertia, width)."),
+    friction=("friction : bool, optional\n"
+              "    Include the LuGre friction."),
+    friction_2=("friction : bool, optional\n"
+                "    Include the LuGre friction in the simulator."),
+    hydro_2=("hydro : xarray.Dataset\n"
+             "    Coefficient container as written (real and imaginary parts)."),
+    hydro_3=("hydro : xarray.Dataset\n"
+             "    Coefficient container as stored (:func:`stored_container`)."),
+    inertia=("inertia : float\n"
+             "    Flap moment of inertia about the hinge [kg m2]."),
+    pto=("pto : flumekit.campaign.PTO\n"
+         "    The PTO (anchors, bore, pressures, LuGre friction)."),
+    simulator=("simulator : bool, optional\n"
+               "    Run the simulator (else experiment and linear model only)."),
+    spin_up_periods=("spin_up_periods : int, optional\n"
+                     "    Periods of ramped spin-up before the steady incident wave."),
+    stiffness=("stiffness : float\n"
+               "    Hydrostatic stiffness C [N m rad-1]."))
 
 __doc__ = fill(__doc__)
 
@@ -63,6 +90,7 @@ _DAMPING_COMMENT = {
                "Renzi & Dias (2012) Eq. (2.40)"}
 
 
+@_doc
 def bem_container(depth: float, flap_width: float, hinge_height: float, thickness: float,
                   hydrostatic_stiffness: float, omega: tuple[float, float, int],
                   panel_size: float) -> xr.Dataset:
@@ -74,10 +102,8 @@ def bem_container(depth: float, flap_width: float, hinge_height: float, thicknes
 
     Parameters
     ----------
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width w [m].
+    %(depth)s
+    %(flap_width)s
     hinge_height : float
         Hinge height above the bed [m].
     thickness : float
@@ -208,7 +234,7 @@ def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
     return at
 
 
-@doc
+@_doc
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
                  stiffness: float, pto_damping: str = "energy_equivalent"
                  ) -> tuple[dict, xr.Dataset]:
@@ -220,12 +246,9 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
         The run's flap product (steady window, ``theta_dot``, ``mean_power``, phase grid).
     waves : xarray.Dataset
         The run's waves product (``measured_period`` [s], ``incident_height`` [m]).
-    hydro : xarray.Dataset
-        Coefficient container as written (real and imaginary parts).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(hydro_2)s
+    %(inertia)s
+    %(stiffness)s
     pto_damping : str, optional
         How ν_pto is set, one of :data:`LINEAR_PTO_DAMPING` (module notes).
 
@@ -268,6 +291,7 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
                                                       "comment": _DAMPING_COMMENT[pto_damping]})})
 
 
+@_doc
 def periodic_extension(eta: xr.DataArray, period: float, before: int,
                        after: int) -> xr.DataArray:
     """Continue the steady incident wave periodically by whole periods before and after.
@@ -283,8 +307,7 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
     eta : xarray.DataArray
         Incident elevation [m] over ``time`` [s], finite in the steady window, uniformly
         sampled.
-    period : float
-        Wave period [s].
+    %(period)s
     before : int
         Number of periods added before the window (ramped from rest).
     after : int
@@ -323,6 +346,7 @@ class _Device(NamedTuple):
     pto: PTO
 
 
+@_doc
 def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
               pto: PTO, depth: float, dt: float, friction: bool = True,
               spin_up_periods: int = 20) -> tuple[dict, float]:
@@ -335,20 +359,13 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m], ``measured_period`` [s],
         ``incident_height`` [m], steady window).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    depth : float
-        Water depth [m].
-    dt : float
-        Simulator time step [s].
-    friction : bool, optional
-        Include the LuGre friction.
-    spin_up_periods : int, optional
-        Periods of ramped spin-up before the steady incident wave.
+    %(hydro_3)s
+    %(flap_params)s
+    %(pto)s
+    %(depth)s
+    %(dt_2)s
+    %(friction)s
+    %(spin_up_periods)s
 
     Returns
     -------
@@ -421,7 +438,7 @@ def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
     return float(np.sqrt(np.mean(diff**2)) / float(flap["theta_amplitude"]))
 
 
-@doc
+@_doc
 def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
                 friction: bool = True, spin_up_periods: int = 20,
@@ -434,22 +451,15 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
         The run's flap product (:func:`flumekit.flap.analysis.analyse_run`).
     waves : xarray.Dataset
         The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
+    %(hydro_3)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, buoyancy stiffness, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    depth : float
-        Water depth [m].
-    dt : float, optional
-        Simulator time step [s].
-    simulator : bool, optional
-        Run the simulator (else experiment and linear model only).
-    friction : bool, optional
-        Include the LuGre friction in the simulator.
-    spin_up_periods : int, optional
-        Periods of ramped spin-up before the steady incident wave.
+    %(pto)s
+    %(depth)s
+    %(dt_3)s
+    %(simulator)s
+    %(friction_2)s
+    %(spin_up_periods)s
     linear_pto_damping : str, optional
         How the linear model's ν_pto is set, one of :data:`LINEAR_PTO_DAMPING`.
 
@@ -540,7 +550,7 @@ def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nd
     return f, np.diff(edges), np.where(np.isfinite(s), s, 0.0)
 
 
-@doc
+@_doc
 def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
                       stiffness: float, pto_damping: float) -> dict:
     """Compute the linear flap response to an irregular sea as a sum over its spectrum.
@@ -560,10 +570,8 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     spectrum : xarray.DataArray
         One-sided incident variance density at the flap [m2 s] over ``frequency`` [Hz]
         (band-averaged; bins as :func:`spectral_bins`).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(inertia)s
+    %(stiffness)s
     pto_damping : float
         Linear PTO damping ν_pto [N m s].
 
@@ -626,7 +634,7 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
-@doc
+@_doc
 def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset,
                            inertia: float, stiffness: float,
                            pto_damping: str = "energy_equivalent") -> tuple[dict, xr.Dataset]:
@@ -640,12 +648,9 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
         The run's flap product (analysed span, ``theta_dot``, ``mean_power``).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident`` [m2 s], ``energy_flux`` [W m-1]).
-    hydro : xarray.Dataset
-        Coefficient container as written (real and imaginary parts).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(hydro_2)s
+    %(inertia)s
+    %(stiffness)s
     pto_damping : {"energy_equivalent", "optimal"}, optional
         ν = P̄ / mean(θ̇²) over the analysed span (:func:`span_equivalent_damping`), or the
         single damping that maximises the spectral mean power of this sea state (bounded
@@ -756,6 +761,7 @@ def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.Dat
                         name="eta_incident")
 
 
+@_doc
 def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *,
                         flap_params: Flap, pto: PTO, dt: float, friction: bool = True,
                         spin_up: float = 60.0) -> tuple[dict, float]:
@@ -773,16 +779,11 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
         The run's flap product (analysed span, ``theta`` [rad], fitted hydraulic parameters).
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m] at x = 0, ``energy_flux`` [W m-1]).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    dt : float
-        Simulator time step [s].
-    friction : bool, optional
-        Include the LuGre friction.
+    %(hydro_3)s
+    %(flap_params)s
+    %(pto)s
+    %(dt_2)s
+    %(friction)s
     spin_up : float, optional
         Seconds of incident wave run before the analysed span [s].
 
@@ -833,6 +834,7 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
     return out, float(np.sqrt(np.mean(diff**2)) / np.std(theta))
 
 
+@_doc
 def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *,
                           flap_params: Flap, pto: PTO, dt: float = 0.04,
                           simulator: bool = True, friction: bool = True,
@@ -849,18 +851,13 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
         The run's flap product (:func:`flumekit.flap.analysis.analyse_irregular_run`).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident``, ``eta_incident``, ``energy_flux``).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
+    %(hydro_3)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, stiffness, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    dt : float, optional
-        Simulator time step [s].
-    simulator : bool, optional
-        Run the simulator (else experiment and linear model only).
-    friction : bool, optional
-        Include the LuGre friction in the simulator.
+    %(pto)s
+    %(dt_3)s
+    %(simulator)s
+    %(friction_2)s
     spin_up : float, optional
         Seconds of incident wave the simulator runs before the analysed span [s].
     linear_pto_damping : {"energy_equivalent", "optimal"}, optional

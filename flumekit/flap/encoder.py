@@ -61,8 +61,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad], positive towards the beach.
+    %(theta)s
     L5 : float
         Height of the wire anchor above the hinge [m].
     L7 : float

@@ -30,8 +30,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
 from flumekit.errors import GeometryError
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    bed_anchor=("bed_anchor : array_like\n"
+                "    Fixed rod anchor (x, z) [m]."),
+    flap_anchor=("flap_anchor : array_like\n"
+                 "    Rod anchor on the flap at θ = 0, (x, z) [m]."))
 
 __doc__ = fill(__doc__)
 
@@ -46,15 +53,14 @@ def _point(name: str, p) -> np.ndarray:
     return a
 
 
+@_doc
 def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
     """Validate the anchors of the PTO cylinder.
 
     Parameters
     ----------
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------
@@ -131,20 +137,16 @@ class RodKinematics:
     lever_arm: np.ndarray  # signed m: torque towards the beach per newton of extending force [m]
 
 
-@doc
+@_doc
 def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
     """Rod kinematics for a flap motion (see the module notes for the conventions).
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad], positive towards the beach.
-    theta_dot : array_like
-        Flap angular velocity [rad s-1].
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(theta)s
+    %(theta_dot)s
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------
@@ -188,15 +190,14 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
                          beta=beta, lever_arm=lever)
 
 
+@_doc
 def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
     """Return the shortest and longest rod lengths that the anchors allow over a full turn.
 
     Parameters
     ----------
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------
@@ -219,6 +220,7 @@ def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
     return abs(d - r), d + r
 
 
+@_doc
 def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     """Compute the flap angle θ on the branch through θ = 0 for a given rod length ℓ.
 
@@ -230,10 +232,8 @@ def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     ----------
     rod_length : array_like
         Rod length ℓ [m].
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------

@@ -26,8 +26,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     ----------
     rod_velocity : array_like
         Rod extension rate ℓ̇ [m s-1].
-    bore_area : float
-        Bore area A [m2], > 0.
+    %(bore_area)s
 
     Returns
     -------
@@ -58,8 +57,7 @@ def pto_power(chamber_pressure, flow) -> np.ndarray:
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
+    %(chamber_pressure)s
     flow : array_like
         Flow rate out of the chamber Q [m3 s-1] (:func:`flow_rate`).
 
@@ -134,16 +132,12 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     ----------
     height : array_like
         Incident wave height H [m] (from the incident/reflected separation).
-    period : array_like
-        Wave period T [s].
-    depth : array_like
-        Water depth h [m].
+    %(period_array)s
+    %(depth_array)s
     width : float
         Flap width L [m] (1.31 m).
-    rho : float
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(rho)s
+    %(g)s
 
     Returns
     -------

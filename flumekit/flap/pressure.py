@@ -32,7 +32,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    vapour_pressure=("vapour_pressure : float, optional\n"
+                     "    P_v, absolute [Pa]."))
 
 __doc__ = fill(__doc__)
 
@@ -41,19 +46,17 @@ VAPOUR_PRESSURE = 2339.0
 ATMOSPHERIC_PRESSURE = 101325.0
 
 
-@doc
+@_doc
 def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                       vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
     """Compute the Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm (Eq. 14).
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
+    %(chamber_pressure)s
     atmospheric_pressure : float, optional
         P_atm [Pa], > 0.
-    vapour_pressure : float, optional
-        P_v, absolute [Pa].
+    %(vapour_pressure)s
 
     Returns
     -------
@@ -79,7 +82,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
             - vapour_pressure) / atmospheric_pressure
 
 
-@doc
+@_doc
 def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: float,
                            fluid_inertia: float, *,
                            atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
@@ -89,14 +92,12 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
 
     Parameters
     ----------
-    theta_dot : array_like
-        Flap angular velocity [rad s-1].
+    %(theta_dot)s
     theta_ddot : array_like
         Flap angular acceleration [rad s-2].
     pressure_loss_coefficient : float
         K_p [Pa s2 rad-2], ≥ 0.
-    fluid_inertia : float
-        I_p [Pa s2 rad-1].
+    %(fluid_inertia)s
     atmospheric_pressure : float
         P_atm [Pa].
     vapour_pressure : float
@@ -137,7 +138,7 @@ class PressureFit(NamedTuple):
     bounded: bool = False  # a coefficient is held at its bound 0 (the free fit was unphysical)
 
 
-@doc
+@_doc
 def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                        vapour_pressure: float = VAPOUR_PRESSURE, compression_sign: int = 1,
@@ -162,8 +163,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
         Flap angular acceleration θ̈ [rad s-2].
     atmospheric_pressure : float, optional
         P_atm [Pa].
-    vapour_pressure : float, optional
-        P_v, absolute [Pa].
+    %(vapour_pressure)s
     compression_sign : int, optional
         +1 if θ̇ > 0 compresses the chamber, −1 otherwise.
     max_iterations : int, optional
@@ -238,16 +238,14 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        bool(np.any(coef == 0)))
 
 
-@doc
+@_doc
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     """Compute the pressure force pushing the rod out, F_p = A P_int.
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
-    bore_area : float
-        Bore area A [m2], > 0.
+    %(chamber_pressure)s
+    %(bore_area)s
 
     Returns
     -------

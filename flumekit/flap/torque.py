@@ -29,19 +29,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    theta_2=("theta : array_like\n"
+             "    Flap angle [rad]."))
 
 __doc__ = fill(__doc__)
 
 
-@doc
+@_doc
 def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     """Compute the net gravity-buoyancy resisting torque T_g = C sin θ.
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad].
+    %(theta_2)s
     buoyancy_stiffness : float
         Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
 
@@ -62,7 +66,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
 
-@doc
+@_doc
 def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     """Compute the inertia torque I θ̈ of the flap.
 
@@ -96,7 +100,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     return inertia * np.asarray(theta_ddot, dtype=float)
 
 
-@doc
+@_doc
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
 
@@ -125,7 +129,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
 
-@doc
+@_doc
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
 
@@ -154,15 +158,14 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
 
-@doc
+@_doc
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
                         buoyancy_stiffness: float) -> np.ndarray:
     """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad].
+    %(theta_2)s
     theta_ddot : array_like
         Angular acceleration [rad s-2].
     torque_pto : array_like

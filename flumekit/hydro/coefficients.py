@@ -37,8 +37,13 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
 from flumekit.errors import FlumekitError
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    hydro_2=("hydro : xarray.Dataset\n"
+             "    Coefficient container (:func:`hydro_dataset`)."))
 
 __doc__ = fill(__doc__)
 
@@ -127,7 +132,7 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
     return conventions.annotate(ds)
 
 
-@doc
+@_doc
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
@@ -166,7 +171,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     return np.sum(a * z / (z * z + be * be), axis=-1)
 
 
-@doc
+@_doc
 def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
                 added_inertia_infinite: float, excitation_torque,
                 hydrostatic_stiffness: float) -> xr.Dataset:
@@ -323,7 +328,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
                      f"expected one of {list(names)} (complex, or _real/_imag parts)")
 
 
-@doc
+@_doc
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
     """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
@@ -494,6 +499,7 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
 
 # --- checks -------------------------------------------------------------------------------
 
+@_doc
 def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     """List the frequencies where the radiation damping is negative (below −rtol·max B).
 
@@ -502,8 +508,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_2)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping below which B counts as negative.
 
@@ -529,6 +534,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     return rep
 
 
+@_doc
 def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
     """Raise :class:`HydroError` listing the frequencies where B(ω) < −rtol·max B.
 
@@ -537,8 +543,7 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_2)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping (see :func:`passivity_report`).
 
@@ -561,13 +566,13 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             "coefficients.")
 
 
+@_doc
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     """Clip negative radiation damping to zero, recorded in ``attrs["passivity_fix"]``.
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_2)s
 
     Returns
     -------
@@ -590,7 +595,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     return out
 
 
-@doc
+@_doc
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
     """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
@@ -607,8 +612,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_2)s
     duration : float, optional
         Length of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
     dt : float, optional
@@ -646,7 +650,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     return conventions.annotate(out)
 
 
-@doc
+@_doc
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:

@@ -50,7 +50,14 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.docstrings import doc, fill
+from flumekit.docstrings import fill, filler
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    irf=("irf : xarray.DataArray\n"
+         "    K(t) [N m] over ``lag`` [s] (:func:`impulse_response`)."),
+    omega=("omega : array_like\n"
+           "    Angular frequencies [rad s-1]."))
 
 __doc__ = fill(__doc__)
 
@@ -143,6 +150,7 @@ def _tail_exponent(w: np.ndarray, b: np.ndarray, n_fit: int = 5) -> float:
     return float(np.clip(-slope, 1.5, 8.0))
 
 
+@_doc
 def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold",
                      n_tail: int = 400) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -150,8 +158,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    %(hydro)s
     tail : {"power", "none"}, optional
         High-frequency continuation: B(ω_N)(ω_N/ω)^p, or none.
     tail_exponent : float, optional
@@ -208,7 +215,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
     return np.concatenate([ww, wt]), np.concatenate([bb, bt]), info
 
 
-@doc
+@_doc
 def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
                      tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
@@ -216,8 +223,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    %(hydro)s
     duration : float, optional
         Longest lag [s]; default 30 s.
     dt : float, optional
@@ -270,15 +276,14 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
     return conventions.annotate(da)
 
 
+@_doc
 def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute C(ω) = ∫₀^L K(t) cos(ωt) dt (equals B(ω) for an exact K).
 
     Parameters
     ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(irf)s
+    %(omega)s
 
     Returns
     -------
@@ -288,16 +293,14 @@ def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     return filon(irf["lag"].values, irf.values, omega, "cos")
 
 
-@doc
+@_doc
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 
     Parameters
     ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(irf)s
+    %(omega)s
 
     Returns
     -------
@@ -309,15 +312,14 @@ def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     return filon(irf["lag"].values, irf.values, omega, "sin")
 
 
+@_doc
 def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute K̂(ω) = C(ω) + i S(ω), the memory torque per unit θ̇ amplitude.
 
     Parameters
     ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(irf)s
+    %(omega)s
 
     Returns
     -------

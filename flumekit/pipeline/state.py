@@ -17,6 +17,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from flumekit.docstrings import doc
 from flumekit.io.atomic import atomic_path
 from flumekit.pipeline.rules import file_digest
 
@@ -86,13 +87,13 @@ class State:
         """Return whether ``path`` exists (one ``stat`` per scan)."""
         return self._stat(_key(path)) is not None
 
+    @doc
     def hash(self, path: Path) -> str:
         """Return the SHA-256 of a file's bytes, cached while its size and mtime are unchanged.
 
         Parameters
         ----------
-        path : pathlib.Path
-            The file.
+        %(path)s
 
         Returns
         -------
@@ -116,6 +117,7 @@ class State:
         self.dirty = True
         return h
 
+    @doc
     def identity(self, path: Path) -> str:
         """Return the identity of a file: its writer's content digest, else its bytes' hash.
 
@@ -123,8 +125,7 @@ class State:
 
         Parameters
         ----------
-        path : pathlib.Path
-            The file.
+        %(path)s
 
         Returns
         -------

@@ -26,9 +26,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import doc
+from flumekit.docstrings import filler
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SUSPECT, choose
+
+#: parameter texts that several docstrings of this module share
+_doc = filler(
+    block=("block : int\n"
+           "    Samples per block of the local scale."),
+    floor=("floor : float or numpy.ndarray, optional\n"
+           "    Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`."),
+    threshold=("threshold : float\n"
+               "    Robust standard deviations [-]."))
 
 
 def resolution(x: np.ndarray) -> np.ndarray:
@@ -130,7 +139,7 @@ def _local_test_start(x, min_samples: int, floor):
     return x, f, resolution(x) if floor is None else floor
 
 
-@doc
+@_doc
 def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
                      suspect_span: tuple[float, float] | None = None) -> np.ndarray:
     """Flag samples outside the sensor's and the user's limits (QARTOD gross range test).
@@ -176,7 +185,7 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     return f
 
 
-@doc
+@_doc
 def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: int = 250,
                floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
     """Flag spikes (QARTOD spike test, the "average" method), robust and local.
@@ -191,16 +200,13 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     suspect : float
         Robust local standard deviations of d beyond which a spike is suspect [-].
     fail : float
         Robust local standard deviations of d beyond which a spike fails [-].
-    block : int
-        Samples per block of the local scale.
-    floor : float or numpy.ndarray, optional
-        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+    %(block)s
+    %(floor)s
     passes : int
         Passes at most.
 
@@ -246,7 +252,7 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
     return f
 
 
-@doc
+@_doc
 def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
                         floor: np.ndarray | float | None = None) -> np.ndarray:
     """Flag excessive rates of change (QARTOD rate of change test).
@@ -257,14 +263,11 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     threshold : float
         Robust local standard deviations of the first difference [-].
-    block : int
-        Samples per block of the local scale.
-    floor : float or numpy.ndarray, optional
-        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+    %(block)s
+    %(floor)s
 
     Returns
     -------
@@ -303,7 +306,7 @@ def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
     return np.cumsum(mark, axis=-1)[:, :n] > 0
 
 
-@doc
+@_doc
 def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float = 1.0,
                    fail_seconds: float = 2.0, tolerance: float = 0.0,
                    exempt_leading: bool = True) -> np.ndarray:
@@ -317,10 +320,8 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(record)s
+    %(sampling_rate)s
     suspect_seconds : float
         Shortest flat line that is suspect [s].
     fail_seconds : float
@@ -399,6 +400,7 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     return np.where(k > 0, 0.5 * (lo + hi), np.nan)
 
 
+@_doc
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """Flag samples far from the record's median (the level form of :func:`dropout_test`).
 
@@ -410,8 +412,7 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     x : array_like
         Record, time along the last axis [any unit]; integer records are tested exactly
         (:func:`level_fail`).
-    threshold : float
-        Robust standard deviations [-].
+    %(threshold)s
 
     Returns
     -------
@@ -433,6 +434,7 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     return _level(x.reshape(-1, x.shape[-1]), threshold).reshape(x.shape)
 
 
+@_doc
 def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """Return where :func:`level_test` fails.
 
@@ -441,10 +443,8 @@ def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    threshold : float
-        Robust standard deviations [-].
+    %(record)s
+    %(threshold)s
 
     Returns
     -------
@@ -471,6 +471,7 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     return f
 
 
+@_doc
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
                  hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
     """Flag dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
@@ -489,10 +490,8 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(record)s
+    %(sampling_rate)s
     threshold : float
         Robust standard deviations of the level form [-].
     hold_seconds : float
@@ -562,7 +561,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     return f.reshape(shape)
 
 
-@doc
+@_doc
 def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:
     """Flag samples after a gap in time (QARTOD gap, or timing, test).
 
@@ -600,6 +599,7 @@ def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> 
     return f
 
 
+@_doc
 def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
                min_share: float = 0.1) -> np.ndarray:
     """Flag blocks of a channel that hold more noise than signal (FAIL).
@@ -624,8 +624,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     block : int
         Samples per block (at least 4).
     max_autocorrelation : float

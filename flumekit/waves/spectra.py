@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.signal import uniform_step
 from flumekit.waves.theory import G, group_velocity
 
@@ -101,6 +102,7 @@ def _equivalent_dof(window: np.ndarray, step: int, n_segments: int) -> float:
     return float(2 * n_segments / (1 + 2 * np.sum((1 - m / n_segments) * rho2)))
 
 
+@doc
 def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float | None = None,
              overlap: float = 0.5, window="hann", confidence: float = 0.90,
              detrend="constant") -> xr.Dataset:
@@ -120,12 +122,8 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
 
     Parameters
     ----------
-    eta : xarray.DataArray or array_like
-        Surface elevation [m]: a DataArray with a uniformly sampled ``time`` dimension [s] and
-        any other dimensions (``probe``, ``run``, ...), each analysed as one record, or a 1-D
-        array with ``sampling_rate``. Non-finite samples are an error.
-    sampling_rate : float, optional
-        Sampling rate [Hz]; required for an array.
+    %(eta)s
+    %(sampling_rate_array)s
     segment_duration : float, optional
         Length of a segment [s]; the frequency resolution is its inverse. Default: 1/8 of the
         record (the even number of samples 2 floor(N/16)), which with the default overlap of
@@ -428,6 +426,7 @@ def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarr
     return np.where(edge, f[ipeak], vertex)
 
 
+@doc
 def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: float = G, *,
                 band=None) -> xr.DataArray:
     """Energy flux per unit crest width of a wave spectrum in finite depth [W m-1].
@@ -446,8 +445,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
         Water depth h [m]; a DataArray broadcasts against the other dimensions.
     rho : float
         Water density [kg m-3]; fresh water by default (a flume).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
     band : tuple of float, optional
         Closed frequency band (f_low, f_high) [Hz]; default every bin with f > 0.
 

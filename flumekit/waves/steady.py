@@ -78,8 +78,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         Probe positions along the flume [m] (towards the reflector).
     period : float
         Measured wave period [s].
-    depth : float
-        Still water depth [m].
+    %(depth)s
     start, end : float
         The window the crests call quasi-steady [s].
     tolerance : float
@@ -91,8 +90,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         R_settled (the Rayleigh scale σ of |R - R_settled| over the window's second half,
         median / sqrt(2 ln 2)), so that probe noise cuts no steady block (a block beyond 4 σ:
         probability exp(-8)) [-].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
