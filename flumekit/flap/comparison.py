@@ -171,7 +171,8 @@ def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Da
     return split_complex(container).merge(radiation, combine_attrs="no_conflicts")
 
 
-def energy_equivalent_damping(flap: xr.Dataset) -> float:
+def energy_equivalent_damping(flap: xr.Dataset,
+                              window: tuple[str, str] = ("steady_start", "steady_end")) -> float:
     """Return the PTO damping that absorbs the measured mean power at the measured θ̇.
 
     ν_pto = W̄_out / mean(θ̇²) over the steady window.
@@ -181,6 +182,8 @@ def energy_equivalent_damping(flap: xr.Dataset) -> float:
     flap : xarray.Dataset
         A regular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
         ``mean_power`` [W], ``steady_start`` and ``steady_end`` [s].
+    window : tuple of str
+        The names of the window's start and end [s] in ``flap``.
 
     Returns
     -------
@@ -199,7 +202,7 @@ def energy_equivalent_damping(flap: xr.Dataset) -> float:
     100.0
     """
     t = flap["time"].values
-    inside = (t >= float(flap["steady_start"])) & (t <= float(flap["steady_end"]))
+    inside = (t >= float(flap[window[0]])) & (t <= float(flap[window[1]]))
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
@@ -616,7 +619,8 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
 def span_equivalent_damping(flap: xr.Dataset) -> float:
     """Return the PTO damping that absorbs the measured mean power over an irregular run.
 
-    ν_pto = P̄ / mean(θ̇²) over the analysed span.
+    Same as :func:`energy_equivalent_damping`, over the analysed span: ν_pto = P̄ / mean(θ̇²)
+    between ``analysis_start`` and ``analysis_end``.
 
     Parameters
     ----------
@@ -629,9 +633,7 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
     float
         ν_pto [N m s].
     """
-    t = flap["time"].values
-    inside = (t >= float(flap["analysis_start"])) & (t <= float(flap["analysis_end"]))
-    return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
+    return energy_equivalent_damping(flap, ("analysis_start", "analysis_end"))
 
 
 @_doc

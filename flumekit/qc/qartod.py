@@ -26,12 +26,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from flumekit.docstrings import filler
+from flumekit.docstrings import fill, filler
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SUSPECT, choose
 
-#: parameter texts that several docstrings of this module share
+_FLAGS = "Returns\n-------\nnumpy.ndarray\n    QARTOD flags (uint8) of x's shape."
+#: texts that several docstrings of this module share
 _doc = filler(
+    # what every test returns; most also cite the manual (the test's name follows)
+    returns_flags=_FLAGS,
+    flags_per_qartod=_FLAGS + "\n\n" + fill("%(references_qartod)s"),
     block=("block : int\n"
            "    Samples per block of the local scale."),
     floor=("floor : float or numpy.ndarray, optional\n"
@@ -156,12 +160,7 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     suspect_span : tuple of float, optional
         (min, max) expected by the user [unit of x]; None: not tested.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    %(references_qartod)s (gross range test).
+    %(flags_per_qartod)s (gross range test).
 
     Examples
     --------
@@ -210,12 +209,7 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
     passes : int
         Passes at most.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    %(references_qartod)s (spike test).
+    %(flags_per_qartod)s (spike test).
 
     Examples
     --------
@@ -269,12 +263,7 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
     %(block)s
     %(floor)s
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    %(references_qartod)s (rate of change test).
+    %(flags_per_qartod)s (rate of change test).
 
     Examples
     --------
@@ -331,12 +320,7 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
     exempt_leading : bool
         Pass a flat line from the first sample that ends before the record does.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    %(references_qartod)s (flat line test).
+    %(flags_per_qartod)s (flat line test).
 
     Examples
     --------
@@ -414,10 +398,7 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
         (:func:`level_fail`).
     %(threshold)s
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
@@ -499,10 +480,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     hold_factor : float
         Multiple of the channel's typical longest run of identical values [-].
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
@@ -632,10 +610,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
     min_share : float
         Share of the channel's variance its high-frequency energy must exceed [-].
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
