@@ -142,10 +142,10 @@ def fill(doc: str | None, snippets: Mapping[str, str] | None = None) -> str | No
     doc : str or None
         The docstring; None (as under ``python -OO``) is returned as it is.
     snippets : mapping of str to str, optional
-        Key -> text; default the citations of :data:`REFERENCES` (see :func:`filler`). A
+        Key -> text; default the shared parameters and citations (see :func:`filler`). A
         snippet's second and later lines are indented to the column at which its placeholder
-        starts. Assigning ``__doc__ = fill(__doc__)`` after a module's imports fills the
-        module's own docstring.
+        starts; a snippet may hold placeholders of other snippets. Assigning
+        ``__doc__ = fill(__doc__)`` after a module's imports fills the module's own docstring.
 
     Returns
     -------
@@ -178,7 +178,8 @@ def fill(doc: str | None, snippets: Mapping[str, str] | None = None) -> str | No
         line_start = doc.rfind("\n", 0, match.start()) + 1
         lead = doc[line_start:match.start()]
         indent = lead if not lead.strip() else lead[:len(lead) - len(lead.lstrip())]
-        return snippets[key].replace("\n", "\n" + indent)
+        # a snippet may name other snippets (a section of shared entries)
+        return fill(snippets[key], snippets).replace("\n", "\n" + indent)
 
     return _PLACEHOLDER.sub(one, doc)
 

@@ -11,7 +11,7 @@ from collections.abc import Callable
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     namespace=("namespace : dict\n"
                "    The package's ``globals()``: a name, once loaded, is kept there."),

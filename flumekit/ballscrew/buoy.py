@@ -30,8 +30,12 @@ from flumekit import conventions
 from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    parameters_float=("Parameters\n"
+                      "----------\n"
+                      "%(draft)s\n"
+                      "%(radius)s"),
     draft=("draft : float or array_like\n"
            "    Draft d of the float [m]."),
     geometry=("geometry : BuoyGeometry\n"
@@ -142,10 +146,7 @@ def displaced_volume(draft, radius: float) -> np.ndarray:
     A spherical cap V = π d² (3R - d)/3 for 0 ≤ d ≤ R; 0 out of the water (d < 0) and the full
     hemisphere 2πR³/3 once the deck is awash (d > R, green water on deck not counted).
 
-    Parameters
-    ----------
-    %(draft)s
-    %(radius)s
+    %(parameters_float)s
 
     Returns
     -------
@@ -168,10 +169,7 @@ def displaced_volume(draft, radius: float) -> np.ndarray:
 def waterplane_area(draft, radius: float) -> np.ndarray:
     """Return the waterplane area of the hemispherical float, π(2Rd - d²).
 
-    Parameters
-    ----------
-    %(draft)s
-    %(radius)s
+    %(parameters_float)s
 
     Returns
     -------

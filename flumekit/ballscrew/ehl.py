@@ -34,7 +34,7 @@ from scipy import special
 from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     lam=("lam : float or array_like\n"
          "    Film parameter λ [-]."),

@@ -48,7 +48,7 @@ from flumekit.ballscrew import buoy, ehl
 from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     friction_nut=("friction_nut : float or array_like\n"
                   "    Ball-nut friction coefficient f [-]."),

@@ -26,7 +26,7 @@ import numpy as np
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     runs=("runs : dict\n"
           "    The built runs (:func:`built_runs`)."))

@@ -24,7 +24,7 @@ import numpy as np
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     seed_2=("seed : int\n"
             "    Seed."))

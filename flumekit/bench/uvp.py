@@ -32,8 +32,12 @@ import numpy as np
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    returns_lines=("Returns\n"
+                   "-------\n"
+                   "list of str\n"
+                   "    Report lines."),
     workers=("workers : int\n"
              "    Worker processes."))
 
@@ -131,10 +135,7 @@ def part_a(n_runs: int, workers: int) -> list[str]:
         Runs (cycling through the 27 elevations).
     %(workers)s
 
-    Returns
-    -------
-    list of str
-        Report lines.
+    %(returns_lines)s
 
     %(references_brito2020)s, §2.3.
     """
@@ -220,10 +221,7 @@ def part_b(quick: bool, workers: int) -> list[str]:
         Fewer knob settings.
     %(workers)s
 
-    Returns
-    -------
-    list of str
-        Report lines.
+    %(returns_lines)s
     """
     from flumekit.synth.uvp import true_field
     from flumekit.uvp import velocity_field

@@ -34,7 +34,7 @@ from flumekit.flap.torque import (
 )
 from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     chamber_pressure_2=("chamber_pressure : array_like\n"
                         "    Measured gauge pressure in the cylinder chamber [Pa]."),

@@ -49,8 +49,16 @@ from flumekit.campaign import PTO, Flap
 from flumekit.docstrings import fill, filler
 from flumekit.signal import uniform_step
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    returns_damping=("Returns\n"
+                     "-------\n"
+                     "float\n"
+                     "    ν_pto [N m s]."),
+    returns_incident=("Returns\n"
+                      "-------\n"
+                      "xarray.DataArray\n"
+                      "    ``eta_incident`` [m] over the extended ``time`` [s]."),
     dt_2=("dt : float\n"
           "    Simulator time step [s]."),
     dt_3=("dt : float, optional\n"
@@ -171,6 +179,7 @@ def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Da
     return split_complex(container).merge(radiation, combine_attrs="no_conflicts")
 
 
+@_doc
 def energy_equivalent_damping(flap: xr.Dataset,
                               window: tuple[str, str] = ("steady_start", "steady_end")) -> float:
     """Return the PTO damping that absorbs the measured mean power at the measured θ̇.
@@ -185,10 +194,7 @@ def energy_equivalent_damping(flap: xr.Dataset,
     window : tuple of str
         The names of the window's start and end [s] in ``flap``.
 
-    Returns
-    -------
-    float
-        ν_pto [N m s].
+    %(returns_damping)s
 
     Examples
     --------
@@ -316,10 +322,7 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
     after : int
         Number of periods added after the window.
 
-    Returns
-    -------
-    xarray.DataArray
-        ``eta_incident`` [m] over the extended ``time`` [s].
+    %(returns_incident)s
 
     Examples
     --------
@@ -616,6 +619,7 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
             "variance_outside": 1.0 - float(v.sum()) / total}
 
 
+@_doc
 def span_equivalent_damping(flap: xr.Dataset) -> float:
     """Return the PTO damping that absorbs the measured mean power over an irregular run.
 
@@ -628,10 +632,7 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
         An irregular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
         ``mean_power`` [W], ``analysis_start`` and ``analysis_end`` [s].
 
-    Returns
-    -------
-    float
-        ν_pto [N m s].
+    %(returns_damping)s
     """
     return energy_equivalent_damping(flap, ("analysis_start", "analysis_end"))
 
@@ -719,6 +720,7 @@ def _capture(values: dict, flux: float, width: float) -> None:
     values["capture_width_ratio"] = float(capture_width_ratio(values["mean_power"], flux, width))
 
 
+@_doc
 def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.DataArray:
     """Continue the incident wave by its mirror image before and after its finite span.
 
@@ -736,10 +738,7 @@ def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.Dat
     after : float
         Duration added after the last finite sample [s] (at most the record's length).
 
-    Returns
-    -------
-    xarray.DataArray
-        ``eta_incident`` [m] over the extended ``time`` [s].
+    %(returns_incident)s
 
     Examples
     --------

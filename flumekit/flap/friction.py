@@ -56,7 +56,7 @@ import numpy as np
 from flumekit.campaign import Friction
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     dt_2=("dt : float\n"
           "    Step [s], > 0."),

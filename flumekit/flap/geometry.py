@@ -33,8 +33,12 @@ import numpy as np
 from flumekit.docstrings import fill, filler
 from flumekit.errors import GeometryError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    parameters_anchors=("Parameters\n"
+                        "----------\n"
+                        "%(bed_anchor)s\n"
+                        "%(flap_anchor)s"),
     bed_anchor=("bed_anchor : array_like\n"
                 "    Fixed rod anchor (x, z) [m]."),
     flap_anchor=("flap_anchor : array_like\n"
@@ -57,10 +61,7 @@ def _point(name: str, p) -> np.ndarray:
 def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
     """Validate the anchors of the PTO cylinder.
 
-    Parameters
-    ----------
-    %(bed_anchor)s
-    %(flap_anchor)s
+    %(parameters_anchors)s
 
     Returns
     -------
@@ -194,10 +195,7 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
 def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
     """Return the shortest and longest rod lengths that the anchors allow over a full turn.
 
-    Parameters
-    ----------
-    %(bed_anchor)s
-    %(flap_anchor)s
+    %(parameters_anchors)s
 
     Returns
     -------

@@ -24,7 +24,7 @@ from numba import njit
 from flumekit.docstrings import fill, filler
 from flumekit.hydro.stepping import ACCEL, ADVANCE, PREDICT
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     c=("c : ndarray\n"
        "    Parameters from :func:`flumekit.flap.friction.kernel_constants`."),

@@ -34,7 +34,7 @@ import numpy as np
 
 from flumekit.docstrings import fill, filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     vapour_pressure=("vapour_pressure : float, optional\n"
                      "    P_v, absolute [Pa]."))

@@ -73,7 +73,7 @@ from flumekit.hydro import simulation as _sim
 from flumekit.hydro.radiation import StateSpace
 from flumekit.hydro.simulation import BadParameterError, DivergenceError, PTOKernel, SimulationError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     pressure_loss_coefficient=("pressure_loss_coefficient : float\n"
                                "    K_p [Pa s2 rad-2]."))

@@ -21,7 +21,7 @@ from flumekit import signal as sig
 from flumekit.docstrings import fill, filler
 from flumekit.flap.power import capture_factor, incident_power, window_mean
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     flap_width_2=("flap_width : float\n"
                   "    Flap width L [m] (Eq. A2)."),

@@ -31,8 +31,12 @@ import numpy as np
 
 from flumekit.docstrings import fill, filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    raises_inertia=("Raises\n"
+                    "------\n"
+                    "ValueError\n"
+                    "    A non-positive moment of inertia."),
     theta_2=("theta : array_like\n"
              "    Flap angle [rad]."))
 
@@ -82,10 +86,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     numpy.ndarray
         I θ̈ [N m].
 
-    Raises
-    ------
-    ValueError
-        A non-positive moment of inertia.
+    %(raises_inertia)s
 
     %(references_brito2020)s, Eq. (11).
 
@@ -180,10 +181,7 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
     numpy.ndarray
         T_h [N m], positive towards the beach.
 
-    Raises
-    ------
-    ValueError
-        A non-positive moment of inertia.
+    %(raises_inertia)s
 
     %(references_brito2020)s, Eq. (11).
 

@@ -40,7 +40,7 @@ from flumekit import conventions
 from flumekit.docstrings import fill, filler
 from flumekit.errors import FlumekitError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     hydro_2=("hydro : xarray.Dataset\n"
              "    Coefficient container (:func:`hydro_dataset`)."))

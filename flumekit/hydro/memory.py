@@ -42,7 +42,7 @@ from flumekit.docstrings import filler
 from flumekit.hydro.radiation import StateSpace
 from flumekit.hydro.stepping import BEGIN, FINISH
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     step=("step : float\n"
           "    Time step h [s]."))

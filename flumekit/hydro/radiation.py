@@ -52,8 +52,12 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.docstrings import fill, filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    parameters_transform=("Parameters\n"
+                          "----------\n"
+                          "%(irf)s\n"
+                          "%(omega)s"),
     irf=("irf : xarray.DataArray\n"
          "    K(t) [N m] over ``lag`` [s] (:func:`impulse_response`)."),
     omega=("omega : array_like\n"
@@ -280,10 +284,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute C(ω) = ∫₀^L K(t) cos(ωt) dt (equals B(ω) for an exact K).
 
-    Parameters
-    ----------
-    %(irf)s
-    %(omega)s
+    %(parameters_transform)s
 
     Returns
     -------
@@ -297,10 +298,7 @@ def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 
-    Parameters
-    ----------
-    %(irf)s
-    %(omega)s
+    %(parameters_transform)s
 
     Returns
     -------
@@ -316,10 +314,7 @@ def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
 def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute K̂(ω) = C(ω) + i S(ω), the memory torque per unit θ̇ amplitude.
 
-    Parameters
-    ----------
-    %(irf)s
-    %(omega)s
+    %(parameters_transform)s
 
     Returns
     -------

@@ -71,7 +71,7 @@ from flumekit.hydro.coefficients import (
     make_passive,
 )
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     ds=("ds : xarray.Dataset\n"
         "    Six-dof dataset of :func:`rigid_body_dataset`."),

@@ -73,7 +73,7 @@ from flumekit.hydro.coefficients import check_passive
 from flumekit.hydro.excitation import excitation_torque, transfer_function
 from flumekit.hydro.radiation import StateSpace
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     order=("order : int, optional\n"
            "    State-space order (default: 1 % on K(t))."),

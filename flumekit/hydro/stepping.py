@@ -32,7 +32,7 @@ from numba import njit, types
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     params=("params : ndarray\n"
             "    The PTO's parameters (unused)."))

@@ -28,7 +28,7 @@ from flumekit.io.dialects import Channel, Dialect, Record, read_channels
 from flumekit.io.tables import check_time
 from flumekit.units import UNITS
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     dialect=("dialect : Dialect or dict, optional\n"
              "    How the file is written (default: the raw campaign's CSV)."),

@@ -17,7 +17,7 @@ from flumekit import conventions
 from flumekit.docstrings import filler
 from flumekit.io.atomic import Written, atomic_path
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     path_2=("path : str or pathlib.Path\n"
             "    The netCDF-4 file to write."))

@@ -22,7 +22,7 @@ from flumekit.docstrings import filler
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     comment=("comment : str, optional\n"
              "    Lines starting with this are skipped."),

@@ -13,7 +13,7 @@ import numpy as np
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     energy_flux=("energy_flux : array_like\n"
                  "    Incident energy flux per unit crest width J [W m-1], > 0."))

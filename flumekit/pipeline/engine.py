@@ -27,7 +27,7 @@ from flumekit.pipeline.executors import Executor
 from flumekit.pipeline.rules import Rule, execute
 from flumekit.pipeline.state import State
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     force=("force : bool, default False\n"
            "    Rebuild every target needed."),

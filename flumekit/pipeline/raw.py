@@ -29,7 +29,7 @@ from flumekit.docstrings import filler
 from flumekit.errors import FlumekitError, InputError
 from flumekit.synth import DEFAULT_SEED, MARKER
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     raw=("raw : pathlib.Path\n"
          "    The campaign folder."),

@@ -14,8 +14,12 @@ import numpy as np
 from flumekit.docstrings import filler
 from flumekit.errors import InputError
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
+    returns_warning=("Returns\n"
+                     "-------\n"
+                     "str or None\n"
+                     "    The warning, or None."),
     run_file=("run_file : pathlib.Path\n"
               "    The run.toml, named in the message."),
     tolerance=("tolerance : float\n"
@@ -187,10 +191,7 @@ def check_height(declared: float, measured: float, tolerance: float, warning: fl
     %(run_file)s
     %(what)s
 
-    Returns
-    -------
-    str or None
-        The warning, or None.
+    %(returns_warning)s
 
     Raises
     ------
@@ -226,10 +227,7 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
     parameter : str
         The ``[stages.waves]`` parameter holding ``tolerance``.
 
-    Returns
-    -------
-    str or None
-        The warning, or None.
+    %(returns_warning)s
 
     Raises
     ------

@@ -32,7 +32,7 @@ from flumekit.qc.flags import (
     flag_attrs,
 )
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     gross_range=("gross_range : tuple of float, optional\n"
                  "    (min, max) of the velocities [m s-1]; None: not evaluated."),

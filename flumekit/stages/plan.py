@@ -11,7 +11,7 @@ from __future__ import annotations
 from flumekit.docstrings import filler
 from flumekit.pipeline.cache import cached_graph, pipeline_key
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     pipe=("pipe : Pipeline\n"
           "    The parsed pipeline file."))

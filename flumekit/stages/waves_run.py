@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     eta_2=("eta : xarray.DataArray\n"
            "    Surface elevation at every probe [m], with probe positions ``x`` [m]."))

@@ -34,7 +34,7 @@ import xarray as xr
 
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     inputs=("inputs : list of Input\n"
             "    Resolved components (:func:`resolve_inputs`)."),

@@ -15,7 +15,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit.docstrings import filler
 
-#: parameter texts that several docstrings of this module share
+#: docstring text that several functions of this module share
 _doc = filler(
     calibration=("calibration : xarray.Dataset\n"
                  "    Output of :func:`fit` holding every probe of ``voltage``."))
