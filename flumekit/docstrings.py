@@ -40,6 +40,9 @@ REFERENCES: dict[str, str] = {
         "wave data,\nv2.1"),
     "hamrock1991": (
         "Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255"),
+    "holthuijsen2007": (
+        "Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University "
+        "Press"),
     "ogilvie1964": (
         "Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of "
         "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80"),

@@ -27,9 +27,8 @@ import numpy as np
 from flumekit.docstrings import filler
 
 #: docstring text that several functions of this module share
-_doc = filler(
-    runs=("runs : dict\n"
-          "    The built runs (:func:`built_runs`)."))
+_doc = filler(parameters_runs=("Parameters\n----------\nruns : dict\n"
+                                "    The built runs (:func:`built_runs`)."))
 
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
@@ -149,9 +148,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     With notes: extra rows for the Table 1 trends (:func:`trends`) and the linear model's ν_pto
     (:func:`linear_pair`).
 
-    Parameters
-    ----------
-    %(runs)s
+    %(parameters_runs)s
 
     Returns
     -------
@@ -225,9 +222,7 @@ def linear_pair(runs: dict) -> dict[str, str]:
     37 % below the linear model's and C_f = 0.33 cannot both hold with one ν for this geometry;
     the channel width in which they can is reported too.
 
-    Parameters
-    ----------
-    %(runs)s
+    %(parameters_runs)s
 
     Returns
     -------
@@ -285,9 +280,7 @@ def trends(runs: dict) -> dict[str, str]:
     Figs. 8-9 of the paper: the discrepancy grows with T and H. Spearman's ρ over T for each H,
     and over H of the mean over T.
 
-    Parameters
-    ----------
-    %(runs)s
+    %(parameters_runs)s
 
     Returns
     -------
@@ -343,9 +336,7 @@ def _fmt(key: str, x: float) -> str:
 def table(runs: dict) -> list[tuple[str, str, str, str]]:
     """Return the paper's stated numbers against the virtual flume's, as rows of text.
 
-    Parameters
-    ----------
-    %(runs)s
+    %(parameters_runs)s
 
     Returns
     -------

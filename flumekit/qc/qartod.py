@@ -129,6 +129,13 @@ def _empty_flags(x: np.ndarray) -> np.ndarray:
     return choose(np.isfinite(x), GOOD, MISSING)
 
 
+def _rows(x) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Return a record as (channel, time) rows, their flags (GOOD or MISSING) and its shape."""
+    x = np.asarray(x, dtype=float)
+    x2 = x.reshape(-1, x.shape[-1])
+    return x2, _empty_flags(x2), x.shape
+
+
 def _local_test_start(x, min_samples: int, floor):
     """Return the values, flags and noise floor of a local test.
 
@@ -332,10 +339,7 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
     >>> np.flatnonzero(f == 4)[[0, -1]].tolist()
     [50, 79]
     """
-    x = np.asarray(x, dtype=float)
-    shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
-    f = _empty_flags(x2)
+    x2, f, shape = _rows(x)
     n = x2.shape[-1]
     if n < 2:
         return f.reshape(shape)
@@ -621,10 +625,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
     >>> [int((noise_test(x, 100) == 4).sum()) for x in (wave, hiss)]
     [0, 1000]
     """
-    x = np.asarray(x, dtype=float)
-    shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
-    f = _empty_flags(x2)
+    x2, f, shape = _rows(x)
     n = x2.shape[-1]
     if n < 4:
         return f.reshape(shape)

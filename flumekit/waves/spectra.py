@@ -103,6 +103,7 @@ def _equivalent_dof(window: np.ndarray, step: int, n_segments: int) -> float:
 
 
 @doc
+@doc
 def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float | None = None,
              overlap: float = 0.5, window="hann", confidence: float = 0.90,
              detrend="constant") -> xr.Dataset:
@@ -171,8 +172,7 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     Percival, D. B. & Walden, A. T. (1993). Spectral analysis for physical applications.
     Cambridge University Press, Section 6.17, Eq. (292b).
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Chapter 3.
+    %(holthuijsen2007)s, Chapter 3.
 
     Examples
     --------
@@ -282,6 +282,7 @@ def _in_band(variance_density: xr.DataArray, band, what: str) -> tuple[xr.DataAr
     return s, width
 
 
+@doc
 def spectral_parameters(variance_density: xr.DataArray, band=None, *,
                         method: str = "delft") -> xr.Dataset:
     """Spectral moments and sea-state parameters of a variance density spectrum.
@@ -334,7 +335,7 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
     IAHR/PIANC (1986). List of sea-state parameters. Supplement to PIANC Bulletin 52;
     also J. Waterway, Port, Coastal and Ocean Eng. 115(6), 793-808 (1989).
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University Press.
+    %(holthuijsen2007)s.
 
     Goda, Y. (1970). Numerical experiments on wave statistics with spectral simulation. Report
     of the Port and Harbour Research Institute 9(3), 3-57; Goda, Y. (2010). Random seas and
@@ -427,6 +428,7 @@ def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarr
 
 
 @doc
+@doc
 def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: float = G, *,
                 band=None) -> xr.DataArray:
     """Energy flux per unit crest width of a wave spectrum in finite depth [W m-1].
@@ -459,10 +461,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
     ValueError
         As :func:`spectral_parameters`, and for a non-positive depth.
 
-    References
-    ----------
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Section 5.4.
+    %(references_holthuijsen2007)s, Section 5.4.
 
     IEC TS 62600-101 (2015). Marine energy - Wave, tidal and other water current converters -
     Part 101: Wave energy resource assessment and characterization (omnidirectional

@@ -29,6 +29,7 @@ def _top_mean(height: np.ndarray, period: np.ndarray, fraction: int) -> tuple[fl
 
 
 @doc
+@doc
 def wave_statistics(eta, sampling_rate: float | None = None, *,
                     crossing: str = "up") -> xr.Dataset:
     """Zero-crossing waves of a surface-elevation record and their statistics.
@@ -83,8 +84,7 @@ def wave_statistics(eta, sampling_rate: float | None = None, *,
     Longuet-Higgins, M. S. (1952). On the statistical distribution of the heights of sea
     waves. J. Marine Research 11(3), 245-266.
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Chapter 4.
+    %(holthuijsen2007)s, Chapter 4.
 
     Examples
     --------
