@@ -40,8 +40,8 @@ _doc = filler(
            "    Draft d of the float [m]."),
     geometry=("geometry : BuoyGeometry\n"
               "    The geometry."),
-    period_2=("period : float\n"
-              "    Period T [s]."),
+    motion_period=("period : float\n"
+                   "    Period T [s]."),
     radius=("radius : float\n"
             "    Float radius R [m]."))
 
@@ -314,7 +314,7 @@ def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int
     ----------
     amplitude : float
         Heave amplitude A [m].
-    %(period_2)s
+    %(motion_period)s
     n_periods : int
         Number of periods.
     samples_per_period : int
@@ -663,7 +663,7 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     ----------
     lift : float
         Heave amplitude h [m].
-    %(period_2)s
+    %(motion_period)s
     %(geometry)s
     pto_force : callable
         (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N].

@@ -60,8 +60,8 @@ _doc = filler(
                "    The lubricant and friction law."),
     pto=("pto : PTOCoefficients\n"
          "    The coefficients of Eq. (3)."),
-    rho_2=("rho : float or array_like\n"
-           "    Rolling-friction angle ρ [rad]."),
+    friction_angle=("rho : float or array_like\n"
+                    "    Rolling-friction angle ρ [rad]."),
     screw=("screw : BallScrew\n"
            "    The ball screw."),
     slip_angle=("slip_angle : float\n"
@@ -433,7 +433,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     %(contact_angle)s
     %(friction_nut)s
     %(friction_screw)s
-    %(rho_2)s
+    %(friction_angle)s
     %(slip_angle)s
     strict : bool
         Raise instead of returning 0 where the screw self-locks.
@@ -482,7 +482,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
     %(contact_angle)s
     %(friction_nut)s
     %(friction_screw)s
-    %(rho_2)s
+    %(friction_angle)s
     %(slip_angle)s
 
     Returns

@@ -26,8 +26,8 @@ from flumekit.docstrings import filler
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    seed_2=("seed : int\n"
-            "    Seed."))
+    random_seed=("seed : int\n"
+                 "    Seed."))
 
 PERIOD, HEIGHT = 2.0, 0.15  # the condition of the repeats [s], [m]
 QUANTITIES = ("incident_height", "reflection_coefficient", "theta_amplitude", "capture_factor")
@@ -292,7 +292,7 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
         Monte Carlo draws n.
     directions : int
         Random directions of the per-sample inputs in the linear propagation.
-    %(seed_2)s
+    %(random_seed)s
 
     Returns
     -------
@@ -325,7 +325,7 @@ def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
     ----------
     draws_list : sequence of int
         Numbers of draws.
-    %(seed_2)s
+    %(random_seed)s
 
     Returns
     -------

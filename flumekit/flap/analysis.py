@@ -36,8 +36,8 @@ from flumekit.performance import capture_width, capture_width_ratio, motion_stat
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    chamber_pressure_2=("chamber_pressure : array_like\n"
-                        "    Measured gauge pressure in the cylinder chamber [Pa]."),
+    measured_pressure=("chamber_pressure : array_like\n"
+                       "    Measured gauge pressure in the cylinder chamber [Pa]."),
     cutoff=("cutoff : float\n"
             "    Cut-off of the low-pass applied to θ before differentiation [Hz]."),
     max_flagged_fraction=("max_flagged_fraction : float\n"
@@ -202,7 +202,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         Sample times [s], uniform (100 Hz in the campaign).
     encoder_counts : array_like
         Wire-encoder counts, increasing as the wire is reeled in [-].
-    %(chamber_pressure_2)s
+    %(measured_pressure)s
     flap : Flap
         The flap (inertia, buoyancy stiffness C, width).
     pto : PTO
@@ -396,7 +396,7 @@ def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap,
     %(time_uniform)s
     encoder_counts : array_like
         Wire-encoder counts [-].
-    %(chamber_pressure_2)s
+    %(measured_pressure)s
     flap : Flap
         The flap (inertia, buoyancy stiffness C, width w of the capture width ratio).
     pto : PTO

@@ -59,20 +59,20 @@ _doc = filler(
                       "-------\n"
                       "xarray.DataArray\n"
                       "    ``eta_incident`` [m] over the extended ``time`` [s]."),
-    dt_2=("dt : float\n"
-          "    Simulator time step [s]."),
-    dt_3=("dt : float, optional\n"
-          "    Simulator time step [s]."),
+    simulator_dt=("dt : float\n"
+                  "    Simulator time step [s]."),
+    simulator_dt_optional=("dt : float, optional\n"
+                           "    Simulator time step [s]."),
     flap_params=("flap_params : flumekit.campaign.Flap\n"
                  "    The flap (inertia, width)."),
     friction=("friction : bool, optional\n"
               "    Include the LuGre friction."),
-    friction_2=("friction : bool, optional\n"
-                "    Include the LuGre friction in the simulator."),
-    hydro_2=("hydro : xarray.Dataset\n"
-             "    Coefficient container as written (real and imaginary parts)."),
-    hydro_3=("hydro : xarray.Dataset\n"
-             "    Coefficient container as stored (:func:`stored_container`)."),
+    with_friction=("friction : bool, optional\n"
+                   "    Include the LuGre friction in the simulator."),
+    hydro_written=("hydro : xarray.Dataset\n"
+                   "    Coefficient container as written (real and imaginary parts)."),
+    hydro_stored=("hydro : xarray.Dataset\n"
+                  "    Coefficient container as stored (:func:`stored_container`)."),
     inertia=("inertia : float\n"
              "    Flap moment of inertia about the hinge [kg m2]."),
     pto=("pto : flumekit.campaign.PTO\n"
@@ -255,7 +255,7 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
         The run's flap product (steady window, ``theta_dot``, ``mean_power``, phase grid).
     waves : xarray.Dataset
         The run's waves product (``measured_period`` [s], ``incident_height`` [m]).
-    %(hydro_2)s
+    %(hydro_written)s
     %(inertia)s
     %(stiffness)s
     pto_damping : str, optional
@@ -365,11 +365,11 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m], ``measured_period`` [s],
         ``incident_height`` [m], steady window).
-    %(hydro_3)s
+    %(hydro_stored)s
     %(flap_params)s
     %(pto)s
     %(depth)s
-    %(dt_2)s
+    %(simulator_dt)s
     %(friction)s
     %(spin_up_periods)s
 
@@ -457,14 +457,14 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
         The run's flap product (:func:`flumekit.flap.analysis.analyse_run`).
     waves : xarray.Dataset
         The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
-    %(hydro_3)s
+    %(hydro_stored)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, buoyancy stiffness, width).
     %(pto)s
     %(depth)s
-    %(dt_3)s
+    %(simulator_dt_optional)s
     %(simulator)s
-    %(friction_2)s
+    %(with_friction)s
     %(spin_up_periods)s
     linear_pto_damping : str, optional
         How the linear model's ν_pto is set, one of :data:`LINEAR_PTO_DAMPING`.
@@ -651,7 +651,7 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
         The run's flap product (analysed span, ``theta_dot``, ``mean_power``).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident`` [m2 s], ``energy_flux`` [W m-1]).
-    %(hydro_2)s
+    %(hydro_written)s
     %(inertia)s
     %(stiffness)s
     pto_damping : {"energy_equivalent", "optimal"}, optional
@@ -780,10 +780,10 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
         The run's flap product (analysed span, ``theta`` [rad], fitted hydraulic parameters).
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m] at x = 0, ``energy_flux`` [W m-1]).
-    %(hydro_3)s
+    %(hydro_stored)s
     %(flap_params)s
     %(pto)s
-    %(dt_2)s
+    %(simulator_dt)s
     %(friction)s
     spin_up : float, optional
         Seconds of incident wave run before the analysed span [s].
@@ -852,13 +852,13 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
         The run's flap product (:func:`flumekit.flap.analysis.analyse_irregular_run`).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident``, ``eta_incident``, ``energy_flux``).
-    %(hydro_3)s
+    %(hydro_stored)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, stiffness, width).
     %(pto)s
-    %(dt_3)s
+    %(simulator_dt_optional)s
     %(simulator)s
-    %(friction_2)s
+    %(with_friction)s
     spin_up : float, optional
         Seconds of incident wave the simulator runs before the analysed span [s].
     linear_pto_damping : {"energy_equivalent", "optimal"}, optional

@@ -58,7 +58,7 @@ from flumekit.docstrings import filler
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    dt_2=("dt : float\n"
+    step=("dt : float\n"
           "    Step [s], > 0."),
     model=("model : LuGre\n"
            "    Friction parameters."))
@@ -181,7 +181,7 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
         Bristle deflection [m] and film thickness [-] at the start of the step.
     velocity : float
         Rod extension rate held over the step [m s-1].
-    %(dt_2)s
+    %(step)s
     %(model)s
 
     Returns
@@ -215,7 +215,7 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
         State at the start of the step.
     velocity_start, velocity_end : float
         Rod extension rate at the start and end of the step [m s-1].
-    %(dt_2)s
+    %(step)s
     %(model)s
     """
     if not dt > 0:

@@ -28,7 +28,7 @@ from flumekit.hydro.stepping import ACCEL, ADVANCE, PREDICT
 _doc = filler(
     c=("c : ndarray\n"
        "    Parameters from :func:`flumekit.flap.friction.kernel_constants`."),
-    dt_2=("dt : float\n"
+    step=("dt : float\n"
           "    Step [s]."),
     h=("h : float\n"
        "    Film thickness parameter [-]."),
@@ -52,7 +52,7 @@ def lugre_step(z, h, v, dt, c):
     %(h)s
     v : float
         Rod velocity, frozen over the step [m s-1].
-    %(dt_2)s
+    %(step)s
     %(c)s
 
     Returns
@@ -94,7 +94,7 @@ def lugre_advance(z, h, v0, v1, dt, c):
     %(h)s
     v0, v1 : float
         Rod velocity at the start and end of the step [m s-1].
-    %(dt_2)s
+    %(step)s
     %(c)s
 
     Returns

@@ -23,12 +23,12 @@ from flumekit.flap.power import capture_factor, incident_power, window_mean
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    flap_width_2=("flap_width : float\n"
-                  "    Flap width L [m] (Eq. A2)."),
+    flap_width_a2=("flap_width : float\n"
+                   "    Flap width L [m] (Eq. A2)."),
     n_phase=("n_phase : int, optional\n"
              "    Phase points per cycle."),
-    period_2=("period : float\n"
-              "    Wave period T of the run [s]."))
+    run_period=("period : float\n"
+                "    Wave period T of the run [s]."))
 
 __doc__ = fill(__doc__)
 
@@ -97,11 +97,11 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     window : flumekit.signal.SteadyWindow
         The steady window (:func:`steady_window`); phase averages start at its first zero
         up-crossing of θ (t/T = 0, Fig. 10).
-    %(period_2)s
+    %(run_period)s
     incident_height : float
         Incident wave height H at the flap [m] (separation stage), > 0.
     %(depth)s
-    %(flap_width_2)s
+    %(flap_width_a2)s
     %(n_phase)s
     ci95 : tuple of str, optional
         Names of ``series`` that also get ``<name>_phase_ci95``.
@@ -199,11 +199,11 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
     ----------
     sim : xarray.Dataset
         Output of :func:`flumekit.flap.simulator.simulate_run` (or ``simulate``).
-    %(period_2)s
+    %(run_period)s
     incident_height : float
         Incident wave height H at the flap [m] (from the separation), for W_I.
     %(depth)s
-    %(flap_width_2)s
+    %(flap_width_a2)s
     tolerance : float, optional
         Crest tolerance of the quasi-steady window [-] (2 %, §2.5).
     %(n_phase)s

@@ -37,8 +37,8 @@ _doc = filler(
                     "------\n"
                     "ValueError\n"
                     "    A non-positive moment of inertia."),
-    theta_2=("theta : array_like\n"
-             "    Flap angle [rad]."))
+    flap_angle=("theta : array_like\n"
+                "    Flap angle [rad]."))
 
 __doc__ = fill(__doc__)
 
@@ -49,7 +49,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
 
     Parameters
     ----------
-    %(theta_2)s
+    %(flap_angle)s
     buoyancy_stiffness : float
         Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
 
@@ -166,7 +166,7 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
 
     Parameters
     ----------
-    %(theta_2)s
+    %(flap_angle)s
     theta_ddot : array_like
         Angular acceleration [rad s-2].
     torque_pto : array_like

@@ -42,8 +42,8 @@ from flumekit.errors import FlumekitError
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    hydro_2=("hydro : xarray.Dataset\n"
-             "    Coefficient container (:func:`hydro_dataset`)."))
+    hydro_container=("hydro : xarray.Dataset\n"
+                     "    Coefficient container (:func:`hydro_dataset`)."))
 
 __doc__ = fill(__doc__)
 
@@ -508,7 +508,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
 
     Parameters
     ----------
-    %(hydro_2)s
+    %(hydro_container)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping below which B counts as negative.
 
@@ -543,7 +543,7 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
     Parameters
     ----------
-    %(hydro_2)s
+    %(hydro_container)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping (see :func:`passivity_report`).
 
@@ -572,7 +572,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
 
     Parameters
     ----------
-    %(hydro_2)s
+    %(hydro_container)s
 
     Returns
     -------
@@ -612,7 +612,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
     Parameters
     ----------
-    %(hydro_2)s
+    %(hydro_container)s
     duration : float, optional
         Length of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
     dt : float, optional

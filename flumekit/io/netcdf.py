@@ -19,8 +19,8 @@ from flumekit.io.atomic import Written, atomic_path
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    path_2=("path : str or pathlib.Path\n"
-            "    The netCDF-4 file to write."))
+    netcdf_path=("path : str or pathlib.Path\n"
+                 "    The netCDF-4 file to write."))
 
 
 def _encoding(ds: xr.Dataset, compress: bool = True) -> dict[str, dict]:
@@ -121,7 +121,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) ->
     ds : xarray.Dataset
         With the global attributes ``Conventions``, ``title``, ``source`` and ``history``
         (:func:`write_product` sets them); no complex variables.
-    %(path_2)s
+    %(netcdf_path)s
     compress : bool, optional
         Deflate float arrays of more than 4096 values (zlib level 1 with shuffle, one chunk
         per variable). False stores them contiguous, as they are: for dense float records of
@@ -172,7 +172,7 @@ def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
     ----------
     ds : xarray.Dataset
         The product; variable names from :mod:`flumekit.conventions`.
-    %(path_2)s
+    %(netcdf_path)s
     title : str
         What the dataset holds (the CF ``title``).
     source : str

@@ -30,8 +30,8 @@ _doc = filler(
                "    One character, or ``\"whitespace\"``."),
     encoding=("encoding : str, optional\n"
               "    The file's text encoding."),
-    path_2=("path : pathlib.Path\n"
-            "    The file, for messages."))
+    path_for_messages=("path : pathlib.Path\n"
+                       "    The file, for messages."))
 
 _HEADER = re.compile(r"^\s*(.*?)\s*\[([^\]]*)\]\s*$")
 
@@ -182,7 +182,7 @@ def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
 
     Parameters
     ----------
-    %(path_2)s
+    %(path_for_messages)s
     data : bytes
         Its content.
     encoding : str, optional
@@ -456,7 +456,7 @@ def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
 
     Parameters
     ----------
-    %(path_2)s
+    %(path_for_messages)s
     time : numpy.ndarray
         Time stamps [s].
     sampling_rate : float, optional

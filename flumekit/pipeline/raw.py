@@ -33,8 +33,8 @@ from flumekit.synth import DEFAULT_SEED, MARKER
 _doc = filler(
     raw=("raw : pathlib.Path\n"
          "    The campaign folder."),
-    raw_2=("raw : Path\n"
-           "    The campaign folder."))
+    raw_folder=("raw : Path\n"
+                "    The campaign folder."))
 
 #: characters a run folder's name may not hold: a path separator on some system (``\\`` is one
 #: for the netCDF library, which would write outside the processed folder), and the wildcards
@@ -118,7 +118,7 @@ def check_run_names(raw: Path, names: list[str]) -> None:
 
     Parameters
     ----------
-    %(raw_2)s
+    %(raw_folder)s
     names : list of str
         Names of the folders in ``raw/runs``.
 
@@ -185,7 +185,7 @@ def check_virtual_campaign(raw: Path, info: dict, present: list[str]) -> list[st
 
     Parameters
     ----------
-    %(raw_2)s
+    %(raw_folder)s
     info : dict
         Its marker (:func:`read_marker`).
     present : list of str

@@ -24,8 +24,8 @@ _doc = filler(
               "    The run.toml, named in the message."),
     tolerance=("tolerance : float\n"
                "    Largest relative difference accepted [-]."),
-    tolerance_2=("tolerance : float\n"
-                 "    Relative difference beyond which the run is refused [-]."),
+    refuse_tolerance=("tolerance : float\n"
+                      "    Relative difference beyond which the run is refused [-]."),
     warning=("warning : float\n"
              "    Relative difference beyond which a warning is returned [-]."),
     what=("what : str\n"
@@ -186,7 +186,7 @@ def check_height(declared: float, measured: float, tolerance: float, warning: fl
         The height declared in run.toml [m].
     measured : float
         The measured height [m].
-    %(tolerance_2)s
+    %(refuse_tolerance)s
     %(warning)s
     %(run_file)s
     %(what)s
@@ -220,7 +220,7 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
         The measured value [``unit``].
     unit : str
         Their unit, for the message.
-    %(tolerance_2)s
+    %(refuse_tolerance)s
     %(warning)s
     %(run_file)s
     %(what)s

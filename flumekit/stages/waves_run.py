@@ -9,8 +9,8 @@ from flumekit.docstrings import filler
 
 #: docstring text that several functions of this module share
 _doc = filler(
-    eta_2=("eta : xarray.DataArray\n"
-           "    Surface elevation at every probe [m], with probe positions ``x`` [m]."))
+    eta_probes=("eta : xarray.DataArray\n"
+                "    Surface elevation at every probe [m], with probe positions ``x`` [m]."))
 
 
 @_doc
@@ -19,7 +19,7 @@ def regular(eta, params):
 
     Parameters
     ----------
-    %(eta_2)s
+    %(eta_probes)s
     params : dict
         The waves rule's parameters.
 
@@ -48,7 +48,7 @@ def irregular(eta, params):
 
     Parameters
     ----------
-    %(eta_2)s
+    %(eta_probes)s
     params : dict
         The waves rule's parameters, with the run's target ``sea_state``.
 
