@@ -395,17 +395,19 @@ def report(rows: tuple[str, ...] = ROWS, jobs: int = 2) -> str:
 
 
 def run(quick: bool = False) -> str:
-    """Run the benchmark and return its table as text.
+    """Run the benchmark: :func:`report` of every row group, or of ``main`` only when quick.
 
     Parameters
     ----------
     quick : bool
-        Build the main rows only.
+        Build the main condition's and Fig. 7b's runs only, not the UVP repeats and Table 1's
+        trends.
 
     Returns
     -------
     str
-        The printed report.
+        The printed table of the paper's stated numbers against the virtual flume's
+        (:func:`table`), headed by the build's duration.
     """
     return report(("main",) if quick else ROWS)
 
