@@ -180,7 +180,8 @@ def fill(doc: str | None, snippets: Mapping[str, str] | None = None) -> str | No
                            f"{', '.join(sorted(snippets))}")
         line_start = doc.rfind("\n", 0, match.start()) + 1
         lead = doc[line_start:match.start()]
-        indent = lead if not lead.strip() else lead[:len(lead) - len(lead.lstrip())]
+        # continuation lines align with the placeholder (e.g. the body of a ``.. [2]`` note)
+        indent = lead if not lead.strip() else " " * len(lead)
         # a snippet may name other snippets (a section of shared entries)
         return fill(snippets[key], snippets).replace("\n", "\n" + indent)
 

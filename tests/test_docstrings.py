@@ -48,4 +48,5 @@ def test_the_references_are_always_available():
     def f():
         """Cite %(qartod)s (gross range test)."""
 
-    assert f.__doc__.startswith("Cite U.S. IOOS (2019)") and "\nv2.1 (gross range" in f.__doc__
+    # the continuation line aligns with the placeholder's column
+    assert f.__doc__.startswith("Cite U.S. IOOS (2019)") and "\n     v2.1 (gross" in f.__doc__
