@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from flumekit.docstrings import doc
 from flumekit.schema import Key, Problem, raise_problems, read_toml, suggest, validate
 
 # --------------------------------------------------------------------------------------------
@@ -435,6 +436,7 @@ class Encoder:
     sampling_rate: float  # [Hz]
 
 
+@doc
 @dataclass(frozen=True)
 class Probes:
     """The wave probes of a campaign (``[probes]`` of campaign.toml).
@@ -443,8 +445,7 @@ class Probes:
     ----------
     names : tuple of str
         Probe names, in channel order.
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(sampling_rate)s
     separation : tuple of str
         Probes used for the incident/reflected separation.
     units : str

@@ -3,6 +3,10 @@
 Flags follow make and snakemake: ``-n`` dry run, ``-j N`` jobs, ``-k`` keep going, ``-f``/
 ``--force`` rebuilds the named targets only, ``-F``/``--forceall`` everything they need;
 ``--debug``, ``-q`` and ``-v`` work before or after the subcommand.
+
+Each subcommand has one handler, ``cmd_<name>(args) -> int``: it takes the parsed command
+line (:func:`parser`, whose help is the reference for every option) and returns the exit
+status, 0 on success.
 """
 
 from __future__ import annotations
@@ -145,16 +149,6 @@ def cmd_make(args) -> int:
 
     Holds the build lock of the processed folder; a make with nothing to do answers from
     the up-to-date record without reading the graph.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
 
     Raises
     ------
@@ -313,18 +307,7 @@ def _results(graph, report) -> None:
 
 
 def cmd_list(args) -> int:
-    """Run ``flumekit list``: the scenes and every target, marking those out of date.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
-    """
+    """Run ``flumekit list``: the scenes and every target, marking those out of date."""
     from flumekit.pipeline.engine import plan
     from flumekit.pipeline.state import State
 
@@ -352,16 +335,6 @@ def cmd_graph(args) -> int:
     """Run ``flumekit graph``: print the dependency graph of the targets as DOT or Mermaid.
 
     The targets default to every scene.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
     """
     from flumekit.pipeline.render import render
 
@@ -376,16 +349,6 @@ def cmd_clean(args) -> int:
 
     Only files the pipeline declares as outputs under the processed folder are removed; raw
     data (and the virtual flume's synthesised campaign) is never touched.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
     """
     from flumekit.pipeline.engine import remove_outputs
     from flumekit.pipeline.lock import build_lock
@@ -411,18 +374,7 @@ def cmd_clean(args) -> int:
 
 
 def cmd_synth(args) -> int:
-    """Run ``flumekit synth``: write a virtual-flume campaign into a new folder.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
-    """
+    """Run ``flumekit synth``: write a virtual-flume campaign into a new folder."""
     from flumekit.synth.campaign import write_campaign
 
     out = Path(args.out)
@@ -437,16 +389,6 @@ def cmd_new(args) -> int:
     """Run ``flumekit new``: write a commented campaign skeleton into an absent or empty folder.
 
     The skeleton holds a campaign file, one run and a pipeline file.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
 
     Raises
     ------
@@ -473,18 +415,7 @@ def cmd_new(args) -> int:
 
 
 def cmd_params(args) -> int:
-    """Run ``flumekit params``: print the stage parameters with defaults and units.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
-    """
+    """Run ``flumekit params``: print the stage parameters with defaults and units."""
     from flumekit.stages import parameters, parameters_markdown
 
     if args.markdown:
@@ -509,16 +440,6 @@ def cmd_clock(args) -> int:
 
     The offset is that of a signal two instruments share
     (:func:`flumekit.signal.estimate_time_offset`).
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
     """
     from flumekit.campaign import load_campaign
     from flumekit.io.instruments import FLAP_VARIABLES, read_flap, read_probes
@@ -559,16 +480,6 @@ def cmd_clock(args) -> int:
 def cmd_bench(args) -> int:
     """Run ``flumekit bench``: the accuracy-versus-run-time benchmarks of one area.
 
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
-
     Raises
     ------
     flumekit.errors.FlumekitError
@@ -585,18 +496,7 @@ def cmd_bench(args) -> int:
 
 
 def cmd_report(args) -> int:
-    """Run ``flumekit report``: write the campaign report from the processed data.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        The parsed command line (:func:`parser`).
-
-    Returns
-    -------
-    int
-        Exit status: 0 on success.
-    """
+    """Run ``flumekit report``: write the campaign report from the processed data."""
     from flumekit.report import write_report
 
     pipe = _pipeline(args)

@@ -21,16 +21,17 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 
 
+@doc
 def read_toml(path: Path) -> dict[str, Any]:
     """Read a TOML file.
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file.
+    %(path)s
 
     Returns
     -------
@@ -120,14 +121,14 @@ class Key:
     kinds: tuple[str, ...] = field(default_factory=tuple)  # alternatives to ``kind``
 
 
+@doc
 @dataclass(frozen=True)
 class Problem:
     """One problem of a TOML file: the file, the key (dotted; empty: the file) and what is wrong.
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file.
+    %(path)s
     key : str
         The dotted key, e.g. ``"probes.x"``; empty for the file as a whole.
     message : str

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flumekit.docstrings import doc
+
 #: largest deviation of a sampling interval from the mean step, relative to the step: far above
 #: the rounding of float times (1e-16 relative per value, 1e-10 of a 0.01 s step at t = 1e4 s)
 #: and far below any real clock irregularity worth resampling for
@@ -56,6 +58,7 @@ def _check_rate(sampling_rate: float, cutoff: float) -> None:
             f"{sampling_rate / 2} Hz")
 
 
+@doc
 def lowpass(x: np.ndarray, sampling_rate: float, cutoff: float, order: int = 4,
             axis: int = -1) -> np.ndarray:
     """Zero-phase Butterworth low-pass filter (forward-backward, second-order sections).
@@ -64,8 +67,7 @@ def lowpass(x: np.ndarray, sampling_rate: float, cutoff: float, order: int = 4,
     ----------
     x : numpy.ndarray
         Signal, time along ``axis``.
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(sampling_rate)s
     cutoff : float
         -3 dB cut-off of the single pass [Hz]. Forward-backward filtering squares the
         magnitude response, so the combined response is -6 dB at ``cutoff``.
@@ -99,6 +101,7 @@ def smooth_derivatives(x: np.ndarray, sampling_rate: float, cutoff: float, order
     return xs, v, a
 
 
+@doc
 def zero_upcrossings(x: np.ndarray, time: np.ndarray) -> np.ndarray:
     """Find the zero up-crossings of a 1-D signal, linearly interpolated.
 
@@ -106,8 +109,7 @@ def zero_upcrossings(x: np.ndarray, time: np.ndarray) -> np.ndarray:
     ----------
     x : numpy.ndarray
         Signal, 1-D.
-    time : numpy.ndarray
-        Sample times [s].
+    %(time)s
 
     Returns
     -------

@@ -18,7 +18,8 @@ PACKAGE = ROOT / "flumekit"
 
 #: layers in import order; a module may import from its own layer and the ones before it
 LAYERS: tuple[tuple[str, ...], ...] = (
-    ("errors", "conventions", "units", "schema", "campaign", "signal", "scaling", "lazy"),
+    ("errors", "conventions", "units", "schema", "campaign", "signal", "scaling", "lazy",
+     "docstrings"),
     ("io",),
     ("qc",),
     ("waves", "hydro", "performance"),

@@ -7,32 +7,16 @@ contacts (:mod:`~flumekit.ballscrew.ehl`) and the thermal models
 """
 
 
-from flumekit.lazy import lazy_names
+from flumekit.lazy import attach
 
-#: public name -> module of this package (imported on first use, so that importing the
-#: package stays cheap)
-_LAZY = {
-    "kinematics": "buoy",
-    "inverse_dynamics": "buoy",
-    "efficiency": "screw",
-    "hertz_contact": "ehl",
-    "film_thickness": "ehl",
-    "reference_scenario": "scenario",
-    "BuoyGeometry": "buoy",
-    "reference_motion": "buoy",
-    "forward_dynamics": "buoy",
-    "lift_from_energy_balance": "buoy",
-    "BallScrew": "screw",
-    "Lubricant": "screw",
-    "PTOCoefficients": "screw",
-    "pto_state": "screw",
-    "indirect_efficiency": "screw",
-    "sea_state_motion": "screw",
-    "stribeck_friction": "ehl",
-    "stated_results": "scenario",
-}
-
-__all__ = sorted(_LAZY)
-
-
-__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
+# public names by the module that defines them, each imported on first use so that
+# importing the package stays cheap
+__getattr__, __dir__, __all__ = attach(
+    __name__, globals(),
+    buoy=["kinematics", "inverse_dynamics", "BuoyGeometry", "reference_motion", "forward_dynamics",
+          "lift_from_energy_balance"],
+    screw=["efficiency", "BallScrew", "Lubricant", "PTOCoefficients", "pto_state",
+           "indirect_efficiency", "sea_state_motion"],
+    ehl=["hertz_contact", "film_thickness", "stribeck_friction"],
+    scenario=["reference_scenario", "stated_results"],
+)

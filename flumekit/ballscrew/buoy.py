@@ -27,12 +27,29 @@ import xarray as xr
 from scipy import integrate, optimize
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    parameters_float=("Parameters\n"
+                      "----------\n"
+                      "%(draft)s\n"
+                      "%(radius)s"),
+    draft=("draft : float or array_like\n"
+           "    Draft d of the float [m]."),
+    geometry=("geometry : BuoyGeometry\n"
+              "    The geometry."),
+    motion_period=("period : float\n"
+                   "    Period T [s]."),
+    radius=("radius : float\n"
+            "    Float radius R [m]."))
 
 WATER_DENSITY = 1025.0  # [kg m-3] sea water
 GRAVITY = 9.81  # [m s-2]
 
 
+@_doc
 @dataclass(frozen=True)
 class BuoyGeometry:
     """Geometry and mass of the buoy, arm and PTO linkage (hinge at the origin).
@@ -76,11 +93,7 @@ class BuoyGeometry:
         For a non-positive length, density or gravity, a static draft not below the float
         radius, a rest angle of ±90° or a negative arm inertia.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358
+    %(references_senatore2022)s
 
     Examples
     --------
@@ -126,29 +139,21 @@ class BuoyGeometry:
 
 # --- hydrostatics (Fig. 3) ---------------------------------------------------------------------
 
+@_doc
 def displaced_volume(draft, radius: float) -> np.ndarray:
     """Return the volume of water displaced by a hemispherical float (Fig. 3).
 
     A spherical cap V = π d² (3R - d)/3 for 0 ≤ d ≤ R; 0 out of the water (d < 0) and the full
     hemisphere 2πR³/3 once the deck is awash (d > R, green water on deck not counted).
 
-    Parameters
-    ----------
-    draft : float or array_like
-        Draft d of the float [m].
-    radius : float
-        Float radius R [m].
+    %(parameters_float)s
 
     Returns
     -------
     numpy.ndarray
         Displaced volume [m3].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Fig. 3.
+    %(references_senatore2022)s, Fig. 3.
 
     Examples
     --------
@@ -160,15 +165,11 @@ def displaced_volume(draft, radius: float) -> np.ndarray:
     return np.pi * d**2 * (3 * radius - d) / 3.0
 
 
+@_doc
 def waterplane_area(draft, radius: float) -> np.ndarray:
     """Return the waterplane area of the hemispherical float, π(2Rd - d²).
 
-    Parameters
-    ----------
-    draft : float or array_like
-        Draft d of the float [m].
-    radius : float
-        Float radius R [m].
+    %(parameters_float)s
 
     Returns
     -------
@@ -270,15 +271,14 @@ def actuator_length(theta, geometry: BuoyGeometry) -> tuple[np.ndarray, np.ndarr
     return s, ds, dds
 
 
+@_doc
 def screw_speed(nut_velocity, lead: float) -> np.ndarray:
     """Return the screw angular speed ω = 2π v / lead.
 
     Parameters
     ----------
-    nut_velocity : float or array_like
-        Nut velocity v [m s-1].
-    lead : float
-        Screw lead [m].
+    %(nut_velocity)s
+    %(lead)s
 
     Returns
     -------
@@ -303,6 +303,7 @@ def screw_speed(nut_velocity, lead: float) -> np.ndarray:
 
 # --- scenario: kinematics --------------------------------------------------------------------
 
+@_doc
 def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int = 1,
                      samples_per_period: int = 380) -> xr.Dataset:
     """Return the sinusoidal heave z(t) = A sin(2π t/T) of the buoy CoG and its exact derivatives.
@@ -313,8 +314,7 @@ def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int
     ----------
     amplitude : float
         Heave amplitude A [m].
-    period : float
-        Period T [s].
+    %(motion_period)s
     n_periods : int
         Number of periods.
     samples_per_period : int
@@ -332,11 +332,7 @@ def reference_motion(amplitude: float = 1.0, period: float = 3.8, n_periods: int
         For a negative amplitude, a non-positive period, fewer than one period or fewer than 8
         samples per period.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 3.1.
+    %(references_senatore2022)s, Sect. 3.1.
 
     Examples
     --------
@@ -366,6 +362,7 @@ def _derivative(x: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.gradient(x, t, edge_order=2)
 
 
+@_doc
 def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
                lead: float = 0.02, water_elevation: xr.DataArray | None = None) -> xr.Dataset:
     """Compute the linkage kinematics and hydrostatics of the buoy for a kinematic input z(t).
@@ -401,11 +398,7 @@ def kinematics(motion: xr.Dataset, geometry: BuoyGeometry = BuoyGeometry(),
     flumekit.errors.GeometryError
         When the heave is out of reach of the arm.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 2 (multibody model) and Fig. 3.
+    %(references_senatore2022)s, Sect. 2 (multibody model) and Fig. 3.
 
     Examples
     --------
@@ -488,6 +481,7 @@ def geometry_from_attrs(ds: xr.Dataset) -> BuoyGeometry:
 
 # --- dynamics --------------------------------------------------------------------------------
 
+@_doc
 def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.Dataset:
     """Compute the wave (hydrodynamic) force that realises the kinematic input.
 
@@ -513,11 +507,7 @@ def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.D
         ``wave_force`` F_hd [N] and ``net_vertical_force`` F_z = F_hs + F_hd - m g [N] over
         ``time``.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 2 and Eq. (3).
+    %(references_senatore2022)s, Sect. 2 and Eq. (3).
 
     Examples
     --------
@@ -540,6 +530,7 @@ def inverse_dynamics(kin: xr.Dataset, pto_force, geometry: BuoyGeometry) -> xr.D
                       coords={"time": kin["time"].values})
 
 
+@_doc
 def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: float,
                      inertia: float = 0.0, friction_force: float = 0.0,
                      friction_velocity: float = 1e-3, initial_heave: float = 0.0,
@@ -558,8 +549,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
         Times [s], increasing.
     net_vertical_force : array_like
         F_z at those times [N].
-    geometry : BuoyGeometry
-        The geometry.
+    %(geometry)s
     damping : float
         Viscous PTO coefficient K on the nut [N s m-1].
     inertia : float
@@ -588,11 +578,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
     RuntimeError
         When the integration fails.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 2 and Eq. (3).
+    %(references_senatore2022)s, Sect. 2 and Eq. (3).
     """
     t = np.asarray(time, float)
     fz = np.asarray(net_vertical_force, float)
@@ -627,6 +613,7 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
 
 # --- energy balance algorithm (Fig. 4) ---------------------------------------------------------
 
+@_doc
 def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
                         gravity: float = GRAVITY) -> np.ndarray:
     """Return the energy per unit horizontal area of a linear wave, E = ρ g H² / 16.
@@ -652,11 +639,7 @@ def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
     ValueError
         For a negative height.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (2).
+    %(references_senatore2022)s, Eq. (2).
 
     Examples
     --------
@@ -670,6 +653,7 @@ def wave_energy_density(wave_height, water_density: float = WATER_DENSITY,
     return water_density * gravity * h**2 / 16.0
 
 
+@_doc
 def nut_work(lift: float, period: float, geometry: BuoyGeometry,
              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
              samples: int = 256, lead: float = 0.02) -> tuple[float, float]:
@@ -679,17 +663,14 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     ----------
     lift : float
         Heave amplitude h [m].
-    period : float
-        Period T [s].
-    geometry : BuoyGeometry
-        The geometry.
+    %(motion_period)s
+    %(geometry)s
     pto_force : callable
         (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N].
     samples : int
         Samples of the cycle (the rectangle rule on a periodic integrand is spectrally
         accurate).
-    lead : float
-        Screw lead [m].
+    %(lead)s
 
     Returns
     -------
@@ -714,6 +695,7 @@ def nut_work(lift: float, period: float, geometry: BuoyGeometry,
     return work, float(kin["waterplane_area"].mean())
 
 
+@_doc
 def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: BuoyGeometry,
                              pto_force: Callable[[np.ndarray, np.ndarray], np.ndarray],
                              lead: float = 0.02, samples: int = 256) -> float:
@@ -726,17 +708,14 @@ def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: B
 
     Parameters
     ----------
-    wave_height : float
-        Wave height H [m].
-    wave_period : float
-        Wave period T [s].
+    %(wave_height)s
+    %(wave_period)s
     geometry : BuoyGeometry
         Buoy geometry (limits h below the static draft and the arm reach).
     pto_force : callable
         (nut velocity [m s-1], nut acceleration [m s-2]) -> F_PTO [N], e.g.
         :func:`flumekit.ballscrew.screw.pto_force_function`.
-    lead : float
-        Screw lead [m].
+    %(lead)s
     samples : int
         Samples per cycle of the work integral.
 
@@ -752,11 +731,7 @@ def lift_from_energy_balance(wave_height: float, wave_period: float, geometry: B
         For H or T not positive, or a sea state carrying more energy than the PTO absorbs
         within the float's range of motion.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (2) and Fig. 4.
+    %(references_senatore2022)s, Eq. (2) and Fig. 4.
 
     Examples
     --------

@@ -31,7 +31,21 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    lam=("lam : float or array_like\n"
+         "    Film parameter λ [-]."),
+    modulus=("modulus : float\n"
+             "    Effective modulus E' [Pa]."),
+    r_x=("r_x : float\n"
+         "    Effective radius in the rolling direction [m]."),
+    r_y=("r_y : float\n"
+         "    Effective radius in the transverse direction [m]."),
+    viscosity=("viscosity : float\n"
+               "    Dynamic viscosity at ambient pressure η0 [Pa s]."))
 
 #: lubrication regimes returned by :func:`lubrication_regime`
 BOUNDARY, MIXED, FULL_FILM = 0, 1, 2
@@ -46,6 +60,7 @@ def _positive(name: str, value) -> np.ndarray:
     return arr
 
 
+@_doc
 def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = None,
                     poisson_b: float | None = None) -> float:
     """Return the effective elastic modulus E' of two bodies in contact (Hamrock's convention).
@@ -73,9 +88,7 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
     ValueError
         For a non-positive modulus or a Poisson's ratio outside (-1, 0.5).
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -91,6 +104,7 @@ def reduced_modulus(young_a: float, poisson_a: float, young_b: float | None = No
     return 2.0 / ((1 - poisson_a**2) / young_a + (1 - poisson_b**2) / young_b)
 
 
+@_doc
 def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     """Return the effective radii R_x, R_y of two bodies in contact.
 
@@ -121,9 +135,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
         If a curvature sum is not positive (the surfaces would be conformal or interpenetrating:
         no Hertz contact).
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -139,6 +151,7 @@ def curvature_sum(r_ax, r_ay, r_bx, r_by) -> tuple[np.ndarray, np.ndarray]:
     return 1.0 / cx, 1.0 / cy
 
 
+@_doc
 def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle: float,
                       conformity: float, race: str) -> tuple[float, float]:
     """Return the effective radii R_x, R_y of a ball on the screw ('inner') or nut ('outer') groove.
@@ -155,8 +168,7 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
         Ball diameter d [m].
     pitch_diameter : float
         Pitch (ball-centre) diameter d_m of the screw [m].
-    contact_angle : float
-        Contact angle β [rad].
+    %(contact_angle)s
     conformity : float
         Groove conformity f = r_g / d [-], > 0.5.
     race : {"inner", "outer"}
@@ -164,10 +176,8 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
 
     Returns
     -------
-    r_x : float
-        Effective radius in the rolling direction [m].
-    r_y : float
-        Effective radius in the transverse direction [m].
+    %(r_x)s
+    %(r_y)s
 
     Raises
     ------
@@ -176,9 +186,7 @@ def ball_groove_radii(ball_diameter: float, pitch_diameter: float, contact_angle
     ValueError
         For an unknown ``race``.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17.
+    %(references_hamrock1991)s, Ch. 17.
 
     Examples
     --------
@@ -306,6 +314,7 @@ def ellipticity(radius_ratio, method: str = "exact") -> tuple[np.ndarray, np.nda
     return k, special.ellipk(m), special.ellipe(m)
 
 
+@_doc
 def hertz_contact(load, r_x: float, r_y: float, modulus: float,
                   method: str = "exact") -> HertzContact:
     """Compute the Hertz elliptical contact under a normal load.
@@ -317,8 +326,7 @@ def hertz_contact(load, r_x: float, r_y: float, modulus: float,
     ----------
     load : float or array_like
         Normal load w [N], ≥ 0.
-    r_x : float
-        Effective radius in the rolling direction [m].
+    %(r_x)s
     r_y : float
         Effective radius in the transverse direction [m], R_y ≥ R_x.
     modulus : float
@@ -337,9 +345,7 @@ def hertz_contact(load, r_x: float, r_y: float, modulus: float,
     ValueError
         For a negative or non-finite load, or a non-positive radius or modulus.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 17-18.
+    %(references_hamrock1991)s, Ch. 17-18.
 
     Examples
     --------
@@ -365,6 +371,7 @@ def hertz_contact(load, r_x: float, r_y: float, modulus: float,
     return HertzContact(b(k, shape), b(ff, shape), b(ee, shape), dy / 2, dx / 2, pmax, delta)
 
 
+@_doc
 def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: float,
                          pressure_viscosity: float) -> tuple[np.ndarray, float, np.ndarray]:
     """Return the speed, materials and load parameters U, G, W of Hamrock & Dowson.
@@ -377,12 +384,9 @@ def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: flo
         Mean entrainment velocity u = (u_a + u_b)/2 [m s-1] (its magnitude is used).
     load : float or array_like
         Normal load w [N].
-    r_x : float
-        Effective radius in the rolling direction [m].
-    modulus : float
-        Effective modulus E' [Pa].
-    viscosity : float
-        Dynamic viscosity at ambient pressure η0 [Pa s].
+    %(r_x)s
+    %(modulus)s
+    %(viscosity)s
     pressure_viscosity : float
         Barus pressure-viscosity coefficient α [Pa-1].
 
@@ -412,6 +416,7 @@ def dimensionless_groups(speed, load, r_x: float, modulus: float, viscosity: flo
             np.asarray(load, float) / (modulus * r_x**2))
 
 
+@_doc
 def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosity: float,
                    pressure_viscosity: float) -> tuple[np.ndarray, np.ndarray]:
     """Return the Hamrock-Dowson minimum and central film thickness of an elliptical EHL contact.
@@ -426,14 +431,10 @@ def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosit
         Mean entrainment velocity [m s-1]; zero speed gives zero film.
     load : float or array_like
         Normal load per contact [N], > 0 (a preload keeps it positive in a ball screw).
-    r_x : float
-        Effective radius in the rolling direction [m].
-    r_y : float
-        Effective radius in the transverse direction [m].
-    modulus : float
-        Effective modulus E' [Pa].
-    viscosity : float
-        Dynamic viscosity at ambient pressure η0 [Pa s].
+    %(r_x)s
+    %(r_y)s
+    %(modulus)s
+    %(viscosity)s
     pressure_viscosity : float
         Pressure-viscosity coefficient α [Pa-1].
 
@@ -455,7 +456,7 @@ def film_thickness(speed, load, r_x: float, r_y: float, modulus: float, viscosit
     Hamrock, B. J. and Dowson, D. (1977). Isothermal elastohydrodynamic lubrication of point
     contacts, part III. J. Lubr. Technol. 99, 264-276.
 
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 22.
+    %(hamrock1991)s, Ch. 22.
 
     Examples
     --------
@@ -545,6 +546,7 @@ def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
     return np.asarray(min_film_thickness, float) / roughness
 
 
+@_doc
 def lubrication_regime(lam) -> np.ndarray:
     """Return the lubrication regime from the film parameter.
 
@@ -555,17 +557,14 @@ def lubrication_regime(lam) -> np.ndarray:
 
     Parameters
     ----------
-    lam : float or array_like
-        Film parameter λ [-].
+    %(lam)s
 
     Returns
     -------
     numpy.ndarray
         Regime (int8): ``BOUNDARY``, ``MIXED`` or ``FULL_FILM``.
 
-    References
-    ----------
-    Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255, Ch. 1.
+    %(references_hamrock1991)s, Ch. 1.
 
     Examples
     --------
@@ -609,6 +608,7 @@ def asperity_load_fraction(lam, lam_half: float = np.sqrt(3.0), sharpness: float
     return 1.0 / (1.0 + (lam / lam_half) ** sharpness)
 
 
+@_doc
 def stribeck_friction(lam, boundary: float = 0.1, full_film: float = 0.01,
                       lam_half: float = np.sqrt(3.0), sharpness: float = 4.0) -> np.ndarray:
     """Return the friction coefficient along the Stribeck curve.
@@ -621,8 +621,7 @@ def stribeck_friction(lam, boundary: float = 0.1, full_film: float = 0.01,
 
     Parameters
     ----------
-    lam : float or array_like
-        Film parameter λ [-].
+    %(lam)s
     boundary : float
         Friction coefficient of boundary lubrication [-] (0.1, lubricated steel).
     full_film : float

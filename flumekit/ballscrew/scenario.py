@@ -24,6 +24,7 @@ import xarray as xr
 
 from flumekit.ballscrew import buoy, ehl, screw
 from flumekit.ballscrew.thermal import fem, lumped
+from flumekit.docstrings import doc
 
 #: The regions of the FEM section that belong to the EMRG (electro-mechanical reciprocating
 #: generator): its stator, the air gap and its rotor on the screw shaft.
@@ -75,6 +76,7 @@ class StatedResult:
         return bool(self.low <= self.value <= self.high)
 
 
+@doc
 def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
                        samples_per_period: int = 380) -> tuple[xr.Dataset, xr.Dataset,
                                                                xr.Dataset]:
@@ -103,11 +105,7 @@ def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
     fem : xarray.Dataset
         The FEM thermal dataset.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, §3.1-3.2.
+    %(references_senatore2022)s, §3.1-3.2.
     """
     kin = buoy.kinematics(buoy.reference_motion(amplitude, period,
                                                 samples_per_period=samples_per_period))
@@ -116,6 +114,7 @@ def reference_scenario(amplitude: float = 1.0, period: float = 3.8,
     return eff, th, fem.thermal_fem(th)
 
 
+@doc
 def steady_fraction_lumped(th: xr.Dataset) -> np.ndarray:
     """Return each lump's temperature rise over the last cycle as a fraction of its steady rise.
 
@@ -132,11 +131,7 @@ def steady_fraction_lumped(th: xr.Dataset) -> np.ndarray:
     numpy.ndarray
         Fraction per lump (component) [-].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (8)-(10) and Fig. 16.
+    %(references_senatore2022)s, Eqs. (8)-(10) and Fig. 16.
     """
     params = lumped.LumpedThermal(**{k: th.attrs[k] for k in
                                      lumped.LumpedThermal.__dataclass_fields__})
@@ -169,6 +164,7 @@ def hottest_region(fem_ds: xr.Dataset) -> str:
     return str(fem_ds["region"].values[region[hottest_cell]])
 
 
+@doc
 def stated_results(eff: xr.Dataset, th: xr.Dataset, fem_ds: xr.Dataset) -> list[StatedResult]:
     """Compare each statement of the paper about its scenario with flumekit's value.
 
@@ -188,11 +184,7 @@ def stated_results(eff: xr.Dataset, th: xr.Dataset, fem_ds: xr.Dataset) -> list[
     list of StatedResult
         One per statement.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, §3.1-3.2 and §4.
+    %(references_senatore2022)s, §3.1-3.2 and §4.
     """
     indirect = eff["power_flow_direction"].values > 0
     eta = 100 * eff["ballscrew_efficiency"].values[indirect]

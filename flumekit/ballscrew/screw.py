@@ -45,9 +45,30 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.ballscrew import buoy, ehl
+from flumekit.docstrings import filler
 from flumekit.errors import GeometryError
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    friction_nut=("friction_nut : float or array_like\n"
+                  "    Ball-nut friction coefficient f [-]."),
+    friction_screw=("friction_screw : float or array_like\n"
+                    "    Ball-screw friction coefficient f_B [-]."),
+    lead_angle_=("lead_angle_ : float\n"
+                 "    Lead angle α [rad]."),
+    lubricant=("lubricant : Lubricant\n"
+               "    The lubricant and friction law."),
+    pto=("pto : PTOCoefficients\n"
+         "    The coefficients of Eq. (3)."),
+    friction_angle=("rho : float or array_like\n"
+                    "    Rolling-friction angle ρ [rad]."),
+    screw=("screw : BallScrew\n"
+           "    The ball screw."),
+    slip_angle=("slip_angle : float\n"
+                "    Slip angle γ_B [rad]."))
 
+
+@_doc
 @dataclass(frozen=True)
 class BallScrew:
     """Geometry, materials and surfaces of the recirculating ball screw.
@@ -101,11 +122,7 @@ class BallScrew:
         outside (0, 90°), no loaded ball, a non-positive preload, a slip angle outside [0, 90°)
         or a negative rolling resistance.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 2 and §3.1.
+    %(references_senatore2022)s, Sect. 2 and §3.1.
 
     Examples
     --------
@@ -155,6 +172,7 @@ class BallScrew:
         return float(np.arctan(self.rolling_resistance))
 
 
+@_doc
 @dataclass(frozen=True)
 class Lubricant:
     """Lubricant and friction law.
@@ -186,11 +204,7 @@ class Lubricant:
         For a non-positive viscosity or pressure-viscosity coefficient, or unless
         0 ≤ ``friction_full_film`` ≤ ``friction_boundary``.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Fig. 8 and §3.1.
+    %(references_senatore2022)s, Fig. 8 and §3.1.
     """
 
     viscosity: float = 0.07
@@ -206,6 +220,7 @@ class Lubricant:
             raise ValueError("lubricant: need 0 <= full-film friction <= boundary friction")
 
 
+@_doc
 @dataclass(frozen=True)
 class PTOCoefficients:
     """Coefficients of Eq. (3) in physical form.
@@ -230,11 +245,7 @@ class PTOCoefficients:
     ValueError
         For a negative coefficient.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (3).
+    %(references_senatore2022)s, Eq. (3).
     """
 
     damping: float = 6.0e4
@@ -247,13 +258,13 @@ class PTOCoefficients:
         if min(self.damping, self.viscous, self.rotor_inertia, self.nut_mass) < 0:
             raise ValueError("PTO coefficients must be >= 0")
 
+    @_doc
     def inertia(self, lead: float) -> float:
         """Return K_inert of Eq. (3), J (2π/lead)² + m_nut.
 
         Parameters
         ----------
-        lead : float
-            Screw lead [m].
+        %(lead)s
 
         Returns
         -------
@@ -271,13 +282,13 @@ class PTOCoefficients:
 
 # --- geometry and kinematics -------------------------------------------------------------------
 
+@_doc
 def lead_angle(lead: float, pitch_diameter: float) -> float:
     """Return the lead angle α = atan(lead / (π d_m)) at the pitch diameter.
 
     Parameters
     ----------
-    lead : float
-        Screw lead [m].
+    %(lead)s
     pitch_diameter : float
         Pitch diameter d_m [m].
 
@@ -303,6 +314,7 @@ def lead_angle(lead: float, pitch_diameter: float) -> float:
     return float(np.arctan(lead / (np.pi * pitch_diameter)))
 
 
+@_doc
 def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
     """Return the mean entrainment (rolling) speed of the ball-groove contacts.
 
@@ -315,8 +327,7 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
     ----------
     screw_speed : float or array_like
         Screw angular speed ω [rad s-1].
-    screw : BallScrew
-        The ball screw.
+    %(screw)s
 
     Returns
     -------
@@ -336,6 +347,7 @@ def entrainment_speed(screw_speed, screw: BallScrew) -> np.ndarray:
 
 # --- Eqs. (4)-(6) --------------------------------------------------------------------------
 
+@_doc
 def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_nut,
                 friction_screw, rho, slip_angle: float, pitch_radius: float,
                 mode: str = "indirect") -> tuple[np.ndarray, np.ndarray]:
@@ -347,18 +359,15 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     ----------
     normal_load : float or array_like
         Closing force Q = Q_A = Q_B [N].
-    lead_angle_ : float
-        Lead angle α [rad].
-    contact_angle : float
-        Contact angle β [rad].
+    %(lead_angle_)s
+    %(contact_angle)s
     friction_nut : float or array_like
         Ball-nut friction coefficient f [-], finite and ≥ 0.
     friction_screw : float or array_like
         Ball-screw friction coefficient f_B [-], finite and ≥ 0.
     rho : float or array_like
         Rolling-friction angle ρ [rad], finite and ≥ 0.
-    slip_angle : float
-        Slip angle γ_B [rad].
+    %(slip_angle)s
     pitch_radius : float
         Pitch radius r_m [m].
     mode : {"indirect", "direct"}
@@ -376,11 +385,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     ValueError
         For an unknown ``mode`` or a negative or non-finite friction coefficient or angle.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (5)-(6).
+    %(references_senatore2022)s, Eqs. (5)-(6).
 
     Examples
     --------
@@ -412,6 +417,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     return force, torque
 
 
+@_doc
 def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                         rho=0.0, slip_angle: float = 0.0, strict: bool = False) -> np.ndarray:
     """Return the indirect (back-driving) efficiency η = M ω / (F v), Eqs. (4)-(6).
@@ -424,16 +430,11 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     ----------
     lead_angle_ : float
         Lead angle α [rad], in (0, 90°).
-    contact_angle : float
-        Contact angle β [rad].
-    friction_nut : float or array_like
-        Ball-nut friction coefficient f [-].
-    friction_screw : float or array_like
-        Ball-screw friction coefficient f_B [-].
-    rho : float or array_like
-        Rolling-friction angle ρ [rad].
-    slip_angle : float
-        Slip angle γ_B [rad].
+    %(contact_angle)s
+    %(friction_nut)s
+    %(friction_screw)s
+    %(friction_angle)s
+    %(slip_angle)s
     strict : bool
         Raise instead of returning 0 where the screw self-locks.
 
@@ -449,11 +450,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     ValueError
         With ``strict``, where the screw self-locks.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+    %(references_senatore2022)s, Eqs. (4)-(6).
 
     Examples
     --------
@@ -474,35 +471,26 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     return np.where(locked, 0.0, m / (f * np.tan(lead_angle_)))
 
 
+@_doc
 def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, friction_screw,
                       rho=0.0, slip_angle: float = 0.0) -> np.ndarray:
     """Return the direct efficiency η_d = F v / (M ω) (screw drives the nut), Eqs. (4)-(6) reversed.
 
     Parameters
     ----------
-    lead_angle_ : float
-        Lead angle α [rad].
-    contact_angle : float
-        Contact angle β [rad].
-    friction_nut : float or array_like
-        Ball-nut friction coefficient f [-].
-    friction_screw : float or array_like
-        Ball-screw friction coefficient f_B [-].
-    rho : float or array_like
-        Rolling-friction angle ρ [rad].
-    slip_angle : float
-        Slip angle γ_B [rad].
+    %(lead_angle_)s
+    %(contact_angle)s
+    %(friction_nut)s
+    %(friction_screw)s
+    %(friction_angle)s
+    %(slip_angle)s
 
     Returns
     -------
     numpy.ndarray
         η_d [-], clipped to [0, 1].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (4)-(6).
+    %(references_senatore2022)s, Eqs. (4)-(6).
 
     Examples
     --------
@@ -519,6 +507,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
 
 # --- Eq. (3) ---------------------------------------------------------------------------------
 
+@_doc
 def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, viscous: float,
               inertia: float) -> np.ndarray:
     """Return the axial PTO force on the nut, Eq. (3) in Senatore & De Simone 2022.
@@ -527,8 +516,7 @@ def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, vi
 
     Parameters
     ----------
-    nut_velocity : float or array_like
-        Nut velocity v [m s-1].
+    %(nut_velocity)s
     nut_acceleration : float or array_like
         Nut acceleration a [m s-2].
     friction_force : float or array_like
@@ -550,11 +538,7 @@ def pto_force(nut_velocity, nut_acceleration, friction_force, damping: float, vi
     ValueError
         For a negative or non-finite friction force.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (3).
+    %(references_senatore2022)s, Eq. (3).
 
     Examples
     --------
@@ -593,6 +577,7 @@ def _contacts(screw: BallScrew) -> _Contacts:
                      ehl.composite_roughness(screw.roughness_ball, screw.roughness_nut))
 
 
+@_doc
 def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
               lubricant: Lubricant = Lubricant(), pto: PTOCoefficients = PTOCoefficients(),
               iterations: int = 8, tolerance: float = 1e-10) -> dict[str, np.ndarray]:
@@ -612,12 +597,9 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
         Nut velocity v [m s-1].
     nut_acceleration : array_like
         Nut acceleration a [m s-2], of the shape of ``nut_velocity``.
-    screw : BallScrew
-        The ball screw.
-    lubricant : Lubricant
-        The lubricant and friction law.
-    pto : PTOCoefficients
-        The coefficients of Eq. (3).
+    %(screw)s
+    %(lubricant)s
+    %(pto)s
     iterations : int
         Fixed-point iterations at most.
     tolerance : float
@@ -640,11 +622,7 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
         For velocity and acceleration not finite or of different shapes, or a motion in which
         the screw self-locks.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eqs. (3)-(7), Figs. 6 and 15.
+    %(references_senatore2022)s, Eqs. (3)-(7), Figs. 6 and 15.
 
     Examples
     --------
@@ -708,6 +686,7 @@ def pto_state(nut_velocity, nut_acceleration, screw: BallScrew = BallScrew(),
     }
 
 
+@_doc
 def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                        pto: PTOCoefficients = PTOCoefficients()):
     """Return the callable (v, a) -> F_PTO of the full model.
@@ -717,12 +696,9 @@ def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lu
 
     Parameters
     ----------
-    screw : BallScrew
-        The ball screw.
-    lubricant : Lubricant
-        The lubricant and friction law.
-    pto : PTOCoefficients
-        The coefficients of Eq. (3).
+    %(screw)s
+    %(lubricant)s
+    %(pto)s
 
     Returns
     -------
@@ -741,6 +717,7 @@ def pto_force_function(screw: BallScrew = BallScrew(), lubricant: Lubricant = Lu
     return force
 
 
+@_doc
 def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
                pto: PTOCoefficients = PTOCoefficients()) -> xr.Dataset:
     """Compute the PTO force, EHL state and ball-screw efficiency at every time step.
@@ -753,12 +730,9 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     ----------
     kin : xarray.Dataset
         Output of :func:`flumekit.ballscrew.buoy.kinematics` (its lead must match ``screw``).
-    screw : BallScrew
-        The ball screw.
-    lubricant : Lubricant
-        The lubricant and friction law.
-    pto : PTOCoefficients
-        The coefficients of Eq. (3).
+    %(screw)s
+    %(lubricant)s
+    %(pto)s
 
     Returns
     -------
@@ -772,11 +746,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     ValueError
         When ``kin`` was computed for another lead.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Sect. 3.1 and Fig. 15.
+    %(references_senatore2022)s, Sect. 3.1 and Fig. 15.
 
     Examples
     --------
@@ -811,6 +781,7 @@ def efficiency(kin: xr.Dataset, screw: BallScrew = BallScrew(), lubricant: Lubri
     return conventions.annotate(ds)
 
 
+@_doc
 def sea_state_motion(wave_height: float, wave_period: float,
                      geometry: buoy.BuoyGeometry = buoy.BuoyGeometry(),
                      screw: BallScrew = BallScrew(), lubricant: Lubricant = Lubricant(),
@@ -824,18 +795,13 @@ def sea_state_motion(wave_height: float, wave_period: float,
 
     Parameters
     ----------
-    wave_height : float
-        Wave height H [m].
-    wave_period : float
-        Wave period T [s].
+    %(wave_height)s
+    %(wave_period)s
     geometry : flumekit.ballscrew.buoy.BuoyGeometry
         The buoy.
-    screw : BallScrew
-        The ball screw.
-    lubricant : Lubricant
-        The lubricant and friction law.
-    pto : PTOCoefficients
-        The coefficients of Eq. (3).
+    %(screw)s
+    %(lubricant)s
+    %(pto)s
     n_periods : int
         Periods of motion.
     samples_per_period : int
@@ -847,11 +813,7 @@ def sea_state_motion(wave_height: float, wave_period: float,
         The :func:`flumekit.ballscrew.buoy.reference_motion` dataset with attributes
         ``wave_height`` [m] and ``lift`` [m].
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358. doi:10.3390/en15249358, Eq. (2) and Fig. 4.
+    %(references_senatore2022)s, Eq. (2) and Fig. 4.
 
     Examples
     --------

@@ -24,6 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(parameters_runs=("Parameters\n----------\nruns : dict\n"
+                                "    The built runs (:func:`built_runs`)."))
+
 ROOT = Path(__file__).resolve().parents[2]
 MAIN_RUN, OTHER_RUN = "T3.50_H0.250_r0", "T2.50_H0.200_r0"  # §3.1-3.3, Figs. 7 and 10
 #: row groups: the main condition and Fig. 7b's run, the UVP repeats, Table 1's trends
@@ -135,16 +141,14 @@ STATED = {
 }
 
 
+@_doc
 def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     """Return the virtual flume's value of every :data:`STATED` number the built runs allow.
 
     With notes: extra rows for the Table 1 trends (:func:`trends`) and the linear model's ν_pto
     (:func:`linear_pair`).
 
-    Parameters
-    ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(parameters_runs)s
 
     Returns
     -------
@@ -153,11 +157,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     notes : dict of str to str
         Row label -> text.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, §3.3.
+    %(references_brito2020)s, §3.3.
     """
     v: dict[str, float] = {}
     notes: dict[str, str] = {}
@@ -213,6 +213,7 @@ def measure(runs: dict) -> tuple[dict[str, float], dict[str, str]]:
     return v, notes
 
 
+@_doc
 def linear_pair(runs: dict) -> dict[str, str]:
     """Return the PTO damping the linear model needs for each of the paper's linear-model numbers.
 
@@ -221,24 +222,16 @@ def linear_pair(runs: dict) -> dict[str, str]:
     37 % below the linear model's and C_f = 0.33 cannot both hold with one ν for this geometry;
     the channel width in which they can is reported too.
 
-    Parameters
-    ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(parameters_runs)s
 
     Returns
     -------
     dict of str to str
         Row label -> text; empty without the main run's waves.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, §3.3 and Eq. A1.
+    %(references_brito2020)s, §3.3 and Eq. A1.
 
-    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(renzi_dias2012)s.
     """
     import tempfile
 
@@ -280,27 +273,21 @@ def linear_pair(runs: dict) -> dict[str, str]:
                 f"nu_pto {nu37(b):.0f} N m s")}
 
 
+@_doc
 def trends(runs: dict) -> dict[str, str]:
     """Return the linear/measured ratios of T_h, θ and C_f over Table 1, with their trends.
 
     Figs. 8-9 of the paper: the discrepancy grows with T and H. Spearman's ρ over T for each H,
     and over H of the mean over T.
 
-    Parameters
-    ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(parameters_runs)s
 
     Returns
     -------
     dict of str to str
         Row label -> ratios and ρ; empty with fewer than three periods built.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-    Experimental investigation of the flow field in the vicinity of an oscillating wave surge
-    converter. J. Mar. Sci. Eng. 8, Table 1 and Figs. 8-9.
+    %(references_brito2020)s, Table 1 and Figs. 8-9.
     """
     grid = {_condition(k): r for k, r in runs.items()
             if _condition(k) and k.endswith("_r0") and "cmp" in r}
@@ -345,13 +332,11 @@ def _fmt(key: str, x: float) -> str:
     return f"{x:.3f}"
 
 
+@_doc
 def table(runs: dict) -> list[tuple[str, str, str, str]]:
     """Return the paper's stated numbers against the virtual flume's, as rows of text.
 
-    Parameters
-    ----------
-    runs : dict
-        The built runs (:func:`built_runs`).
+    %(parameters_runs)s
 
     Returns
     -------
@@ -410,17 +395,19 @@ def report(rows: tuple[str, ...] = ROWS, jobs: int = 2) -> str:
 
 
 def run(quick: bool = False) -> str:
-    """Run the benchmark and return its table as text.
+    """Run the benchmark: :func:`report` of every row group, or of ``main`` only when quick.
 
     Parameters
     ----------
     quick : bool
-        Build the main rows only.
+        Build the main condition's and Fig. 7b's runs only, not the UVP repeats and Table 1's
+        trends.
 
     Returns
     -------
     str
-        The printed report.
+        The printed table of the paper's stated numbers against the virtual flume's
+        (:func:`table`), headed by the build's duration.
     """
     return report(("main",) if quick else ROWS)
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from flumekit.bench import best_time
+from flumekit.docstrings import doc
 from flumekit.flap.renzi_dias import model as rd
 
 H, W, C, B = 0.825, 1.31, 0.10, 1.5
@@ -42,6 +43,7 @@ def _knob_table(title, channel, ref_opts, knob, values, repeat) -> list[str]:
     return rows
 
 
+@doc
 def run(quick: bool = False) -> str:
     """Run the benchmark and return its tables: default accuracy and speed, then per order.
 
@@ -56,10 +58,7 @@ def run(quick: bool = False) -> str:
         The printed tables: error and time of the defaults in the channel and in open water, then
         error, change to the next order and time per truncation order.
 
-    References
-    ----------
-    Renzi, E. and Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(references_renzi_dias2012)s.
     """
     repeat = 3 if quick else 10
     out = ["Renzi-Dias thin-flap model, flume of Brito et al. 2020, Table 1 periods (9)"]

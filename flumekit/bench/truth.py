@@ -17,6 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
 #: error: tolerance (each error is below its tolerance, or at most it where marked in
 #: :data:`INCLUSIVE`: the relative checks, pytest.approx and assert_allclose's own)
 TOLERANCE = {"gain": 1e-3, "offset": 1e-3, "reflection": 5e-3, "incident_height": 5e-3,
@@ -28,6 +30,12 @@ TOLERANCE = {"gain": 1e-3, "offset": 1e-3, "reflection": 5e-3, "incident_height"
 INCLUSIVE = {"gain", "offset", "incident_height", "capture_factor", "hm0", "energy_period",
              "peak_period", "bulk_reflection", "reflection_spectrum", "mean_power",
              "capture_width_ratio"}
+
+#: parameters several checks share
+_TRUTH = "truth : pathlib.Path\n    The truth folder."
+_doc = filler(truth=_TRUTH, run="run : str\n    Run id.",
+              parameters_folders=("Parameters\n----------\nprocessed : pathlib.Path\n"
+                                  "    The processed folder of the build.\n" + _TRUTH))
 
 
 def within(name: str, error: float) -> bool:
@@ -71,15 +79,14 @@ def runs(truth: Path) -> list[str]:
     return sorted(p.name for p in Path(truth).iterdir() if p.is_dir())
 
 
+@_doc
 def irregular(truth: Path, run: str) -> bool:
     """Return whether a run of the truth folder is an irregular sea state.
 
     Parameters
     ----------
-    truth : pathlib.Path
-        The truth folder.
-    run : str
-        Run id.
+    %(truth)s
+    %(run)s
 
     Returns
     -------
@@ -96,15 +103,11 @@ def _open(path: Path):
     return xr.open_dataset(path, decode_times=False)
 
 
+@_doc
 def calibration_errors(processed: Path, truth: Path) -> dict[str, float]:
     """Return the largest relative error of the probes' calibration gains and offsets.
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
+    %(parameters_folders)s
 
     Returns
     -------
@@ -117,17 +120,12 @@ def calibration_errors(processed: Path, truth: Path) -> dict[str, float]:
                                 / np.abs(true[k].values))) for k in ("gain", "offset")}
 
 
+@_doc
 def waves_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
     """Return the errors of the reflection coefficient and the incident height of one run.
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
-    run : str
-        Run id.
+    %(parameters_folders)s
+    %(run)s
 
     Returns
     -------
@@ -158,20 +156,15 @@ def steady_window(flap) -> np.ndarray:
     return (t >= float(flap.steady_start)) & (t <= float(flap.steady_end))
 
 
+@_doc
 def flap_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
     """Return the errors of theta and the capture factor of one run.
 
     C_f is compared with the true mean power over the same quasi-steady window over W_I from
     the true height (Eq. A2 of Brito et al. 2020).
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
-    run : str
-        Run id.
+    %(parameters_folders)s
+    %(run)s
 
     Returns
     -------
@@ -192,15 +185,11 @@ def flap_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
                 "capture_factor": abs(float(f.capture_factor) / c_true - 1)}
 
 
+@_doc
 def uvp_field_errors(processed: Path, truth: Path) -> dict[str, dict[str, float]]:
     """Return the coverage and RMS error of each velocity component of the UVP field.
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
+    %(parameters_folders)s
 
     Returns
     -------
@@ -220,6 +209,7 @@ def uvp_field_errors(processed: Path, truth: Path) -> dict[str, dict[str, float]
         return out
 
 
+@_doc
 def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
     """Return every check of this module that the campaign built in ``processed`` fails.
 
@@ -227,12 +217,7 @@ def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
     in ``skip_flap``, the sea state, Kr, power and capture width ratio of every irregular run,
     the UVP field.
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
+    %(parameters_folders)s
     skip_flap : collection of str
         Runs whose flap is not checked (e.g. one with an injected clock offset).
 
@@ -251,18 +236,14 @@ def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
                       in irregular_errors(processed, truth, run).items()
                       if not within(name, error)]
             continue
-        e = waves_errors(processed, truth, run)
-        if not (within("reflection", e["reflection"])
-                and within("incident_height", e["incident_height"])):
-            fails.append(f"{run}: Kr off by {e['reflection']:.4f}, H_I by "
-                         f"{e['incident_height']:.2%}")
-        if run in skip_flap:
-            continue
-        e = flap_errors(processed, truth, run)
-        if not (within("theta_rms_deg", e["theta_rms_deg"])
-                and within("capture_factor", e["capture_factor"])):
-            fails.append(f"{run}: theta RMS {e['theta_rms_deg']:.3f} deg, C_f off by "
-                         f"{e['capture_factor']:.2%}")
+        checks = [(waves_errors, "Kr off by {reflection:.4f}, H_I by {incident_height:.2%}")]
+        if run not in skip_flap:
+            checks.append((flap_errors, "theta RMS {theta_rms_deg:.3f} deg, C_f off by "
+                                        "{capture_factor:.2%}"))
+        for errors, message in checks:
+            e = errors(processed, truth, run)
+            if not all(within(name, error) for name, error in e.items()):
+                fails.append(f"{run}: " + message.format(**e))
     for name, e in uvp_field_errors(processed, truth).items():
         if e["uvp_coverage"] <= TOLERANCE["uvp_coverage"] or not within("uvp_rms", e["uvp_rms"]):
             fails.append(f"uvp field {name}: {e['uvp_coverage']:.0%} not masked, RMS "
@@ -270,6 +251,7 @@ def failures(processed: Path, truth: Path, skip_flap=()) -> list[str]:
     return fails
 
 
+@_doc
 def irregular_truth(truth: Path, run: str, span: tuple[float, float],
                     power_span: tuple[float, float] | None = None) -> dict:
     """Return the truth of an irregular run over the span a pipeline analysed.
@@ -282,10 +264,8 @@ def irregular_truth(truth: Path, run: str, span: tuple[float, float],
 
     Parameters
     ----------
-    truth : pathlib.Path
-        The truth folder.
-    run : str
-        Run id.
+    %(truth)s
+    %(run)s
     span : tuple of float
         [start, end) of the analysis [s].
     power_span : tuple of float, optional
@@ -315,6 +295,7 @@ def irregular_truth(truth: Path, run: str, span: tuple[float, float],
             "capture_width_ratio": power / (state.attrs["energy_flux"] * width)}
 
 
+@_doc
 def irregular_errors(processed: Path, truth: Path, run: str) -> dict[str, float]:
     """Return the errors of an irregular run against its truth over the span the pipeline analysed.
 
@@ -324,14 +305,8 @@ def irregular_errors(processed: Path, truth: Path, run: str) -> dict[str, float]
     band of the product against sqrt(Σ S_R / Σ S_I) of the truth's periodogram over the same
     band.
 
-    Parameters
-    ----------
-    processed : pathlib.Path
-        The processed folder of the build.
-    truth : pathlib.Path
-        The truth folder.
-    run : str
-        Run id.
+    %(parameters_folders)s
+    %(run)s
 
     Returns
     -------

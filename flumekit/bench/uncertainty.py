@@ -22,6 +22,13 @@ import time
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    random_seed=("seed : int\n"
+                 "    Seed."))
+
 PERIOD, HEIGHT = 2.0, 0.15  # the condition of the repeats [s], [m]
 QUANTITIES = ("incident_height", "reflection_coefficient", "theta_amplitude", "capture_factor")
 
@@ -273,6 +280,7 @@ def coverage(n_repeats: int, draws: int, seed: int = 7, progress=None) -> dict:
     return out
 
 
+@_doc
 def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
     """Compare Monte Carlo with ``draws`` and 2 ``draws`` against the linear propagation.
 
@@ -284,8 +292,7 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
         Monte Carlo draws n.
     directions : int
         Random directions of the per-sample inputs in the linear propagation.
-    seed : int
-        Seed.
+    %(random_seed)s
 
     Returns
     -------
@@ -308,6 +315,7 @@ def agreement(draws: int, directions: int = 16, seed: int = 11) -> dict:
             for j, q in enumerate(model.results)}
 
 
+@_doc
 def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
     """Return the run time of the propagation of one run against the number of draws.
 
@@ -317,8 +325,7 @@ def cost(draws_list=(10, 20, 40, 160), seed: int = 5) -> dict:
     ----------
     draws_list : sequence of int
         Numbers of draws.
-    seed : int
-        Seed.
+    %(random_seed)s
 
     Returns
     -------

@@ -30,6 +30,17 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    returns_lines=("Returns\n"
+                   "-------\n"
+                   "list of str\n"
+                   "    Report lines."),
+    workers=("workers : int\n"
+             "    Worker processes."))
+
 PERIOD, HEIGHT, DEPTH, KR, PHI = 3.5, 0.25, 0.825, 0.2, 0.6
 N_WAVES = 100
 ELEVATIONS = tuple(np.round(np.arange(0.20, 0.7201, 0.02), 3))
@@ -110,6 +121,7 @@ def _maxrss_mb(who) -> float:
     return resource.getrusage(who).ru_maxrss / 1024.0  # Linux: kilobytes
 
 
+@_doc
 def part_a(n_runs: int, workers: int) -> list[str]:
     """Process a paper-scale UVP set from raw files to the field, timed; return the report lines.
 
@@ -121,19 +133,11 @@ def part_a(n_runs: int, workers: int) -> list[str]:
     ----------
     n_runs : int
         Runs (cycling through the 27 elevations).
-    workers : int
-        Worker processes.
+    %(workers)s
 
-    Returns
-    -------
-    list of str
-        Report lines.
+    %(returns_lines)s
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3.
+    %(references_brito2020)s, §2.3.
     """
     from flumekit.synth.uvp import true_field
     from flumekit.uvp import velocity_field
@@ -204,6 +208,7 @@ def _knob_run(job):
     return out
 
 
+@_doc
 def part_b(quick: bool, workers: int) -> list[str]:
     """Return the run time and field error against the UVP processing's knobs, as report lines.
 
@@ -214,13 +219,9 @@ def part_b(quick: bool, workers: int) -> list[str]:
     ----------
     quick : bool
         Fewer knob settings.
-    workers : int
-        Worker processes.
+    %(workers)s
 
-    Returns
-    -------
-    list of str
-        Report lines.
+    %(returns_lines)s
     """
     from flumekit.synth.uvp import true_field
     from flumekit.uvp import velocity_field

@@ -17,6 +17,7 @@ import xarray as xr
 from flumekit import conventions
 from flumekit import signal as sig
 from flumekit.campaign import PTO, Encoder, Flap
+from flumekit.docstrings import filler
 from flumekit.errors import InputError
 from flumekit.flap.encoder import angle_from_wire, wire_from_counts
 from flumekit.flap.friction import LuGre, friction_series
@@ -32,6 +33,19 @@ from flumekit.flap.torque import (
     pressure_torque,
 )
 from flumekit.performance import capture_width, capture_width_ratio, motion_statistics
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    measured_pressure=("chamber_pressure : array_like\n"
+                       "    Measured gauge pressure in the cylinder chamber [Pa]."),
+    cutoff=("cutoff : float\n"
+            "    Cut-off of the low-pass applied to θ before differentiation [Hz]."),
+    max_flagged_fraction=("max_flagged_fraction : float\n"
+                          "    Largest fraction of encoder samples outside the domain of Eq. (1) "
+                          "that may be\n"
+                          "    interpolated."),
+    zero_count=("zero_count : float\n"
+                "    Encoder count at θ = 0."))
 
 #: how far the waves' analysed span may end past the flap's record, which it then ends with
 #: [s]: one step of a probe record sampled at 10 Hz or faster
@@ -174,6 +188,7 @@ def _bounded(ds: xr.Dataset, fit) -> xr.Dataset:
     return ds
 
 
+@_doc
 def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float,
                 incident_height: float, cutoff: float = DEFAULT_CUTOFF,
@@ -187,8 +202,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         Sample times [s], uniform (100 Hz in the campaign).
     encoder_counts : array_like
         Wire-encoder counts, increasing as the wire is reeled in [-].
-    chamber_pressure : array_like
-        Measured gauge pressure in the cylinder chamber [Pa].
+    %(measured_pressure)s
     flap : Flap
         The flap (inertia, buoyancy stiffness C, width).
     pto : PTO
@@ -207,8 +221,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     cutoff : float
         Cut-off of the zero-phase 4th-order Butterworth low-pass applied to θ before
         differentiation [Hz].
-    zero_count : float
-        Encoder count at θ = 0.
+    %(zero_count)s
     tolerance : float
         Relative crest tolerance of the quasi-steady window (2 %, §2.5).
     n_phase : int
@@ -234,11 +247,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         A non-positive period or incident height, fewer than two quasi-steady cycles, or a
         pressure record the Eq. (13) fit cannot use.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
+    %(references_brito2020)s, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
     """
     m, win = steady_measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
                              encoder=encoder, period=period, cutoff=cutoff,
@@ -261,6 +270,7 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     return _bounded(conventions.annotate(ds.merge(summ)), fit)
 
 
+@_doc
 def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                     encoder: Encoder, period: float, cutoff: float = DEFAULT_CUTOFF,
                     zero_count: float = 0.0, tolerance: float = 0.02,
@@ -274,15 +284,11 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     ----------
     time, encoder_counts, chamber_pressure, flap, pto, encoder, period
         As in :func:`analyse_run` (time [s], counts [-], pressure [Pa], period [s]).
-    cutoff : float
-        Cut-off of the low-pass applied to θ before differentiation [Hz].
-    zero_count : float
-        Encoder count at θ = 0.
+    %(cutoff)s
+    %(zero_count)s
     tolerance : float
         Relative crest tolerance of the quasi-steady window [-].
-    max_flagged_fraction : float
-        Largest fraction of encoder samples outside the domain of Eq. (1) that may be
-        interpolated.
+    %(max_flagged_fraction)s
 
     Returns
     -------
@@ -305,6 +311,7 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     return m, steady_window(m.series["theta"], m.time, period, tolerance)
 
 
+@_doc
 def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                 encoder: Encoder, depth: float, period: float, incident_height: float,
                 cutoff: float = DEFAULT_CUTOFF, zero_count: float = 0.0,
@@ -345,11 +352,7 @@ def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     ValueError
         A non-positive period or incident height, fewer than two quasi-steady cycles.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.3, §2.5, §3.2, Eq. (A2).
+    %(references_brito2020)s, §2.3, §2.5, §3.2, Eq. (A2).
 
     Examples
     --------
@@ -371,6 +374,7 @@ def run_results(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                            theta_unfiltered=m.series["theta_unfiltered"])
 
 
+@_doc
 def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                           encoder: Encoder, analysis_start: float, analysis_end: float,
                           energy_flux: float, cutoff: float = DEFAULT_CUTOFF,
@@ -389,12 +393,10 @@ def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap,
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s], uniform.
+    %(time_uniform)s
     encoder_counts : array_like
         Wire-encoder counts [-].
-    chamber_pressure : array_like
-        Measured gauge pressure in the cylinder chamber [Pa].
+    %(measured_pressure)s
     flap : Flap
         The flap (inertia, buoyancy stiffness C, width w of the capture width ratio).
     pto : PTO
@@ -406,13 +408,9 @@ def analyse_irregular_run(time, encoder_counts, chamber_pressure, *, flap: Flap,
     energy_flux : float
         Spectral energy flux J = ρ g ∫ S_I(f) c_g(f, h) df of the incident wave at the flap
         over the span [W m-1] (the waves product's ``energy_flux``).
-    cutoff : float
-        Cut-off of the low-pass applied to θ before differentiation [Hz].
-    zero_count : float
-        Encoder count at θ = 0.
-    max_flagged_fraction : float
-        Largest fraction of encoder samples outside the domain of Eq. (1) that may be
-        interpolated.
+    %(cutoff)s
+    %(zero_count)s
+    %(max_flagged_fraction)s
 
     Returns
     -------

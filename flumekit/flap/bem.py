@@ -32,6 +32,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.errors import GeometryError
 from flumekit.waves.theory import G, wavenumber
 
@@ -58,6 +59,7 @@ def _grid_faces(n_a: int, n_b: int, offset: int) -> np.ndarray:
     return np.stack([v0, v0 + 1, v0 + 1 + (n_b + 1), v0 + (n_b + 1)], axis=-1).reshape(-1, 4)
 
 
+@doc
 def flap_mesh(depth: float, flap_width: float, hinge_height: float, thickness: float,
               panel_size: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Build the half (y ≤ 0) panel mesh of the flap and its foundation.
@@ -67,10 +69,8 @@ def flap_mesh(depth: float, flap_width: float, hinge_height: float, thickness: f
 
     Parameters
     ----------
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width w [m].
+    %(depth)s
+    %(flap_width)s
     hinge_height : float
         Hinge height c above the bed [m], 0 ≤ c < h.
     thickness : float
@@ -134,6 +134,7 @@ def flap_mesh(depth: float, flap_width: float, hinge_height: float, thickness: f
     return vertices, faces, moving
 
 
+@doc
 def coefficients(period, depth: float, flap_width: float, hinge_height: float,
                  thickness: float, rho: float = 1000.0, g: float = G,
                  panel_size: float = 0.05) -> xr.Dataset:
@@ -143,10 +144,8 @@ def coefficients(period, depth: float, flap_width: float, hinge_height: float,
     ----------
     period : array_like
         Wave periods [s], finite and > 0.
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width w [m].
+    %(depth)s
+    %(flap_width)s
     hinge_height : float
         Hinge height c above the bed [m].
     thickness : float

@@ -33,13 +33,8 @@ the spectral sum of Eq. (A1) over the incident spectrum (:func:`spectral_respons
 simulator is driven by the separated incident wave over the analysed span, and the three give
 the mean power, capture width and capture width ratio with the same J.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Appendix A.
-Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-channel. J. Fluid Mech. 701, 482-510 (RD12).
+%(references_brito2020)s, Appendix A.
+%(renzi_dias2012)s (RD12).
 """
 
 from __future__ import annotations
@@ -51,7 +46,45 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import PTO, Flap
+from flumekit.docstrings import fill, filler
 from flumekit.signal import uniform_step
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    returns_damping=("Returns\n"
+                     "-------\n"
+                     "float\n"
+                     "    ν_pto [N m s]."),
+    returns_incident=("Returns\n"
+                      "-------\n"
+                      "xarray.DataArray\n"
+                      "    ``eta_incident`` [m] over the extended ``time`` [s]."),
+    simulator_dt=("dt : float\n"
+                  "    Simulator time step [s]."),
+    simulator_dt_optional=("dt : float, optional\n"
+                           "    Simulator time step [s]."),
+    flap_params=("flap_params : flumekit.campaign.Flap\n"
+                 "    The flap (inertia, width)."),
+    friction=("friction : bool, optional\n"
+              "    Include the LuGre friction."),
+    with_friction=("friction : bool, optional\n"
+                   "    Include the LuGre friction in the simulator."),
+    hydro_written=("hydro : xarray.Dataset\n"
+                   "    Coefficient container as written (real and imaginary parts)."),
+    hydro_stored=("hydro : xarray.Dataset\n"
+                  "    Coefficient container as stored (:func:`stored_container`)."),
+    inertia=("inertia : float\n"
+             "    Flap moment of inertia about the hinge [kg m2]."),
+    pto=("pto : flumekit.campaign.PTO\n"
+         "    The PTO (anchors, bore, pressures, LuGre friction)."),
+    simulator=("simulator : bool, optional\n"
+               "    Run the simulator (else experiment and linear model only)."),
+    spin_up_periods=("spin_up_periods : int, optional\n"
+                     "    Periods of ramped spin-up before the steady incident wave."),
+    stiffness=("stiffness : float\n"
+               "    Hydrostatic stiffness C [N m rad-1]."))
+
+__doc__ = fill(__doc__)
 
 #: scalars and phase averages compared along ``source``
 SCALARS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
@@ -65,6 +98,7 @@ _DAMPING_COMMENT = {
                "Renzi & Dias (2012) Eq. (2.40)"}
 
 
+@_doc
 def bem_container(depth: float, flap_width: float, hinge_height: float, thickness: float,
                   hydrostatic_stiffness: float, omega: tuple[float, float, int],
                   panel_size: float) -> xr.Dataset:
@@ -76,10 +110,8 @@ def bem_container(depth: float, flap_width: float, hinge_height: float, thicknes
 
     Parameters
     ----------
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width w [m].
+    %(depth)s
+    %(flap_width)s
     hinge_height : float
         Hinge height above the bed [m].
     thickness : float
@@ -147,7 +179,9 @@ def stored_container(container: xr.Dataset, irf_duration: float = 30.0) -> xr.Da
     return split_complex(container).merge(radiation, combine_attrs="no_conflicts")
 
 
-def energy_equivalent_damping(flap: xr.Dataset) -> float:
+@_doc
+def energy_equivalent_damping(flap: xr.Dataset,
+                              window: tuple[str, str] = ("steady_start", "steady_end")) -> float:
     """Return the PTO damping that absorbs the measured mean power at the measured θ̇.
 
     ν_pto = W̄_out / mean(θ̇²) over the steady window.
@@ -157,11 +191,10 @@ def energy_equivalent_damping(flap: xr.Dataset) -> float:
     flap : xarray.Dataset
         A regular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
         ``mean_power`` [W], ``steady_start`` and ``steady_end`` [s].
+    window : tuple of str
+        The names of the window's start and end [s] in ``flap``.
 
-    Returns
-    -------
-    float
-        ν_pto [N m s].
+    %(returns_damping)s
 
     Examples
     --------
@@ -175,7 +208,7 @@ def energy_equivalent_damping(flap: xr.Dataset) -> float:
     100.0
     """
     t = flap["time"].values
-    inside = (t >= float(flap["steady_start"])) & (t <= float(flap["steady_end"]))
+    inside = (t >= float(flap[window[0]])) & (t <= float(flap[window[1]]))
     return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
 
 
@@ -210,6 +243,7 @@ def coefficients_at(hydro: xr.Dataset, period) -> xr.Dataset:
     return at
 
 
+@_doc
 def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia: float,
                  stiffness: float, pto_damping: str = "energy_equivalent"
                  ) -> tuple[dict, xr.Dataset]:
@@ -221,12 +255,9 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
         The run's flap product (steady window, ``theta_dot``, ``mean_power``, phase grid).
     waves : xarray.Dataset
         The run's waves product (``measured_period`` [s], ``incident_height`` [m]).
-    hydro : xarray.Dataset
-        Coefficient container as written (real and imaginary parts).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(hydro_written)s
+    %(inertia)s
+    %(stiffness)s
     pto_damping : str, optional
         How ν_pto is set, one of :data:`LINEAR_PTO_DAMPING` (module notes).
 
@@ -244,13 +275,8 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
     ValueError
         An unknown ``pto_damping``.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A1).
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
+    %(references_brito2020)s, Eq. (A1).
+    %(renzi_dias2012)s, Eq. (2.40).
     """
     from flumekit.hydro.response import optimal_pto_damping, response
 
@@ -274,6 +300,7 @@ def linear_model(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, inertia
                                                       "comment": _DAMPING_COMMENT[pto_damping]})})
 
 
+@_doc
 def periodic_extension(eta: xr.DataArray, period: float, before: int,
                        after: int) -> xr.DataArray:
     """Continue the steady incident wave periodically by whole periods before and after.
@@ -289,17 +316,13 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
     eta : xarray.DataArray
         Incident elevation [m] over ``time`` [s], finite in the steady window, uniformly
         sampled.
-    period : float
-        Wave period [s].
+    %(period)s
     before : int
         Number of periods added before the window (ramped from rest).
     after : int
         Number of periods added after the window.
 
-    Returns
-    -------
-    xarray.DataArray
-        ``eta_incident`` [m] over the extended ``time`` [s].
+    %(returns_incident)s
 
     Examples
     --------
@@ -329,6 +352,7 @@ class _Device(NamedTuple):
     pto: PTO
 
 
+@_doc
 def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
               pto: PTO, depth: float, dt: float, friction: bool = True,
               spin_up_periods: int = 20) -> tuple[dict, float]:
@@ -341,20 +365,13 @@ def simulated(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_pa
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m], ``measured_period`` [s],
         ``incident_height`` [m], steady window).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    depth : float
-        Water depth [m].
-    dt : float
-        Simulator time step [s].
-    friction : bool, optional
-        Include the LuGre friction.
-    spin_up_periods : int, optional
-        Periods of ramped spin-up before the steady incident wave.
+    %(hydro_stored)s
+    %(flap_params)s
+    %(pto)s
+    %(depth)s
+    %(simulator_dt)s
+    %(friction)s
+    %(spin_up_periods)s
 
     Returns
     -------
@@ -427,6 +444,7 @@ def time_domain_difference(theta_sim: xr.DataArray, flap: xr.Dataset,
     return float(np.sqrt(np.mean(diff**2)) / float(flap["theta_amplitude"]))
 
 
+@_doc
 def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_params: Flap,
                 pto: PTO, depth: float, dt: float = 0.04, simulator: bool = True,
                 friction: bool = True, spin_up_periods: int = 20,
@@ -439,22 +457,15 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
         The run's flap product (:func:`flumekit.flap.analysis.analyse_run`).
     waves : xarray.Dataset
         The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
+    %(hydro_stored)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, buoyancy stiffness, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    depth : float
-        Water depth [m].
-    dt : float, optional
-        Simulator time step [s].
-    simulator : bool, optional
-        Run the simulator (else experiment and linear model only).
-    friction : bool, optional
-        Include the LuGre friction in the simulator.
-    spin_up_periods : int, optional
-        Periods of ramped spin-up before the steady incident wave.
+    %(pto)s
+    %(depth)s
+    %(simulator_dt_optional)s
+    %(simulator)s
+    %(with_friction)s
+    %(spin_up_periods)s
     linear_pto_damping : str, optional
         How the linear model's ν_pto is set, one of :data:`LINEAR_PTO_DAMPING`.
 
@@ -471,13 +482,8 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
     ValueError
         An unknown ``linear_pto_damping``.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A1).
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.40).
+    %(references_brito2020)s, Eq. (A1).
+    %(renzi_dias2012)s, Eq. (2.40).
     """
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
     sources["analytical"], extra = linear_model(flap, waves, hydro, flap_params.inertia,
@@ -550,6 +556,7 @@ def spectral_bins(spectrum: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nd
     return f, np.diff(edges), np.where(np.isfinite(s), s, 0.0)
 
 
+@_doc
 def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
                       stiffness: float, pto_damping: float) -> dict:
     """Compute the linear flap response to an irregular sea as a sum over its spectrum.
@@ -569,10 +576,8 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     spectrum : xarray.DataArray
         One-sided incident variance density at the flap [m2 s] over ``frequency`` [Hz]
         (band-averaged; bins as :func:`spectral_bins`).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(inertia)s
+    %(stiffness)s
     pto_damping : float
         Linear PTO damping ν_pto [N m s].
 
@@ -591,10 +596,7 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
     ValueError
         The spectrum holds no variance, or has fewer than two increasing frequencies.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eq. (2.37).
+    %(references_renzi_dias2012)s, Eq. (2.37).
     """
     from flumekit.hydro.response import response
 
@@ -617,10 +619,12 @@ def spectral_response(hydro: xr.Dataset, spectrum: xr.DataArray, inertia: float,
             "variance_outside": 1.0 - float(v.sum()) / total}
 
 
+@_doc
 def span_equivalent_damping(flap: xr.Dataset) -> float:
     """Return the PTO damping that absorbs the measured mean power over an irregular run.
 
-    ν_pto = P̄ / mean(θ̇²) over the analysed span.
+    Same as :func:`energy_equivalent_damping`, over the analysed span: ν_pto = P̄ / mean(θ̇²)
+    between ``analysis_start`` and ``analysis_end``.
 
     Parameters
     ----------
@@ -628,16 +632,12 @@ def span_equivalent_damping(flap: xr.Dataset) -> float:
         An irregular run's flap product: ``theta_dot`` [rad s-1] over ``time`` [s],
         ``mean_power`` [W], ``analysis_start`` and ``analysis_end`` [s].
 
-    Returns
-    -------
-    float
-        ν_pto [N m s].
+    %(returns_damping)s
     """
-    t = flap["time"].values
-    inside = (t >= float(flap["analysis_start"])) & (t <= float(flap["analysis_end"]))
-    return float(flap["mean_power"]) / float(np.mean(flap["theta_dot"].values[inside] ** 2))
+    return energy_equivalent_damping(flap, ("analysis_start", "analysis_end"))
 
 
+@_doc
 def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset,
                            inertia: float, stiffness: float,
                            pto_damping: str = "energy_equivalent") -> tuple[dict, xr.Dataset]:
@@ -651,12 +651,9 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
         The run's flap product (analysed span, ``theta_dot``, ``mean_power``).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident`` [m2 s], ``energy_flux`` [W m-1]).
-    hydro : xarray.Dataset
-        Coefficient container as written (real and imaginary parts).
-    inertia : float
-        Flap moment of inertia about the hinge [kg m2].
-    stiffness : float
-        Hydrostatic stiffness C [N m rad-1].
+    %(hydro_written)s
+    %(inertia)s
+    %(stiffness)s
     pto_damping : {"energy_equivalent", "optimal"}, optional
         ν = P̄ / mean(θ̇²) over the analysed span (:func:`span_equivalent_damping`), or the
         single damping that maximises the spectral mean power of this sea state (bounded
@@ -676,10 +673,7 @@ def linear_model_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Datase
     ValueError
         An unknown ``pto_damping``, or an empty spectrum.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510, Eqs. (2.37), (2.40).
+    %(references_renzi_dias2012)s, Eqs. (2.37), (2.40).
     """
     from scipy.optimize import minimize_scalar
 
@@ -726,6 +720,7 @@ def _capture(values: dict, flux: float, width: float) -> None:
     values["capture_width_ratio"] = float(capture_width_ratio(values["mean_power"], flux, width))
 
 
+@_doc
 def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.DataArray:
     """Continue the incident wave by its mirror image before and after its finite span.
 
@@ -743,10 +738,7 @@ def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.Dat
     after : float
         Duration added after the last finite sample [s] (at most the record's length).
 
-    Returns
-    -------
-    xarray.DataArray
-        ``eta_incident`` [m] over the extended ``time`` [s].
+    %(returns_incident)s
 
     Examples
     --------
@@ -770,6 +762,7 @@ def mirrored_extension(eta: xr.DataArray, before: float, after: float) -> xr.Dat
                         name="eta_incident")
 
 
+@_doc
 def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *,
                         flap_params: Flap, pto: PTO, dt: float, friction: bool = True,
                         spin_up: float = 60.0) -> tuple[dict, float]:
@@ -787,16 +780,11 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
         The run's flap product (analysed span, ``theta`` [rad], fitted hydraulic parameters).
     waves : xarray.Dataset
         The run's waves product (``eta_incident`` [m] at x = 0, ``energy_flux`` [W m-1]).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    dt : float
-        Simulator time step [s].
-    friction : bool, optional
-        Include the LuGre friction.
+    %(hydro_stored)s
+    %(flap_params)s
+    %(pto)s
+    %(simulator_dt)s
+    %(friction)s
     spin_up : float, optional
         Seconds of incident wave run before the analysed span [s].
 
@@ -847,6 +835,7 @@ def simulated_irregular(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, 
     return out, float(np.sqrt(np.mean(diff**2)) / np.std(theta))
 
 
+@_doc
 def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *,
                           flap_params: Flap, pto: PTO, dt: float = 0.04,
                           simulator: bool = True, friction: bool = True,
@@ -863,18 +852,13 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
         The run's flap product (:func:`flumekit.flap.analysis.analyse_irregular_run`).
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident``, ``eta_incident``, ``energy_flux``).
-    hydro : xarray.Dataset
-        Coefficient container as stored (:func:`stored_container`).
+    %(hydro_stored)s
     flap_params : flumekit.campaign.Flap
         The flap (inertia, stiffness, width).
-    pto : flumekit.campaign.PTO
-        The PTO (anchors, bore, pressures, LuGre friction).
-    dt : float, optional
-        Simulator time step [s].
-    simulator : bool, optional
-        Run the simulator (else experiment and linear model only).
-    friction : bool, optional
-        Include the LuGre friction in the simulator.
+    %(pto)s
+    %(simulator_dt_optional)s
+    %(simulator)s
+    %(with_friction)s
     spin_up : float, optional
         Seconds of incident wave the simulator runs before the analysed span [s].
     linear_pto_damping : {"energy_equivalent", "optimal"}, optional

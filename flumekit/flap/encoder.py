@@ -25,11 +25,7 @@ with R = 2 L5 √(L7² + L5²), φ = atan2(2 L7 L5, −2 L5²) ∈ (π/2, π) an
 which covers any physical flap motion. Samples with |c/R| > 1 have no solution (a wire shorter
 or longer than the geometry allows: glitch, wrong zero or wrong L5/L7); they are flagged.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, §2.3, Eq. (1).
+%(references_brito2020)s, §2.3, Eq. (1).
 """
 
 from __future__ import annotations
@@ -38,7 +34,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from flumekit.docstrings import doc, fill
 from flumekit.errors import GeometryError
+
+__doc__ = fill(__doc__)
 
 
 class WireAngle(NamedTuple):
@@ -54,6 +53,7 @@ def _check_lengths(L5: float, L7: float) -> None:
             raise GeometryError(f"encoder length {name} must be finite and > 0, got {value} m")
 
 
+@doc
 def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     """Compute the wire length L(θ) between the encoder and the flap frame.
 
@@ -61,8 +61,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad], positive towards the beach.
+    %(theta)s
     L5 : float
         Height of the wire anchor above the hinge [m].
     L7 : float
@@ -78,11 +77,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     flumekit.errors.GeometryError
         L5 or L7 not finite and positive.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (1).
+    %(references_brito2020)s, Eq. (1).
 
     Examples
     --------
@@ -96,6 +91,7 @@ def wire_length(theta, L5: float, L7: float) -> np.ndarray:
     return np.sqrt(L7**2 + (2 * L5 * np.sin(th / 2)) ** 2 + 2 * L7 * L5 * np.sin(th))
 
 
+@doc
 def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
     """Compute the flap angle θ from the wire shortening ΔL7, Eq. (1) in closed form.
 
@@ -123,11 +119,7 @@ def angle_from_wire(wire_shortening, L5: float, L7: float) -> WireAngle:
     ValueError
         Non-finite samples of the wire shortening.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (1).
+    %(references_brito2020)s, Eq. (1).
 
     Examples
     --------

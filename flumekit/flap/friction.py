@@ -54,6 +54,14 @@ from typing import NamedTuple
 import numpy as np
 
 from flumekit.campaign import Friction
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    step=("dt : float\n"
+          "    Step [s], > 0."),
+    model=("model : LuGre\n"
+           "    Friction parameters."))
 
 
 class FrictionState(NamedTuple):
@@ -157,6 +165,7 @@ def steady_friction(velocity, model: LuGre) -> np.ndarray:
     return np.sign(v) * stribeck(v, film_steady_state(v, model), model) + model.sigma2 * v
 
 
+@_doc
 def friction_step(state: FrictionState, velocity: float, dt: float,
                   model: LuGre) -> FrictionState:
     """Advance the friction state by ``dt`` at a frozen rod velocity (exact for frozen v).
@@ -172,10 +181,8 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
         Bristle deflection [m] and film thickness [-] at the start of the step.
     velocity : float
         Rod extension rate held over the step [m s-1].
-    dt : float
-        Step [s], > 0.
-    model : LuGre
-        Friction parameters.
+    %(step)s
+    %(model)s
 
     Returns
     -------
@@ -191,6 +198,7 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
     return FrictionState(z, h)
 
 
+@_doc
 def friction_advance(state: FrictionState, velocity_start: float, velocity_end: float,
                      dt: float, model: LuGre) -> FrictionState:
     """Advance the state over a step in which the velocity varies linearly.
@@ -207,10 +215,8 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
         State at the start of the step.
     velocity_start, velocity_end : float
         Rod extension rate at the start and end of the step [m s-1].
-    dt : float
-        Step [s], > 0.
-    model : LuGre
-        Friction parameters.
+    %(step)s
+    %(model)s
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
@@ -258,6 +264,7 @@ def kernel_constants(m: LuGre) -> np.ndarray:
                      m.tau_h0], dtype=float)
 
 
+@_doc
 def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = FrictionState(),
                     substeps: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Friction force for a uniformly sampled rod velocity.
@@ -270,10 +277,8 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
     ----------
     velocity : array_like
         Rod extension rate at the samples [m s-1], 1-D.
-    dt : float
-        Sampling interval [s].
-    model : LuGre
-        Friction parameters.
+    %(dt_sampling)s
+    %(model)s
     state : FrictionState
         State at the first sample.
     substeps : int

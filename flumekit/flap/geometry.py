@@ -21,11 +21,7 @@ hinge-to-anchor line, which differs from the flap plane by the constant angle at
 The signed lever arm m is also the rod's kinematic ratio (virtual work): ℓ̇ = m θ̇.
 For the default campaign m ≈ −0.46 m: leaning to the beach shortens the rod (compression).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
+%(references_brito2020)s, §2.2, Eq. (12).
 """
 
 from __future__ import annotations
@@ -34,7 +30,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flumekit.docstrings import fill, filler
 from flumekit.errors import GeometryError
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    parameters_anchors=("Parameters\n"
+                        "----------\n"
+                        "%(bed_anchor)s\n"
+                        "%(flap_anchor)s"),
+    bed_anchor=("bed_anchor : array_like\n"
+                "    Fixed rod anchor (x, z) [m]."),
+    flap_anchor=("flap_anchor : array_like\n"
+                 "    Rod anchor on the flap at θ = 0, (x, z) [m]."))
+
+__doc__ = fill(__doc__)
 
 #: smallest |lever arm| [m] accepted: below this the rod line passes (almost) through the hinge
 _MIN_LEVER = 1e-6
@@ -47,15 +57,11 @@ def _point(name: str, p) -> np.ndarray:
     return a
 
 
+@_doc
 def check_anchors(bed_anchor, flap_anchor) -> tuple[np.ndarray, np.ndarray]:
     """Validate the anchors of the PTO cylinder.
 
-    Parameters
-    ----------
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(parameters_anchors)s
 
     Returns
     -------
@@ -132,19 +138,16 @@ class RodKinematics:
     lever_arm: np.ndarray  # signed m: torque towards the beach per newton of extending force [m]
 
 
+@_doc
 def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
     """Rod kinematics for a flap motion (see the module notes for the conventions).
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad], positive towards the beach.
-    theta_dot : array_like
-        Flap angular velocity [rad s-1].
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(theta)s
+    %(theta_dot)s
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------
@@ -159,11 +162,7 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
         coincide or the rod line passes through the hinge (no torque can be transmitted, and
         the torque inversion would divide by zero).
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.2, Eq. (12).
+    %(references_brito2020)s, §2.2, Eq. (12).
 
     Examples
     --------
@@ -192,15 +191,11 @@ def rod_kinematics(theta, theta_dot, bed_anchor, flap_anchor) -> RodKinematics:
                          beta=beta, lever_arm=lever)
 
 
+@_doc
 def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
     """Return the shortest and longest rod lengths that the anchors allow over a full turn.
 
-    Parameters
-    ----------
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(parameters_anchors)s
 
     Returns
     -------
@@ -223,6 +218,7 @@ def rod_length_limits(bed_anchor, flap_anchor) -> tuple[float, float]:
     return abs(d - r), d + r
 
 
+@_doc
 def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     """Compute the flap angle θ on the branch through θ = 0 for a given rod length ℓ.
 
@@ -234,10 +230,8 @@ def angle_from_rod_length(rod_length, bed_anchor, flap_anchor) -> np.ndarray:
     ----------
     rod_length : array_like
         Rod length ℓ [m].
-    bed_anchor : array_like
-        Fixed rod anchor (x, z) [m].
-    flap_anchor : array_like
-        Rod anchor on the flap at θ = 0, (x, z) [m].
+    %(bed_anchor)s
+    %(flap_anchor)s
 
     Returns
     -------

@@ -11,11 +11,7 @@ signatures of :mod:`flumekit.hydro.stepping` and take their parameters as one fl
 This module imports numba; :mod:`flumekit.flap` imports it only inside the functions that run
 a loop.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (12)-(14) and Appendix B.
+%(references_brito2020)s, Eqs. (12)-(14) and Appendix B.
 """
 
 from __future__ import annotations
@@ -25,28 +21,39 @@ import math
 import numpy as np
 from numba import njit
 
+from flumekit.docstrings import fill, filler
 from flumekit.hydro.stepping import ACCEL, ADVANCE, PREDICT
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    c=("c : ndarray\n"
+       "    Parameters from :func:`flumekit.flap.friction.kernel_constants`."),
+    step=("dt : float\n"
+          "    Step [s]."),
+    h=("h : float\n"
+       "    Film thickness parameter [-]."),
+    z=("z : float\n"
+       "    Bristle deflection [m]."))
+
+__doc__ = fill(__doc__)
 
 __all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_predict",
            "friction_loop", "lugre_advance", "lugre_force", "lugre_step"]
 
 
+@_doc
 @njit(cache=True)
 def lugre_step(z, h, v, dt, c):
     """Take one exact frozen-velocity step of Eqs. (A4) and (A6).
 
     Parameters
     ----------
-    z : float
-        Bristle deflection [m].
-    h : float
-        Film thickness parameter [-].
+    %(z)s
+    %(h)s
     v : float
         Rod velocity, frozen over the step [m s-1].
-    dt : float
-        Step [s].
-    c : ndarray
-        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+    %(step)s
+    %(c)s
 
     Returns
     -------
@@ -73,6 +80,7 @@ def lugre_step(z, h, v, dt, c):
     return zss + (z - zss) * math.exp(-s0 * a / g * dt), hss + (h - hss) * eh * eh
 
 
+@_doc
 @njit(cache=True)
 def lugre_advance(z, h, v0, v1, dt, c):
     """Advance the state for a velocity linear from ``v0`` to ``v1`` over ``dt``.
@@ -82,16 +90,12 @@ def lugre_advance(z, h, v0, v1, dt, c):
 
     Parameters
     ----------
-    z : float
-        Bristle deflection [m].
-    h : float
-        Film thickness parameter [-].
+    %(z)s
+    %(h)s
     v0, v1 : float
         Rod velocity at the start and end of the step [m s-1].
-    dt : float
-        Step [s].
-    c : ndarray
-        Parameters from :func:`flumekit.flap.friction.kernel_constants`.
+    %(step)s
+    %(c)s
 
     Returns
     -------

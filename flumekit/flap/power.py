@@ -5,20 +5,20 @@ chamber (positive while the rod is pushed in). On the compression stroke P_int >
 on the suction stroke both are negative: W_out ≥ 0 whenever the chamber pressure opposes the
 motion, as it does for a dissipative PTO.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
+%(references_brito2020)s.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import doc, fill
 from flumekit.waves.theory import G, energy_flux
 
+__doc__ = fill(__doc__)
 
+
+@doc
 def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     """Compute the flow rate out of the chamber, Q = −A ℓ̇.
 
@@ -26,8 +26,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     ----------
     rod_velocity : array_like
         Rod extension rate ℓ̇ [m s-1].
-    bore_area : float
-        Bore area A [m2], > 0.
+    %(bore_area)s
 
     Returns
     -------
@@ -39,11 +38,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     ValueError
         A non-positive bore area.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------
@@ -56,13 +51,13 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     return -bore_area * np.asarray(rod_velocity, dtype=float)
 
 
+@doc
 def pto_power(chamber_pressure, flow) -> np.ndarray:
     """Compute the instantaneous PTO power W_out = P_int Q (§3.2).
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
+    %(chamber_pressure)s
     flow : array_like
         Flow rate out of the chamber Q [m3 s-1] (:func:`flow_rate`).
 
@@ -71,11 +66,7 @@ def pto_power(chamber_pressure, flow) -> np.ndarray:
     numpy.ndarray
         W_out [W].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------
@@ -130,6 +121,7 @@ def window_mean(values, time, start: float, end: float) -> float:
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)) / (end - start))
 
 
+@doc
 def incident_power(height, period, depth, width: float, rho: float = 1000.0,
                    g: float = G) -> np.ndarray:
     """Compute the incident power W_I, the period-averaged energy flux times the flap width.
@@ -140,16 +132,12 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     ----------
     height : array_like
         Incident wave height H [m] (from the incident/reflected separation).
-    period : array_like
-        Wave period T [s].
-    depth : array_like
-        Water depth h [m].
+    %(period_array)s
+    %(depth_array)s
     width : float
         Flap width L [m] (1.31 m).
-    rho : float
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(rho)s
+    %(g)s
 
     Returns
     -------
@@ -161,11 +149,7 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     ValueError
         A non-positive flap width.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (A2).
+    %(references_brito2020)s, Eq. (A2).
 
     Examples
     --------
@@ -179,6 +163,7 @@ def incident_power(height, period, depth, width: float, rho: float = 1000.0,
     return energy_flux(height, period, depth, rho=rho, g=g) * width
 
 
+@doc
 def capture_factor(mean_power, incident_power_value) -> np.ndarray:
     """Compute the power capture factor C_f = mean W_out / W_I (§3.2).
 
@@ -199,11 +184,7 @@ def capture_factor(mean_power, incident_power_value) -> np.ndarray:
     ValueError
         A non-positive incident power.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2.
+    %(references_brito2020)s, §3.2.
 
     Examples
     --------

@@ -23,11 +23,7 @@ fluid inertia to an absolute vapour pressure: while the chamber cavitates its va
 decouples the piston from the fluid column, so the chamber pressure is the vapour pressure
 (P_v − P_atm in gauge terms) and the inertia term does not act on the piston.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+%(references_brito2020)s, Eqs. (13)-(14).
 """
 
 from __future__ import annotations
@@ -36,23 +32,31 @@ from typing import NamedTuple
 
 import numpy as np
 
+from flumekit.docstrings import fill, filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    vapour_pressure=("vapour_pressure : float, optional\n"
+                     "    P_v, absolute [Pa]."))
+
+__doc__ = fill(__doc__)
+
 #: water vapour pressure at 20 °C [Pa] and standard atmosphere [Pa]
 VAPOUR_PRESSURE = 2339.0
 ATMOSPHERIC_PRESSURE = 101325.0
 
 
+@_doc
 def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                       vapour_pressure: float = VAPOUR_PRESSURE) -> np.ndarray:
     """Compute the Thoma coefficient σ = (P_atm + P_int − P_v)/P_atm (Eq. 14).
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
+    %(chamber_pressure)s
     atmospheric_pressure : float, optional
         P_atm [Pa], > 0.
-    vapour_pressure : float, optional
-        P_v, absolute [Pa].
+    %(vapour_pressure)s
 
     Returns
     -------
@@ -64,11 +68,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
     ValueError
         A non-positive atmospheric pressure.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (14).
+    %(references_brito2020)s, Eq. (14).
 
     Examples
     --------
@@ -82,6 +82,7 @@ def thoma_coefficient(chamber_pressure, atmospheric_pressure: float = ATMOSPHERI
             - vapour_pressure) / atmospheric_pressure
 
 
+@_doc
 def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: float,
                            fluid_inertia: float, *,
                            atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
@@ -91,14 +92,12 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
 
     Parameters
     ----------
-    theta_dot : array_like
-        Flap angular velocity [rad s-1].
+    %(theta_dot)s
     theta_ddot : array_like
         Flap angular acceleration [rad s-2].
     pressure_loss_coefficient : float
         K_p [Pa s2 rad-2], ≥ 0.
-    fluid_inertia : float
-        I_p [Pa s2 rad-1].
+    %(fluid_inertia)s
     atmospheric_pressure : float
         P_atm [Pa].
     vapour_pressure : float
@@ -111,11 +110,7 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
     numpy.ndarray
         P_int [Pa], K_p θ̇ abs(θ̇) + I_p θ̈ clamped below at P_v − P_atm.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+    %(references_brito2020)s, Eqs. (13)-(14).
 
     Examples
     --------
@@ -143,6 +138,7 @@ class PressureFit(NamedTuple):
     bounded: bool = False  # a coefficient is held at its bound 0 (the free fit was unphysical)
 
 
+@_doc
 def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        atmospheric_pressure: float = ATMOSPHERIC_PRESSURE,
                        vapour_pressure: float = VAPOUR_PRESSURE, compression_sign: int = 1,
@@ -167,8 +163,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
         Flap angular acceleration θ̈ [rad s-2].
     atmospheric_pressure : float, optional
         P_atm [Pa].
-    vapour_pressure : float, optional
-        P_v, absolute [Pa].
+    %(vapour_pressure)s
     compression_sign : int, optional
         +1 if θ̇ > 0 compresses the chamber, −1 otherwise.
     max_iterations : int, optional
@@ -186,11 +181,7 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
         Non-finite input, mismatched shapes, too few non-cavitating samples, or a constant
         pressure.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eqs. (13)-(14).
+    %(references_brito2020)s, Eqs. (13)-(14).
     Lawson, C. L. & Hanson, R. J. (1974). Solving Least Squares Problems. Prentice-Hall,
     Chapter 23 (non-negative least squares).
 
@@ -247,15 +238,14 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
                        bool(np.any(coef == 0)))
 
 
+@_doc
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     """Compute the pressure force pushing the rod out, F_p = A P_int.
 
     Parameters
     ----------
-    chamber_pressure : array_like
-        Chamber gauge pressure P_int [Pa].
-    bore_area : float
-        Bore area A [m2], > 0.
+    %(chamber_pressure)s
+    %(bore_area)s
 
     Returns
     -------
@@ -267,11 +257,7 @@ def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     ValueError
         A non-positive bore area.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.2.
+    %(references_brito2020)s, §2.2.
 
     Examples
     --------

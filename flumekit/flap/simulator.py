@@ -65,12 +65,18 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import filler
 from flumekit.flap import friction as _friction
 from flumekit.flap.friction import LuGre
 from flumekit.flap.geometry import rod_kinematics
 from flumekit.hydro import simulation as _sim
 from flumekit.hydro.radiation import StateSpace
 from flumekit.hydro.simulation import BadParameterError, DivergenceError, PTOKernel, SimulationError
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    pressure_loss_coefficient=("pressure_loss_coefficient : float\n"
+                               "    K_p [Pa s2 rad-2]."))
 
 #: rigid-body properties of the flap about its hinge (hydro.simulation.BodyDynamics)
 FlapDynamics = _sim.BodyDynamics
@@ -134,6 +140,7 @@ def _lever_table(cyl: HydraulicCylinder, span: float = 1.2, n: int = 4001):
     return float(th[0]), float(th[1] - th[0]), m
 
 
+@_doc
 @dataclass(frozen=True)
 class HydraulicCylinder:
     """Single-acting cylinder of Brito et al. (2020), §2.2 and Eqs. (12)-(14), App. B.
@@ -146,10 +153,8 @@ class HydraulicCylinder:
     ----------
     bore_area : float
         A [m2].
-    pressure_loss_coefficient : float
-        K_p [Pa s2 rad-2].
-    fluid_inertia : float
-        I_p [Pa s2 rad-1].
+    %(pressure_loss_coefficient)s
+    %(fluid_inertia)s
     bed_anchor, flap_anchor : tuple of float
         Rod anchors (x, z) [m] (flap anchor at θ = 0).
     atmospheric_pressure, vapour_pressure : float
@@ -187,6 +192,7 @@ class HydraulicCylinder:
             for v in getattr(self, name):
                 _sim.check_parameter(name, v)
 
+    @_doc
     @classmethod
     def from_campaign(cls, pto, pressure_loss_coefficient: float, fluid_inertia: float,
                       friction: bool = True) -> HydraulicCylinder:
@@ -196,10 +202,8 @@ class HydraulicCylinder:
         ----------
         pto : flumekit.campaign.PTO
             The campaign's PTO: bore, anchors, pressures and friction.
-        pressure_loss_coefficient : float
-            K_p [Pa s2 rad-2].
-        fluid_inertia : float
-            I_p [Pa s2 rad-1].
+        %(pressure_loss_coefficient)s
+        %(fluid_inertia)s
         friction : bool, default True
             Include the campaign's LuGre friction (if it has one).
 
@@ -212,6 +216,7 @@ class HydraulicCylinder:
                    tuple(pto.bed_anchor), tuple(pto.flap_anchor), pto.atmospheric_pressure,
                    pto.vapour_pressure, fr)
 
+    @_doc
     def kernel(self, inertia: float, dt: float) -> PTOKernel:
         """Return the compiled kernels of :mod:`flumekit.flap.kernels`.
 
@@ -222,8 +227,7 @@ class HydraulicCylinder:
         ----------
         inertia : float
             Effective inertia I + A∞ [kg m2].
-        dt : float
-            Time step [s].
+        %(dt)s
 
         Returns
         -------
@@ -277,6 +281,7 @@ class HydraulicCylinder:
                 "fluid_inertia": self.fluid_inertia, "bore_area": self.bore_area}
 
 
+@_doc
 def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
              radiation: StateSpace | xr.DataArray | None,
              pto: LinearDamper | HydraulicCylinder | None, *, dt: float,
@@ -303,8 +308,7 @@ def simulate(excitation: xr.DataArray | None, flap: FlapDynamics,
         Simulated time [s]; default the excitation record.
     theta0, theta_dot0 : float, default 0
         Initial angle [rad] and angular velocity [rad s-1].
-    output_step : float, optional
-        Output interval [s], a multiple of ``dt`` (default every step).
+    %(output_step)s
     extra_torque : callable, optional
         ``(j, theta, theta_dot) -> torque`` [N m] acting on the flap, with j the half-step
         index (time t0 + j dt/2, j = 0, 2, .. 2 n_steps). It is called once per step, in

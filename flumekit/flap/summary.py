@@ -8,11 +8,7 @@ difference of the mean per-cycle maximum and minimum (Fig. 8), the mean PTO powe
 window, W_I of Eq. (A2) from the incident height, C_f = W̄_out / W_I, and phase averages over
 the window with cycles starting at a zero up-crossing of θ (Fig. 10).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
+%(references_brito2020)s.
 """
 
 from __future__ import annotations
@@ -22,9 +18,22 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit import signal as sig
+from flumekit.docstrings import fill, filler
 from flumekit.flap.power import capture_factor, incident_power, window_mean
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    flap_width_a2=("flap_width : float\n"
+                   "    Flap width L [m] (Eq. A2)."),
+    n_phase=("n_phase : int, optional\n"
+             "    Phase points per cycle."),
+    run_period=("period : float\n"
+                "    Wave period T of the run [s]."))
 
+__doc__ = fill(__doc__)
+
+
+@_doc
 def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.SteadyWindow:
     """Find the quasi-steady window of the flap angle (Brito et al. 2020, §2.5).
 
@@ -37,10 +46,8 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     ----------
     theta : array_like
         Flap angle θ [rad].
-    time : array_like
-        Sample times [s], uniform.
-    period : float
-        Wave period [s].
+    %(time_uniform)s
+    %(period)s
     tolerance : float, optional
         Crest tolerance as a fraction of the amplitude scale [-].
 
@@ -54,11 +61,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     ValueError
         Fewer than two quasi-steady cycles.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5.
+    %(references_brito2020)s, §2.5.
 
     Examples
     --------
@@ -76,6 +79,7 @@ def steady_window(theta, time, period: float, tolerance: float = 0.02) -> sig.St
     return win
 
 
+@_doc
 def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_height: float,
             depth: float, flap_width: float, n_phase: int = 100,
             ci95: tuple[str, ...] = (), theta_unfiltered=None) -> xr.Dataset:
@@ -86,24 +90,19 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
 
     Parameters
     ----------
-    time : array_like
-        Sample times [s], uniform.
+    %(time_uniform)s
     series : dict of str to array_like
         ``{name: values}`` over ``time``, with at least ``theta`` [rad], ``power`` [W] and
         ``torque_hydrodynamic`` [N m]; each gets ``<name>_phase_mean``.
     window : flumekit.signal.SteadyWindow
         The steady window (:func:`steady_window`); phase averages start at its first zero
         up-crossing of θ (t/T = 0, Fig. 10).
-    period : float
-        Wave period T of the run [s].
+    %(run_period)s
     incident_height : float
         Incident wave height H at the flap [m] (separation stage), > 0.
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width L [m] (Eq. A2).
-    n_phase : int, optional
-        Phase points per cycle.
+    %(depth)s
+    %(flap_width_a2)s
+    %(n_phase)s
     ci95 : tuple of str, optional
         Names of ``series`` that also get ``<name>_phase_ci95``.
     theta_unfiltered : array_like, optional
@@ -129,11 +128,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
         A non-positive or non-finite incident height: without an incident wave there is no
         capture factor, and a zero height means the separation failed.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5-§3.3, Eq. (A2).
+    %(references_brito2020)s, §2.5-§3.3, Eq. (A2).
     """
     scalars = summary_scalars(time, series, window, period=period,
                               incident_height=incident_height, depth=depth,
@@ -148,6 +143,7 @@ def summary(time, series, window: sig.SteadyWindow, *, period: float, incident_h
     return xr.Dataset(data, coords={"phase": pa["theta"].phase, "wave_period": float(period)})
 
 
+@_doc
 def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
                     incident_height: float, depth: float, flap_width: float,
                     n_phase: int = 100, theta_unfiltered=None) -> dict:
@@ -174,11 +170,7 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
     ValueError
         A non-positive or non-finite incident height.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §3.2, Eq. (A2).
+    %(references_brito2020)s, §3.2, Eq. (A2).
     """
     if not (np.isfinite(incident_height) and incident_height > 0):
         raise ValueError(f"incident height must be > 0, got {incident_height}")
@@ -198,6 +190,7 @@ def summary_scalars(time, series, window: sig.SteadyWindow, *, period: float,
         "measured_period": window.period, "steady_cycles": window.n_cycles}
 
 
+@_doc
 def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, depth: float,
                   flap_width: float, tolerance: float = 0.02, n_phase: int = 100) -> xr.Dataset:
     """Summarise a simulated run as :func:`summary`, in the experimental analysis's names.
@@ -206,18 +199,14 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
     ----------
     sim : xarray.Dataset
         Output of :func:`flumekit.flap.simulator.simulate_run` (or ``simulate``).
-    period : float
-        Wave period T of the run [s].
+    %(run_period)s
     incident_height : float
         Incident wave height H at the flap [m] (from the separation), for W_I.
-    depth : float
-        Water depth h [m].
-    flap_width : float
-        Flap width L [m] (Eq. A2).
+    %(depth)s
+    %(flap_width_a2)s
     tolerance : float, optional
         Crest tolerance of the quasi-steady window [-] (2 %, §2.5).
-    n_phase : int, optional
-        Phase points per cycle.
+    %(n_phase)s
 
     Returns
     -------
@@ -230,11 +219,7 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
     ValueError
         Fewer than two quasi-steady cycles, or a non-positive incident height.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5-§3.3.
+    %(references_brito2020)s, §2.5-§3.3.
     """
     t = sim["time"].values
     win = steady_window(sim["theta"].values, t, period, tolerance)

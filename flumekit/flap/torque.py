@@ -22,25 +22,34 @@ extension rate, so the net extending force is F_p − F_f and its torque on the 
 m (F_p − F_f) with m the signed lever arm of :mod:`flumekit.flap.geometry` (|m| = r sin β,
 the lever arm that Eq. 12 omits). As resisting torques: T_p = −m F_p, T_f = +m F_f.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Eqs. (11)-(12) and Appendix A.
+%(references_brito2020)s, Eqs. (11)-(12) and Appendix A.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import fill, filler
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    raises_inertia=("Raises\n"
+                    "------\n"
+                    "ValueError\n"
+                    "    A non-positive moment of inertia."),
+    flap_angle=("theta : array_like\n"
+                "    Flap angle [rad]."))
+
+__doc__ = fill(__doc__)
+
+
+@_doc
 def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     """Compute the net gravity-buoyancy resisting torque T_g = C sin θ.
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad].
+    %(flap_angle)s
     buoyancy_stiffness : float
         Net buoyancy stiffness C = ρ g V z_b − m g z_g [N m rad-1].
 
@@ -49,11 +58,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     numpy.ndarray
         T_g [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11) and Appendix A.
+    %(references_brito2020)s, Eq. (11) and Appendix A.
 
     Examples
     --------
@@ -65,6 +70,7 @@ def gravity_torque(theta, buoyancy_stiffness: float) -> np.ndarray:
     return buoyancy_stiffness * np.sin(np.asarray(theta, dtype=float))
 
 
+@_doc
 def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     """Compute the inertia torque I θ̈ of the flap.
 
@@ -80,16 +86,9 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     numpy.ndarray
         I θ̈ [N m].
 
-    Raises
-    ------
-    ValueError
-        A non-positive moment of inertia.
+    %(raises_inertia)s
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11).
+    %(references_brito2020)s, Eq. (11).
 
     Examples
     --------
@@ -102,6 +101,7 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
     return inertia * np.asarray(theta_ddot, dtype=float)
 
 
+@_doc
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
 
@@ -119,11 +119,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     numpy.ndarray
         T_p [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (12).
+    %(references_brito2020)s, Eq. (12).
 
     Examples
     --------
@@ -134,6 +130,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     return -np.asarray(lever_arm, dtype=float) * np.asarray(force_pressure, dtype=float)
 
 
+@_doc
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
 
@@ -151,11 +148,7 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     numpy.ndarray
         T_f [N m], positive when it opposes a positive θ.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (12).
+    %(references_brito2020)s, Eq. (12).
 
     Examples
     --------
@@ -166,14 +159,14 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 
 
+@_doc
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
                         buoyancy_stiffness: float) -> np.ndarray:
     """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).
 
     Parameters
     ----------
-    theta : array_like
-        Flap angle [rad].
+    %(flap_angle)s
     theta_ddot : array_like
         Angular acceleration [rad s-2].
     torque_pto : array_like
@@ -188,16 +181,9 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
     numpy.ndarray
         T_h [N m], positive towards the beach.
 
-    Raises
-    ------
-    ValueError
-        A non-positive moment of inertia.
+    %(raises_inertia)s
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Eq. (11).
+    %(references_brito2020)s, Eq. (11).
 
     Examples
     --------

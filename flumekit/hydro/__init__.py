@@ -11,37 +11,23 @@ knows about a particular device.
 """
 
 
-from flumekit.lazy import lazy_names
+from flumekit.lazy import attach
 
-#: public name -> module of this package (imported on first use, so that importing the
-#: package stays cheap)
-_LAZY = {
-    "hydro_dataset": "coefficients",
-    "from_capytaine": "coefficients",
-    "from_renzi_dias": "coefficients",
-    "passivity_report": "coefficients",
-    "infinite_frequency_inertia": "coefficients",
-    "read_capytaine": "capytaine",
-    "read_wamit": "wamit",
-    "impulse_response": "radiation",
-    "fit_state_space": "radiation",
+# public names by the module that defines them, each imported on first use so that
+# importing the package stays cheap
+__getattr__, __dir__, __all__ = attach(
+    __name__, globals(),
+    coefficients=["hydro_dataset", "from_capytaine", "from_renzi_dias", "passivity_report",
+                  "infinite_frequency_inertia", "with_infinite_frequency_inertia", "from_kernel",
+                  "split_complex", "merge_complex"],
+    capytaine=["read_capytaine"],
+    wamit=["read_wamit"],
+    radiation=["impulse_response", "fit_state_space", "state_space_dataset",
+               "state_space_from_dataset"],
     # the frequency-domain response itself is flumekit.hydro.response.response: a name of
     # the package equal to its submodule's would hide the submodule from `from ... import`
-    "optimal_pto_damping": "response",
-    "excitation_torque": "excitation",
-    "simulate": "simulation",
-    "with_infinite_frequency_inertia": "coefficients",
-    "from_kernel": "coefficients",
-    "split_complex": "coefficients",
-    "merge_complex": "coefficients",
-    "rigid_body_dataset": "rigid_body",
-    "about_hinge": "rigid_body",
-    "inertia_about_hinge": "rigid_body",
-    "state_space_dataset": "radiation",
-    "state_space_from_dataset": "radiation",
-}
-
-__all__ = sorted(_LAZY)
-
-
-__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
+    response=["optimal_pto_damping"],
+    excitation=["excitation_torque"],
+    simulation=["simulate"],
+    rigid_body=["rigid_body_dataset", "about_hinge", "inertia_about_hinge"],
+)

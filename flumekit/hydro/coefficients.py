@@ -24,15 +24,9 @@ passivity (B ≥ 0, :func:`check_passive`, explicit fix
 :func:`make_passive`) and the infinite-frequency inertia from the Ogilvie (1964) relation at
 every frequency with its spread (:func:`infinite_frequency_inertia`).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Appendix A.
-Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-channel. J. Fluid Mech. 701, 482-510.
-Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+%(references_brito2020)s, Appendix A.
+%(renzi_dias2012)s.
+%(ogilvie1964)s.
 """
 
 from __future__ import annotations
@@ -43,7 +37,15 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import fill, filler
 from flumekit.errors import FlumekitError
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    hydro_container=("hydro : xarray.Dataset\n"
+                     "    Coefficient container (:func:`hydro_dataset`)."))
+
+__doc__ = fill(__doc__)
 
 DIM = "angular_frequency"
 
@@ -130,6 +132,7 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
     return conventions.annotate(ds)
 
 
+@_doc
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
@@ -153,10 +156,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     numpy.ndarray of complex
         K̂(ω) [N m s], shape of ``omega``: B(ω) = Re K̂ and A(ω) − A∞ = −Im K̂ / ω.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
 
     Examples
     --------
@@ -171,6 +171,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     return np.sum(a * z / (z * z + be * be), axis=-1)
 
 
+@_doc
 def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
                 added_inertia_infinite: float, excitation_torque,
                 hydrostatic_stiffness: float) -> xr.Dataset:
@@ -206,10 +207,7 @@ def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
     HydroError
         As :func:`hydro_dataset`.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
 
     Examples
     --------
@@ -330,6 +328,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
                      f"expected one of {list(names)} (complex, or _real/_imag parts)")
 
 
+@_doc
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
     """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
@@ -355,10 +354,7 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
         No ``period`` or ``angular_frequency`` dimension, no excitation torque, or values that
         :func:`hydro_dataset` rejects.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(references_renzi_dias2012)s.
     """
     dim = "period" if "period" in coefficients.dims else DIM
     if dim not in coefficients.dims:
@@ -503,6 +499,7 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
 
 # --- checks -------------------------------------------------------------------------------
 
+@_doc
 def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     """List the frequencies where the radiation damping is negative (below −rtol·max B).
 
@@ -511,8 +508,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_container)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping below which B counts as negative.
 
@@ -538,6 +534,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     return rep
 
 
+@_doc
 def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
     """Raise :class:`HydroError` listing the frequencies where B(ω) < −rtol·max B.
 
@@ -546,8 +543,7 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_container)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping (see :func:`passivity_report`).
 
@@ -570,13 +566,13 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             "coefficients.")
 
 
+@_doc
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     """Clip negative radiation damping to zero, recorded in ``attrs["passivity_fix"]``.
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_container)s
 
     Returns
     -------
@@ -599,6 +595,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     return out
 
 
+@_doc
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
     """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
@@ -615,8 +612,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:func:`hydro_dataset`).
+    %(hydro_container)s
     duration : float, optional
         Length of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
     dt : float, optional
@@ -634,10 +630,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
         B), ``full_spread`` = (max − min)/abs(median) [-], ``rms_spread`` = std/abs(median)
         [-].
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     from flumekit.hydro.radiation import impulse_response, sine_transform
 
@@ -657,6 +650,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     return conventions.annotate(out)
 
 
+@_doc
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:
@@ -689,10 +683,7 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         The damping is negative somewhere, the spread exceeds ``max_spread``, or
         ``at_frequency`` lies outside the coefficients' range.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     check_passive(hydro)
     est = infinite_frequency_inertia(hydro, **irf_options)

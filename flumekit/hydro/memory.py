@@ -38,8 +38,14 @@ import numpy as np
 import xarray as xr
 from numba import njit
 
+from flumekit.docstrings import filler
 from flumekit.hydro.radiation import StateSpace
 from flumekit.hydro.stepping import BEGIN, FINISH
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    step=("step : float\n"
+          "    Time step h [s]."))
 
 
 class StageWeights:
@@ -165,6 +171,7 @@ def _modal_finish(u1, u2, u3, u4, c, r):
     return 0.0
 
 
+@_doc
 class ModalMemory(_Memory):
     """Exponential (ETDRK4) update of the radiation modes of a state-space model.
 
@@ -179,8 +186,7 @@ class ModalMemory(_Memory):
     ----------
     model : StateSpace
         Poles λ_k [s-1] and residues c_k [N m s rad-1 s-1] of K(t).
-    step : float
-        Time step h [s].
+    %(step)s
 
     References
     ----------
@@ -248,6 +254,7 @@ def _convolution_finish(u1, u2, u3, u4, c, r):
     return 0.0
 
 
+@_doc
 class ConvolutionMemory(_Memory):
     """The convolution of the impulse response with the velocity history, trapezoidal rule.
 
@@ -260,8 +267,7 @@ class ConvolutionMemory(_Memory):
     ----------
     irf : xr.DataArray
         K(t) over ``lag`` [s], [N m s rad-1 s-1] (zero beyond its last lag).
-    step : float
-        Time step h [s].
+    %(step)s
     n_steps : int
         Number of steps of the run (the length of the stored velocity history).
 

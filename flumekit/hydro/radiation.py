@@ -37,8 +37,7 @@ References
 ----------
 Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
 101-109.
-Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+%(ogilvie1964)s.
 Kung, S.-Y. (1978). A new identification and model reduction algorithm via singular value
 decomposition. Proc. 12th Asilomar Conference on Circuits, Systems and Computers, 705-714.
 """
@@ -51,6 +50,20 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import fill, filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    parameters_transform=("Parameters\n"
+                          "----------\n"
+                          "%(irf)s\n"
+                          "%(omega)s"),
+    irf=("irf : xarray.DataArray\n"
+         "    K(t) [N m] over ``lag`` [s] (:func:`impulse_response`)."),
+    omega=("omega : array_like\n"
+           "    Angular frequencies [rad s-1]."))
+
+__doc__ = fill(__doc__)
 
 DIM = "angular_frequency"
 
@@ -141,6 +154,7 @@ def _tail_exponent(w: np.ndarray, b: np.ndarray, n_fit: int = 5) -> float:
     return float(np.clip(-slope, 1.5, 8.0))
 
 
+@_doc
 def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold",
                      n_tail: int = 400) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -148,8 +162,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    %(hydro)s
     tail : {"power", "none"}, optional
         High-frequency continuation: B(ω_N)(ω_N/ω)^p, or none.
     tail_exponent : float, optional
@@ -206,6 +219,7 @@ def extended_damping(hydro: xr.Dataset, *, tail: str = "power", tail_exponent: f
     return np.concatenate([ww, wt]), np.concatenate([bb, bt]), info
 
 
+@_doc
 def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float | None = None, *,
                      tail: str = "power", tail_exponent: float | None = None,
                      tail_factor: float = 20.0, low: str = "hold") -> xr.DataArray:
@@ -213,8 +227,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 
     Parameters
     ----------
-    hydro : xarray.Dataset
-        Coefficient container (:mod:`flumekit.hydro.coefficients`).
+    %(hydro)s
     duration : float, optional
         Longest lag [s]; default 30 s.
     dt : float, optional
@@ -238,8 +251,7 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
     ----------
     Cummins, W. E. (1962). The impulse response function and ship motions. Schiffstechnik 9,
     101-109.
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(ogilvie1964)s.
 
     Examples
     --------
@@ -268,15 +280,11 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
     return conventions.annotate(da)
 
 
+@_doc
 def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute C(ω) = ∫₀^L K(t) cos(ωt) dt (equals B(ω) for an exact K).
 
-    Parameters
-    ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(parameters_transform)s
 
     Returns
     -------
@@ -286,38 +294,27 @@ def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     return filon(irf["lag"].values, irf.values, omega, "cos")
 
 
+@_doc
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 
-    Parameters
-    ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(parameters_transform)s
 
     Returns
     -------
     numpy.ndarray
         S(ω) [N m s], shape of ``omega``.
 
-    References
-    ----------
-    Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of ship
-    motions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80.
+    %(references_ogilvie1964)s.
     """
     return filon(irf["lag"].values, irf.values, omega, "sin")
 
 
+@_doc
 def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute K̂(ω) = C(ω) + i S(ω), the memory torque per unit θ̇ amplitude.
 
-    Parameters
-    ----------
-    irf : xarray.DataArray
-        K(t) [N m] over ``lag`` [s] (:func:`impulse_response`).
-    omega : array_like
-        Angular frequencies [rad s-1].
+    %(parameters_transform)s
 
     Returns
     -------

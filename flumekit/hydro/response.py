@@ -21,13 +21,8 @@ Appendix A of Brito et al. (2020, "Brito") with the coefficients of
 The phase convention is that of the models: η = Re(A e^{-iωt}) at the hinge line (x = 0), so
 θ(t) = |Θ| cos(ωt - arg Θ) and θ peaks arg Θ/ω after the crest passes the hinge line.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
-Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-channel. J. Fluid Mech. 701, 482-510 (RD12).
+%(references_brito2020)s.
+%(renzi_dias2012)s (RD12).
 """
 
 from __future__ import annotations
@@ -36,8 +31,11 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc, fill
 from flumekit.hydro.coefficients import join_complex
 from flumekit.waves.theory import energy_flux
+
+__doc__ = fill(__doc__)
 
 
 def _omega(coefficients: xr.Dataset) -> xr.DataArray:
@@ -50,6 +48,7 @@ def _nonnegative(name: str, value) -> None:
         raise ValueError(f"{name} must be finite and >= 0, got {value}")
 
 
+@doc
 def optimal_pto_damping(coefficients: xr.Dataset, inertia: float, stiffness: float,
                         pto_stiffness: float = 0.0, pto_inertia: float = 0.0) -> xr.DataArray:
     """Compute the PTO damping that maximises the mean power at each period.
@@ -79,10 +78,7 @@ def optimal_pto_damping(coefficients: xr.Dataset, inertia: float, stiffness: flo
     ValueError
         ``inertia`` negative or not finite.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(references_renzi_dias2012)s.
 
     Examples
     --------
@@ -106,6 +102,7 @@ def optimal_pto_damping(coefficients: xr.Dataset, inertia: float, stiffness: flo
     return conventions.annotate(out)
 
 
+@doc
 def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness: float,
              pto_damping, pto_stiffness: float = 0.0, pto_inertia: float = 0.0,
              channel_width: float | None = None) -> xr.Dataset:
@@ -151,13 +148,8 @@ def response(coefficients: xr.Dataset, wave_amplitude, inertia: float, stiffness
     ValueError
         A negative or non-finite amplitude, PTO damping or inertia, or a missing attribute.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Appendix A.
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510.
+    %(references_brito2020)s, Appendix A.
+    %(renzi_dias2012)s.
     """
     _nonnegative("wave_amplitude", wave_amplitude)
     _nonnegative("pto_damping", pto_damping)

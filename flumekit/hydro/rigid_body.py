@@ -61,6 +61,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.hydro.coefficients import (
     DIM,
     FailedFrequencyWarning,
@@ -69,6 +70,13 @@ from flumekit.hydro.coefficients import (
     hydro_dataset,
     make_passive,
 )
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    ds=("ds : xarray.Dataset\n"
+        "    Six-dof dataset of :func:`rigid_body_dataset`."),
+    hinge_point=("hinge_point : sequence of float\n"
+                 "    A point H (x, y, z) [m] on the hinge axis."))
 
 DOFS = ("Surge", "Sway", "Heave", "Roll", "Pitch", "Yaw")
 
@@ -151,13 +159,13 @@ def rigid_body_dataset(angular_frequency, added_mass, radiation_damping, excitat
     return ds
 
 
+@_doc
 def failed_frequencies(ds: xr.Dataset) -> np.ndarray:
     """Return the angular frequencies [rad s-1] at which any coefficient is not finite.
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        Six-dof dataset of :func:`rigid_body_dataset`.
+    %(ds)s
 
     Returns
     -------
@@ -171,13 +179,13 @@ def failed_frequencies(ds: xr.Dataset) -> np.ndarray:
     return ds[DIM].values[bad]
 
 
+@_doc
 def drop_failed(ds: xr.Dataset, failed: str = "drop") -> xr.Dataset:
     """Remove the frequencies with non-finite coefficients, or raise naming them.
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        Six-dof dataset of :func:`rigid_body_dataset`.
+    %(ds)s
     failed : {"drop", "raise"}, optional
         Drop them with a :class:`~flumekit.hydro.coefficients.FailedFrequencyWarning` naming
         them (their list kept in ``attrs["dropped_frequencies"]`` [rad s-1]), or raise.
@@ -212,6 +220,7 @@ def drop_failed(ds: xr.Dataset, failed: str = "drop") -> xr.Dataset:
     return out
 
 
+@_doc
 def hinge_mode(reference_point, hinge_point, axis=(0.0, 1.0, 0.0)) -> np.ndarray:
     """Return the mode shape T = [u × d ; u] (d = r₀ − H) of a rotation about a hinge.
 
@@ -219,8 +228,7 @@ def hinge_mode(reference_point, hinge_point, axis=(0.0, 1.0, 0.0)) -> np.ndarray
     ----------
     reference_point : sequence of float
         Reference point r₀ (x, y, z) [m] of the six-dof result.
-    hinge_point : sequence of float
-        A point H (x, y, z) [m] on the hinge axis.
+    %(hinge_point)s
     axis : sequence of float, optional
         Hinge direction u (normalised here) [-].
 
@@ -257,6 +265,7 @@ def hinge_mode(reference_point, hinge_point, axis=(0.0, 1.0, 0.0)) -> np.ndarray
     return np.concatenate([np.cross(u, d), u])
 
 
+@_doc
 def inertia_about_hinge(mass: float, inertia_cog: float, centre_of_gravity, hinge_point,
                         axis=(0.0, 1.0, 0.0)) -> float:
     """Compute the moment of inertia about the hinge axis, I_h = I_G + m r².
@@ -272,8 +281,7 @@ def inertia_about_hinge(mass: float, inertia_cog: float, centre_of_gravity, hing
         I_G about the parallel axis through the centre of gravity [kg m2].
     centre_of_gravity : sequence of float
         r_G (x, y, z) [m].
-    hinge_point : sequence of float
-        A point H (x, y, z) [m] on the hinge axis.
+    %(hinge_point)s
     axis : sequence of float, optional
         Hinge direction u [-].
 

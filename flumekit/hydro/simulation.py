@@ -67,10 +67,18 @@ import xarray as xr
 from scipy.interpolate import CubicSpline
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.errors import FlumekitError
 from flumekit.hydro.coefficients import check_passive
 from flumekit.hydro.excitation import excitation_torque, transfer_function
 from flumekit.hydro.radiation import StateSpace
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    order=("order : int, optional\n"
+           "    State-space order (default: 1 % on K(t))."),
+    ramp=("ramp : float, default 0\n"
+          "    Ramp duration [s]."))
 
 
 class SimulationError(FlumekitError, RuntimeError):
@@ -275,6 +283,7 @@ def _ramp(t: np.ndarray, ramp: float) -> np.ndarray:
     return 0.5 * (1 - np.cos(np.pi * x))
 
 
+@_doc
 @dataclass(frozen=True)
 class RegularWave:
     """A regular wave η(0, t) = Re{a e^{-iωt}} at the reference line, a = H/2.
@@ -288,8 +297,7 @@ class RegularWave:
         Wave height H [m], ≥ 0.
     period : float
         Wave period T [s], > 0.
-    ramp : float, default 0
-        Ramp duration [s].
+    %(ramp)s
     """
 
     height: float
@@ -302,13 +310,13 @@ class RegularWave:
         check_parameter("wave period", self.period, 0.0, strict=True)
         check_parameter("ramp", self.ramp, 0.0)
 
+    @_doc
     def excitation(self, hydro):
         """Return T_exc(t), η(t), no time span and the attributes of the wave.
 
         Parameters
         ----------
-        hydro : xarray.Dataset
-            Coefficient container (:mod:`flumekit.hydro.coefficients`).
+        %(hydro)s
 
         Returns
         -------
@@ -334,6 +342,7 @@ class RegularWave:
                                    "wave_period": self.period, "ramp": self.ramp}
 
 
+@_doc
 @dataclass(frozen=True)
 class IrregularWave:
     """An irregular wave by the random-phase sum η = Re Σ a_j e^{-i(ω_j t − φ_j)}.
@@ -349,8 +358,7 @@ class IrregularWave:
         S(ω_j) [m2 s rad-1] ≥ 0.
     seed : int
         Seed of the phases.
-    ramp : float, default 0
-        Ramp duration [s].
+    %(ramp)s
 
     References
     ----------
@@ -483,6 +491,7 @@ def stable_step(body: BodyDynamics, damping: float = 0.0) -> float:
     return 2.8 / lam if lam > 0 else math.inf
 
 
+@_doc
 def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *, dt: float,
               n_steps: int, t0: float = 0.0, theta0: float = 0.0, theta_dot0: float = 0.0,
               output_every: int = 1, chunk: int = 20000, energy_growth: float = 1.0,
@@ -502,8 +511,7 @@ def integrate(excitation: Callable | None, body: BodyDynamics, radiation, pto, *
         Radiation memory model (:func:`radiation_model`).
     pto : PTO or None
         The power take-off (:class:`PTO` protocol).
-    dt : float
-        Time step [s].
+    %(dt)s
     n_steps : int
         Number of steps.
     t0 : float, default 0
@@ -751,6 +759,7 @@ _ATTRS = {
 }
 
 
+@_doc
 def to_dataset(out: dict, time: np.ndarray, body: BodyDynamics, radiation, pto,
                dt: float, extra_attrs: dict | None = None) -> xr.Dataset:
     """Return the result as a dataset over ``time`` with the attributes of the run.
@@ -767,8 +776,7 @@ def to_dataset(out: dict, time: np.ndarray, body: BodyDynamics, radiation, pto,
         The radiation memory model used.
     pto : PTO or None
         The power take-off used.
-    dt : float
-        Time step [s].
+    %(dt)s
     extra_attrs : dict, optional
         Further attributes (wave, output step, ...).
 
@@ -803,6 +811,7 @@ def to_dataset(out: dict, time: np.ndarray, body: BodyDynamics, radiation, pto,
     return conventions.annotate(ds)
 
 
+@_doc
 def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
              duration: float | None = None, stiffness: float | None = None,
              radiation: str | StateSpace | xr.DataArray = "state_space",
@@ -828,8 +837,7 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
         None.
     wave : RegularWave, IrregularWave, MeasuredWave or xarray.DataArray
         The wave, or an excitation torque [N m] over ``time``.
-    dt : float
-        Time step [s].
+    %(dt)s
     duration : float, optional
         Simulated time [s]; default the record of a measured wave or torque.
     stiffness : float, optional
@@ -840,14 +848,12 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
         share across runs.
     irf_duration : float, default 60
         Length of the impulse response K(t) [s].
-    order : int, optional
-        State-space order (default: 1 % on K(t)).
+    %(order)s
     match_frequency : float, optional
         Frequency of the A∞ estimate [rad s-1] (see ``hydro``).
     restoring, drag_coefficient, angle_limit
         As in :class:`BodyDynamics` ([-], [N m s2], [rad]).
-    output_step : float, optional
-        Output interval [s], a multiple of ``dt`` (default every step).
+    %(output_step)s
     t_start : float, optional
         Start time [s] (default 0, or the record's start).
     energy_growth : float, default 1
@@ -944,6 +950,7 @@ def simulate(hydro: xr.Dataset, inertia: float, pto, wave, *, dt: float,
                                                       "added_inertia_infinite_spread": spread})
 
 
+@_doc
 def radiation_model(hydro: xr.Dataset, radiation, dt: float, irf_duration: float = 60.0,
                     order: int | None = None):
     """Return the radiation memory model: a given one, None, or one fitted from the container.
@@ -958,8 +965,7 @@ def radiation_model(hydro: xr.Dataset, radiation, dt: float, irf_duration: float
         Time step of the run [s]; K(t) is sampled at min(dt/2, 0.01 s).
     irf_duration : float, default 60
         Length of K(t) [s].
-    order : int, optional
-        State-space order (default: 1 % on K(t)).
+    %(order)s
 
     Returns
     -------

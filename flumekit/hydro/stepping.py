@@ -30,6 +30,13 @@ import math
 
 from numba import njit, types
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    params=("params : ndarray\n"
+            "    The PTO's parameters (unused)."))
+
 __all__ = ["ACCEL", "ADVANCE", "BEGIN", "EXTRA", "FINISH", "PREDICT", "is_compiled", "linear_accel",
            "no_extra", "no_predict", "no_advance", "steps"]
 
@@ -50,6 +57,7 @@ ADVANCE = types.UniTuple(f8, 2)(f8, f8, f8, f8, f8, f8, _vec)
 EXTRA = f8(i8, f8, f8, _vec, _vec, _mat)
 
 
+@_doc
 @njit(PREDICT, cache=True)
 def no_predict(s0, s1, th, om, acc, params):
     """Keep the states of a PTO without internal states (signature ``PREDICT``).
@@ -60,8 +68,7 @@ def no_predict(s0, s1, th, om, acc, params):
         The PTO's states (unused).
     th, om, acc : float
         θ [rad], θ̇ [rad s-1] and θ̈ [rad s-2] of the first stage (unused).
-    params : ndarray
-        The PTO's parameters (unused).
+    %(params)s
 
     Returns
     -------
@@ -71,6 +78,7 @@ def no_predict(s0, s1, th, om, acc, params):
     return 0.0, 0.0, 0.0, 0.0
 
 
+@_doc
 @njit(ADVANCE, cache=True)
 def no_advance(s0, s1, th, om, th_new, om_new, params):
     """Keep the states of a PTO without internal states (signature ``ADVANCE``).
@@ -81,8 +89,7 @@ def no_advance(s0, s1, th, om, th_new, om_new, params):
         The PTO's states.
     th, om, th_new, om_new : float
         θ [rad] and θ̇ [rad s-1] at the step's start and end (unused).
-    params : ndarray
-        The PTO's parameters (unused).
+    %(params)s
 
     Returns
     -------

@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.units import UNITS
 
@@ -197,13 +198,13 @@ FOREIGN = ((b"PK\x03\x04", "a ZIP archive (an Excel .xlsx workbook?)"),
            (b"\x1f\x8b", "a gzip-compressed file"))
 
 
+@doc
 def sniff_format(path: Path) -> str | None:
     """Return the format a file's first bytes prove (:data:`SIGNATURES`), or None.
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file.
+    %(path)s
 
     Returns
     -------

@@ -22,10 +22,20 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.errors import InputError
 from flumekit.io.dialects import Channel, Dialect, Record, read_channels
 from flumekit.io.tables import check_time
 from flumekit.units import UNITS
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    dialect=("dialect : Dialect or dict, optional\n"
+             "    How the file is written (default: the raw campaign's CSV)."),
+    probes=("probes : tuple of str\n"
+            "    Probe names, in the campaign's order."),
+    time_offset=("time_offset : float, optional\n"
+                 "    Declared clock offset [s], added to the time stamps and recorded."))
 
 
 def _probe_channels(probes: tuple[str, ...], units: str) -> list[Channel]:
@@ -88,6 +98,7 @@ def _attrs(path: Path, rec: Record, sampling_rate: float, time_offset: float) ->
             "recorded_units": ", ".join(f"{c} [{u}]" for c, u in zip(rec.labels, rec.units))}
 
 
+@_doc
 def read_calibration(path: str | Path, probes: tuple[str, ...],
                      dialect: Dialect | dict | None = None) -> xr.Dataset:
     r"""Read a static calibration: each probe's voltage at known water levels.
@@ -98,8 +109,7 @@ def read_calibration(path: str | Path, probes: tuple[str, ...],
         The calibration file (``calibration/probes.csv`` of a raw campaign): ``level [m]``,
         the still-water level of each static submersion relative to the test's still-water
         level, then one voltage column per probe.
-    probes : tuple of str
-        Probe names, in the campaign's order.
+    %(probes)s
     dialect : Dialect or dict, optional
         How the file is written (default: the raw campaign's CSV); a calibration file has no
         time column.
@@ -142,6 +152,7 @@ def read_calibration(path: str | Path, probes: tuple[str, ...],
     return conventions.annotate(ds)
 
 
+@_doc
 def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
                 dialect: Dialect | dict | None = None, *, units: str = "V",
                 time_offset: float = 0.0) -> xr.Dataset:
@@ -151,19 +162,16 @@ def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
     ----------
     path : str or pathlib.Path
         The run's probe file.
-    probes : tuple of str
-        Probe names, in the campaign's order.
+    %(probes)s
     sampling_rate : float
         Declared sampling rate [Hz]: checked against a time column (or a TDMS waveform's own
         increment), or the time axis when the dialect has none.
-    dialect : Dialect or dict, optional
-        How the file is written (default: the raw campaign's CSV).
+    %(dialect)s
     units : str, optional
         Unit of channels whose unit the file does not state: a voltage unit gives
         ``probe_voltage`` [V] (to calibrate), a length unit ``probe_elevation`` [m]
         (calibrated, still-water level not yet removed).
-    time_offset : float, optional
-        Declared clock offset [s], added to the time stamps and recorded.
+    %(time_offset)s
 
     Returns
     -------
@@ -201,6 +209,7 @@ def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
                     {"probe": list(probes), "time": time}, path, rec, sampling_rate, time_offset)
 
 
+@_doc
 def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | None = None, *,
               time_offset: float = 0.0) -> xr.Dataset:
     r"""Read a run's flap record: encoder counts and the cylinder chamber's gauge pressure.
@@ -212,10 +221,8 @@ def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | 
         raw campaign's CSV).
     sampling_rate : float
         Declared sampling rate [Hz], checked as :func:`read_probes` checks it.
-    dialect : Dialect or dict, optional
-        How the file is written (default: the raw campaign's CSV).
-    time_offset : float, optional
-        Declared clock offset [s], added to the time stamps and recorded.
+    %(dialect)s
+    %(time_offset)s
 
     Returns
     -------

@@ -28,6 +28,7 @@ import xarray as xr
 from xarray.backends import BackendEntrypoint
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
 from flumekit.io.dialects import iso_instant
@@ -351,6 +352,7 @@ def _mux_assignment(path: Path, mux: Mapping[str, object], n_profiles: int) -> n
     return np.tile(per_cycle, cycles)
 
 
+@doc
 def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
                 transducer: int | None = None, angle_correction: bool = False,
                 encoding: str = "cp1252") -> xr.Dataset:
@@ -395,9 +397,7 @@ def read_mfprof(path: str | Path, *, positive: str = "away_from_transducer",
     References
     ----------
     .. [1] Met-Flow UVP Monitor file format, ``shared/data/metflow/FORMAT.md``.
-    .. [2] Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. and Gil, L. (2020).
-       Experimental investigation of the flow field in the vicinity of an oscillating wave
-       surge converter. J. Mar. Sci. Eng. 8, Eqs. (4)-(6).
+    .. [2] %(brito2020)s, Eqs. (4)-(6).
 
     Examples
     --------

@@ -14,7 +14,13 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.io.atomic import Written, atomic_path
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    netcdf_path=("path : str or pathlib.Path\n"
+                 "    The netCDF-4 file to write."))
 
 
 def _encoding(ds: xr.Dataset, compress: bool = True) -> dict[str, dict]:
@@ -101,6 +107,7 @@ def _signed_bytes(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
+@_doc
 def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) -> Written:
     """Check CF attributes and write ``ds`` to ``path`` atomically (temporary file, then rename).
 
@@ -114,8 +121,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) ->
     ds : xarray.Dataset
         With the global attributes ``Conventions``, ``title``, ``source`` and ``history``
         (:func:`write_product` sets them); no complex variables.
-    path : str or pathlib.Path
-        The netCDF-4 file to write.
+    %(netcdf_path)s
     compress : bool, optional
         Deflate float arrays of more than 4096 values (zlib level 1 with shuffle, one chunk
         per variable). False stores them contiguous, as they are: for dense float records of
@@ -154,6 +160,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path, *, compress: bool = True) ->
     return Written(path, conventions.content_digest(ds))
 
 
+@_doc
 def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
                   parameters: dict | None = None, *, compress: bool = True) -> Written:
     """Write a product of flumekit: its global attributes set, then :func:`write_dataset`.
@@ -165,8 +172,7 @@ def write_product(ds: xr.Dataset, path: str | Path, title: str, source: str,
     ----------
     ds : xarray.Dataset
         The product; variable names from :mod:`flumekit.conventions`.
-    path : str or pathlib.Path
-        The netCDF-4 file to write.
+    %(netcdf_path)s
     title : str
         What the dataset holds (the CF ``title``).
     source : str

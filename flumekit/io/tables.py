@@ -18,8 +18,20 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from flumekit.docstrings import filler
 from flumekit.errors import InputError
 from flumekit.io.atomic import atomic_path
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    comment=("comment : str, optional\n"
+             "    Lines starting with this are skipped."),
+    delimiter=("delimiter : str, optional\n"
+               "    One character, or ``\"whitespace\"``."),
+    encoding=("encoding : str, optional\n"
+              "    The file's text encoding."),
+    path_for_messages=("path : pathlib.Path\n"
+                       "    The file, for messages."))
 
 _HEADER = re.compile(r"^\s*(.*?)\s*\[([^\]]*)\]\s*$")
 
@@ -164,13 +176,13 @@ def _codec(path: Path, encoding: str) -> str:
     return "utf-8-sig" if name == "utf-8" else name
 
 
+@_doc
 def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
     r"""Decode a text file's bytes; an undecodable byte is an error naming its line.
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file, for messages.
+    %(path_for_messages)s
     data : bytes
         Its content.
     encoding : str, optional
@@ -203,6 +215,7 @@ def decode(path: Path, data: bytes, encoding: str = "utf-8") -> str:
                          f"another encoding?): {hint}", line=line) from None
 
 
+@_doc
 def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
               encoding: str = "utf-8") -> int:
     """Return the file line of a table's data row ``k``, for messages.
@@ -212,16 +225,14 @@ def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file.
+    %(path)s
     first_line : int
         The 1-based file line of the first data row.
     k : int
         The data row, 0-based.
     comment : str, optional
         Lines starting with this are comments.
-    encoding : str, optional
-        The file's text encoding.
+    %(encoding)s
 
     Returns
     -------
@@ -236,6 +247,7 @@ def data_line(path: Path, first_line: int, k: int, *, comment: str = "",
     return first_line + int(rows[k] if k < rows.size else k)
 
 
+@_doc
 def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_lines: int = 0,
                   header: bool = True, encoding: str = "utf-8") -> list[str]:
     """Return the column labels of a table's header line.
@@ -244,16 +256,13 @@ def header_labels(path: Path, *, delimiter: str = ",", comment: str = "", skip_l
     ----------
     path : pathlib.Path
         The file (its first 64 KiB are read).
-    delimiter : str, optional
-        One character, or ``"whitespace"``.
-    comment : str, optional
-        Lines starting with this are skipped.
+    %(delimiter)s
+    %(comment)s
     skip_lines : int, optional
         Preamble lines before the header.
     header : bool, optional
         Whether a header row names the columns.
-    encoding : str, optional
-        The file's text encoding.
+    %(encoding)s
 
     Returns
     -------
@@ -295,6 +304,7 @@ def _label(cell: str) -> tuple[str, str | None]:
     return (m.group(1), m.group(2).strip()) if m else (cell, None)
 
 
+@_doc
 def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", comment: str = "",
               skip_lines: int = 0, header: bool = True,
               text_columns: tuple[int, ...] = (), encoding: str = "utf-8") -> Text:
@@ -304,12 +314,10 @@ def read_text(path: str | Path, *, delimiter: str = ",", decimal: str = ".", com
     ----------
     path : str or pathlib.Path
         The file.
-    delimiter : str, optional
-        One character, or ``"whitespace"``.
+    %(delimiter)s
     decimal : str, optional
         ``"."`` or ``","``.
-    comment : str, optional
-        Lines starting with this are skipped.
+    %(comment)s
     skip_lines : int, optional
         Preamble lines before the header (or the first row).
     header : bool, optional
@@ -441,14 +449,14 @@ def _locate_bad_cell(path: Path, body: str, first: int, ncol: int, delimiter: st
     return InputError(path, "could not be parsed as a numeric table")
 
 
+@_doc
 def check_time(path: Path, time: np.ndarray, sampling_rate: float | None = None,
                first_line: int = 2) -> None:
     """Check that time increases strictly and, if a rate is given, steps by 1/rate (within 1 %).
 
     Parameters
     ----------
-    path : pathlib.Path
-        The file, for messages.
+    %(path_for_messages)s
     time : numpy.ndarray
         Time stamps [s].
     sampling_rate : float, optional

@@ -11,6 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    energy_flux=("energy_flux : array_like\n"
+                 "    Incident energy flux per unit crest width J [W m-1], > 0."))
+
 
 def _positive(name: str, value) -> np.ndarray:
     arr = np.asarray(value, dtype=float)
@@ -19,6 +26,7 @@ def _positive(name: str, value) -> np.ndarray:
     return arr
 
 
+@_doc
 def capture_width(mean_power, energy_flux) -> np.ndarray:
     """Capture width (capture length) L = P̄ / J [m].
 
@@ -26,8 +34,7 @@ def capture_width(mean_power, energy_flux) -> np.ndarray:
     ----------
     mean_power : array_like
         Mean absorbed power P̄ over the analysed record [W].
-    energy_flux : array_like
-        Incident energy flux per unit crest width J [W m-1], > 0.
+    %(energy_flux)s
 
     Returns
     -------
@@ -55,6 +62,7 @@ def capture_width(mean_power, energy_flux) -> np.ndarray:
     return np.asarray(mean_power, dtype=float) / _positive("energy flux", energy_flux)
 
 
+@_doc
 def capture_width_ratio(mean_power, energy_flux, width) -> np.ndarray:
     """Capture width ratio CWR = P̄ / (J w) [-].
 
@@ -62,8 +70,7 @@ def capture_width_ratio(mean_power, energy_flux, width) -> np.ndarray:
     ----------
     mean_power : array_like
         Mean absorbed power P̄ [W].
-    energy_flux : array_like
-        Incident energy flux per unit crest width J [W m-1], > 0.
+    %(energy_flux)s
     width : array_like
         Characteristic width of the device w [m], > 0 (the flap width for a flap, the
         diameter for a point absorber).

@@ -6,21 +6,14 @@ out of date (:func:`plan`, :func:`why`) and running it (:func:`make`, with an ex
 """
 
 
-from flumekit.lazy import lazy_names
+from flumekit.lazy import attach
 
-#: public name -> module of this package (imported on first use, so that importing the
-#: package stays cheap)
-_LAZY = {
-    "Pipeline": "config",
-    "load_pipeline": "config",
-    "make": "engine",
-    "plan": "engine",
-    "why": "engine",
-    "Rule": "rules",
-    "executor_for": "executors",
-}
-
-__all__ = sorted(_LAZY)
-
-
-__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
+# public names by the module that defines them, each imported on first use so that
+# importing the package stays cheap
+__getattr__, __dir__, __all__ = attach(
+    __name__, globals(),
+    config=["Pipeline", "load_pipeline"],
+    engine=["make", "plan", "why"],
+    rules=["Rule"],
+    executors=["executor_for"],
+)

@@ -21,10 +21,24 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from flumekit.docstrings import filler
 from flumekit.errors import FlumekitError, InputError
 from flumekit.pipeline.executors import Executor
 from flumekit.pipeline.rules import Rule, execute
 from flumekit.pipeline.state import State
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    force=("force : bool, default False\n"
+           "    Rebuild every target needed."),
+    force_targets=("force_targets : iterable of str, optional\n"
+                   "    Targets to rebuild regardless of the state."),
+    graph=("graph : Graph\n"
+           "    The pipeline's rules."),
+    state=("state : State\n"
+           "    The build state."),
+    targets=("targets : list of str\n"
+             "    Requested targets."))
 
 
 def _key(p) -> str:
@@ -358,6 +372,7 @@ class Events:
         """End the build's output."""
 
 
+@_doc
 def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
          force_targets: Iterable[str] = ()) -> list[tuple[str, str]]:
     """Return what a make would run and why (a dry run).
@@ -366,16 +381,11 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
 
     Parameters
     ----------
-    graph : Graph
-        The pipeline's rules.
-    targets : list of str
-        Requested targets.
-    state : State
-        The build state.
-    force : bool, default False
-        Rebuild every target needed.
-    force_targets : iterable of str, optional
-        Targets to rebuild regardless of the state.
+    %(graph)s
+    %(targets)s
+    %(state)s
+    %(force)s
+    %(force_targets)s
 
     Returns
     -------
@@ -399,6 +409,7 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
     return out
 
 
+@_doc
 def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
                    within: Path | None = None, dry_run: bool = False) -> dict[str, list[Path]]:
     """Remove the outputs of ``targets`` and forget their build signatures.
@@ -407,8 +418,7 @@ def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
 
     Parameters
     ----------
-    graph : Graph
-        The pipeline's rules.
+    %(graph)s
     state : State
         The build state, whose signatures of ``targets`` are forgotten.
     targets : iterable of str
@@ -440,6 +450,7 @@ def remove_outputs(graph: Graph, state: State, targets: Iterable[str], *,
     return removed
 
 
+@_doc
 def invalidate(graph: Graph, state: State, target: str) -> list[str]:
     """Remove the outputs of a target and of everything downstream of it.
 
@@ -447,10 +458,8 @@ def invalidate(graph: Graph, state: State, target: str) -> list[str]:
 
     Parameters
     ----------
-    graph : Graph
-        The pipeline's rules.
-    state : State
-        The build state.
+    %(graph)s
+    %(state)s
     target : str
         The target invalidated.
 
@@ -462,6 +471,7 @@ def invalidate(graph: Graph, state: State, target: str) -> list[str]:
     return list(remove_outputs(graph, state, [target, *graph.downstream(target)]))
 
 
+@_doc
 def make(graph: Graph, targets: list[str], state: State, executor: Executor, force: bool = False,
          log: Callable[[str], None] | None = None, *, force_targets: Iterable[str] = (),
          keep_going: bool = False, events: Events | None = None,
@@ -478,20 +488,16 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
 
     Parameters
     ----------
-    graph : Graph
-        The pipeline's rules.
-    targets : list of str
-        Requested targets.
+    %(graph)s
+    %(targets)s
     state : State
         The build state, saved after every finished rule.
     executor : Executor
         Where rules run (:func:`flumekit.pipeline.executor_for`).
-    force : bool, default False
-        Rebuild every target needed.
+    %(force)s
     log : callable, optional
         Prints a line of progress (default: standard error); ignored when ``events`` is given.
-    force_targets : iterable of str, optional
-        Targets to rebuild regardless of the state.
+    %(force_targets)s
     keep_going : bool, default False
         Build everything that does not depend on a failure, then report.
     events : Events, optional

@@ -25,8 +25,16 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from flumekit.docstrings import filler
 from flumekit.errors import FlumekitError, InputError
 from flumekit.synth import DEFAULT_SEED, MARKER
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    raw=("raw : pathlib.Path\n"
+         "    The campaign folder."),
+    raw_folder=("raw : Path\n"
+                "    The campaign folder."))
 
 #: characters a run folder's name may not hold: a path separator on some system (``\\`` is one
 #: for the netCDF library, which would write outside the processed folder), and the wildcards
@@ -34,16 +42,15 @@ from flumekit.synth import DEFAULT_SEED, MARKER
 FORBIDDEN_IN_RUN_NAMES = ("\\", "/", "*", "?", "[", "]", "\0")
 
 
+@_doc
 @dataclass(frozen=True)
 class Synthesis:
     """What the virtual flume is to write into the raw folder (planned from its design).
 
     Parameters
     ----------
-    size : str
-        Campaign size ("small", "default", "paper").
-    seed : int
-        Random seed of the campaign.
+    %(size)s
+    %(seed)s
     """
 
     size: str
@@ -73,6 +80,7 @@ def is_synthesis_temporary(name: str) -> bool:
     return name.startswith(".") and name.endswith(".partial")
 
 
+@_doc
 def run_folders(raw: Path) -> list[str]:
     """Return the names of the run folders in ``raw/runs``, sorted.
 
@@ -82,8 +90,7 @@ def run_folders(raw: Path) -> list[str]:
 
     Parameters
     ----------
-    raw : pathlib.Path
-        The campaign folder.
+    %(raw)s
 
     Returns
     -------
@@ -99,6 +106,7 @@ def run_folders(raw: Path) -> list[str]:
                                     or not os.path.isfile(os.path.join(e.path, "run.toml")))))
 
 
+@_doc
 def check_run_names(raw: Path, names: list[str]) -> None:
     """Refuse run folders whose names a build cannot carry safely.
 
@@ -110,8 +118,7 @@ def check_run_names(raw: Path, names: list[str]) -> None:
 
     Parameters
     ----------
-    raw : Path
-        The campaign folder.
+    %(raw_folder)s
     names : list of str
         Names of the folders in ``raw/runs``.
 
@@ -138,13 +145,13 @@ def check_run_names(raw: Path, names: list[str]) -> None:
                              "'_', '-', '.'); nothing was built or written")
 
 
+@_doc
 def read_marker(raw: Path) -> dict | None:
     """Read the virtual flume's marker of a raw folder.
 
     Parameters
     ----------
-    raw : pathlib.Path
-        The campaign folder.
+    %(raw)s
 
     Returns
     -------
@@ -172,13 +179,13 @@ def read_marker(raw: Path) -> dict | None:
                          "into a new folder") from None
 
 
+@_doc
 def check_virtual_campaign(raw: Path, info: dict, present: list[str]) -> list[str]:
     """Return the planned runs still to synthesise in a virtual campaign, or raise.
 
     Parameters
     ----------
-    raw : Path
-        The campaign folder.
+    %(raw_folder)s
     info : dict
         Its marker (:func:`read_marker`).
     present : list of str
@@ -265,13 +272,13 @@ def synthesis_plan(raw: Path, synth: dict | None, pipeline_file: Path) -> Synthe
     return Synthesis(str(synth.get("size", "default")), int(synth.get("seed", DEFAULT_SEED)))
 
 
+@_doc
 def campaign_files(raw: Path) -> list[str | Path]:
     """Return every file the rules of a campaign are made of.
 
     Parameters
     ----------
-    raw : pathlib.Path
-        The campaign folder.
+    %(raw)s
 
     Returns
     -------

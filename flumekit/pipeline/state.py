@@ -17,8 +17,16 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from flumekit.docstrings import filler
 from flumekit.io.atomic import atomic_path
 from flumekit.pipeline.rules import file_digest
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    returns_digest=("Returns\n"
+                    "-------\n"
+                    "str\n"
+                    "    Hex digest."))
 
 
 def _key(p) -> str:
@@ -86,18 +94,15 @@ class State:
         """Return whether ``path`` exists (one ``stat`` per scan)."""
         return self._stat(_key(path)) is not None
 
+    @_doc
     def hash(self, path: Path) -> str:
         """Return the SHA-256 of a file's bytes, cached while its size and mtime are unchanged.
 
         Parameters
         ----------
-        path : pathlib.Path
-            The file.
+        %(path)s
 
-        Returns
-        -------
-        str
-            Hex digest.
+        %(returns_digest)s
 
         Raises
         ------
@@ -116,6 +121,7 @@ class State:
         self.dirty = True
         return h
 
+    @_doc
     def identity(self, path: Path) -> str:
         """Return the identity of a file: its writer's content digest, else its bytes' hash.
 
@@ -123,13 +129,9 @@ class State:
 
         Parameters
         ----------
-        path : pathlib.Path
-            The file.
+        %(path)s
 
-        Returns
-        -------
-        str
-            Hex digest.
+        %(returns_digest)s
         """
         h = self.hash(path)
         return self.content.get(h, h)

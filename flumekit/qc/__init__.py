@@ -5,37 +5,18 @@ the metadata against the records.
 """
 
 
-from flumekit.lazy import lazy_names
+from flumekit.lazy import attach
 
-#: public name -> module of this package (imported on first use, so that importing the
-#: package stays cheap)
-_LAZY = {
-    "Thresholds": "record",
-    "qc_dataset": "record",
-    "clean": "record",
-    "check_series": "record",
-    "flag_counts": "record",
-    "gross_range_test": "qartod",
-    "spike_test": "qartod",
-    "rate_of_change_test": "qartod",
-    "flat_line_test": "qartod",
-    "goring_nikora": "despike",
-    "fill_gaps": "fill",
-    "probe_flap_lag": "clock",
-    "clock_departures": "clock",
-    "check_beam": "record",
-    "beam_flags": "record",
-    "unfilled_gaps": "record",
-    "level_test": "qartod",
-    "dropout_test": "qartod",
-    "gap_test": "qartod",
-    "noise_test": "qartod",
-    "despike_flags": "despike",
-    "flag_attrs": "flags",
-    "aggregate": "flags",
-}
-
-__all__ = sorted(_LAZY)
-
-
-__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
+# public names by the module that defines them, each imported on first use so that
+# importing the package stays cheap
+__getattr__, __dir__, __all__ = attach(
+    __name__, globals(),
+    record=["Thresholds", "qc_dataset", "clean", "check_series", "flag_counts", "check_beam",
+            "beam_flags", "unfilled_gaps"],
+    qartod=["gross_range_test", "spike_test", "rate_of_change_test", "flat_line_test", "level_test",
+            "dropout_test", "gap_test", "noise_test"],
+    despike=["goring_nikora", "despike_flags"],
+    fill=["fill_gaps"],
+    clock=["probe_flap_lag", "clock_departures"],
+    flags=["flag_attrs", "aggregate"],
+)

@@ -11,9 +11,28 @@ from pathlib import Path
 
 import numpy as np
 
+from flumekit.docstrings import filler
 from flumekit.errors import InputError
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    returns_warning=("Returns\n"
+                     "-------\n"
+                     "str or None\n"
+                     "    The warning, or None."),
+    run_file=("run_file : pathlib.Path\n"
+              "    The run.toml, named in the message."),
+    tolerance=("tolerance : float\n"
+               "    Largest relative difference accepted [-]."),
+    refuse_tolerance=("tolerance : float\n"
+                      "    Relative difference beyond which the run is refused [-]."),
+    warning=("warning : float\n"
+             "    Relative difference beyond which a warning is returned [-]."),
+    what=("what : str\n"
+          "    What was measured (e.g. \"incident height at the flap\")."))
 
+
+@_doc
 def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
     """Return the period of the spectral peak of a record, its channels' spectra averaged.
 
@@ -26,8 +45,7 @@ def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
     ----------
     x : array_like
         Record, time along the last axis; 1-D (one channel) or (channel, time) [any unit].
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(sampling_rate)s
 
     Returns
     -------
@@ -56,6 +74,7 @@ def dominant_period(x: np.ndarray, sampling_rate: float) -> float:
     return float(1.0 / f)
 
 
+@_doc
 def check_period(declared: float, measured: float, tolerance: float, run_file: Path,
                  record: Path) -> None:
     """Refuse a run whose declared period differs from its record's dominant period.
@@ -69,10 +88,8 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
         The period declared in run.toml [s].
     measured : float
         The dominant period of the record (:func:`dominant_period`) [s].
-    tolerance : float
-        Largest relative difference accepted [-].
-    run_file : pathlib.Path
-        The run.toml, named in the message.
+    %(tolerance)s
+    %(run_file)s
     record : pathlib.Path
         The record the period was measured on, named in the message.
 
@@ -89,6 +106,7 @@ def check_period(declared: float, measured: float, tolerance: float, run_file: P
                          "[stages.qc] period_tolerance)", field="run.period")
 
 
+@_doc
 def check_record_period(declared: float, periods: dict[str, float], tolerance: float,
                         record: Path, run_file: Path) -> None:
     """Refuse a record whose channels' dominant period is not the run's declared one.
@@ -103,12 +121,10 @@ def check_record_period(declared: float, periods: dict[str, float], tolerance: f
         The run's declared period [s].
     periods : dict of str to float
         Channel -> its dominant period (:func:`dominant_period`) [s].
-    tolerance : float
-        Largest relative difference accepted [-].
+    %(tolerance)s
     record : pathlib.Path
         The record, named as the file at fault.
-    run_file : pathlib.Path
-        The run.toml, named in the message.
+    %(run_file)s
 
     Raises
     ------
@@ -156,6 +172,7 @@ def check_durations(durations: dict[str, float], files: dict[str, object], toler
                          "another run's record?)")
 
 
+@_doc
 def check_height(declared: float, measured: float, tolerance: float, warning: float,
                  run_file: Path, what: str) -> str | None:
     """Check a declared wave height against the measured one.
@@ -169,19 +186,12 @@ def check_height(declared: float, measured: float, tolerance: float, warning: fl
         The height declared in run.toml [m].
     measured : float
         The measured height [m].
-    tolerance : float
-        Relative difference beyond which the run is refused [-].
-    warning : float
-        Relative difference beyond which a warning is returned [-].
-    run_file : pathlib.Path
-        The run.toml, named in the message.
-    what : str
-        What was measured (e.g. "incident height at the flap").
+    %(refuse_tolerance)s
+    %(warning)s
+    %(run_file)s
+    %(what)s
 
-    Returns
-    -------
-    str or None
-        The warning, or None.
+    %(returns_warning)s
 
     Raises
     ------
@@ -192,6 +202,7 @@ def check_height(declared: float, measured: float, tolerance: float, warning: fl
                           what, "height_tolerance")
 
 
+@_doc
 def check_declared(key: str, declared: float, measured: float, unit: str, tolerance: float,
                    warning: float, run_file: Path, what: str, parameter: str) -> str | None:
     """Check a declared run value against the measured one.
@@ -209,21 +220,14 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
         The measured value [``unit``].
     unit : str
         Their unit, for the message.
-    tolerance : float
-        Relative difference beyond which the run is refused [-].
-    warning : float
-        Relative difference beyond which a warning is returned [-].
-    run_file : pathlib.Path
-        The run.toml, named in the message.
-    what : str
-        What was measured (e.g. "incident height at the flap").
+    %(refuse_tolerance)s
+    %(warning)s
+    %(run_file)s
+    %(what)s
     parameter : str
         The ``[stages.waves]`` parameter holding ``tolerance``.
 
-    Returns
-    -------
-    str or None
-        The warning, or None.
+    %(returns_warning)s
 
     Raises
     ------
@@ -249,6 +253,7 @@ def check_declared(key: str, declared: float, measured: float, unit: str, tolera
     return None
 
 
+@_doc
 def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction: float,
                run_file: Path, record: Path) -> None:
     """Refuse records that contradict the run's declared kind.
@@ -271,8 +276,7 @@ def check_kind(kind: str, peak_frequency: float, share: float, regular_fraction:
     regular_fraction : float
         The share from which a record is regular [-]
         (:data:`flumekit.waves.REGULAR_FRACTION`).
-    run_file : pathlib.Path
-        The run.toml, named in the message.
+    %(run_file)s
     record : pathlib.Path
         The probe file, named in the message.
 

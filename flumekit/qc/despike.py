@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import doc
 from flumekit.qc.flags import FAIL
 
 
+@doc
 def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 20,
                   exclude: np.ndarray | None = None) -> np.ndarray:
     """Find the spikes of velocity records by phase-space thresholding, per channel.
@@ -31,8 +33,7 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     floor : float or numpy.ndarray
         Lower bound of each standard deviation [m s-1] (the velocity resolution of a quantised
         instrument), so a channel in still water is not all spikes; one or one per channel.
-    max_iterations : int
-        Iterations at most.
+    %(max_iterations)s
     exclude : numpy.ndarray, optional
         Samples ignored as NaN ones are (True), of u's shape; None: none.
 
@@ -66,6 +67,7 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     return (_flags(u, floor, max_iterations, ex, peaks=False) == FAIL).reshape(shape)
 
 
+@doc
 def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations: int = 1,
                   exclude: np.ndarray | None = None) -> np.ndarray:
     """Return the QARTOD flags of the despiking of velocity records, as bytes.
@@ -82,8 +84,7 @@ def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
         Velocity [m s-1], (channel, time).
     floor : float or numpy.ndarray
         Lower bound of each standard deviation [m s-1]; one or one per channel.
-    max_iterations : int
-        Iterations at most.
+    %(max_iterations)s
     exclude : numpy.ndarray, optional
         Samples not evaluated (True), of u's shape; None: none.
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from flumekit.docstrings import doc
 from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED
 
 #: bins of the histogram median of whole-number records (values spanning more are sorted)
@@ -353,6 +354,7 @@ def _departure(x, k):
     return abs(x[k] - 0.5 * (x[k - 1] + x[k + 1]))
 
 
+@doc
 @njit(cache=True)
 def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
     """Return the QARTOD flags of the Goring-Nikora despiking of each row of ``u``.
@@ -372,8 +374,7 @@ def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
         Boolean, of u's shape: samples not evaluated.
     floor : numpy.ndarray
         Lower bound of the standard deviations of each row [m s-1] (its velocity resolution).
-    max_iterations : int
-        Iterations at most.
+    %(max_iterations)s
     peaks : bool
         Flag only the spikes that are the local largest departure.
 

@@ -26,8 +26,22 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import fill, filler
 from flumekit.qc.fill import runs
 from flumekit.qc.flags import FAIL, GOOD, MAD_TO_STD, MISSING, NOT_EVALUATED, SUSPECT, choose
+
+_FLAGS = "Returns\n-------\nnumpy.ndarray\n    QARTOD flags (uint8) of x's shape."
+#: texts that several docstrings of this module share
+_doc = filler(
+    # what every test returns; most also cite the manual (the test's name follows)
+    returns_flags=_FLAGS,
+    flags_per_qartod=_FLAGS + "\n\n" + fill("%(references_qartod)s"),
+    block=("block : int\n"
+           "    Samples per block of the local scale."),
+    floor=("floor : float or numpy.ndarray, optional\n"
+           "    Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`."),
+    threshold=("threshold : float\n"
+               "    Robust standard deviations [-]."))
 
 
 def resolution(x: np.ndarray) -> np.ndarray:
@@ -115,6 +129,13 @@ def _empty_flags(x: np.ndarray) -> np.ndarray:
     return choose(np.isfinite(x), GOOD, MISSING)
 
 
+def _rows(x) -> tuple[np.ndarray, np.ndarray, tuple[int, ...]]:
+    """Return a record as (channel, time) rows, their flags (GOOD or MISSING) and its shape."""
+    x = np.asarray(x, dtype=float)
+    x2 = x.reshape(-1, x.shape[-1])
+    return x2, _empty_flags(x2), x.shape
+
+
 def _local_test_start(x, min_samples: int, floor):
     """Return the values, flags and noise floor of a local test.
 
@@ -129,6 +150,7 @@ def _local_test_start(x, min_samples: int, floor):
     return x, f, resolution(x) if floor is None else floor
 
 
+@_doc
 def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
                      suspect_span: tuple[float, float] | None = None) -> np.ndarray:
     """Flag samples outside the sensor's and the user's limits (QARTOD gross range test).
@@ -145,15 +167,7 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     suspect_span : tuple of float, optional
         (min, max) expected by the user [unit of x]; None: not tested.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1 (gross range test).
+    %(flags_per_qartod)s (gross range test).
 
     Examples
     --------
@@ -177,6 +191,7 @@ def gross_range_test(x: np.ndarray, fail_span: tuple[float, float] | None,
     return f
 
 
+@_doc
 def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: int = 250,
                floor: np.ndarray | float | None = None, passes: int = 2) -> np.ndarray:
     """Flag spikes (QARTOD spike test, the "average" method), robust and local.
@@ -191,28 +206,17 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     suspect : float
         Robust local standard deviations of d beyond which a spike is suspect [-].
     fail : float
         Robust local standard deviations of d beyond which a spike fails [-].
-    block : int
-        Samples per block of the local scale.
-    floor : float or numpy.ndarray, optional
-        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+    %(block)s
+    %(floor)s
     passes : int
         Passes at most.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1 (spike test).
+    %(flags_per_qartod)s (spike test).
 
     Examples
     --------
@@ -249,6 +253,7 @@ def spike_test(x: np.ndarray, suspect: float = 6.0, fail: float = 8.0, block: in
     return f
 
 
+@_doc
 def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250,
                         floor: np.ndarray | float | None = None) -> np.ndarray:
     """Flag excessive rates of change (QARTOD rate of change test).
@@ -259,24 +264,13 @@ def rate_of_change_test(x: np.ndarray, threshold: float = 10.0, block: int = 250
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     threshold : float
         Robust local standard deviations of the first difference [-].
-    block : int
-        Samples per block of the local scale.
-    floor : float or numpy.ndarray, optional
-        Lower bound of the scale [unit of x]; None: the channel's :func:`resolution`.
+    %(block)s
+    %(floor)s
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1 (rate of change test).
+    %(flags_per_qartod)s (rate of change test).
 
     Examples
     --------
@@ -308,6 +302,7 @@ def _paint(shape: tuple[int, int], row, first, length) -> np.ndarray:
     return np.cumsum(mark, axis=-1)[:, :n] > 0
 
 
+@_doc
 def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float = 1.0,
                    fail_seconds: float = 2.0, tolerance: float = 0.0,
                    exempt_leading: bool = True) -> np.ndarray:
@@ -321,10 +316,8 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(record)s
+    %(sampling_rate)s
     suspect_seconds : float
         Shortest flat line that is suspect [s].
     fail_seconds : float
@@ -334,15 +327,7 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
     exempt_leading : bool
         Pass a flat line from the first sample that ends before the record does.
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
-
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1 (flat line test).
+    %(flags_per_qartod)s (flat line test).
 
     Examples
     --------
@@ -354,10 +339,7 @@ def flat_line_test(x: np.ndarray, sampling_rate: float, suspect_seconds: float =
     >>> np.flatnonzero(f == 4)[[0, -1]].tolist()
     [50, 79]
     """
-    x = np.asarray(x, dtype=float)
-    shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
-    f = _empty_flags(x2)
+    x2, f, shape = _rows(x)
     n = x2.shape[-1]
     if n < 2:
         return f.reshape(shape)
@@ -406,6 +388,7 @@ def robust_median(x: np.ndarray) -> np.ndarray:
     return np.where(k > 0, 0.5 * (lo + hi), np.nan)
 
 
+@_doc
 def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """Flag samples far from the record's median (the level form of :func:`dropout_test`).
 
@@ -417,13 +400,9 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     x : array_like
         Record, time along the last axis [any unit]; integer records are tested exactly
         (:func:`level_fail`).
-    threshold : float
-        Robust standard deviations [-].
+    %(threshold)s
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
@@ -440,6 +419,7 @@ def level_test(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     return _level(x.reshape(-1, x.shape[-1]), threshold).reshape(x.shape)
 
 
+@_doc
 def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
     """Return where :func:`level_test` fails.
 
@@ -448,10 +428,8 @@ def level_fail(x: np.ndarray, threshold: float = 6.0) -> np.ndarray:
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    threshold : float
-        Robust standard deviations [-].
+    %(record)s
+    %(threshold)s
 
     Returns
     -------
@@ -478,6 +456,7 @@ def _level(x2: np.ndarray, threshold: float) -> np.ndarray:
     return f
 
 
+@_doc
 def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
                  hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
     """Flag dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
@@ -496,10 +475,8 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(record)s
+    %(sampling_rate)s
     threshold : float
         Robust standard deviations of the level form [-].
     hold_seconds : float
@@ -507,10 +484,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     hold_factor : float
         Multiple of the channel's typical longest run of identical values [-].
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
@@ -569,6 +543,7 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
     return f.reshape(shape)
 
 
+@_doc
 def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> np.ndarray:
     """Flag samples after a gap in time (QARTOD gap, or timing, test).
 
@@ -589,10 +564,7 @@ def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> 
     numpy.ndarray
         QARTOD flags (uint8) of time's shape.
 
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1 (timing/gap test).
+    %(references_qartod)s (timing/gap test).
 
     Examples
     --------
@@ -609,6 +581,7 @@ def gap_test(time: np.ndarray, sampling_rate: float, tolerance: float = 0.5) -> 
     return f
 
 
+@_doc
 def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
                min_share: float = 0.1) -> np.ndarray:
     """Flag blocks of a channel that hold more noise than signal (FAIL).
@@ -633,8 +606,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     block : int
         Samples per block (at least 4).
     max_autocorrelation : float
@@ -642,10 +614,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
     min_share : float
         Share of the channel's variance its high-frequency energy must exceed [-].
 
-    Returns
-    -------
-    numpy.ndarray
-        QARTOD flags (uint8) of x's shape.
+    %(returns_flags)s
 
     Examples
     --------
@@ -656,10 +625,7 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
     >>> [int((noise_test(x, 100) == 4).sum()) for x in (wave, hiss)]
     [0, 1000]
     """
-    x = np.asarray(x, dtype=float)
-    shape = x.shape
-    x2 = x.reshape(-1, shape[-1])
-    f = _empty_flags(x2)
+    x2, f, shape = _rows(x)
     n = x2.shape[-1]
     if n < 4:
         return f.reshape(shape)

@@ -15,6 +15,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import filler
 from flumekit.qc import qartod
 from flumekit.qc.despike import despike_flags
 from flumekit.qc.fill import fill_gaps, gap_spans
@@ -30,6 +31,15 @@ from flumekit.qc.flags import (
     choose,
     flag_attrs,
 )
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    gross_range=("gross_range : tuple of float, optional\n"
+                 "    (min, max) of the velocities [m s-1]; None: not evaluated."),
+    name=("name : str\n"
+          "    The variable checked."),
+    th=("th : Thresholds\n"
+        "    Thresholds of the tests."))
 
 #: profiles on each side of a boundary echo also left out of the despiking
 BOUNDARY_PROFILES = 1
@@ -117,6 +127,7 @@ class Thresholds:
                       if f.name in params})
 
 
+@_doc
 def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                  gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                  floor: np.ndarray | float | None = None) -> dict[str, np.ndarray]:
@@ -131,12 +142,9 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     ----------
     x : array_like
         Records (channel, time) or 1-D [any unit].
-    time : numpy.ndarray
-        Sample times [s].
-    sampling_rate : float
-        Sampling rate [Hz].
-    th : Thresholds
-        Thresholds of the tests.
+    %(time)s
+    %(sampling_rate)s
+    %(th)s
     gross_range : tuple of float, optional
         (min, max) of the sensor [unit of x]; None: not evaluated.
     flat_line : bool
@@ -150,10 +158,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
         Test name (``gap``, ``gross_range``, ``spike``, ``rate_of_change``, ``flat_line``,
         ``dropout``, ``noise``) -> its flags, of x's shape.
 
-    References
-    ----------
-    U.S. IOOS (2019). QARTOD manual for real-time quality control of in-situ surface wave data,
-    v2.1.
+    %(references_qartod)s.
 
     Examples
     --------
@@ -190,6 +195,7 @@ def check_series(x: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thre
     return out
 
 
+@_doc
 def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresholds, *,
                floor: np.ndarray | float = 0.0, amplitude: np.ndarray | None = None,
                gross_range: tuple[float, float] | None = None) -> dict[str, np.ndarray]:
@@ -217,8 +223,7 @@ def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresh
         Velocity resolution [m s-1], one or one per channel.
     amplitude : numpy.ndarray, optional
         Echo amplitude, of v's shape [counts]; None: no boundary test.
-    gross_range : tuple of float, optional
-        (min, max) of the velocities [m s-1]; None: not evaluated.
+    %(gross_range)s
 
     Returns
     -------
@@ -258,6 +263,7 @@ def _widen(mask: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
+@_doc
 def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float, *,
           copy: bool = True) -> np.ndarray:
     """Mask the FAIL and MISSING samples of a record and interpolate across short runs of them.
@@ -267,12 +273,10 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
 
     Parameters
     ----------
-    x : array_like
-        Record, time along the last axis [any unit].
+    %(record)s
     flags : numpy.ndarray
         QARTOD flags, of x's shape.
-    sampling_rate : float
-        Sampling rate [Hz].
+    %(sampling_rate)s
     max_gap : float
         Longest run interpolated [s].
     copy : bool
@@ -296,6 +300,7 @@ def clean(x: np.ndarray, flags: np.ndarray, sampling_rate: float, max_gap: float
     return fill_gaps(x, ~bad, max_gap=int(np.floor(max_gap * sampling_rate + 1e-9)), copy=copy)
 
 
+@_doc
 def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | None = None,
                gross_range: tuple[float, float] | None = None, flat_line: bool = True,
                floor=None) -> xr.Dataset:
@@ -311,10 +316,8 @@ def qc_dataset(ds: xr.Dataset, name: str, th: Thresholds, *, channel_dim: str | 
     ds : xarray.Dataset
         Dataset with ``name`` on (time,) or (channel_dim, time) in any order, coordinate
         ``time`` [s] and optionally attribute ``sampling_rate`` [Hz] (else from the time axis).
-    name : str
-        The variable checked.
-    th : Thresholds
-        Thresholds of the tests.
+    %(name)s
+    %(th)s
     channel_dim : str, optional
         Channel dimension of ``name``; None: one channel.
     gross_range : tuple of float, optional
@@ -407,6 +410,7 @@ def flag_counts(flags: np.ndarray) -> np.ndarray:
     return np.stack([np.count_nonzero(flags == v, axis=-1) for v in FLAG_VALUES], axis=-1)
 
 
+@_doc
 def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
     """Return the runs of masked samples of ``name`` longer than the interpolation limit.
 
@@ -414,8 +418,7 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
     ----------
     ds : xarray.Dataset
         A dataset written by :func:`qc_dataset`.
-    name : str
-        The variable checked.
+    %(name)s
 
     Returns
     -------
@@ -426,6 +429,7 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
     return [s for s in text.split("; ") if s]
 
 
+@_doc
 def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thresholds, *,
                time_offset: float = 0.0, gross_range: tuple[float, float] | None = None
                ) -> xr.Dataset:
@@ -449,8 +453,7 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
         Thresholds (``despike_iterations``, ``dropout`` for the echo level, ``gap_tolerance``).
     time_offset : float
         Clock offset of the UVP: beam time + offset is on the probes' clock [s].
-    gross_range : tuple of float, optional
-        (min, max) of the velocities [m s-1]; None: not evaluated.
+    %(gross_range)s
 
     Returns
     -------

@@ -7,6 +7,8 @@ is written (by the qc rules and the uvp rule). No domain code needs this module.
 
 from __future__ import annotations
 
+from flumekit.docstrings import doc
+
 #: an input of this suffix is a raw instrument file (``<instrument>_raw``), read by its reader
 RAW = "_raw"
 #: whether each product's float arrays are deflated (flumekit.io.netcdf.write_dataset): not the
@@ -15,6 +17,7 @@ RAW = "_raw"
 COMPRESS = {"probes": False, "flap": False, "uvp": True}
 
 
+@doc
 def raw_reading(ctx, run) -> dict:
     """Return, per instrument, how its raw file is read.
 
@@ -22,8 +25,7 @@ def raw_reading(ctx, run) -> dict:
     ----------
     ctx : flumekit.stages.context.Context
         The stage context (its campaign).
-    run : flumekit.campaign.Run
-        The run.
+    %(campaign_run)s
 
     Returns
     -------
@@ -108,6 +110,7 @@ def gross_range(value) -> tuple[float, float] | None:
     return None if value is None else (float(value[0]), float(value[1]))
 
 
+@doc
 def write_qc(ds, outputs, params, title, source, warnings=(), compress=True):
     """Write a quality-controlled product of one run, without run coordinates.
 
@@ -115,8 +118,7 @@ def write_qc(ds, outputs, params, title, source, warnings=(), compress=True):
     ----------
     ds : xarray.Dataset
         The quality-controlled record.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: the file to write.
+    %(dataset_output)s
     params : dict
         The rule's parameters; ``max_gap`` [s], the interpolation limit, is recorded.
     title, source : str

@@ -8,16 +8,22 @@ cache (:func:`flumekit.pipeline.cache.cached_graph`).
 
 from __future__ import annotations
 
+from flumekit.docstrings import filler
 from flumekit.pipeline.cache import cached_graph, pipeline_key
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    pipe=("pipe : Pipeline\n"
+          "    The parsed pipeline file."))
 
+
+@_doc
 def pipeline_rules(pipe, lazy) -> list:
     """Return the rules of a pipeline (:class:`flumekit.pipeline.config.Pipeline`).
 
     Parameters
     ----------
-    pipe : Pipeline
-        The parsed pipeline file.
+    %(pipe)s
     lazy : Synthesis or None
         What the virtual flume is to synthesise (None: the campaign is there).
 
@@ -43,13 +49,13 @@ def pipeline_rules(pipe, lazy) -> list:
                                  [r.id for r in campaign.runs])
 
 
+@_doc
 def pipeline_graph(pipe, key_lazy: tuple | None = None):
     """Return the graph of a pipeline, from its cache while nothing it is made of changed.
 
     Parameters
     ----------
-    pipe : Pipeline
-        The parsed pipeline file.
+    %(pipe)s
     key_lazy : tuple, optional
         Its :func:`flumekit.pipeline.cache.pipeline_key`, if already computed.
 

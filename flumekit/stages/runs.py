@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from flumekit.docstrings import doc
 from flumekit.io.atomic import Written
 from flumekit.stages.record_start import declared_start
 
@@ -9,6 +10,7 @@ from flumekit.stages.record_start import declared_start
 from flumekit.stages.summaries import stack_runs  # noqa: F401
 
 
+@doc
 def run_params(run, campaign=None) -> dict:
     """Return the parameters of a run that every per-run rule carries.
 
@@ -17,8 +19,7 @@ def run_params(run, campaign=None) -> dict:
 
     Parameters
     ----------
-    run : flumekit.campaign.Run
-        The run.
+    %(campaign_run)s
     campaign : flumekit.campaign.Campaign, optional
         Its campaign, which decides the coordinates every run carries.
 
@@ -83,6 +84,7 @@ def run_coords(params: dict) -> dict:
     return out
 
 
+@doc
 def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=None, *,
               compress: bool = True, coords: bool = True) -> Written:
     """Write one run's dataset with its run coordinates, attributes and record start.
@@ -94,8 +96,7 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
     ----------
     ds : xarray.Dataset
         The run's product.
-    outputs : dict of str to pathlib.Path
-        ``dataset``: the file to write.
+    %(dataset_output)s
     params : dict
         The rule's parameters, with the run's (:func:`run_params`).
     title, source : str

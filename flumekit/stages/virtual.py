@@ -13,9 +13,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from flumekit.docstrings import doc
 from flumekit.pipeline.rules import Rule
 
 
+@doc
 def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
           run_ids: list[str]) -> list[Rule]:
     """Return the rules that synthesise the raw files the stage rules read.
@@ -26,10 +28,8 @@ def rules(stage_rules: list[Rule], root: Path, size: str, seed: int,
         The stages' rules; their inputs under ``root`` are what the synthesis must write.
     root : pathlib.Path
         The raw campaign folder.
-    size : str
-        Campaign size ("small", "default", "paper").
-    seed : int
-        Random seed of the campaign.
+    %(size)s
+    %(seed)s
     run_ids : list of str
         The planned runs.
 

@@ -5,14 +5,21 @@ A regular or an irregular sea, with the rule's parameters.
 
 from __future__ import annotations
 
+from flumekit.docstrings import filler
 
+#: docstring text that several functions of this module share
+_doc = filler(
+    eta_probes=("eta : xarray.DataArray\n"
+                "    Surface elevation at every probe [m], with probe positions ``x`` [m]."))
+
+
+@_doc
 def regular(eta, params):
     """Analyse a regular run (:func:`flumekit.waves.analyse_run`).
 
     Parameters
     ----------
-    eta : xarray.DataArray
-        Surface elevation at every probe [m], with probe positions ``x`` [m].
+    %(eta_probes)s
     params : dict
         The waves rule's parameters.
 
@@ -33,6 +40,7 @@ def regular(eta, params):
                        reflection_tolerance=params["reflection_tolerance"])
 
 
+@_doc
 def irregular(eta, params):
     """Analyse an irregular run (:func:`flumekit.waves.analyse_irregular_run`).
 
@@ -40,8 +48,7 @@ def irregular(eta, params):
 
     Parameters
     ----------
-    eta : xarray.DataArray
-        Surface elevation at every probe [m], with probe positions ``x`` [m].
+    %(eta_probes)s
     params : dict
         The waves rule's parameters, with the run's target ``sea_state``.
 

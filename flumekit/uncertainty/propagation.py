@@ -32,6 +32,15 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    inputs=("inputs : list of Input\n"
+            "    Resolved components (:func:`resolve_inputs`)."),
+    model=("model : RunModel\n"
+           "    The run's analysis."))
+
 #: results of the waves analysis and of the flap analysis that are propagated
 WAVES_RESULTS = ("incident_height", "reflection_coefficient", "measured_period", "energy_flux")
 FLAP_RESULTS = ("theta_amplitude", "torque_amplitude", "mean_power", "capture_factor")
@@ -170,6 +179,7 @@ def _sample(rng: np.random.Generator, distribution: str, shape) -> np.ndarray:
     return rng.standard_normal(shape)
 
 
+@_doc
 class RunModel:
     """The analysis of one run as a function of the perturbations of its inputs.
 
@@ -177,10 +187,8 @@ class RunModel:
     ----------
     eta : xarray.DataArray
         Calibrated elevation (probe, time) [m] with ``x`` on ``probe``.
-    depth : float
-        Water depth [m].
-    period : float
-        Target wave period [s].
+    %(depth)s
+    %(target_period)s
     waves_kw : dict
         Keyword arguments of :func:`flumekit.waves.analyse_run` (x_ref, method, ...).
     flap_record : dict, optional
@@ -383,6 +391,7 @@ class RunModel:
 BLOCK = 32
 
 
+@_doc
 def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.ndarray:
     """Return the results of ``draws`` seeded Monte Carlo draws.
 
@@ -393,10 +402,8 @@ def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.nd
 
     Parameters
     ----------
-    model : RunModel
-        The run's analysis.
-    inputs : list of Input
-        Resolved components (:func:`resolve_inputs`).
+    %(model)s
+    %(inputs)s
     draws : int
         Number of draws.
     seed : int or sequence of int
@@ -426,6 +433,7 @@ def monte_carlo(model: RunModel, inputs: list[Input], draws: int, seed) -> np.nd
     return out
 
 
+@_doc
 def linear(model: RunModel, inputs: list[Input], directions: int, seed
            ) -> tuple[np.ndarray, np.ndarray]:
     """Propagate the inputs linearly (GUM §5.1): sensitivities and contributions.
@@ -436,10 +444,8 @@ def linear(model: RunModel, inputs: list[Input], directions: int, seed
 
     Parameters
     ----------
-    model : RunModel
-        The run's analysis.
-    inputs : list of Input
-        Resolved components (:func:`resolve_inputs`).
+    %(model)s
+    %(inputs)s
     directions : int
         Random directions of each per-sample input.
     seed : int or sequence of int
@@ -528,16 +534,15 @@ def draws_uncertainty(draws: np.ndarray, base: np.ndarray) -> np.ndarray:
     return np.sqrt(s2 + np.maximum(shift2, 0.0))
 
 
+@_doc
 def propagate(model: RunModel, inputs: list[Input], draws: int = 50, seed=0,
               directions: int = 4, linear_check: bool = True) -> xr.Dataset:
     """Propagate ``inputs`` through the analysis of one run, by Monte Carlo and linearly.
 
     Parameters
     ----------
-    model : RunModel
-        The run's analysis.
-    inputs : list of Input
-        Resolved components (:func:`resolve_inputs`).
+    %(model)s
+    %(inputs)s
     draws : int
         Monte Carlo draws [-]: the speed/accuracy knob (the relative standard deviation of an
         estimated standard uncertainty is about 1/sqrt(2 (draws - 1))).

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import doc
+
 
 def paired_velocity(v_lower, v_upper, alpha: float) -> tuple[np.ndarray, np.ndarray]:
     """⟨u⟩, ⟨w⟩ from the downward (UP1) and upward (UP3) beams, Eqs. (9)-(10).
@@ -48,6 +50,7 @@ def paired_velocity(v_lower, v_upper, alpha: float) -> tuple[np.ndarray, np.ndar
     return u, w
 
 
+@doc
 def least_squares_velocity(v, angles, rcond: float = 1e-6
                            ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Least-squares (u, w) from any beams, per point, ignoring beams whose value is NaN.
@@ -57,8 +60,7 @@ def least_squares_velocity(v, angles, rcond: float = 1e-6
     v : array_like
         Along-beam velocities [m s-1], shape (..., n_beam); NaN where a beam does not see
         the point.
-    angles : array_like
-        Beam angles above the horizontal [rad], shape (n_beam,).
+    %(angles)s
     rcond : float
         Points whose normal matrix has det / trace² below this are rank-deficient.
 

@@ -18,7 +18,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import doc
 
+
+@doc
 def reynolds_stresses(variance, angles, rcond: float = 1e-6
                       ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """⟨u'²⟩, ⟨w'²⟩, ⟨u'w'⟩ [m² s⁻²] from beam variances, by least squares per point.
@@ -28,8 +31,7 @@ def reynolds_stresses(variance, angles, rcond: float = 1e-6
     variance : array_like
         Phase-resolved along-beam fluctuation variances [m² s⁻²], shape (..., n_beam);
         NaN where a beam does not see the point.
-    angles : array_like
-        Beam angles above the horizontal [rad], shape (n_beam,).
+    %(angles)s
     rcond : float
         Relative determinant below which the 3x3 system counts as singular.
 

@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.signal import quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
@@ -28,6 +29,7 @@ from flumekit.waves.stream_function import nonlinear_wavenumber
 from flumekit.waves.theory import G, energy_flux
 
 
+@doc
 def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
                 x=None, sampling_rate: float | None = None, method: str = "mansard_funke",
                 separation_probes=None, n_harmonics: int = 8,
@@ -44,18 +46,15 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         ``probe``, ``time`` [s] since the start of the record (uniform sampling); or a
         DataFrame (one column per probe) or an array (probe, time) with ``x`` and
         ``sampling_rate`` (:func:`flumekit.waves.probe_record`).
-    depth : float
-        Still water depth [m].
+    %(depth)s
     period : float
         Target wave period [s] (used to merge noisy zero crossings closer than 0.75 T and as
         the starting guess; the analysis uses the measured period).
     x_ref : float
         Position where the incident and reflected waves are returned [m] (the flap hinge,
         x = 0, for the comparison with the flap).
-    x : sequence of float, optional
-        Probe positions [m] when ``eta`` does not carry them.
-    sampling_rate : float, optional
-        Sampling rate [Hz] when ``eta`` has no time coordinate.
+    %(probe_positions)s
+    %(sampling_rate_eta)s
     method : str
         Separation method (see :func:`flumekit.waves.separate`).
     separation_probes : sequence of str, optional
@@ -99,8 +98,7 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         :class:`~flumekit.waves.SeparationWarning` that states the change. 0 skips the test [-].
     max_condition : float
         Largest condition number of the separation accepted per bin [-].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -192,6 +190,7 @@ VARIANT_RESULTS = ("incident_height", "reflected_height", "reflection_coefficien
                    "incident_amplitude", "measured_period", "energy_flux")
 
 
+@doc
 def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
                     method: str = "mansard_funke", separation_probes=None,
                     n_harmonics: int = 8, bound_harmonics: bool = True,
@@ -212,16 +211,14 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
         The variants' calibrated surface elevations [m] (probe, time) with ``x`` [m].
     depths : sequence of float
         Still water depth of each variant [m].
-    period : float
-        Target wave period [s].
+    %(target_period)s
     x_ref : float
         Position where the incident and reflected waves are returned [m].
     method, separation_probes, n_harmonics, bound_harmonics, amplitude_dispersion
         As in :func:`analyse_run`.
     tolerance, min_cycles, noise_factor, reflection_tolerance, max_condition
         As in :func:`analyse_run` ([-]).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------

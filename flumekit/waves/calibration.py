@@ -13,6 +13,12 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
+
+#: docstring text that several functions of this module share
+_doc = filler(
+    calibration=("calibration : xarray.Dataset\n"
+                 "    Output of :func:`fit` holding every probe of ``voltage``."))
 
 __all__ = ["R2_WARNING", "CalibrationWarning", "apply", "fit", "is_monotonic"]
 
@@ -143,6 +149,7 @@ def is_monotonic(coefficients: np.ndarray, v_min: float, v_max: float) -> bool:
     return bool(np.all(d > 0) or np.all(d < 0))
 
 
+@_doc
 def non_monotonic(voltage: xr.DataArray,
                   calibration: xr.Dataset) -> list[tuple[str, float, float]]:
     """Probes whose calibration polynomial is not monotonic over the voltages of a record.
@@ -151,8 +158,7 @@ def non_monotonic(voltage: xr.DataArray,
     ----------
     voltage : xarray.DataArray
         Probe voltages [V], dims ("probe", "time"); NaN (masked samples) ignored.
-    calibration : xarray.Dataset
-        Output of :func:`fit` holding every probe of ``voltage``.
+    %(calibration)s
 
     Returns
     -------
@@ -167,6 +173,7 @@ def non_monotonic(voltage: xr.DataArray,
             if not is_monotonic(coef.sel(probe=p).values, float(vmin[i]), float(vmax[i]))]
 
 
+@_doc
 def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     """Surface elevation [m] from probe voltages [V] with each probe's calibration polynomial.
 
@@ -174,8 +181,7 @@ def apply(voltage: xr.DataArray, calibration: xr.Dataset) -> xr.DataArray:
     ----------
     voltage : xarray.DataArray
         Probe voltages [V], dims ("probe", "time").
-    calibration : xarray.Dataset
-        Output of :func:`fit` holding every probe of ``voltage``.
+    %(calibration)s
 
     Returns
     -------

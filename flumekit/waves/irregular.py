@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
 from flumekit.waves.separation import as_probe_time, separate
@@ -136,6 +137,7 @@ def band_average(frequency: np.ndarray, *densities: np.ndarray, n_bins: int,
     return (frequency[:n].reshape(shape).mean(axis=1), *out)
 
 
+@doc
 def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
                           sampling_rate: float | None = None, method: str = "zelt_skjelbreia",
                           separation_probes=None, gauge_weights=None,
@@ -153,14 +155,11 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
         Calibrated surface elevation [m], dims ("probe", "time") with coordinate ``x`` [m] on
         ``probe`` and ``time`` [s]; or a DataFrame or array with ``x`` and ``sampling_rate``
         (:func:`flumekit.waves.probe_record`).
-    depth : float
-        Still water depth [m].
+    %(depth)s
     x_ref : float
         Position where the incident and reflected waves are returned [m] (the device).
-    x : sequence of float, optional
-        Probe positions [m] when ``eta`` does not carry them.
-    sampling_rate : float, optional
-        Sampling rate [Hz] when ``eta`` has no time coordinate.
+    %(probe_positions)s
+    %(sampling_rate_eta)s
     method : str
         Separation method (:func:`flumekit.waves.separate`); Zelt & Skjelbreia (1992) by
         default, which takes any number of probes from two.
@@ -197,8 +196,7 @@ def analyse_irregular_run(eta, depth: float, x_ref: float = 0.0, *, x=None,
         :class:`LowFrequencyWarning` is issued (and the dataset says so) [-].
     rho : float
         Water density [kg m-3] (the energy flux).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------

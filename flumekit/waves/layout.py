@@ -13,6 +13,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.waves.theory import G, wavelength, wavenumber
 
 #: Default largest condition number accepted: that of a two-probe layout at the Goda & Suzuki
@@ -20,6 +21,7 @@ from flumekit.waves.theory import G, wavelength, wavenumber
 MAX_CONDITION = float(1.0 / np.tan(np.pi / 20))
 
 
+@doc
 def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
     """Probe spacings x12 = L/10 and x23 = L/4 of Table 1 in Brito et al. 2020 [m].
 
@@ -29,8 +31,7 @@ def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
         Design wave period [s].
     depth : array_like
         Water depth [m].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -51,6 +52,7 @@ def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
     return L / 10.0, L / 4.0
 
 
+@doc
 def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
     """2-norm condition number of the separation matrix [e^(-ikx_p), e^(+ikx_p)] [-].
 
@@ -60,10 +62,8 @@ def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
         Probe positions [m], shape (P,), P ≥ 2.
     frequency : array_like
         Frequencies [Hz], any shape, > 0.
-    depth : float
-        Water depth [m].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(depth)s
+    %(g)s
 
     Returns
     -------
@@ -87,6 +87,7 @@ def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
         return np.sqrt((p + s) / np.maximum(p - s, 0.0))
 
 
+@doc
 def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX_CONDITION,
                  n_frequencies: int = 200, g: float = G) -> xr.Dataset:
     """Condition number of a probe layout over an analysis band and the ill-conditioned bins.
@@ -95,16 +96,14 @@ def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX
     ----------
     x : array_like
         Probe positions [m], shape (P,), P ≥ 2, distinct.
-    depth : float
-        Water depth [m].
+    %(depth)s
     band : tuple of float
         (f_min, f_max) analysis band [Hz].
     max_condition : float
         Largest acceptable condition number [-] (default: two-probe Goda–Suzuki limits).
     n_frequencies : int
         Number of frequencies sampled uniformly across the band.
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------

@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 
 __all__ = ["REGULAR_FRACTION", "harmonic_energy_fraction", "probe_record", "refine_frequency"]
 
@@ -110,6 +111,7 @@ def _is_dataframe(obj) -> bool:
     return hasattr(obj, "columns") and hasattr(obj, "to_numpy") and hasattr(obj, "index")
 
 
+@doc
 def harmonic_energy_fraction(values: np.ndarray, dt: float, max_harmonic: int = 10
                              ) -> tuple[float, float]:
     """Peak frequency and the share of variance within the lines of its harmonics.
@@ -125,8 +127,7 @@ def harmonic_energy_fraction(values: np.ndarray, dt: float, max_harmonic: int = 
     ----------
     values : numpy.ndarray
         Surface elevation [m], shape (probe, time) or (time,); the mean of each row is removed.
-    dt : float
-        Sampling interval [s].
+    %(dt_sampling)s
     max_harmonic : int
         Highest harmonic counted [-].
 
@@ -155,6 +156,7 @@ def harmonic_energy_fraction(values: np.ndarray, dt: float, max_harmonic: int = 
     return f1, float(power[lines].sum() / total)
 
 
+@doc
 def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
     """Frequency of a record's dominant sinusoid, refined from a periodogram peak.
 
@@ -169,8 +171,7 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
     ----------
     values : numpy.ndarray
         Records [m], shape (probe, time) or (time,).
-    dt : float
-        Sampling interval [s].
+    %(dt_sampling)s
     f_guess : float
         Starting frequency, the periodogram peak [Hz].
 

@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.signal import uniform_step
 from flumekit.waves.theory import G, group_velocity
 
@@ -101,6 +102,8 @@ def _equivalent_dof(window: np.ndarray, step: int, n_segments: int) -> float:
     return float(2 * n_segments / (1 + 2 * np.sum((1 - m / n_segments) * rho2)))
 
 
+@doc
+@doc
 def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float | None = None,
              overlap: float = 0.5, window="hann", confidence: float = 0.90,
              detrend="constant") -> xr.Dataset:
@@ -120,12 +123,8 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
 
     Parameters
     ----------
-    eta : xarray.DataArray or array_like
-        Surface elevation [m]: a DataArray with a uniformly sampled ``time`` dimension [s] and
-        any other dimensions (``probe``, ``run``, ...), each analysed as one record, or a 1-D
-        array with ``sampling_rate``. Non-finite samples are an error.
-    sampling_rate : float, optional
-        Sampling rate [Hz]; required for an array.
+    %(eta)s
+    %(sampling_rate_array)s
     segment_duration : float, optional
         Length of a segment [s]; the frequency resolution is its inverse. Default: 1/8 of the
         record (the even number of samples 2 floor(N/16)), which with the default overlap of
@@ -173,8 +172,7 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
     Percival, D. B. & Walden, A. T. (1993). Spectral analysis for physical applications.
     Cambridge University Press, Section 6.17, Eq. (292b).
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Chapter 3.
+    %(holthuijsen2007)s, Chapter 3.
 
     Examples
     --------
@@ -284,6 +282,7 @@ def _in_band(variance_density: xr.DataArray, band, what: str) -> tuple[xr.DataAr
     return s, width
 
 
+@doc
 def spectral_parameters(variance_density: xr.DataArray, band=None, *,
                         method: str = "delft") -> xr.Dataset:
     """Spectral moments and sea-state parameters of a variance density spectrum.
@@ -336,7 +335,7 @@ def spectral_parameters(variance_density: xr.DataArray, band=None, *,
     IAHR/PIANC (1986). List of sea-state parameters. Supplement to PIANC Bulletin 52;
     also J. Waterway, Port, Coastal and Ocean Eng. 115(6), 793-808 (1989).
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University Press.
+    %(holthuijsen2007)s.
 
     Goda, Y. (1970). Numerical experiments on wave statistics with spectral simulation. Report
     of the Port and Harbour Research Institute 9(3), 3-57; Goda, Y. (2010). Random seas and
@@ -428,6 +427,8 @@ def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarr
     return np.where(edge, f[ipeak], vertex)
 
 
+@doc
+@doc
 def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: float = G, *,
                 band=None) -> xr.DataArray:
     """Energy flux per unit crest width of a wave spectrum in finite depth [W m-1].
@@ -446,8 +447,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
         Water depth h [m]; a DataArray broadcasts against the other dimensions.
     rho : float
         Water density [kg m-3]; fresh water by default (a flume).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
     band : tuple of float, optional
         Closed frequency band (f_low, f_high) [Hz]; default every bin with f > 0.
 
@@ -461,10 +461,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
     ValueError
         As :func:`spectral_parameters`, and for a non-positive depth.
 
-    References
-    ----------
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Section 5.4.
+    %(references_holthuijsen2007)s, Section 5.4.
 
     IEC TS 62600-101 (2015). Marine energy - Wave, tidal and other water current converters -
     Part 101: Wave energy resource assessment and characterization (omnidirectional

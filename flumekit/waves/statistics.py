@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.signal import cycles
 from flumekit.waves.spectra import as_time_series
 
@@ -27,6 +28,8 @@ def _top_mean(height: np.ndarray, period: np.ndarray, fraction: int) -> tuple[fl
     return float(height[top].mean()), float(period[top].mean())
 
 
+@doc
+@doc
 def wave_statistics(eta, sampling_rate: float | None = None, *,
                     crossing: str = "up") -> xr.Dataset:
     """Zero-crossing waves of a surface-elevation record and their statistics.
@@ -40,12 +43,8 @@ def wave_statistics(eta, sampling_rate: float | None = None, *,
 
     Parameters
     ----------
-    eta : xarray.DataArray or array_like
-        Surface elevation [m]: a DataArray with a uniformly sampled ``time`` dimension [s] and
-        any other dimensions (``probe``, ``run``, ...), each analysed as one record, or a 1-D
-        array with ``sampling_rate``. Non-finite samples are an error.
-    sampling_rate : float, optional
-        Sampling rate [Hz]; required for an array.
+    %(eta)s
+    %(sampling_rate_array)s
     crossing : {"up", "down"}
         Zero up-crossing (default, the IAHR recommendation) or down-crossing waves.
 
@@ -85,8 +84,7 @@ def wave_statistics(eta, sampling_rate: float | None = None, *,
     Longuet-Higgins, M. S. (1952). On the statistical distribution of the heights of sea
     waves. J. Marine Research 11(3), 245-266.
 
-    Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University
-    Press, Chapter 4.
+    %(holthuijsen2007)s, Chapter 4.
 
     Examples
     --------

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from flumekit.docstrings import doc
 from flumekit.waves.separation import lstsq_normal
 from flumekit.waves.theory import G, wavenumber
 
@@ -61,6 +62,7 @@ class ReflectionSettling:
     trend: float
 
 
+@doc
 def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period: float,
                         depth: float, start: float, end: float, *, tolerance: float = 0.002,
                         noise_factor: float = 4.0, g: float = G) -> ReflectionSettling:
@@ -76,8 +78,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         Probe positions along the flume [m] (towards the reflector).
     period : float
         Measured wave period [s].
-    depth : float
-        Still water depth [m].
+    %(depth)s
     start, end : float
         The window the crests call quasi-steady [s].
     tolerance : float
@@ -89,8 +90,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         R_settled (the Rayleigh scale σ of |R - R_settled| over the window's second half,
         median / sqrt(2 ln 2)), so that probe noise cuts no steady block (a block beyond 4 σ:
         probability exp(-8)) [-].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -98,11 +98,7 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
         The settled window (start, end), the tolerance applied, the drift outside it and
         R_settled.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, §2.5.
+    %(references_brito2020)s, §2.5.
     Mansard, E. P. D. & Funke, E. R. (1980). The measurement of incident and reflected
     spectra using a least squares method. Proc. 17th ICCE, 154-172.
 

@@ -53,11 +53,13 @@ import functools
 
 import numpy as np
 
+from flumekit.docstrings import doc
 from flumekit.waves.theory import G, wavenumber
 
 CURRENTS = ("stokes", "euler")
 
 
+@doc
 def highest_wave(wavelength, depth) -> np.ndarray:
     """Height of the highest steady wave of a given length [m].
 
@@ -70,8 +72,7 @@ def highest_wave(wavelength, depth) -> np.ndarray:
     ----------
     wavelength : array_like
         Wavelength L [m].
-    depth : array_like
-        Water depth h [m].
+    %(depth_array)s
 
     Returns
     -------
@@ -184,6 +185,7 @@ def nonlinear_wavenumber(period: float, height: float, depth: float, g: float = 
     return stream_function_wave(period, height, depth, current="stokes", g=g).wavenumber
 
 
+@doc
 def depth_ratios(jk, zb, depth: float) -> tuple[np.ndarray, np.ndarray]:
     """cosh(jk z_b)/cosh(jk h) and sinh(jk z_b)/cosh(jk h) [-], the depth dependence of mode j.
 
@@ -193,8 +195,7 @@ def depth_ratios(jk, zb, depth: float) -> tuple[np.ndarray, np.ndarray]:
         Wavenumbers of the modes, j k [rad m-1].
     zb : array_like
         Elevation above the bed [m], broadcast with ``jk``.
-    depth : float
-        Water depth h [m].
+    %(depth)s
 
     Returns
     -------

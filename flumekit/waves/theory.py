@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from flumekit.docstrings import doc
+
 G = 9.81  # gravitational acceleration used throughout the flume paper [m s-2]
 
 
@@ -28,6 +30,7 @@ def _sech2(y: np.ndarray) -> np.ndarray:
     return 4.0 * e / (1.0 + e) ** 2
 
 
+@doc
 def wavenumber(omega, depth, g: float = G) -> np.ndarray:
     """Wave number k solving the linear dispersion relation ω² = g k tanh(k h).
 
@@ -37,8 +40,7 @@ def wavenumber(omega, depth, g: float = G) -> np.ndarray:
         Angular frequency [rad s-1], > 0.
     depth : array_like
         Water depth h [m], broadcastable with ``omega``, > 0.
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -135,6 +137,7 @@ def group_velocity(period, depth, g: float = G) -> np.ndarray:
     return omega / (2 * k) * (1 + _two_kh_over_sinh(2 * k * depth))
 
 
+@doc
 def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.ndarray:
     """Period-averaged energy flux of a linear wave per unit crest width [W m-1].
 
@@ -145,14 +148,10 @@ def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.
     ----------
     height : array_like
         Wave height H (crest to trough) [m], ≥ 0.
-    period : array_like
-        Wave period T [s].
-    depth : array_like
-        Water depth h [m].
-    rho : float
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(period_array)s
+    %(depth_array)s
+    %(rho)s
+    %(g)s
 
     Returns
     -------
@@ -171,6 +170,7 @@ def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.
     return rho * g * height**2 / 8.0 * group_velocity(period, depth, g)
 
 
+@doc
 def stokes2_coefficient(k, depth) -> np.ndarray:
     """Second-order Stokes coefficient B with η₂ = B k a² cos 2θ for η₁ = a cos θ [-].
 
@@ -182,8 +182,7 @@ def stokes2_coefficient(k, depth) -> np.ndarray:
     ----------
     k : array_like
         Wave number of the first harmonic [rad m-1].
-    depth : array_like
-        Water depth h [m].
+    %(depth_array)s
 
     Returns
     -------

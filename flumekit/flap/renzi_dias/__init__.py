@@ -6,22 +6,13 @@ coefficients; :mod:`~flumekit.flap.renzi_dias.eigenmodes` and
 """
 
 
-from flumekit.lazy import lazy_names
+from flumekit.lazy import attach
 
-#: public name -> module of this package (imported on first use, so that importing the
-#: package stays cheap)
-_LAZY = {
-    "solve": "model",
-    "coefficients": "model",
-    "excitation": "model",
-    "reflection": "model",
-    "transmission": "model",
-    "sloshing_cutoff_periods": "model",
-    "two_dimensional": "model",
-    "vertical_modes": "eigenmodes",
-}
-
-__all__ = sorted(_LAZY)
-
-
-__getattr__, __dir__ = lazy_names(__name__, _LAZY, globals())
+# public names by the module that defines them, each imported on first use so that
+# importing the package stays cheap
+__getattr__, __dir__, __all__ = attach(
+    __name__, globals(),
+    model=["solve", "coefficients", "excitation", "reflection", "transmission",
+           "sloshing_cutoff_periods", "two_dimensional"],
+    eigenmodes=["vertical_modes"],
+)
