@@ -704,23 +704,13 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
 
     The basis is cos, sin of n ω1 (t - t0), n = 1..nh, and a constant. Its Gram matrix needs no
     product of basis rows (O(nh² N)): with S(k) = Σ_j e^(i k ω1 (t_j - t0)), the product rules
-    cos a cos b = (cos(a-b) + cos(a+b))/2 etc. give every entry from S(m ± n), so the fit costs
-    the 2 nh sums S(k) and the nh right-hand sides, O(nh N).
+    cos a cos b = (cos(a-b) + cos(a+b))/2 etc. give every entry from S(m ± n), so the fit needs
+    the 2 nh sums S(k) and the nh projections Σ_j v_j e^(i n ω1 (t_j - t0))
+    (:func:`_harmonic_sums`).
     """
     nh = n_harmonics
     n = t.size
-    e1 = np.exp(2j * np.pi * f1 * (t - t[0]))
-    data = np.column_stack([series.T, np.ones(n)])  # (N, rows + 1)
-    # one product gives the right-hand sides Σ_j v_j e^(i n ω1 t_j) (powers up to nh) and,
-    # against the column of ones, the sums S(k); in blocks of samples so that the powers
-    # e^(i k ω1 t) (2 nh per sample) stay in cache instead of streaming tens of MB
-    prod = np.zeros((2 * nh, data.shape[1]), complex)  # (2 nh, rows + 1)
-    for start in range(0, n, _BLOCK):
-        stop = start + _BLOCK
-        prod += _harmonic_powers(e1[start:stop], 2 * nh) @ data[start:stop]
-    s = np.empty(2 * nh + 1, complex)  # S(0..2 nh)
-    s[0] = n
-    s[1:] = prod[:, -1]
+    proj, s = _harmonic_sums(series, (t[-1] - t[0]) / (n - 1), f1, nh)
     m = np.arange(1, nh + 1)
     s_sum = s[m[:, None] + m[None, :]]  # S(m + n)
     d = m[:, None] - m[None, :]
@@ -733,28 +723,45 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
     gram[:nh, -1] = gram[-1, :nh] = s[1:nh + 1].real
     gram[nh:2 * nh, -1] = gram[-1, nh:2 * nh] = s[1:nh + 1].imag
     gram[-1, -1] = n
-    proj = prod[:nh, :-1]  # (nh, rows)
     rhs = np.concatenate([proj.real, proj.imag, series.sum(axis=1)[None, :]])
     coef = np.linalg.solve(gram, rhs)  # (2 nh + 1, rows)
     return (coef[:nh] - 1j * coef[nh:2 * nh]).T
 
 
-#: samples per block of the harmonic fit's sums: 2 nh powers of 2048 samples (2.8 MB for 43
-#: harmonics) stay in a core's cache
-_BLOCK = 2048
+#: samples per block of :func:`_harmonic_sums`: the products within a block are one matrix
+#: product with a (block, 2 nh) table of phasors, small enough to stay in cache
+_BLOCK = 128
 
 
-def _harmonic_powers(e1: np.ndarray, k_max: int) -> np.ndarray:
-    """Powers e1^k, k = 1..k_max, of unit phasors e1 (N,), as rows (k_max, N).
+def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Projections of uniformly sampled rows on the harmonics of f1, and the phasor sums.
 
-    By doubling (e1^(k+j) = e1^j e1^k for the j ≤ k already known): log2(k_max) vectorised
-    products, and a round-off that grows with log k rather than with k as a running product's.
+    With θ = 2π f1 dt, returns b (nh, rows), b_kp = Σ_j v_pj e^(i k θ j), k = 1..nh, and
+    S (2 nh + 1,), S(k) = Σ_j e^(i k θ j), k = 0..2 nh (j = 0..N-1). Written j = q L + r with
+    blocks of L = :data:`_BLOCK` samples, e^(i k θ j) = e^(i k θ q L) e^(i k θ r): the sums
+    within the blocks are one real matrix product of the records, cut into blocks, with the
+    table cos, sin(k θ r), and the blocks' sums are weighted by e^(i k θ q L). O(N nh) products
+    like the direct sums, but as one cache-friendly matrix product, and only N/L + L phasors
+    per harmonic.
     """
-    e = np.empty((k_max, e1.size), complex)
-    e[0] = e1
-    k = 1
-    while k < k_max:
-        step = min(k, k_max - k)
-        np.multiply(e[:step], e[k - 1], out=e[k:k + step])
-        k += step
-    return e
+    rows, n = series.shape
+    size = min(_BLOCK, n)
+    blocks = -(-n // size)
+    theta = 2 * np.pi * f1 * dt
+    k = np.arange(1, 2 * nh + 1)
+    inner = np.exp(1j * theta * np.arange(size)[:, None] * k)  # (L, 2 nh): e^(i k θ r)
+    outer = np.exp(1j * theta * size * np.arange(blocks)[:, None] * k)  # (blocks, 2 nh)
+    padded = np.zeros((rows, blocks * size))  # zeros past the end add nothing
+    padded[:, :n] = series
+    table = np.concatenate([inner[:, :nh].real, inner[:, :nh].imag], axis=1)  # (L, 2 nh)
+    part = padded.reshape(rows * blocks, size) @ table
+    part = (part[:, :nh] + 1j * part[:, nh:]).reshape(rows, blocks, nh)
+    proj = np.einsum("pqk,qk->kp", part, outer[:, :nh])
+    # S(k): every block sums the whole table, the last one its first n - (blocks - 1) L rows
+    full = inner.sum(axis=0)
+    last = inner[:n - (blocks - 1) * size].sum(axis=0)
+    s = np.empty(2 * nh + 1, complex)
+    s[0] = n
+    s[1:] = outer[:-1].sum(axis=0) * full + outer[-1] * last
+    return proj, s
