@@ -48,31 +48,49 @@ class SeparationWarning(UserWarning):
     """The probe layout is ill-conditioned for part of the wave energy (bins were masked)."""
 
 
-def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
+def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
+                 index: np.ndarray | None = None
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Batched complex least squares by the normal equations, with ill-conditioned systems masked.
 
     Parameters
     ----------
     columns : numpy.ndarray
-        Design matrices, complex, shape (F, P, K): F independent systems of P equations in K
-        unknowns.
+        Design matrices, complex, shape (U, P, K): systems of P equations in K unknowns.
     rhs : numpy.ndarray
-        Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
+        Right-hand sides, shape (F, P, R): F systems, R right-hand sides each.
     max_condition : float
         Systems whose 2-norm condition number exceeds this are masked [-].
+    index : numpy.ndarray, optional
+        Design matrix of each system, integers into the U matrices, shape (F,): systems that
+        share a matrix (the bins of one harmonic of a regular wave) share its Gram matrix,
+        condition number and inverse. Default: one matrix per system (U = F).
 
     Returns
     -------
     solution : numpy.ndarray
         Shape (F, K, R); zero for masked systems.
     condition : numpy.ndarray
-        2-norm condition number of each design matrix, shape (F,); inf if singular.
+        2-norm condition number of each system's design matrix, shape (F,); inf if singular.
     masked : numpy.ndarray
         Bool, shape (F,).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = np.array([[[1, 1], [1, -1], [1, 1j]]], dtype=complex)   # 3 equations, 2 unknowns
+    >>> b = m[0] @ np.array([2.0, 0.5])                             # exact right-hand side
+    >>> sol, cond, masked = lstsq_normal(m, b[None, :, None], 10.0)
+    >>> np.round(sol[0, :, 0].real, 12).tolist(), bool(masked[0])
+    ([2.0, 0.5], False)
     """
     mc = np.conj(columns)
-    r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
+    mc_f = mc if index is None else mc[index]
+    r = np.einsum("fpk,fpr->fkr", mc_f, rhs)  # Mᴴb (F, K, R)
+
+    def per_system(a):  # a quantity of each design matrix, for each system
+        return a if index is None else a[index]
+
     if columns.shape[-1] == 2:
         # closed form for 2 unknowns: the Gram matrix [[a, b], [b*, d]] from sums over the
         # probes, its eigenvalues m ± q and Cramer's rule
@@ -83,28 +101,29 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
         m, q = 0.5 * (a + d), np.hypot(0.5 * (a - d), np.abs(b))
         lo, hi = m - q, m + q
     else:
-        # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than
+        # Gram matrices MᴴM (U, K, K), accumulated over the handful of probes (3x faster than
         # a batched matmul or einsum of tiny matrices)
         gram = mc[:, 0, :, None] * columns[:, 0, None, :]
         for p in range(1, columns.shape[1]):
             gram += mc[:, p, :, None] * columns[:, p, None, :]
-        eig = np.linalg.eigvalsh(gram)  # ascending, (F, K)
+        eig = np.linalg.eigvalsh(gram)  # ascending, (U, K)
         lo, hi = eig[:, 0], eig[:, -1]
     with np.errstate(divide="ignore", invalid="ignore"):
         cond = np.where(lo > 1e-14 * hi, np.sqrt(hi / lo), np.inf)
     masked = ~(cond <= max_condition)
     if columns.shape[-1] == 2:
-        det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
-        sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
-                        a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1)
+        det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)
+        a, d, b, det = (per_system(z)[:, None] for z in (a, d, b, det))
+        sol = np.stack([d * r[:, 0] - b * r[:, 1], a * r[:, 1] - np.conj(b) * r[:, 0]], axis=1)
         sol /= det[:, None]
+        masked, cond = per_system(masked), per_system(cond)
         sol[masked] = 0.0
         return sol, cond, masked
     if masked.any():  # replace masked systems by identity / zero so the batch solve stays finite
         eye = np.eye(gram.shape[-1], dtype=gram.dtype)
         gram = np.where(masked[:, None, None], eye, gram)
-        r = np.where(masked[:, None, None], 0.0, r)
-    return np.linalg.solve(gram, r), cond, masked
+        r = np.where(per_system(masked)[:, None, None], 0.0, r)
+    return np.linalg.solve(per_system(gram), r), per_system(cond), per_system(masked)
 
 
 def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
@@ -431,20 +450,22 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
     f = freq[sel]
     if regular:
         k1 = (None, None) if wavenumbers is None else wavenumbers
-        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
+        f1, kh, ks, group = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
         if k1[1] == k1[0]:  # the reflected wave travels with the same wavenumbers
-            kh_r, k_r = kh, k
+            kh_r, ks_r = kh, ks
         else:
-            _, _, kh_r, k_r = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
+            _, kh_r, ks_r, _ = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
     else:
         if wavenumbers is not None:
             raise ValueError("wavenumbers applies to a regular record (regular=True)")
-        k = k_r = wavenumber(2 * np.pi * f, depth, g)
+        ks = ks_r = wavenumber(2 * np.pi * f, depth, g)
+        group = None  # every bin its own wavenumber
 
-    phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
+    # the distinct design matrices: one per harmonic of a regular wave, else one per bin
+    phase = np.exp(-1j * ks[:, None] * x[None, :])  # (U, P): incident column
     # reflected column e^(+ik_r x): the conjugate when k_r is k (half the complex exponentials)
-    phase_r = np.conj(phase) if k_r is k else np.exp(1j * k_r[:, None] * x[None, :])
-    columns = np.stack([phase, phase_r], axis=-1)  # (F, P, 2)
+    phase_r = np.conj(phase) if ks_r is ks else np.exp(1j * ks_r[:, None] * x[None, :])
+    columns = np.stack([phase, phase_r], axis=-1)  # (U, P, 2)
     rows = np.stack(rhs, axis=-1)
     if gauge_weights is not None:
         w = np.asarray(gauge_weights, dtype=float)
@@ -453,13 +474,19 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
                              f"{np.asarray(gauge_weights).tolist()}")
         root = np.sqrt(w / w.mean())[None, :, None]
         columns, rows = columns * root, rows * root
-    sol, cond, masked = lstsq_normal(columns, rows, max_condition)
+    sol, cond, masked = lstsq_normal(columns, rows, max_condition, index=group)
     a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
+    k, k_r = (ks, ks_r) if group is None else (ks[group], ks_r[group])  # per bin
     # energy bookkeeping on the (tapered) spectrum used for statistics
     e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,
                                                  f, k, x, max_condition, warn_fraction)
     m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
-    eta_i, eta_r = _elevations_at(a_inc[:, 0], a_ref[:, 0], k, k_r, x_ref, sel, n)
+    # the waves' phase shifts from the probes' origin to x_ref, per distinct wavenumber
+    shift_i = np.exp(-1j * ks * x_ref)
+    shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
+    if group is not None:
+        shift_i, shift_r = shift_i[group], shift_r[group]
+    eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
 
     df = freq[1]
     data = {
@@ -581,10 +608,11 @@ def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harm
                           g: float, k1: float | None = None):
     """Wavenumbers of the bins of a regular wave (see ``regular`` in :func:`separate`).
 
-    Returns the fundamental frequency f1 = 1/``period`` [Hz], the harmonic number of each bin
-    (0 below f1/2), the wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per
-    bin [rad m-1]. ``k1`` replaces the linear wavenumber of the first harmonic (and so of the
-    bound ones).
+    Returns the fundamental frequency f1 = 1/``period`` [Hz], the wavenumber per harmonic
+    [rad m-1] (free, or n k1 when bound), the distinct wavenumbers of the bins [rad m-1] (those
+    of the harmonics, then the free ones of the bins below f1/2) and, per bin, the index of its
+    wavenumber among them: the bins of one harmonic share one. ``k1`` replaces the linear
+    wavenumber of the first harmonic (and so of the bound ones).
     """
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
@@ -596,9 +624,10 @@ def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harm
     kh[0] = k1
     if bound_harmonics:
         kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
-    k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
-                 wavenumber(2 * np.pi * f, depth, g))
-    return f1, harmonic, kh, k
+    below = harmonic == 0
+    group = harmonic - 1
+    group[below] = hmax + np.arange(int(below.sum()))
+    return f1, kh, np.concatenate([kh, wavenumber(2 * np.pi * f[below], depth, g)]), group
 
 
 def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
@@ -634,17 +663,17 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
     return e_inc, e_ref, masked_fraction
 
 
-def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, k_r: np.ndarray,
-                   x_ref: float, sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes.
+def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, sel: np.ndarray, n: int
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Incident and reflected elevations [m] from their complex amplitudes at the band's bins.
 
-    The untapered amplitudes, by inverse FFT of an ``n``-sample record; ``k``, ``k_r`` the
-    incident and reflected wavenumbers per bin.
+    The amplitudes ``a_inc``, ``a_ref`` [m] (untapered, at the position wanted) of the bins
+    ``sel`` of an ``n``-sample record, by inverse FFT.
     """
     spec_i = np.zeros(n // 2 + 1, complex)
     spec_r = np.zeros(n // 2 + 1, complex)
-    spec_i[sel] = a_inc * np.exp(-1j * k * x_ref) * (n / 2.0)
-    spec_r[sel] = a_ref * np.exp(1j * k_r * x_ref) * (n / 2.0)
+    spec_i[sel] = a_inc * (n / 2.0)
+    spec_r[sel] = a_ref * (n / 2.0)
     return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
 
 
