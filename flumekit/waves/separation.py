@@ -33,9 +33,9 @@ from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
     REGULAR_FRACTION,
-    harmonic_energy_fraction,
     probe_record,
     refine_frequency,
+    spectrum_harmonic_fraction,
 )
 from flumekit.waves.theory import G, wavenumber
 
@@ -319,10 +319,13 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     v, t, x, probes = check_separation_inputs(eta, depth, method, max_condition)
     detection = "given"
+    # one transform of the demeaned records serves the detection and the separation
+    spectrum = np.fft.rfft(v - v.mean(axis=1, keepdims=True), axis=1)
     if regular is None and not bound_harmonics:
         # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
         # wave (WaveLabX record: Kr 0.136 instead of 0.028), so the default looks first.
-        f_peak, share = harmonic_energy_fraction(v, (t[-1] - t[0]) / (t.size - 1))
+        dt = (t[-1] - t[0]) / (t.size - 1)
+        f_peak, share = spectrum_harmonic_fraction(spectrum, np.fft.rfftfreq(t.size, dt), dt)
         regular = share >= REGULAR_FRACTION
         detection = (f"{'regular' if regular else 'irregular'}: {share:.1%} of the variance at "
                      f"the peak {f_peak:.4g} Hz and its harmonics (regular from "
@@ -331,7 +334,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    rec = prepare_separation(v, t, band, window, regular, period)
+    rec = prepare_separation(v, t, band, window, regular, period, spectrum=spectrum)
     return separation_dataset(separate_prepared(
         rec, x, probes, depth, method, x_ref, regular=regular,
         bound_harmonics=bound_harmonics, wavenumbers=wavenumbers, window=window,
@@ -356,7 +359,8 @@ class PreparedRecord(NamedTuple):
 
 
 def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
-                       period: float | None) -> PreparedRecord:
+                       period: float | None, spectrum: np.ndarray | None = None
+                       ) -> PreparedRecord:
     """Prepare checked records for :func:`separate_prepared`: what no wavenumber changes.
 
     Parameters
@@ -373,6 +377,8 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
         Whether the record is separated as a regular wave.
     period : float or None
         Fundamental period [s] of a regular record; None: the refined peak.
+    spectrum : numpy.ndarray, optional
+        ``numpy.fft.rfft`` of the demeaned ``v`` along time, when the caller has it.
 
     Returns
     -------
@@ -385,7 +391,9 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
 
     v = v - v.mean(axis=1, keepdims=True)
     # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
-    c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
+    if spectrum is None:
+        spectrum = np.fft.rfft(v, axis=1)
+    c = spectrum[:, sel] * (2.0 / n)  # (P, F)
     rhs = [c.T]
     if window is not None:
         from scipy import signal as _sig  # seconds to import; only a windowed fit needs it
@@ -697,12 +705,15 @@ def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: floa
             f"the probe layout x = {x.tolist()} m is ill-conditioned at the wave frequency "
             f"{f1:.4g} Hz (condition number {cond_h[0]:.3g} > {max_condition:.3g}): the "
             "incident and reflected waves cannot be separated; change the spacing")
-    n_h = np.arange(1, nh + 1)
     z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
                   sol_h[:, 1, 0] * np.exp(1j * kh_r * x_ref)])  # (2, nh) at x_ref
     amp_i, amp_r = np.abs(z)
-    psi = 2 * np.pi * np.arange(512) / 512
-    wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)
+    # Re Σ_n z_n e^(i n ψ) at 512 phases ψ over a period (more if the harmonics need them),
+    # by one inverse FFT: irfft(X, M) = (2/M) Re Σ_n X_n e^(2πi n j / M) for 0 < n < M/2
+    n_psi = max(512, 2 * (nh + 1))
+    spec = np.zeros((2, n_psi // 2 + 1), complex)
+    spec[:, 1:nh + 1] = z
+    wave = np.fft.irfft(spec, n_psi, axis=1) * (0.5 * n_psi)
     hi, hr = wave.max(axis=1) - wave.min(axis=1)
     definition = ("crest-to-trough height over one period of the sum of the separated "
                   "harmonics at x_ref")
