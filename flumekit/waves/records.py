@@ -284,13 +284,14 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
     lo, hi = max(f_guess - df, 0.5 * df), min(f_guess + df, 0.5 / dt)
     xatol = 1e-9 * f_guess
     grid = np.linspace(lo, hi, 9)
-    f = float(grid[np.argmax(fitted_variance(grid))])
-    h = float(grid[1] - grid[0])
+    y = fitted_variance(grid)
+    i = int(np.clip(np.argmax(y), 1, grid.size - 2))
+    f, h = float(grid[i]), float(grid[1] - grid[0])
+    y0, y1, y2 = y[i - 1:i + 2]  # the first parabola's points are on the grid
     for _ in range(20):
-        y0, y1, y2 = fitted_variance(np.array([f - h, f, f + h]))
         curvature = y0 - 2 * y1 + y2
         if not curvature < 0:  # flat or convex: the best of the three points
-            f += h * float(np.argmax([y0, y1, y2]) - 1) if max(y0, y2) > y1 else 0.0
+            f = min(max(f + h * float(np.argmax([y0, y1, y2]) - 1), lo), hi)
             break
         step = float(np.clip(0.5 * h * (y0 - y2) / curvature, -h, h))
         f_new = min(max(f + step, lo), hi)
@@ -299,4 +300,5 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
             break
         h = max(abs(f_new - f), 1e-4 * df)
         f = f_new
+        y0, y1, y2 = fitted_variance(np.array([f - h, f, f + h]))
     return f

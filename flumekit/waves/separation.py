@@ -783,15 +783,14 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
     within the blocks are one real matrix product of the records, cut into blocks, with the
     table cos, sin(k θ r), and the blocks' sums are weighted by e^(i k θ q L). O(N nh) products
     like the direct sums, but as one cache-friendly matrix product, and only N/L + L phasors
-    per harmonic.
+    per harmonic (:func:`_harmonic_powers`).
     """
     rows, n = series.shape
     size = min(_BLOCK, n)
     blocks = -(-n // size)
     theta = 2 * np.pi * f1 * dt
-    k = np.arange(1, 2 * nh + 1)
-    inner = np.exp(1j * theta * np.arange(size)[:, None] * k)  # (L, 2 nh): e^(i k θ r)
-    outer = np.exp(1j * theta * size * np.arange(blocks)[:, None] * k)  # (blocks, 2 nh)
+    inner = _harmonic_powers(np.exp(1j * theta * np.arange(size)), 2 * nh).T  # e^(i k θ r)
+    outer = _harmonic_powers(np.exp(1j * theta * size * np.arange(blocks)), 2 * nh).T
     padded = np.zeros((rows, blocks * size))  # zeros past the end add nothing
     padded[:, :n] = series
     table = np.concatenate([inner[:, :nh].real, inner[:, :nh].imag], axis=1)  # (L, 2 nh)
@@ -805,3 +804,20 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
     s[0] = n
     s[1:] = outer[:-1].sum(axis=0) * full + outer[-1] * last
     return proj, s
+
+
+def _harmonic_powers(e1: np.ndarray, k_max: int) -> np.ndarray:
+    """Powers e1^k, k = 1..k_max, of unit phasors e1 (M,), as rows (k_max, M).
+
+    By doubling (e1^(k+j) = e1^j e1^k for the j ≤ k already known): log2(k_max) vectorised
+    products instead of k_max M complex exponentials, and a round-off that grows with log k
+    rather than with k as a running product's.
+    """
+    e = np.empty((k_max, e1.size), complex)
+    e[0] = e1
+    k = 1
+    while k < k_max:
+        step = min(k, k_max - k)
+        np.multiply(e[:step], e[k - 1], out=e[k:k + step])
+        k += step
+    return e
