@@ -216,7 +216,7 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
         Refined frequency [Hz], within one bin of ``f_guess``; relative precision about 1e-9.
     """
     v = np.atleast_2d(np.asarray(values, dtype=float))
-    v = v - v.mean(axis=1, keepdims=True)
+    mean = v.mean(axis=1)  # removed from the moments below (no demeaned copy of the records)
     df = 1.0 / (v.shape[1] * dt)
 
     # Every evaluation needs Σ_j w_j e^(iδ t_j), δ = 2π (f - f_guess), |δ| ≤ 2π df, for
@@ -251,13 +251,14 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
         ones[full], ones_2[full] = table[:rest].sum(axis=0), table_2[:rest].sum(axis=0)
         part[:, full] = v[:, full * size:] @ cs[:rest]
     block_phase = np.exp(2j * np.pi * f_guess * dt * size * np.arange(n_all))  # (blocks,)
-    moments = np.concatenate([part[..., :n_terms] + 1j * part[..., n_terms:], ones[None],
-                              ones_2[None]]) * block_phase[:, None]
+    # moments of (v - mean) e^(iω_g t): those of v e^(iω_g t) less mean times those of e^(iω_g t)
+    rec = part[..., :n_terms] + 1j * part[..., n_terms:] - mean[:, None, None] * ones
+    moments = np.concatenate([rec, ones[None], ones_2[None]]) * block_phase[:, None]
     moments[-1] *= block_phase[:, None]  # e^(2iω_g t): the square of the blocks' phasors
     centres = (np.arange(n_all) * size + 0.5 * (size - 1)) * dt
     scale = np.ones(p + 2)
     scale[-1] = 2.0  # the last row turns at 2δ
-    total = v.sum(axis=1)  # Σ_j v_pj: the constant column's right-hand side
+    total = v.sum(axis=1) - n * mean  # Σ_j (v_pj - mean_p): the constant column's right side
 
     def fitted_variance(f: np.ndarray) -> np.ndarray:  # at the frequencies f (M,)
         delta = 2 * np.pi * (f - f_guess) * scale[:, None]  # (rows, M)

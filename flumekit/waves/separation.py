@@ -320,7 +320,8 @@ def separate(eta, depth: float, method: str = "mansard_funke",
     v, t, x, probes = check_separation_inputs(eta, depth, method, max_condition)
     detection = "given"
     # one transform of the demeaned records serves the detection and the separation
-    spectrum = np.fft.rfft(v - v.mean(axis=1, keepdims=True), axis=1)
+    v = v - v.mean(axis=1, keepdims=True)
+    spectrum = np.fft.rfft(v, axis=1)
     if regular is None and not bound_harmonics:
         # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
         # wave (WaveLabX record: Kr 0.136 instead of 0.028), so the default looks first.
@@ -378,7 +379,8 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
     period : float or None
         Fundamental period [s] of a regular record; None: the refined peak.
     spectrum : numpy.ndarray, optional
-        ``numpy.fft.rfft`` of the demeaned ``v`` along time, when the caller has it.
+        ``numpy.fft.rfft`` of ``v`` along time, when the caller has it; ``v`` must then be
+        demeaned already (else its mean is removed here).
 
     Returns
     -------
@@ -389,11 +391,12 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
     freq, sel = _band_bins(t, band)
     f = freq[sel]
 
-    v = v - v.mean(axis=1, keepdims=True)
-    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
     if spectrum is None:
+        v = v - v.mean(axis=1, keepdims=True)
         spectrum = np.fft.rfft(v, axis=1)
-    c = spectrum[:, sel] * (2.0 / n)  # (P, F)
+    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ); the band's bins are
+    # consecutive, a slice of the spectrum
+    c = spectrum[:, sel[0]:sel[-1] + 1] * (2.0 / n)  # (P, F)
     rhs = [c.T]
     if window is not None:
         from scipy import signal as _sig  # seconds to import; only a windowed fit needs it
@@ -474,7 +477,7 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
     # reflected column e^(+ik_r x): the conjugate when k_r is k (half the complex exponentials)
     phase_r = np.conj(phase) if ks_r is ks else np.exp(1j * ks_r[:, None] * x[None, :])
     columns = np.stack([phase, phase_r], axis=-1)  # (U, P, 2)
-    rows = np.stack(rhs, axis=-1)
+    rows = rhs[0][:, :, None] if len(rhs) == 1 else np.stack(rhs, axis=-1)  # (F, P, R)
     if gauge_weights is not None:
         w = np.asarray(gauge_weights, dtype=float)
         if w.shape != x.shape or not np.all(w > 0) or not np.all(np.isfinite(w)):
@@ -791,11 +794,13 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
     theta = 2 * np.pi * f1 * dt
     inner = _harmonic_powers(np.exp(1j * theta * np.arange(size)), 2 * nh).T  # e^(i k θ r)
     outer = _harmonic_powers(np.exp(1j * theta * size * np.arange(blocks)), 2 * nh).T
-    padded = np.zeros((rows, blocks * size))  # zeros past the end add nothing
-    padded[:, :n] = series
     table = np.concatenate([inner[:, :nh].real, inner[:, :nh].imag], axis=1)  # (L, 2 nh)
-    part = padded.reshape(rows * blocks, size) @ table
-    part = (part[:, :nh] + 1j * part[:, nh:]).reshape(rows, blocks, nh)
+    part = np.empty((rows, blocks, 2 * nh))
+    full = n // size  # whole blocks: a view of the records; then the partial last one
+    part[:, :full] = series[:, :full * size].reshape(rows, full, size) @ table
+    if full < blocks:
+        part[:, full] = series[:, full * size:] @ table[:n - full * size]
+    part = part[..., :nh] + 1j * part[..., nh:]
     proj = np.einsum("pqk,qk->kp", part, outer[:, :nh])
     # S(k): every block sums the whole table, the last one its first n - (blocks - 1) L rows
     full = inner.sum(axis=0)
