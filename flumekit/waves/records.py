@@ -269,12 +269,13 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
         poly = moments @ powers  # (rows, blocks, M)
         sums = (poly * np.exp(1j * delta[:, None, :] * centres[:, None])).sum(axis=1)
         proj, s1, s2 = sums[:p], sums[p], sums[p + 1]  # Σ v e^(iωt), Σ e^(iωt), Σ e^(2iωt)
-        gram = np.stack([np.stack([0.5 * (n + s2.real), 0.5 * s2.imag, s1.real], axis=-1),
-                         np.stack([0.5 * s2.imag, 0.5 * (n - s2.real), s1.imag], axis=-1),
-                         np.stack([s1.real, s1.imag, np.full(f.size, float(n))], axis=-1)],
-                        axis=1)  # (M, 3, 3)
-        rhs = np.stack([proj.real, proj.imag, np.broadcast_to(total[:, None], proj.shape)],
-                       axis=1).transpose(2, 1, 0)  # (M, 3, probe)
+        gram = np.empty((f.size, 3, 3))  # of cos, sin and 1
+        gram[:, 0, 0], gram[:, 1, 1], gram[:, 2, 2] = 0.5 * (n + s2.real), 0.5 * (n - s2.real), n
+        gram[:, 0, 1] = gram[:, 1, 0] = 0.5 * s2.imag
+        gram[:, 0, 2] = gram[:, 2, 0] = s1.real
+        gram[:, 1, 2] = gram[:, 2, 1] = s1.imag
+        rhs = np.empty((f.size, 3, p))
+        rhs[:, 0], rhs[:, 1], rhs[:, 2] = proj.real.T, proj.imag.T, total
         coef = np.linalg.solve(gram, rhs)
         return np.sum(coef * rhs, axis=(1, 2))  # Σ_p b_pᵀ G⁻¹ b_p: projected variance
 

@@ -85,12 +85,6 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
     ([2.0, 0.5], False)
     """
     mc = np.conj(columns)
-    mc_f = mc if index is None else mc[index]
-    r = np.einsum("fpk,fpr->fkr", mc_f, rhs)  # Mᴴb (F, K, R)
-
-    def per_system(a):  # a quantity of each design matrix, for each system
-        return a if index is None else a[index]
-
     if columns.shape[-1] == 2:
         # closed form for 2 unknowns: the Gram matrix [[a, b], [b*, d]] from sums over the
         # probes, its eigenvalues m ± q and Cramer's rule
@@ -111,19 +105,32 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
     with np.errstate(divide="ignore", invalid="ignore"):
         cond = np.where(lo > 1e-14 * hi, np.sqrt(hi / lo), np.inf)
     masked = ~(cond <= max_condition)
+    if index is not None:
+        # few matrices for many systems: each matrix's pseudo-inverse G⁻¹Mᴴ (U, K, P), zero
+        # where masked, then one product per system
+        if columns.shape[-1] == 2:
+            det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
+            inv = np.stack([d[:, None] * mc[..., 0] - b[:, None] * mc[..., 1],
+                            a[:, None] * mc[..., 1] - np.conj(b)[:, None] * mc[..., 0]], axis=1)
+            inv /= det[:, None]
+        else:
+            inv = np.linalg.solve(np.where(masked[:, None, None], np.eye(gram.shape[-1]), gram),
+                                  mc.transpose(0, 2, 1))
+        inv[masked] = 0.0
+        return np.einsum("fkp,fpr->fkr", inv[index], rhs), cond[index], masked[index]
+    r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
     if columns.shape[-1] == 2:
-        det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)
-        a, d, b, det = (per_system(z)[:, None] for z in (a, d, b, det))
-        sol = np.stack([d * r[:, 0] - b * r[:, 1], a * r[:, 1] - np.conj(b) * r[:, 0]], axis=1)
+        det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
+        sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
+                        a[:, None] * r[:, 1] - np.conj(b)[:, None] * r[:, 0]], axis=1)
         sol /= det[:, None]
-        masked, cond = per_system(masked), per_system(cond)
         sol[masked] = 0.0
         return sol, cond, masked
     if masked.any():  # replace masked systems by identity / zero so the batch solve stays finite
         eye = np.eye(gram.shape[-1], dtype=gram.dtype)
         gram = np.where(masked[:, None, None], eye, gram)
-        r = np.where(per_system(masked)[:, None, None], 0.0, r)
-    return np.linalg.solve(per_system(gram), r), per_system(cond), per_system(masked)
+        r = np.where(masked[:, None, None], 0.0, r)
+    return np.linalg.solve(gram, r), cond, masked
 
 
 def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
