@@ -636,16 +636,19 @@ def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harm
         raise ValueError(f"period must be positive, got {period}")
     f1 = 1.0 / float(period)
     harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
-    k1 = float(wavenumber(2 * np.pi * f1, depth, g)) if k1 is None else float(k1)
     hmax = max(int(harmonic.max()), 1)
-    kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
-    kh[0] = k1
-    if bound_harmonics:
-        kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
     below = harmonic == 0
+    # free waves: the harmonics n f1, then the bins below f1/2 (one solve of the dispersion)
+    ks = wavenumber(2 * np.pi * np.concatenate([f1 * np.arange(1, hmax + 1), f[below]]),
+                    depth, g)
+    kh = ks[:hmax]  # per harmonic
+    if k1 is not None:
+        kh[0] = float(k1)
+    if bound_harmonics:
+        kh[1:] = kh[0] * np.arange(2, hmax + 1)  # bound: n k1
     group = harmonic - 1
     group[below] = hmax + np.arange(int(below.sum()))
-    return f1, kh, np.concatenate([kh, wavenumber(2 * np.pi * f[below], depth, g)]), group
+    return f1, kh.copy(), ks, group
 
 
 def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
