@@ -233,7 +233,10 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
     half = 0.5 * size * dt
     tau = ((np.arange(size) - 0.5 * (size - 1)) * dt) / half  # block-local time / half [-]
     m = np.arange(n_terms)
-    taylor = tau[:, None] ** m / np.cumprod(np.maximum(m, 1))  # (L, terms): τ^m / m!
+    taylor = np.empty((size, n_terms))  # (L, terms): τ^m / m!, as running products
+    taylor[:, 0] = 1.0
+    taylor[:, 1:] = tau[:, None] / m[1:]
+    np.cumprod(taylor, axis=1, out=taylor)
     # e^(iω_g t) of sample r of block b is e^(iω_g b L dt) e^(iω_g r dt): the moments are the
     # blocks' phasors times those of one table, (L, terms) per row kind, and the records' ones
     # one real matrix product of the records cut into blocks (no (rows, N) complex array)
