@@ -178,7 +178,7 @@ def spectrum_harmonic_fraction(spectrum: np.ndarray, freq: np.ndarray, dt: float
     >>> round(f1, 3), round(share, 3)
     (0.4, 1.0)
     """
-    power = np.mean(spectrum.real ** 2 + spectrum.imag ** 2, axis=0)
+    power = mean_power(spectrum, axis=0)
     inside = (freq > 0) & (freq < 0.5 / dt)
     power = np.where(inside, power, 0.0)
     total = float(power.sum())
@@ -189,6 +189,31 @@ def spectrum_harmonic_fraction(spectrum: np.ndarray, freq: np.ndarray, dt: float
     nearest = np.clip(np.rint(freq / f1), 1, max_harmonic)
     lines = np.abs(freq - nearest * f1) <= half_width
     return f1, float(power[lines].sum() / total)
+
+
+def mean_power(z: np.ndarray, axis: int) -> np.ndarray:
+    """Mean of abs(z)² over one axis of a 2-D complex array, without a temporary copy of it.
+
+    Parameters
+    ----------
+    z : numpy.ndarray
+        Complex array, two-dimensional (e.g. Fourier coefficients (probe, frequency) [m]).
+    axis : int
+        The axis averaged over, 0 or 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mean squared modulus along ``axis`` (in the squared unit of ``z``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mean_power(np.array([[3 + 4j, 1j], [0, 1]]), axis=0).tolist()
+    [12.5, 1.0]
+    """
+    sub = "ij,ij->j" if axis == 0 else "ij,ij->i"
+    return (np.einsum(sub, z.real, z.real) + np.einsum(sub, z.imag, z.imag)) / z.shape[axis]
 
 
 def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:

@@ -33,6 +33,7 @@ from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
     REGULAR_FRACTION,
+    mean_power,
     probe_record,
     refine_frequency,
     spectrum_harmonic_fraction,
@@ -414,7 +415,7 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
     coef = None
     if regular:
         if period is None:  # the peak bin, refined: up to half a bin off otherwise
-            f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
+            f_bin = float(f[np.argmax(mean_power(c, axis=0))])
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
         if period > 0:  # else _harmonic_wavenumbers says so
             f1 = 1.0 / float(period)
@@ -660,7 +661,7 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
     ones. Raises when no incident energy was separated; warns (:class:`SeparationWarning`) when
     the masked bins hold more than ``warn_fraction`` of the band's energy.
     """
-    e_meas = 0.5 * np.mean(np.abs(measured) ** 2, axis=1)  # measured variance per bin
+    e_meas = 0.5 * mean_power(measured, axis=1)  # measured variance per bin
     e_total = float(e_meas.sum())
     masked_fraction = float(e_meas[masked].sum() / e_total) if e_total > 0 else 0.0
     e_inc = 0.5 * np.abs(a_inc) ** 2
@@ -810,8 +811,12 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
     part[:, :full] = series[:, :full * size].reshape(rows, full, size) @ table
     if full < blocks:
         part[:, full] = series[:, full * size:] @ table[:n - full * size]
-    part = part[..., :nh] + 1j * part[..., nh:]
-    proj = np.einsum("pqk,qk->kp", part, outer[:, :nh])
+    # Σ_q (c + i s)_q e^(i k θ q L), in real products (no complex copy of the blocks' sums)
+    cos_sum, sin_sum = part[..., :nh], part[..., nh:]
+    o_re, o_im = outer[:, :nh].real, outer[:, :nh].imag
+    proj = (np.einsum("pqk,qk->kp", cos_sum, o_re) - np.einsum("pqk,qk->kp", sin_sum, o_im)
+            + 1j * (np.einsum("pqk,qk->kp", cos_sum, o_im)
+                    + np.einsum("pqk,qk->kp", sin_sum, o_re)))
     # S(k): every block sums the whole table, the last one its first n - (blocks - 1) L rows
     full = inner.sum(axis=0)
     last = inner[:n - (blocks - 1) * size].sum(axis=0)
