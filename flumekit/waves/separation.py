@@ -807,10 +807,10 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
     outer = _harmonic_powers(np.exp(1j * theta * size * np.arange(blocks)), 2 * nh).T
     table = np.concatenate([inner[:, :nh].real, inner[:, :nh].imag], axis=1)  # (L, 2 nh)
     part = np.empty((rows, blocks, 2 * nh))
-    full = n // size  # whole blocks: a view of the records; then the partial last one
-    part[:, :full] = series[:, :full * size].reshape(rows, full, size) @ table
-    if full < blocks:
-        part[:, full] = series[:, full * size:] @ table[:n - full * size]
+    whole = n // size  # whole blocks: a view of the records; then the partial last one
+    part[:, :whole] = series[:, :whole * size].reshape(rows, whole, size) @ table
+    if whole < blocks:
+        part[:, whole] = series[:, whole * size:] @ table[:n - whole * size]
     # Σ_q (c + i s)_q e^(i k θ q L), in real products (no complex copy of the blocks' sums)
     cos_sum, sin_sum = part[..., :nh], part[..., nh:]
     o_re, o_im = outer[:, :nh].real, outer[:, :nh].imag
@@ -818,11 +818,11 @@ def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
             + 1j * (np.einsum("pqk,qk->kp", cos_sum, o_im)
                     + np.einsum("pqk,qk->kp", sin_sum, o_re)))
     # S(k): every block sums the whole table, the last one its first n - (blocks - 1) L rows
-    full = inner.sum(axis=0)
+    table_sum = inner.sum(axis=0)
     last = inner[:n - (blocks - 1) * size].sum(axis=0)
     s = np.empty(2 * nh + 1, complex)
     s[0] = n
-    s[1:] = outer[:-1].sum(axis=0) * full + outer[-1] * last
+    s[1:] = outer[:-1].sum(axis=0) * table_sum + outer[-1] * last
     return proj, s
 
 

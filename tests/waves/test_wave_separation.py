@@ -359,3 +359,18 @@ def test_shared_design_matrices_solve_as_one_per_system(unknowns):
     np.testing.assert_allclose(cond, ref_cond, rtol=1e-12)
     np.testing.assert_allclose(sol, ref_sol, rtol=0, atol=1e-12)
     assert np.all(sol[masked] == 0)
+
+
+@pytest.mark.parametrize("n", [200, 256, 1000, 15001])
+def test_harmonic_fit_recovers_exact_harmonics_of_any_length(n):
+    # known harmonics (up to near Nyquist), a mean and a non-whole number of periods: the
+    # block sums give the exact least-squares fit whether or not n fills whole blocks
+    from flumekit.waves.separation import _harmonic_fit
+
+    f1, nh = 0.3123, 30
+    t = 12.5 + np.arange(n) / FS
+    z = (np.random.default_rng(n).normal(size=(2, nh))
+         + 1j * np.random.default_rng(n + 1).normal(size=(2, nh))) * 0.01
+    n_h = np.arange(1, nh + 1)
+    v = 0.3 + np.real(z[:, :, None] * np.exp(2j * np.pi * n_h[:, None] * f1 * (t - t[0])))
+    np.testing.assert_allclose(_harmonic_fit(v.sum(axis=1), t, f1, nh), z, rtol=0, atol=1e-11)
