@@ -191,31 +191,6 @@ def spectrum_harmonic_fraction(spectrum: np.ndarray, freq: np.ndarray, dt: float
     return f1, float(power[lines].sum() / total)
 
 
-def mean_power(z: np.ndarray, axis: int) -> np.ndarray:
-    """Mean of abs(z)² over one axis of a 2-D complex array, without a temporary copy of it.
-
-    Parameters
-    ----------
-    z : numpy.ndarray
-        Complex array, two-dimensional (e.g. Fourier coefficients (probe, frequency) [m]).
-    axis : int
-        The axis averaged over, 0 or 1.
-
-    Returns
-    -------
-    numpy.ndarray
-        The mean squared modulus along ``axis`` (in the squared unit of ``z``).
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> mean_power(np.array([[3 + 4j, 1j], [0, 1]]), axis=0).tolist()
-    [12.5, 1.0]
-    """
-    sub = "ij,ij->j" if axis == 0 else "ij,ij->i"
-    return (np.einsum(sub, z.real, z.real) + np.einsum(sub, z.imag, z.imag)) / z.shape[axis]
-
-
 def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
     """Frequency of a record's dominant sinusoid, refined from a periodogram peak.
 
@@ -332,3 +307,28 @@ def refine_frequency(values: np.ndarray, dt: float, f_guess: float) -> float:
         f = f_new
         y0, y1, y2 = fitted_variance(np.array([f - h, f, f + h]))
     return f
+
+
+def mean_power(z: np.ndarray, axis: int) -> np.ndarray:
+    """Mean of abs(z)² over one axis of a 2-D complex array, without a temporary copy of it.
+
+    Parameters
+    ----------
+    z : numpy.ndarray
+        Complex array, two-dimensional (e.g. Fourier coefficients (probe, frequency) [m]).
+    axis : int
+        The axis averaged over, 0 or 1.
+
+    Returns
+    -------
+    numpy.ndarray
+        The mean squared modulus along ``axis`` (in the squared unit of ``z``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> mean_power(np.array([[3 + 4j, 1j], [0, 1]]), axis=0).tolist()
+    [12.5, 1.0]
+    """
+    sub = "ij,ij->j" if axis == 0 else "ij,ij->i"
+    return (np.einsum(sub, z.real, z.real) + np.einsum(sub, z.imag, z.imag)) / z.shape[axis]
