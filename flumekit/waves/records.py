@@ -155,18 +155,14 @@ def spectrum_harmonic_fraction(spectrum: np.ndarray, freq: np.ndarray, dt: float
         ``numpy.fft.rfft`` of the demeaned records along time, shape (probe, frequency).
     freq : numpy.ndarray
         Its frequencies [Hz].
-    dt : float
-        Sampling interval [s].
-    max_harmonic : int
-        Highest harmonic counted [-].
+    dt, max_harmonic : float, int
+        As in :func:`harmonic_energy_fraction` (dt [s]).
 
     Returns
     -------
-    f1 : float
-        Frequency of the peak of the probe-averaged periodogram [Hz].
-    fraction : float
-        Share of the variance within the lines of its harmonics [-] (see
-        :func:`harmonic_energy_fraction`).
+    tuple of float
+        The peak frequency f1 [Hz] and the share of the variance in its harmonic lines [-],
+        as :func:`harmonic_energy_fraction` returns them.
 
     Examples
     --------
