@@ -118,7 +118,9 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
             inv = np.linalg.solve(np.where(masked[:, None, None], np.eye(gram.shape[-1]), gram),
                                   mc.transpose(0, 2, 1))
         inv[masked] = 0.0
-        return np.einsum("fkp,fpr->fkr", inv[index], rhs), cond[index], masked[index]
+        # np.take: a gather along one axis, several times faster than fancy indexing
+        return (np.einsum("fkp,fpr->fkr", np.take(inv, index, axis=0), rhs),
+                np.take(cond, index), np.take(masked, index))
     r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
     if columns.shape[-1] == 2:
         det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
@@ -167,24 +169,27 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
                         f"{type(eta).__name__}")
     if set(eta.dims) != {"probe", "time"}:
         raise ValueError(f"eta must have dims ('probe', 'time'), got {eta.dims}")
-    if "x" not in eta.coords or eta.coords["x"].dims != ("probe",):
+    coords = eta.coords.variables  # the variables: no DataArray per coordinate
+    if "x" not in coords or coords["x"].dims != ("probe",):
         raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions) "
                          "or the argument x")
-    eta = eta.transpose("probe", "time")
-    x = np.asarray(eta.coords["x"].values, dtype=float)
-    t = np.asarray(eta.coords["time"].values, dtype=float)
+    if eta.dims != ("probe", "time"):
+        eta = eta.transpose("probe", "time")
+    x = np.asarray(coords["x"].values, dtype=float)
+    t = np.asarray(coords["time"].values, dtype=float)
     v = np.asarray(eta.values, dtype=float)
     if not np.all(np.isfinite(x)) or np.unique(x).size != x.size:
         raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
     if t.size < 8:
         raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
     uniform_step(t, "eta")
+    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
     bad = ~np.isfinite(v)
     if bad.any():
         p = int(np.flatnonzero(bad.any(axis=1))[0])
         raise ValueError(f"eta holds {int(bad.sum())} non-finite samples (first in probe "
-                         f"{eta.probe.values[p]!r}); fill or cut gaps before separating")
-    return v, t, x, eta.probe.values.tolist()
+                         f"{probes[p]!r}); fill or cut gaps before separating")
+    return v, t, x, probes
 
 
 def separate(eta, depth: float, method: str = "mansard_funke",
@@ -495,7 +500,7 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
         columns, rows = columns * root, rows * root
     sol, cond, masked = lstsq_normal(columns, rows, max_condition, index=group)
     a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
-    k, k_r = (ks, ks_r) if group is None else (ks[group], ks_r[group])  # per bin
+    k, k_r = (ks, ks_r) if group is None else (np.take(ks, group), np.take(ks_r, group))
     # energy bookkeeping on the (tapered) spectrum used for statistics
     e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,
                                                  f, k, x, max_condition, warn_fraction)
@@ -504,7 +509,7 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
     shift_i = np.exp(-1j * ks * x_ref)
     shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
     if group is not None:
-        shift_i, shift_r = shift_i[group], shift_r[group]
+        shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
     eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
 
     df = freq[1]
