@@ -697,11 +697,12 @@ def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, sel: np.ndarray, n: int
     The amplitudes ``a_inc``, ``a_ref`` [m] (untapered, at the position wanted) of the bins
     ``sel`` of an ``n``-sample record, by inverse FFT.
     """
-    spec_i = np.zeros(n // 2 + 1, complex)
-    spec_r = np.zeros(n // 2 + 1, complex)
-    spec_i[sel] = a_inc * (n / 2.0)
-    spec_r[sel] = a_ref * (n / 2.0)
-    return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
+    spec = np.zeros((2, n // 2 + 1), complex)
+    spec[0, sel] = a_inc
+    spec[1, sel] = a_ref
+    spec *= n / 2.0
+    eta_i, eta_r = np.fft.irfft(spec, n, axis=1)
+    return eta_i, eta_r
 
 
 def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
