@@ -611,13 +611,13 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
     >>> ds.time.attrs["units"], ds.time.attrs["standard_name"]
     ('s', 'time')
     """
-    obj = obj.copy()
-    names = list(obj.coords) + (list(obj.data_vars) if isinstance(obj, xr.Dataset) else [])
-    for name in names:
+    obj = obj.copy()  # shallow: new variables with copies of their attrs, the data shared
+    # the variables themselves (a DataArray per name would cost more than the annotation)
+    variables = obj.variables if isinstance(obj, xr.Dataset) else obj.coords.variables
+    for name, target in variables.items():
         var = VARIABLES.get(str(name))
         if var is None:
             continue
-        target = obj[name] if name in getattr(obj, "data_vars", {}) else obj.coords[name]
         new = {**var.attrs(), **{k: v for k, v in target.attrs.items() if k != "units"}}
         new["units"] = var.units
         target.attrs.clear()

@@ -216,29 +216,54 @@ def _toolbox_table(repeats: int) -> str:
     t = np.arange(int(10 * 60 * FS)) / FS
     d = _probes(regular_wave_field(t, x, period=period, height=0.2, depth=DEPTH,
                                    reflection=0.1, theory="stokes2"), np.random.default_rng(0))
-    ours = _time(lambda: separate(d, DEPTH), repeats)
-    irregular = _time(lambda: separate(d, DEPTH, regular=False), repeats)
+    fns = {"ours": lambda: separate(d, DEPTH),
+           "irregular": lambda: separate(d, DEPTH, regular=False)}
+    try:
+        from deltares_wave_toolbox.cores.core_wave_decomposition import decompose_linear_ZS
+    except ImportError:
+        decompose_linear_ZS = None
+    else:
+        series = np.ascontiguousarray(d.values.T)
+        fns["theirs"] = lambda: decompose_linear_ZS(d.time.values, series, DEPTH, x, np.ones(3))
+    # interleaved, so that a ratio compares the codes under one load of a shared machine
+    times = _time_interleaved(fns, max(11, repeats))
+    ours, irregular = times["ours"], times["irregular"]
     rows = [f"{'10-min regular record, 3 probes, 25 Hz':<44}{'median':>9}{'best':>8}",
             f"{'':<44}{'[ms]':>9}{'[ms]':>8}",
             f"{'flumekit separate (defaults: regular)':<44}{ours[0] * 1e3:>9.2f}"
             f"{ours[1] * 1e3:>8.2f}",
             f"{'flumekit separate (regular=False)':<44}{irregular[0] * 1e3:>9.2f}"
             f"{irregular[1] * 1e3:>8.2f}"]
-    try:
-        from deltares_wave_toolbox.cores.core_wave_decomposition import decompose_linear_ZS
-    except ImportError:
+    if decompose_linear_ZS is None:
         rows.append("Deltares wave toolbox: not installed (pip install deltares-wave-toolbox "
                     "for this comparison)")
         return "\n".join(rows)
-    series = np.ascontiguousarray(d.values.T)
-    theirs = _time(lambda: decompose_linear_ZS(d.time.values, series, DEPTH, x, np.ones(3)),
-                   max(3, repeats // 5))
+    theirs = times["theirs"]
     rows.append(f"{'Deltares wave toolbox decompose_linear_ZS':<44}{theirs[0] * 1e3:>9.2f}"
                 f"{theirs[1] * 1e3:>8.2f}")
     rows.append(f"separate is {theirs[0] / ours[0]:.1f} times faster than the toolbox (medians; "
                 f"{theirs[1] / ours[1]:.1f} on the best times; regular=False "
-                f"{theirs[0] / irregular[0]:.1f}); the toolbox returns the time series only.")
+                f"{theirs[0] / irregular[0]:.1f}); the toolbox returns the time series only. "
+                f"Timed in {max(11, repeats)} interleaved rounds.")
     return "\n".join(rows)
+
+
+def _time_interleaved(fns: dict, rounds: int) -> dict:
+    """Median and best wall time [s] of each function, timed in interleaved rounds.
+
+    Each round calls every function once, in an order that rotates from round to round, so
+    that the load of a shared machine weighs on each alike and their ratios compare the codes.
+    """
+    for fn in fns.values():
+        fn()  # warm-up
+    names = list(fns)
+    out = {name: [] for name in names}
+    for r in range(rounds):
+        for name in names[r % len(names):] + names[:r % len(names)]:
+            t0 = time.perf_counter()
+            fns[name]()
+            out[name].append(time.perf_counter() - t0)
+    return {name: (float(np.median(v)), float(np.min(v))) for name, v in out.items()}
 
 
 def _stream_function_table(repeats: int) -> str:

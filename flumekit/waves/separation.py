@@ -33,9 +33,10 @@ from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
     REGULAR_FRACTION,
-    harmonic_energy_fraction,
+    mean_power,
     probe_record,
     refine_frequency,
+    spectrum_harmonic_fraction,
 )
 from flumekit.waves.theory import G, wavenumber
 
@@ -48,31 +49,43 @@ class SeparationWarning(UserWarning):
     """The probe layout is ill-conditioned for part of the wave energy (bins were masked)."""
 
 
-def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
+def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
+                 index: np.ndarray | None = None
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Batched complex least squares by the normal equations, with ill-conditioned systems masked.
 
     Parameters
     ----------
     columns : numpy.ndarray
-        Design matrices, complex, shape (F, P, K): F independent systems of P equations in K
-        unknowns.
+        Design matrices, complex, shape (U, P, K): systems of P equations in K unknowns.
     rhs : numpy.ndarray
-        Right-hand sides, shape (F, P, R) (R right-hand sides share each matrix).
+        Right-hand sides, shape (F, P, R): F systems, R right-hand sides each.
     max_condition : float
         Systems whose 2-norm condition number exceeds this are masked [-].
+    index : numpy.ndarray, optional
+        Design matrix of each system, integers into the U matrices, shape (F,): systems that
+        share a matrix (the bins of one harmonic of a regular wave) share its Gram matrix,
+        condition number and inverse. Default: one matrix per system (U = F).
 
     Returns
     -------
     solution : numpy.ndarray
         Shape (F, K, R); zero for masked systems.
     condition : numpy.ndarray
-        2-norm condition number of each design matrix, shape (F,); inf if singular.
+        2-norm condition number of each system's design matrix, shape (F,); inf if singular.
     masked : numpy.ndarray
         Bool, shape (F,).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> m = np.array([[[1, 1], [1, -1], [1, 1j]]], dtype=complex)   # 3 equations, 2 unknowns
+    >>> b = m[0] @ np.array([2.0, 0.5])                             # exact right-hand side
+    >>> sol, cond, masked = lstsq_normal(m, b[None, :, None], 10.0)
+    >>> np.round(sol[0, :, 0].real, 12).tolist(), bool(masked[0])
+    ([2.0, 0.5], False)
     """
     mc = np.conj(columns)
-    r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
     if columns.shape[-1] == 2:
         # closed form for 2 unknowns: the Gram matrix [[a, b], [b*, d]] from sums over the
         # probes, its eigenvalues m ± q and Cramer's rule
@@ -83,16 +96,32 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float
         m, q = 0.5 * (a + d), np.hypot(0.5 * (a - d), np.abs(b))
         lo, hi = m - q, m + q
     else:
-        # Gram matrices MᴴM (F, K, K), accumulated over the handful of probes (3x faster than
+        # Gram matrices MᴴM (U, K, K), accumulated over the handful of probes (3x faster than
         # a batched matmul or einsum of tiny matrices)
         gram = mc[:, 0, :, None] * columns[:, 0, None, :]
         for p in range(1, columns.shape[1]):
             gram += mc[:, p, :, None] * columns[:, p, None, :]
-        eig = np.linalg.eigvalsh(gram)  # ascending, (F, K)
+        eig = np.linalg.eigvalsh(gram)  # ascending, (U, K)
         lo, hi = eig[:, 0], eig[:, -1]
     with np.errstate(divide="ignore", invalid="ignore"):
         cond = np.where(lo > 1e-14 * hi, np.sqrt(hi / lo), np.inf)
     masked = ~(cond <= max_condition)
+    if index is not None:
+        # few matrices for many systems: each matrix's pseudo-inverse G⁻¹Mᴴ (U, K, P), zero
+        # where masked, then one product per system
+        if columns.shape[-1] == 2:
+            det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
+            inv = np.stack([d[:, None] * mc[..., 0] - b[:, None] * mc[..., 1],
+                            a[:, None] * mc[..., 1] - np.conj(b)[:, None] * mc[..., 0]], axis=1)
+            inv /= det[:, None]
+        else:
+            inv = np.linalg.solve(np.where(masked[:, None, None], np.eye(gram.shape[-1]), gram),
+                                  mc.transpose(0, 2, 1))
+        inv[masked] = 0.0
+        # np.take: a gather along one axis, several times faster than fancy indexing
+        return (np.einsum("fkp,fpr->fkr", np.take(inv, index, axis=0), rhs),
+                np.take(cond, index), np.take(masked, index))
+    r = np.einsum("fpk,fpr->fkr", mc, rhs)  # Mᴴb (F, K, R)
     if columns.shape[-1] == 2:
         det = np.where(masked, 1.0, a * d - np.abs(b) ** 2)[:, None]
         sol = np.stack([d[:, None] * r[:, 0] - b[:, None] * r[:, 1],
@@ -140,24 +169,27 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
                         f"{type(eta).__name__}")
     if set(eta.dims) != {"probe", "time"}:
         raise ValueError(f"eta must have dims ('probe', 'time'), got {eta.dims}")
-    if "x" not in eta.coords or eta.coords["x"].dims != ("probe",):
+    coords = eta.coords.variables  # the variables: no DataArray per coordinate
+    if "x" not in coords or coords["x"].dims != ("probe",):
         raise ValueError("eta needs a coordinate 'x' [m] on dimension 'probe' (probe positions) "
                          "or the argument x")
-    eta = eta.transpose("probe", "time")
-    x = np.asarray(eta.coords["x"].values, dtype=float)
-    t = np.asarray(eta.coords["time"].values, dtype=float)
+    if eta.dims != ("probe", "time"):
+        eta = eta.transpose("probe", "time")
+    x = np.asarray(coords["x"].values, dtype=float)
+    t = np.asarray(coords["time"].values, dtype=float)
     v = np.asarray(eta.values, dtype=float)
     if not np.all(np.isfinite(x)) or np.unique(x).size != x.size:
         raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
     if t.size < 8:
         raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
     uniform_step(t, "eta")
+    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
     bad = ~np.isfinite(v)
     if bad.any():
         p = int(np.flatnonzero(bad.any(axis=1))[0])
         raise ValueError(f"eta holds {int(bad.sum())} non-finite samples (first in probe "
-                         f"{eta.probe.values[p]!r}); fill or cut gaps before separating")
-    return v, t, x, eta.probe.values.tolist()
+                         f"{probes[p]!r}); fill or cut gaps before separating")
+    return v, t, x, probes
 
 
 def separate(eta, depth: float, method: str = "mansard_funke",
@@ -300,10 +332,14 @@ def separate(eta, depth: float, method: str = "mansard_funke",
         eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
     v, t, x, probes = check_separation_inputs(eta, depth, method, max_condition)
     detection = "given"
+    # one transform of the demeaned records serves the detection and the separation
+    v = v - v.mean(axis=1, keepdims=True)
+    spectrum = np.fft.rfft(v, axis=1)
     if regular is None and not bound_harmonics:
         # A regular record fitted bin by bin puts its bound harmonics into the "reflected"
         # wave (WaveLabX record: Kr 0.136 instead of 0.028), so the default looks first.
-        f_peak, share = harmonic_energy_fraction(v, (t[-1] - t[0]) / (t.size - 1))
+        dt = (t[-1] - t[0]) / (t.size - 1)
+        f_peak, share = spectrum_harmonic_fraction(spectrum, np.fft.rfftfreq(t.size, dt), dt)
         regular = share >= REGULAR_FRACTION
         detection = (f"{'regular' if regular else 'irregular'}: {share:.1%} of the variance at "
                      f"the peak {f_peak:.4g} Hz and its harmonics (regular from "
@@ -312,7 +348,7 @@ def separate(eta, depth: float, method: str = "mansard_funke",
             bound_harmonics = regular
     bound_harmonics = bool(bound_harmonics)
     regular = bool(regular) or bound_harmonics
-    rec = prepare_separation(v, t, band, window, regular, period)
+    rec = prepare_separation(v, t, band, window, regular, period, spectrum=spectrum)
     return separation_dataset(separate_prepared(
         rec, x, probes, depth, method, x_ref, regular=regular,
         bound_harmonics=bound_harmonics, wavenumbers=wavenumbers, window=window,
@@ -337,7 +373,8 @@ class PreparedRecord(NamedTuple):
 
 
 def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, regular: bool,
-                       period: float | None) -> PreparedRecord:
+                       period: float | None, spectrum: np.ndarray | None = None
+                       ) -> PreparedRecord:
     """Prepare checked records for :func:`separate_prepared`: what no wavenumber changes.
 
     Parameters
@@ -354,6 +391,9 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
         Whether the record is separated as a regular wave.
     period : float or None
         Fundamental period [s] of a regular record; None: the refined peak.
+    spectrum : numpy.ndarray, optional
+        ``numpy.fft.rfft`` of ``v`` along time, when the caller has it; ``v`` must then be
+        demeaned already (else its mean is removed here).
 
     Returns
     -------
@@ -364,9 +404,12 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
     freq, sel = _band_bins(t, band)
     f = freq[sel]
 
-    v = v - v.mean(axis=1, keepdims=True)
-    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ)
-    c = np.fft.rfft(v, axis=1)[:, sel] * (2.0 / n)  # (P, F)
+    if spectrum is None:
+        v = v - v.mean(axis=1, keepdims=True)
+        spectrum = np.fft.rfft(v, axis=1)
+    # one-sided complex amplitudes: a cos(ωt + φ) on a bin -> a e^(iφ); the band's bins are
+    # consecutive, a slice of the spectrum
+    c = spectrum[:, sel[0]:sel[-1] + 1] * (2.0 / n)  # (P, F)
     rhs = [c.T]
     if window is not None:
         from scipy import signal as _sig  # seconds to import; only a windowed fit needs it
@@ -377,7 +420,7 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
     coef = None
     if regular:
         if period is None:  # the peak bin, refined: up to half a bin off otherwise
-            f_bin = float(f[np.argmax(np.mean(np.abs(c) ** 2, axis=0))])
+            f_bin = float(f[np.argmax(mean_power(c, axis=0))])
             period = 1.0 / refine_frequency(v, (t[-1] - t[0]) / (n - 1), f_bin)
         if period > 0:  # else _harmonic_wavenumbers says so
             f1 = 1.0 / float(period)
@@ -431,21 +474,23 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
     f = freq[sel]
     if regular:
         k1 = (None, None) if wavenumbers is None else wavenumbers
-        f1, harmonic, kh, k = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
+        f1, kh, ks, group = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[0])
         if k1[1] == k1[0]:  # the reflected wave travels with the same wavenumbers
-            kh_r, k_r = kh, k
+            kh_r, ks_r = kh, ks
         else:
-            _, _, kh_r, k_r = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
+            _, kh_r, ks_r, _ = _harmonic_wavenumbers(f, depth, period, bound_harmonics, g, k1[1])
     else:
         if wavenumbers is not None:
             raise ValueError("wavenumbers applies to a regular record (regular=True)")
-        k = k_r = wavenumber(2 * np.pi * f, depth, g)
+        ks = ks_r = wavenumber(2 * np.pi * f, depth, g)
+        group = None  # every bin its own wavenumber
 
-    phase = np.exp(-1j * k[:, None] * x[None, :])  # (F, P): incident column
+    # the distinct design matrices: one per harmonic of a regular wave, else one per bin
+    phase = np.exp(-1j * ks[:, None] * x[None, :])  # (U, P): incident column
     # reflected column e^(+ik_r x): the conjugate when k_r is k (half the complex exponentials)
-    phase_r = np.conj(phase) if k_r is k else np.exp(1j * k_r[:, None] * x[None, :])
-    columns = np.stack([phase, phase_r], axis=-1)  # (F, P, 2)
-    rows = np.stack(rhs, axis=-1)
+    phase_r = np.conj(phase) if ks_r is ks else np.exp(1j * ks_r[:, None] * x[None, :])
+    columns = np.stack([phase, phase_r], axis=-1)  # (U, P, 2)
+    rows = rhs[0][:, :, None] if len(rhs) == 1 else np.stack(rhs, axis=-1)  # (F, P, R)
     if gauge_weights is not None:
         w = np.asarray(gauge_weights, dtype=float)
         if w.shape != x.shape or not np.all(w > 0) or not np.all(np.isfinite(w)):
@@ -453,13 +498,19 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
                              f"{np.asarray(gauge_weights).tolist()}")
         root = np.sqrt(w / w.mean())[None, :, None]
         columns, rows = columns * root, rows * root
-    sol, cond, masked = lstsq_normal(columns, rows, max_condition)
+    sol, cond, masked = lstsq_normal(columns, rows, max_condition, index=group)
     a_inc, a_ref = sol[:, 0, :], sol[:, 1, :]  # (F, R)
+    k, k_r = (ks, ks_r) if group is None else (np.take(ks, group), np.take(ks_r, group))
     # energy bookkeeping on the (tapered) spectrum used for statistics
     e_inc, e_ref, masked_fraction = _band_energy(rhs[-1], a_inc[:, -1], a_ref[:, -1], masked,
                                                  f, k, x, max_condition, warn_fraction)
     m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
-    eta_i, eta_r = _elevations_at(a_inc[:, 0], a_ref[:, 0], k, k_r, x_ref, sel, n)
+    # the waves' phase shifts from the probes' origin to x_ref, per distinct wavenumber
+    shift_i = np.exp(-1j * ks * x_ref)
+    shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
+    if group is not None:
+        shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
+    eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
 
     df = freq[1]
     data = {
@@ -581,24 +632,29 @@ def _harmonic_wavenumbers(f: np.ndarray, depth: float, period: float, bound_harm
                           g: float, k1: float | None = None):
     """Wavenumbers of the bins of a regular wave (see ``regular`` in :func:`separate`).
 
-    Returns the fundamental frequency f1 = 1/``period`` [Hz], the harmonic number of each bin
-    (0 below f1/2), the wavenumber per harmonic [rad m-1] (free, or n k1 when bound) and per
-    bin [rad m-1]. ``k1`` replaces the linear wavenumber of the first harmonic (and so of the
-    bound ones).
+    Returns the fundamental frequency f1 = 1/``period`` [Hz], the wavenumber per harmonic
+    [rad m-1] (free, or n k1 when bound), the distinct wavenumbers of the bins [rad m-1] (those
+    of the harmonics, then the free ones of the bins below f1/2) and, per bin, the index of its
+    wavenumber among them: the bins of one harmonic share one. ``k1`` replaces the linear
+    wavenumber of the first harmonic (and so of the bound ones).
     """
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     f1 = 1.0 / float(period)
     harmonic = np.rint(f / f1).astype(int)  # 0 below f1/2
-    k1 = float(wavenumber(2 * np.pi * f1, depth, g)) if k1 is None else float(k1)
     hmax = max(int(harmonic.max()), 1)
-    kh = wavenumber(2 * np.pi * f1 * np.arange(1, hmax + 1), depth, g)  # free, per harmonic
-    kh[0] = k1
+    below = harmonic == 0
+    # free waves: the harmonics n f1, then the bins below f1/2 (one solve of the dispersion)
+    ks = wavenumber(2 * np.pi * np.concatenate([f1 * np.arange(1, hmax + 1), f[below]]),
+                    depth, g)
+    kh = ks[:hmax]  # per harmonic
+    if k1 is not None:
+        kh[0] = float(k1)
     if bound_harmonics:
-        kh[1:] = k1 * np.arange(2, hmax + 1)  # bound: n k1
-    k = np.where(harmonic > 0, kh[np.maximum(harmonic, 1) - 1],
-                 wavenumber(2 * np.pi * f, depth, g))
-    return f1, harmonic, kh, k
+        kh[1:] = kh[0] * np.arange(2, hmax + 1)  # bound: n k1
+    group = harmonic - 1
+    group[below] = hmax + np.arange(int(below.sum()))
+    return f1, kh.copy(), ks, group
 
 
 def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
@@ -610,7 +666,7 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
     ones. Raises when no incident energy was separated; warns (:class:`SeparationWarning`) when
     the masked bins hold more than ``warn_fraction`` of the band's energy.
     """
-    e_meas = 0.5 * np.mean(np.abs(measured) ** 2, axis=1)  # measured variance per bin
+    e_meas = 0.5 * mean_power(measured, axis=1)  # measured variance per bin
     e_total = float(e_meas.sum())
     masked_fraction = float(e_meas[masked].sum() / e_total) if e_total > 0 else 0.0
     e_inc = 0.5 * np.abs(a_inc) ** 2
@@ -634,18 +690,19 @@ def _band_energy(measured: np.ndarray, a_inc: np.ndarray, a_ref: np.ndarray,
     return e_inc, e_ref, masked_fraction
 
 
-def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, k: np.ndarray, k_r: np.ndarray,
-                   x_ref: float, sel: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Incident and reflected elevations [m] at ``x_ref`` from the separated bin amplitudes.
+def _elevations_at(a_inc: np.ndarray, a_ref: np.ndarray, sel: np.ndarray, n: int
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Incident and reflected elevations [m] from their complex amplitudes at the band's bins.
 
-    The untapered amplitudes, by inverse FFT of an ``n``-sample record; ``k``, ``k_r`` the
-    incident and reflected wavenumbers per bin.
+    The amplitudes ``a_inc``, ``a_ref`` [m] (untapered, at the position wanted) of the bins
+    ``sel`` of an ``n``-sample record, by inverse FFT.
     """
-    spec_i = np.zeros(n // 2 + 1, complex)
-    spec_r = np.zeros(n // 2 + 1, complex)
-    spec_i[sel] = a_inc * np.exp(-1j * k * x_ref) * (n / 2.0)
-    spec_r[sel] = a_ref * np.exp(1j * k_r * x_ref) * (n / 2.0)
-    return np.fft.irfft(spec_i, n), np.fft.irfft(spec_r, n)
+    spec = np.zeros((2, n // 2 + 1), complex)
+    spec[0, sel] = a_inc
+    spec[1, sel] = a_ref
+    spec *= n / 2.0
+    eta_i, eta_r = np.fft.irfft(spec, n, axis=1)
+    return eta_i, eta_r
 
 
 def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: float,
@@ -668,12 +725,15 @@ def _regular_statistics(coef: np.ndarray, t: np.ndarray, x: np.ndarray, f1: floa
             f"the probe layout x = {x.tolist()} m is ill-conditioned at the wave frequency "
             f"{f1:.4g} Hz (condition number {cond_h[0]:.3g} > {max_condition:.3g}): the "
             "incident and reflected waves cannot be separated; change the spacing")
-    n_h = np.arange(1, nh + 1)
     z = np.stack([sol_h[:, 0, 0] * np.exp(-1j * kh * x_ref),
                   sol_h[:, 1, 0] * np.exp(1j * kh_r * x_ref)])  # (2, nh) at x_ref
     amp_i, amp_r = np.abs(z)
-    psi = 2 * np.pi * np.arange(512) / 512
-    wave = np.real(z[:, :, None] * np.exp(1j * n_h[:, None] * psi)).sum(axis=1)
+    # Re Σ_n z_n e^(i n ψ) at 512 phases ψ over a period (more if the harmonics need them),
+    # by one inverse FFT: irfft(X, M) = (2/M) Re Σ_n X_n e^(2πi n j / M) for 0 < n < M/2
+    n_psi = max(512, 2 * (nh + 1))
+    spec = np.zeros((2, n_psi // 2 + 1), complex)
+    spec[:, 1:nh + 1] = z
+    wave = np.fft.irfft(spec, n_psi, axis=1) * (0.5 * n_psi)
     hi, hr = wave.max(axis=1) - wave.min(axis=1)
     definition = ("crest-to-trough height over one period of the sum of the separated "
                   "harmonics at x_ref")
@@ -704,23 +764,13 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
 
     The basis is cos, sin of n ω1 (t - t0), n = 1..nh, and a constant. Its Gram matrix needs no
     product of basis rows (O(nh² N)): with S(k) = Σ_j e^(i k ω1 (t_j - t0)), the product rules
-    cos a cos b = (cos(a-b) + cos(a+b))/2 etc. give every entry from S(m ± n), so the fit costs
-    the 2 nh sums S(k) and the nh right-hand sides, O(nh N).
+    cos a cos b = (cos(a-b) + cos(a+b))/2 etc. give every entry from S(m ± n), so the fit needs
+    the 2 nh sums S(k) and the nh projections Σ_j v_j e^(i n ω1 (t_j - t0))
+    (:func:`_harmonic_sums`).
     """
     nh = n_harmonics
     n = t.size
-    e1 = np.exp(2j * np.pi * f1 * (t - t[0]))
-    data = np.column_stack([series.T, np.ones(n)])  # (N, rows + 1)
-    # one product gives the right-hand sides Σ_j v_j e^(i n ω1 t_j) (powers up to nh) and,
-    # against the column of ones, the sums S(k); in blocks of samples so that the powers
-    # e^(i k ω1 t) (2 nh per sample) stay in cache instead of streaming tens of MB
-    prod = np.zeros((2 * nh, data.shape[1]), complex)  # (2 nh, rows + 1)
-    for start in range(0, n, _BLOCK):
-        stop = start + _BLOCK
-        prod += _harmonic_powers(e1[start:stop], 2 * nh) @ data[start:stop]
-    s = np.empty(2 * nh + 1, complex)  # S(0..2 nh)
-    s[0] = n
-    s[1:] = prod[:, -1]
+    proj, s = _harmonic_sums(series, (t[-1] - t[0]) / (n - 1), f1, nh)
     m = np.arange(1, nh + 1)
     s_sum = s[m[:, None] + m[None, :]]  # S(m + n)
     d = m[:, None] - m[None, :]
@@ -733,22 +783,61 @@ def _harmonic_fit(series: np.ndarray, t: np.ndarray, f1: float, n_harmonics: int
     gram[:nh, -1] = gram[-1, :nh] = s[1:nh + 1].real
     gram[nh:2 * nh, -1] = gram[-1, nh:2 * nh] = s[1:nh + 1].imag
     gram[-1, -1] = n
-    proj = prod[:nh, :-1]  # (nh, rows)
     rhs = np.concatenate([proj.real, proj.imag, series.sum(axis=1)[None, :]])
     coef = np.linalg.solve(gram, rhs)  # (2 nh + 1, rows)
     return (coef[:nh] - 1j * coef[nh:2 * nh]).T
 
 
-#: samples per block of the harmonic fit's sums: 2 nh powers of 2048 samples (2.8 MB for 43
-#: harmonics) stay in a core's cache
-_BLOCK = 2048
+#: samples per block of :func:`_harmonic_sums`: the products within a block are one matrix
+#: product with a (block, 2 nh) table of phasors, small enough to stay in cache
+_BLOCK = 128
+
+
+def _harmonic_sums(series: np.ndarray, dt: float, f1: float, nh: int
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Projections of uniformly sampled rows on the harmonics of f1, and the phasor sums.
+
+    With θ = 2π f1 dt, returns b (nh, rows), b_kp = Σ_j v_pj e^(i k θ j), k = 1..nh, and
+    S (2 nh + 1,), S(k) = Σ_j e^(i k θ j), k = 0..2 nh (j = 0..N-1). Written j = q L + r with
+    blocks of L = :data:`_BLOCK` samples, e^(i k θ j) = e^(i k θ q L) e^(i k θ r): the sums
+    within the blocks are one real matrix product of the records, cut into blocks, with the
+    table cos, sin(k θ r), and the blocks' sums are weighted by e^(i k θ q L). O(N nh) products
+    like the direct sums, but as one cache-friendly matrix product, and only N/L + L phasors
+    per harmonic (:func:`_harmonic_powers`).
+    """
+    rows, n = series.shape
+    size = min(_BLOCK, n)
+    blocks = -(-n // size)
+    theta = 2 * np.pi * f1 * dt
+    inner = _harmonic_powers(np.exp(1j * theta * np.arange(size)), 2 * nh).T  # e^(i k θ r)
+    outer = _harmonic_powers(np.exp(1j * theta * size * np.arange(blocks)), 2 * nh).T
+    table = np.concatenate([inner[:, :nh].real, inner[:, :nh].imag], axis=1)  # (L, 2 nh)
+    part = np.empty((rows, blocks, 2 * nh))
+    whole = n // size  # whole blocks: a view of the records; then the partial last one
+    part[:, :whole] = series[:, :whole * size].reshape(rows, whole, size) @ table
+    if whole < blocks:
+        part[:, whole] = series[:, whole * size:] @ table[:n - whole * size]
+    # Σ_q (c + i s)_q e^(i k θ q L), in real products (no complex copy of the blocks' sums)
+    cos_sum, sin_sum = part[..., :nh], part[..., nh:]
+    o_re, o_im = outer[:, :nh].real, outer[:, :nh].imag
+    proj = (np.einsum("pqk,qk->kp", cos_sum, o_re) - np.einsum("pqk,qk->kp", sin_sum, o_im)
+            + 1j * (np.einsum("pqk,qk->kp", cos_sum, o_im)
+                    + np.einsum("pqk,qk->kp", sin_sum, o_re)))
+    # S(k): every block sums the whole table, the last one its first n - (blocks - 1) L rows
+    table_sum = inner.sum(axis=0)
+    last = inner[:n - (blocks - 1) * size].sum(axis=0)
+    s = np.empty(2 * nh + 1, complex)
+    s[0] = n
+    s[1:] = outer[:-1].sum(axis=0) * table_sum + outer[-1] * last
+    return proj, s
 
 
 def _harmonic_powers(e1: np.ndarray, k_max: int) -> np.ndarray:
-    """Powers e1^k, k = 1..k_max, of unit phasors e1 (N,), as rows (k_max, N).
+    """Powers e1^k, k = 1..k_max, of unit phasors e1 (M,), as rows (k_max, M).
 
     By doubling (e1^(k+j) = e1^j e1^k for the j ≤ k already known): log2(k_max) vectorised
-    products, and a round-off that grows with log k rather than with k as a running product's.
+    products instead of k_max M complex exponentials, and a round-off that grows with log k
+    rather than with k as a running product's.
     """
     e = np.empty((k_max, e1.size), complex)
     e[0] = e1

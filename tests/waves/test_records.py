@@ -13,6 +13,7 @@ from flumekit.waves import (
     harmonic_energy_fraction,
     probe_record,
     probe_spacing,
+    refine_frequency,
     separate,
 )
 
@@ -100,6 +101,22 @@ def test_harmonic_fraction_of_a_pure_tone_and_white_noise():
     assert f1 == pytest.approx(0.4) and share == pytest.approx(1.0)
     _, share = harmonic_energy_fraction(np.random.default_rng(0).normal(size=(3, 4000)), 1 / FS)
     assert share < 0.1
+
+
+@pytest.mark.parametrize(("n", "f", "offset"), [(3001, 0.31234567, 5.0), (40, 1.7, 0.0),
+                                                 (15000, 1 / 3.5, 2e3)])
+def test_refine_frequency_is_exact_for_a_pure_tone(n, f, offset):
+    # a non-whole number of periods, the peak bin off the frequency, one or three probes and a
+    # large mean (removed): the nonlinear least-squares frequency is the tone's to 1e-9
+    t = np.arange(n) / FS
+    phase = np.array([[0.3], [2.0], [-1.1]])
+    v = offset + np.cos(2 * np.pi * f * t + phase) * np.array([[1.0], [0.7], [0.2]])
+    freq = np.fft.rfftfreq(n, 1 / FS)
+    for rows in (v[:1], v):
+        f_bin = freq[np.argmax(np.abs(np.fft.rfft(rows - rows.mean(axis=1, keepdims=True),
+                                                  axis=1)).sum(axis=0))]
+        assert abs(f_bin - f) > 0.05 / (n / FS)  # the peak bin is off
+        assert refine_frequency(rows, 1 / FS, f_bin) == pytest.approx(f, rel=1e-9)
 
 
 @pytest.mark.skipif(not WAVELABX.exists(), reason="../shared/data/wavelabx absent")

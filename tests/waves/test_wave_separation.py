@@ -336,3 +336,41 @@ def test_default_x_ref_is_the_device_in_the_api_and_the_pipeline():
     assert r.attrs["x_ref"] == 0.0
     # truth at x = 0: a cos(ωt), to the round-off of a noise-free periodic record
     np.testing.assert_allclose(r.eta_incident.values, a * np.cos(2 * np.pi / T * t), atol=1e-10)
+
+
+@pytest.mark.parametrize("unknowns", [2, 3])
+def test_shared_design_matrices_solve_as_one_per_system(unknowns):
+    # systems that share a design matrix (the bins of one harmonic of a regular wave): the
+    # index path gives what one matrix per system gives, masked systems included
+    from flumekit.waves.separation import lstsq_normal
+
+    rng = np.random.default_rng(0)
+    k = np.concatenate([rng.uniform(0.1, 5.0, 40), [0.0, np.pi / 1.1]])  # last two singular
+    x = np.array([0.0, 1.1, 2.2, 3.3])[:unknowns + 1]
+    phase = np.exp(-1j * k[:, None] * x)
+    cols = [phase, np.conj(phase), np.exp(-2j * k[:, None] * x)][:unknowns]
+    columns = np.stack(cols, axis=-1)  # (U, P, K)
+    index = rng.integers(0, k.size, 500)
+    rhs = rng.normal(size=(500, x.size, 2)) + 1j * rng.normal(size=(500, x.size, 2))
+    sol, cond, masked = lstsq_normal(columns, rhs, 30.0, index=index)
+    ref_sol, ref_cond, ref_masked = lstsq_normal(columns[index], rhs, 30.0)
+    assert masked.any() and not masked.all()
+    np.testing.assert_array_equal(masked, ref_masked)
+    np.testing.assert_allclose(cond, ref_cond, rtol=1e-12)
+    np.testing.assert_allclose(sol, ref_sol, rtol=0, atol=1e-12)
+    assert np.all(sol[masked] == 0)
+
+
+@pytest.mark.parametrize("n", [200, 256, 1000, 15001])
+def test_harmonic_fit_recovers_exact_harmonics_of_any_length(n):
+    # known harmonics (up to near Nyquist), a mean and a non-whole number of periods: the
+    # block sums give the exact least-squares fit whether or not n fills whole blocks
+    from flumekit.waves.separation import _harmonic_fit
+
+    f1, nh = 0.3123, 30
+    t = 12.5 + np.arange(n) / FS
+    z = (np.random.default_rng(n).normal(size=(2, nh))
+         + 1j * np.random.default_rng(n + 1).normal(size=(2, nh))) * 0.01
+    n_h = np.arange(1, nh + 1)
+    v = 0.3 + np.real(z[:, :, None] * np.exp(2j * np.pi * n_h[:, None] * f1 * (t - t[0])))
+    np.testing.assert_allclose(_harmonic_fit(v.sum(axis=1), t, f1, nh), z, rtol=0, atol=1e-11)
