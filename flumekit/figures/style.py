@@ -641,7 +641,13 @@ def _layout_once(fig):
             placed = _titles_placed(fig)
     finally:
         fig.set_dpi(dpi)
-    fig.set_layout_engine("none")
+    # no engine at all, not matplotlib's placeholder for "none": with any engine, savefig
+    # draws a vector figure once without output, for the layout, before drawing it
+    import matplotlib
+
+    with matplotlib.rc_context({"figure.autolayout": False,
+                                "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
     try:
         yield
     finally:
