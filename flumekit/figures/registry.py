@@ -64,11 +64,15 @@ class Figure:
         Draws it: returns a :class:`matplotlib.figure.Figure`.
     prepare : callable
         ``(datasets by input name, rule parameters) -> (args, kwargs)`` of ``function``.
+    stacked : bool
+        Its rule's inputs, one small file per run, are read as one dataset stacked along
+        ``run`` (in input-name order), given to ``prepare`` as ``{"runs": dataset}``.
     """
 
     name: str
     function: Callable
     prepare: Prepare = one_dataset
+    stacked: bool = False
 
     def draw(self, data: Mapping[str, Any], params: Mapping[str, Any] | None = None):
         """Draw the figure from the datasets ``data`` read by its rule.
@@ -108,7 +112,8 @@ class Figure:
 FIGURES: dict[str, Figure] = {}
 
 
-def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], Callable]:
+def register(name: str, prepare: Prepare = one_dataset,
+             stacked: bool = False) -> Callable[[Callable], Callable]:
     """Register a figure function under ``name`` (a decorator).
 
     Parameters
@@ -117,6 +122,9 @@ def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], 
         The figure's name; unique.
     prepare : callable, default :func:`one_dataset`
         How its arguments are made from the datasets its rule reads.
+    stacked : bool, default False
+        Read the rule's inputs stacked along ``run`` (:attr:`Figure.stacked`): a figure of
+        many runs' small datasets, whose opening one by one costs more than drawing it.
 
     Returns
     -------
@@ -134,7 +142,7 @@ def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], 
             raise ValueError(f"figure '{name}' registered twice ({known.function.__module__}."
                              f"{known.function.__name__} and {function.__module__}."
                              f"{function.__name__})")
-        FIGURES[name] = Figure(name, function, prepare)
+        FIGURES[name] = Figure(name, function, prepare, stacked)
         return function
 
     return decorate

@@ -120,6 +120,33 @@ def test_campaign_figures_with_models(flaps):
     _passes(figs.figure_9(exp, models=models))
 
 
+def test_figures_8_9_drawn_from_the_comparison_files_stacked(flaps, tmp_path):
+    """The figures stage reads the comparison files of Figs. 8-9 stacked along ``run``: the
+    points and lines drawn are those drawn from the runs' datasets one by one."""
+    from flumekit.figures.registry import figure
+    from flumekit.io.netcdf import write_product
+    from flumekit.io.processed import stack_files
+
+    comps = {str(f.run.values): comparison_run(f) for f in flaps}
+    for run, c in comps.items():
+        write_product(c, tmp_path / f"{run}.nc", "comparison", "test")
+    stacked = stack_files([tmp_path / f"{run}.nc" for run in sorted(comps)])
+    one_by_one = [comps[run] for run in sorted(comps)]
+    for name, draw in (("fig08", figs.figure_8), ("fig09", figs.figure_9)):
+        entry = figure(name)
+        assert entry.stacked
+        got = entry.draw({"runs": stacked})
+        want = draw([c.sel(source="experiment") for c in one_by_one],
+                    models={s: [c.sel(source=s) for c in one_by_one]
+                            for s in ("analytical", "simulator")})
+        assert len(got.axes) == len(want.axes)
+        for ax_got, ax_want in zip(got.axes, want.axes, strict=True):
+            assert len(ax_got.lines) == len(ax_want.lines) > 0
+            for a, b in zip(ax_got.lines, ax_want.lines, strict=True):
+                np.testing.assert_array_equal(a.get_xydata(), b.get_xydata())
+        assert got._suptitle.get_text() == want._suptitle.get_text()
+
+
 def test_figure_10_experiment_visible_and_in_the_legend(flaps):
     ds = flaps[-1]
     comp = comparison_run(ds)
