@@ -147,6 +147,35 @@ def test_figures_8_9_drawn_from_the_comparison_files_stacked(flaps, tmp_path):
         assert got._suptitle.get_text() == want._suptitle.get_text()
 
 
+def test_uncertainty_budget_bars_stack_each_conditions_shares():
+    """Each condition's bar stacks its components' shares of the variance, the components
+    below 1 % of every result as "other", one legend entry per component."""
+    import xarray as xr
+
+    from flumekit.figures.uncertainty import figure_budget
+
+    rng = np.random.default_rng(5)
+    comps = ["probe_noise", "calibration", "tiny", "water_depth"]
+    share = rng.uniform(0, 1, (4, 3, len(comps)))  # (result, condition, component)
+    share[..., 2] = 0.001
+    share *= 100 / share.sum(axis=-1, keepdims=True)
+    names = ("incident_height", "reflection_coefficient", "theta_amplitude", "capture_factor")
+    budget = xr.Dataset({f"{q}_contribution": (("condition", "uncertainty_component"), s)
+                         for q, s in zip(names, share, strict=True)},
+                        coords={"uncertainty_component": comps,
+                                "wave_period": ("condition", [2.0, 3.0, 3.5]),
+                                "wave_height": ("condition", [0.15, 0.2, 0.25])})
+    fig = _passes(figure_budget(budget))
+    for ax, s in zip(fig.axes, share, strict=True):
+        major = s[:, [0, 1, 3]]
+        parts = np.column_stack([major, s[:, 2]])  # the minor component as "other", last
+        tops = [np.max(c.get_paths()[k].vertices[:, 1]) for c in ax.collections
+                for k in range(3)]
+        np.testing.assert_allclose(tops, np.cumsum(parts, axis=1).T.ravel(), rtol=1e-12)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert labels == ["probe noise", "calibration", "water depth", "other"]
+
+
 def test_figure_10_experiment_visible_and_in_the_legend(flaps):
     ds = flaps[-1]
     comp = comparison_run(ds)
