@@ -137,6 +137,14 @@ def draw(inputs, outputs, params) -> None:
     a figure registered so; raw files through their readers) and saved after passing the
     figure test (:mod:`flumekit.figures.check`).
     """
+    from flumekit.figures.style import without_collector
+
+    with without_collector():
+        _draw(inputs, outputs, params)
+
+
+def _draw(inputs, outputs, params) -> None:
+    """:func:`draw`, inside :func:`flumekit.figures.style.without_collector`."""
     from flumekit.figures.check import assert_passes
     from flumekit.figures.registry import figure
     from flumekit.figures.style import laid_out, save, style

@@ -383,3 +383,20 @@ def test_thin_keeps_each_columns_extremes_and_gaps():
         idx = np.flatnonzero((col == c) & np.isfinite(y))
         assert idx[np.argmin(y[idx])] in kept and idx[np.argmax(y[idx])] in kept
     assert {999, 1000, 1500} <= kept  # the samples around the gap: it stays a gap
+
+
+def test_a_figure_drawn_without_the_collector_is_freed_at_the_end():
+    """Inside without_collector the cyclic collector does not run; the reference cycles the
+    block made (a figure and its artists) are freed when it ends, and the collector is on."""
+    import gc
+    import weakref
+
+    from flumekit.figures.style import without_collector
+
+    with without_collector():
+        fig, axes = new_figure()
+        axes[0, 0].plot([0, 1], [0, 1])
+        gone = weakref.ref(fig)
+        del fig, axes
+        assert not gc.isenabled() and gone() is not None  # a cycle: only the collector frees it
+    assert gc.isenabled() and gone() is None
