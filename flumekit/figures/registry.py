@@ -149,7 +149,10 @@ def register(name: str, prepare: Prepare = one_dataset,
 
 
 def figure(name: str) -> Figure:
-    """Return the registered figure ``name`` (the figure modules imported first).
+    """Return the registered figure ``name``, importing the figure modules until one has it.
+
+    In the order of :data:`MODULES`: a figure's worker imports the modules before its own, not
+    those after it (the ball-screw figures' models and their imports are not a QC figure's).
 
     Parameters
     ----------
@@ -166,8 +169,28 @@ def figure(name: str) -> Figure:
         No figure of that name, naming the known ones.
     """
     for module in MODULES:
+        if name in FIGURES:
+            break
         importlib.import_module(f"flumekit.figures.{module}")
     try:
         return FIGURES[name]
     except KeyError:
         raise KeyError(f"no figure '{name}'; known: {', '.join(sorted(FIGURES))}") from None
+
+
+def every_figure() -> dict[str, Figure]:
+    """Return every registered figure by name (every figure module imported).
+
+    Returns
+    -------
+    dict of str to Figure
+
+    Examples
+    --------
+    >>> from flumekit.figures.registry import every_figure
+    >>> "qc" in every_figure()
+    True
+    """
+    for module in MODULES:
+        importlib.import_module(f"flumekit.figures.{module}")
+    return dict(FIGURES)

@@ -354,10 +354,9 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
 def test_captions_read_as_what_the_figure_shows():
     """A figure's caption (its files' Description, the report's caption) is its docstring's
     summary without the imperative verb, and the prose paragraph after it."""
-    from flumekit.figures.registry import FIGURES, figure
+    from flumekit.figures.registry import every_figure, figure
 
-    figure("qc")  # loads every figure module
-    for name, entry in FIGURES.items():
+    for name, entry in every_figure().items():
         caption = entry.description
         assert caption and not caption.startswith("Draw "), (name, caption)
         assert "Parameters" not in caption and "----" not in caption, (name, caption)
@@ -400,3 +399,16 @@ def test_a_figure_drawn_without_the_collector_is_freed_at_the_end():
         del fig, axes
         assert not gc.isenabled() and gone() is not None  # a cycle: only the collector frees it
     assert gc.isenabled() and gone() is None
+
+
+def test_a_figure_is_looked_up_without_the_figure_modules_after_its_own():
+    """A QC figure's worker does not import the ball-screw figures (and their models)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from flumekit.figures.registry import figure; figure('qc'); "
+            "print('flumekit.figures.ballscrew' in sys.modules, "
+            "'flumekit.figures.qc' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["False", "True"]
