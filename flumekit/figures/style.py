@@ -603,11 +603,7 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
     metadata; an opaque drawing (every figure of the package style) is stored as RGB, without
     the alpha channel that would be 255 everywhere.
     """
-    from io import BytesIO
-
     import numpy as np
-    from PIL import Image
-    from PIL.PngImagePlugin import PngInfo
 
     dpi = fig.get_dpi()
     canvas = _agg_canvas(fig)
@@ -617,19 +613,83 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
         if check is not None:
             check(fig)
         rgba = np.asarray(canvas.buffer_rgba())
-        image = Image.fromarray(rgba, "RGBA")
-        if (rgba[..., 3] == 255).all():
-            image = image.convert("RGB")
-        info = PngInfo()
-        for key, text in (metadata or FORMATS["png"]).items():
-            if text is not None:
-                info.add_text(key, text)
-        out = BytesIO()
-        image.save(out, format="png", pnginfo=info, dpi=(fig.get_dpi(),) * 2,
-                   compress_level=PNG_COMPRESS_LEVEL)
+        pixels = rgba[..., :3] if (rgba[..., 3] == 255).all() else rgba
+        texts = {k: v for k, v in (metadata or FORMATS["png"]).items() if v is not None}
+        return png_bytes(pixels, fig.get_dpi(), texts)
     finally:
         fig.set_dpi(dpi)
-    return out.getvalue()
+
+
+def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
+    """Encode an RGB or RGBA image as PNG, each row filtered as its difference to the row above.
+
+    One filter for every row (PNG's "Up"), computed at once, instead of the encoder trying
+    five filters on each row: half the time of Pillow's encoder for files about the same
+    size on the figures' drawings, whose rows repeat the row above (blank space, axes,
+    straight lines). The resolution is written in a pHYs chunk, each text in a tEXt chunk
+    (an iTXt chunk, UTF-8, for text beyond Latin-1), as Pillow writes them.
+
+    Parameters
+    ----------
+    pixels : numpy.ndarray
+        uint8 image, shape (height, width, 3) or (height, width, 4).
+    dpi : float
+        Resolution [pixels per inch].
+    texts : dict of str to str, optional
+        Text chunks by keyword (Latin-1 keywords).
+
+    Returns
+    -------
+    bytes
+        The PNG file.
+
+    References
+    ----------
+    W3C (2003). Portable Network Graphics (PNG) Specification (Second Edition), §9 (filtering)
+    and §11 (chunks).
+
+    Examples
+    --------
+    >>> import io
+    >>> import numpy as np
+    >>> from PIL import Image
+    >>> rgb = np.arange(2 * 3 * 3, dtype=np.uint8).reshape(2, 3, 3)
+    >>> image = Image.open(io.BytesIO(png_bytes(rgb, 300, {"Title": "θ"})))
+    >>> bool((np.asarray(image) == rgb).all()), image.text, round(image.info["dpi"][0])
+    (True, {'Title': 'θ'}, 300)
+    """
+    import struct
+    import zlib
+
+    import numpy as np
+
+    pixels = np.ascontiguousarray(pixels, dtype=np.uint8)
+    height, width, bands = pixels.shape
+    rows = pixels.reshape(height, width * bands)
+    filtered = np.empty((height, rows.shape[1] + 1), np.uint8)
+    filtered[:, 0] = 2  # Up: each byte minus the byte above it (modulo 256)
+    filtered[0, 0] = 0  # the first row has none above it: unfiltered
+    filtered[0, 1:] = rows[0]
+    np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data)))
+
+    per_metre = int(dpi / 0.0254 + 0.5)
+    out = [b"\x89PNG\r\n\x1a\n",
+           chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, {3: 2, 4: 6}[bands],
+                                      0, 0, 0)),
+           chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1))]
+    for key, text in (texts or {}).items():
+        try:
+            out.append(chunk(b"tEXt", key.encode("latin-1") + b"\0" + text.encode("latin-1")))
+        except UnicodeEncodeError:
+            out.append(chunk(b"iTXt", key.encode("latin-1") + b"\0\0\0\0\0"
+                             + text.encode("utf-8")))
+    out += [chunk(b"IDAT", zlib.compress(filtered.tobytes(), PNG_COMPRESS_LEVEL)),
+            chunk(b"IEND", b"")]
+    return b"".join(out)
 
 
 def _agg_canvas(fig):
