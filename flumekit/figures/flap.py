@@ -57,12 +57,13 @@ def _sorted_runs(data, params) -> tuple[tuple, dict]:
 def _experiment_and_models(data, params) -> tuple[tuple, dict]:
     """Return the arguments of Figs. 8-9 from the comparison datasets of every regular run.
 
-    The experiment's and, per model source, the model's, in input-name order.
+    ``data["runs"]``: the comparison datasets stacked along ``run`` (in input-name order); the
+    experiment's and, per model source, the model's.
     """
-    comps = [data[k] for k in sorted(data)]
-    models = {str(s): [c.sel(source=s) for c in comps]
-              for s in comps[0]["source"].values if str(s) != "experiment"}
-    return ([c.sel(source="experiment") for c in comps],), {"models": models}
+    comps = data["runs"]
+    models = {str(s): comps.sel(source=s) for s in comps["source"].values
+              if str(s) != "experiment"}
+    return (comps.sel(source="experiment"),), {"models": models}
 
 
 def _figure_10_data(data, params) -> tuple[tuple, dict]:
@@ -310,7 +311,7 @@ def _heights(flaps, models) -> list[float]:
     return sorted({height_of(r) for r in runs})
 
 
-@register("fig08", prepare=_experiment_and_models)
+@register("fig08", prepare=_experiment_and_models, stacked=True)
 def figure_8(flaps, models: dict | None = None, ax=None):
     """Draw the amplitude of the hydrodynamic torque against the wave period (Fig. 8).
 
@@ -355,7 +356,7 @@ def figure_8(flaps, models: dict | None = None, ax=None):
     return fig
 
 
-@register("fig09", prepare=_experiment_and_models)
+@register("fig09", prepare=_experiment_and_models, stacked=True)
 def figure_9(flaps, models: dict | None = None, axes=None):
     """Draw (a) the amplitude of θ and (b) the capture factor C_f against the period (Fig. 9).
 

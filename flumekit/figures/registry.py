@@ -64,11 +64,15 @@ class Figure:
         Draws it: returns a :class:`matplotlib.figure.Figure`.
     prepare : callable
         ``(datasets by input name, rule parameters) -> (args, kwargs)`` of ``function``.
+    stacked : bool
+        Its rule's inputs, one small file per run, are read as one dataset stacked along
+        ``run`` (in input-name order), given to ``prepare`` as ``{"runs": dataset}``.
     """
 
     name: str
     function: Callable
     prepare: Prepare = one_dataset
+    stacked: bool = False
 
     def draw(self, data: Mapping[str, Any], params: Mapping[str, Any] | None = None):
         """Draw the figure from the datasets ``data`` read by its rule.
@@ -108,7 +112,8 @@ class Figure:
 FIGURES: dict[str, Figure] = {}
 
 
-def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], Callable]:
+def register(name: str, prepare: Prepare = one_dataset,
+             stacked: bool = False) -> Callable[[Callable], Callable]:
     """Register a figure function under ``name`` (a decorator).
 
     Parameters
@@ -117,6 +122,9 @@ def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], 
         The figure's name; unique.
     prepare : callable, default :func:`one_dataset`
         How its arguments are made from the datasets its rule reads.
+    stacked : bool, default False
+        Read the rule's inputs stacked along ``run`` (:attr:`Figure.stacked`): a figure of
+        many runs' small datasets, whose opening one by one costs more than drawing it.
 
     Returns
     -------
@@ -134,14 +142,17 @@ def register(name: str, prepare: Prepare = one_dataset) -> Callable[[Callable], 
             raise ValueError(f"figure '{name}' registered twice ({known.function.__module__}."
                              f"{known.function.__name__} and {function.__module__}."
                              f"{function.__name__})")
-        FIGURES[name] = Figure(name, function, prepare)
+        FIGURES[name] = Figure(name, function, prepare, stacked)
         return function
 
     return decorate
 
 
 def figure(name: str) -> Figure:
-    """Return the registered figure ``name`` (the figure modules imported first).
+    """Return the registered figure ``name``, importing the figure modules until one has it.
+
+    In the order of :data:`MODULES`: a figure's worker imports the modules before its own, not
+    those after it (the ball-screw figures' models and their imports are not a QC figure's).
 
     Parameters
     ----------
@@ -158,8 +169,28 @@ def figure(name: str) -> Figure:
         No figure of that name, naming the known ones.
     """
     for module in MODULES:
+        if name in FIGURES:
+            break
         importlib.import_module(f"flumekit.figures.{module}")
     try:
         return FIGURES[name]
     except KeyError:
         raise KeyError(f"no figure '{name}'; known: {', '.join(sorted(FIGURES))}") from None
+
+
+def every_figure() -> dict[str, Figure]:
+    """Return every registered figure by name (every figure module imported).
+
+    Returns
+    -------
+    dict of str to Figure
+
+    Examples
+    --------
+    >>> from flumekit.figures.registry import every_figure
+    >>> "qc" in every_figure()
+    True
+    """
+    for module in MODULES:
+        importlib.import_module(f"flumekit.figures.{module}")
+    return dict(FIGURES)

@@ -50,6 +50,9 @@ STYLE = {
     "svg.hashsalt": "flumekit",
     "svg.fonttype": "path",
     "pdf.fonttype": 42,
+    # zlib level of the PDF streams: level 1 writes files about a tenth larger than the
+    # default level 6 in a quarter less time (the compression of a figure's dense lines)
+    "pdf.compression": 1,
 }
 
 #: colours by role, so experiment/model/simulator look the same in every figure
@@ -551,6 +554,43 @@ def save(fig, *paths: str | Path, check=None, description: str | None = None) ->
     return paths
 
 
+@contextmanager
+def without_collector():
+    """Run the block without Python's cyclic garbage collector, then collect what it left.
+
+    A figure creates some hundred thousand small objects (artists, transforms, texts), which
+    trigger the collector again and again, each time walking every object of the process:
+    in a long-lived worker, a seventh of a figure's time. Here the block's objects are freed
+    by their reference counts as usual, and its reference cycles (a figure and its artists)
+    by one collection of the youngest generation at the end, which holds every object the
+    block created. The collector is left as it was found (another thread's block may have
+    switched it off).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> import gc
+    >>> with without_collector():
+    ...     gc.isenabled()
+    False
+    >>> gc.isenabled()
+    True
+    """
+    import gc
+
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.collect(0)
+            gc.enable()
+
+
 #: zlib level of the PNGs: level 3 writes files about the size of the default level 6
 #: in half the time (the encoding of a 300 dpi figure cost as much as drawing it)
 PNG_COMPRESS_LEVEL = 3
@@ -563,34 +603,105 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
     metadata; an opaque drawing (every figure of the package style) is stored as RGB, without
     the alpha channel that would be 255 everywhere.
     """
-    from io import BytesIO
-
     import numpy as np
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from PIL import Image
-    from PIL.PngImagePlugin import PngInfo
 
     dpi = fig.get_dpi()
-    canvas = FigureCanvasAgg(fig)
+    canvas = _agg_canvas(fig)
     try:
         fig.set_dpi(STYLE["savefig.dpi"])
         canvas.draw()
         if check is not None:
             check(fig)
         rgba = np.asarray(canvas.buffer_rgba())
-        image = Image.fromarray(rgba, "RGBA")
-        if (rgba[..., 3] == 255).all():
-            image = image.convert("RGB")
-        info = PngInfo()
-        for key, text in (metadata or FORMATS["png"]).items():
-            if text is not None:
-                info.add_text(key, text)
-        out = BytesIO()
-        image.save(out, format="png", pnginfo=info, dpi=(fig.get_dpi(),) * 2,
-                   compress_level=PNG_COMPRESS_LEVEL)
+        pixels = rgba[..., :3] if (rgba[..., 3] == 255).all() else rgba
+        texts = {k: v for k, v in (metadata or FORMATS["png"]).items() if v is not None}
+        return png_bytes(pixels, fig.get_dpi(), texts)
     finally:
         fig.set_dpi(dpi)
-    return out.getvalue()
+
+
+def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
+    """Encode an RGB or RGBA image as PNG, each row filtered as its difference to the row above.
+
+    One filter for every row (PNG's "Up"), computed at once, instead of the encoder trying
+    five filters on each row: half the time of Pillow's encoder for files about the same
+    size on the figures' drawings, whose rows repeat the row above (blank space, axes,
+    straight lines). The resolution is written in a pHYs chunk, each text in a tEXt chunk
+    (an iTXt chunk, UTF-8, for text beyond Latin-1), as Pillow writes them.
+
+    Parameters
+    ----------
+    pixels : numpy.ndarray
+        uint8 image, shape (height, width, 3) or (height, width, 4).
+    dpi : float
+        Resolution [pixels per inch].
+    texts : dict of str to str, optional
+        Text chunks by keyword (Latin-1 keywords).
+
+    Returns
+    -------
+    bytes
+        The PNG file.
+
+    References
+    ----------
+    W3C (2003). Portable Network Graphics (PNG) Specification (Second Edition), §9 (filtering)
+    and §11 (chunks).
+
+    Examples
+    --------
+    >>> import io
+    >>> import numpy as np
+    >>> from PIL import Image
+    >>> rgb = np.arange(2 * 3 * 3, dtype=np.uint8).reshape(2, 3, 3)
+    >>> image = Image.open(io.BytesIO(png_bytes(rgb, 300, {"Title": "θ"})))
+    >>> bool((np.asarray(image) == rgb).all()), image.text, round(image.info["dpi"][0])
+    (True, {'Title': 'θ'}, 300)
+    """
+    import struct
+    import zlib
+
+    import numpy as np
+
+    pixels = np.ascontiguousarray(pixels, dtype=np.uint8)
+    height, width, bands = pixels.shape
+    rows = pixels.reshape(height, width * bands)
+    filtered = np.empty((height, rows.shape[1] + 1), np.uint8)
+    filtered[:, 0] = 2  # Up: each byte minus the byte above it (modulo 256)
+    filtered[0, 0] = 0  # the first row has none above it: unfiltered
+    filtered[0, 1:] = rows[0]
+    np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data)))
+
+    per_metre = int(dpi / 0.0254 + 0.5)
+    out = [b"\x89PNG\r\n\x1a\n",
+           chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, {3: 2, 4: 6}[bands],
+                                      0, 0, 0)),
+           chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1))]
+    for key, text in (texts or {}).items():
+        try:
+            out.append(chunk(b"tEXt", key.encode("latin-1") + b"\0" + text.encode("latin-1")))
+        except UnicodeEncodeError:
+            out.append(chunk(b"iTXt", key.encode("latin-1") + b"\0\0\0\0\0"
+                             + text.encode("utf-8")))
+    out += [chunk(b"IDAT", zlib.compress(filtered.tobytes(), PNG_COMPRESS_LEVEL)),
+            chunk(b"IEND", b"")]
+    return b"".join(out)
+
+
+def _agg_canvas(fig):
+    """Return the figure's Agg canvas, giving it one if it has another (or none).
+
+    One canvas, so one renderer at a resolution, for the layout, the titles' places and the
+    PNG: matplotlib remembers the extents of texts per renderer, and a figure without a canvas
+    of its own gets a new renderer at each layout.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    return fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
 
 
 @contextmanager
@@ -635,13 +746,20 @@ def _layout_once(fig):
         return
     dpi = fig.get_dpi()
     fig.set_dpi(STYLE["savefig.dpi"])
+    _agg_canvas(fig)
     try:
         with style(), _mathtext_cached():
             engine.execute(fig)
             placed = _titles_placed(fig)
     finally:
         fig.set_dpi(dpi)
-    fig.set_layout_engine("none")
+    # no engine at all, not matplotlib's placeholder for "none": with any engine, savefig
+    # draws a vector figure once without output, for the layout, before drawing it
+    import matplotlib
+
+    with matplotlib.rc_context({"figure.autolayout": False,
+                                "figure.constrained_layout.use": False}):
+        fig.set_layout_engine(None)
     try:
         yield
     finally:
@@ -658,13 +776,11 @@ def _titles_placed(fig) -> list:
     layout the place is the same. Returns the axes whose titles were fixed (to be freed), none
     where matplotlib's private placement is not the one expected (another version).
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
     axes = [ax for ax in fig.axes if getattr(ax, "_autotitlepos", None) is True
             and hasattr(ax, "_update_title_position")]
     if not axes:
         return []
-    renderer = FigureCanvasAgg(fig).get_renderer()
+    renderer = _agg_canvas(fig).get_renderer()
     for ax in axes:
         ax._update_title_position(renderer)
         ax._autotitlepos = False

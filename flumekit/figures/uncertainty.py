@@ -58,6 +58,7 @@ def figure_budget(budget: xr.Dataset, axes=None):
     measurement (GUM), §5.1.
     """
     import matplotlib
+    from matplotlib.collections import PolyCollection
 
     shown = [(q, s) for q, s in BUDGET_RESULTS if f"{q}_contribution" in budget]
     if not shown:
@@ -81,10 +82,17 @@ def figure_budget(budget: xr.Dataset, axes=None):
         for ax, (q, sym) in zip(np.ravel(axes), shown, strict=False):
             c = budget[f"{q}_contribution"].values  # (condition, component)
             parts = [c[:, j] for j in major] + ([c[:, minor].sum(axis=1)] if minor else [])
-            bottom = np.zeros(len(labels))
-            for part, colour, name in zip(parts, colours, names, strict=True):
-                ax.bar(x, part, bottom=bottom, color=colour, label=name, width=0.8)
-                bottom += part
+            # one collection of bars per component (hundreds of bar patches, each its own
+            # artist, cost more to create and draw than the rest of the figure)
+            top = np.cumsum(parts, axis=0)
+            for part, high, colour, name in zip(parts, top, colours, names, strict=True):
+                low = high - part
+                bars = np.stack([np.column_stack([x - 0.4, low]), np.column_stack([x + 0.4, low]),
+                                 np.column_stack([x + 0.4, high]),
+                                 np.column_stack([x - 0.4, high])], axis=1)
+                ax.add_collection(PolyCollection(bars, facecolors=colour, edgecolors="none",
+                                                 linewidths=0, label=name))
+            ax.autoscale_view()
             ax.set_ylim(0, 100)
             ax.set_title(sym, fontsize=9)
             ax.set_ylabel(label(text="Share of variance", units="percent"))

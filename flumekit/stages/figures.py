@@ -133,15 +133,29 @@ def _qc_inputs(ctx: Context, run) -> dict:
 def draw(inputs, outputs, params) -> None:
     """Draw the registered figure ``params["figure"]`` and save it in every format.
 
-    The figure is drawn from the rule's inputs (processed datasets; raw files through their
-    readers) and saved after passing the figure test (:mod:`flumekit.figures.check`).
+    The figure is drawn from the rule's inputs (processed datasets, stacked along ``run`` for
+    a figure registered so; raw files through their readers) and saved after passing the
+    figure test (:mod:`flumekit.figures.check`).
     """
+    from flumekit.figures.style import without_collector
+
+    with without_collector():
+        _draw(inputs, outputs, params)
+
+
+def _draw(inputs, outputs, params) -> None:
+    """:func:`draw`, inside :func:`flumekit.figures.style.without_collector`."""
     from flumekit.figures.check import assert_passes
     from flumekit.figures.registry import figure
     from flumekit.figures.style import laid_out, save, style
 
     entry = figure(params["figure"])
-    data = read_inputs(inputs, params.get("reading"))
+    if entry.stacked:
+        from flumekit.io.processed import stack_files
+
+        data = {"runs": stack_files([inputs[k] for k in sorted(inputs)])}
+    else:
+        data = read_inputs(inputs, params.get("reading"))
     with style():
         fig = entry.draw(data, params)
     with laid_out(fig):  # one layout, and one drawing for the check and the PNG

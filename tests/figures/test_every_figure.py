@@ -120,6 +120,62 @@ def test_campaign_figures_with_models(flaps):
     _passes(figs.figure_9(exp, models=models))
 
 
+def test_figures_8_9_drawn_from_the_comparison_files_stacked(flaps, tmp_path):
+    """The figures stage reads the comparison files of Figs. 8-9 stacked along ``run``: the
+    points and lines drawn are those drawn from the runs' datasets one by one."""
+    from flumekit.figures.registry import figure
+    from flumekit.io.netcdf import write_product
+    from flumekit.io.processed import stack_files
+
+    comps = {str(f.run.values): comparison_run(f) for f in flaps}
+    for run, c in comps.items():
+        write_product(c, tmp_path / f"{run}.nc", "comparison", "test")
+    stacked = stack_files([tmp_path / f"{run}.nc" for run in sorted(comps)])
+    one_by_one = [comps[run] for run in sorted(comps)]
+    for name, draw in (("fig08", figs.figure_8), ("fig09", figs.figure_9)):
+        entry = figure(name)
+        assert entry.stacked
+        got = entry.draw({"runs": stacked})
+        want = draw([c.sel(source="experiment") for c in one_by_one],
+                    models={s: [c.sel(source=s) for c in one_by_one]
+                            for s in ("analytical", "simulator")})
+        assert len(got.axes) == len(want.axes)
+        for ax_got, ax_want in zip(got.axes, want.axes, strict=True):
+            assert len(ax_got.lines) == len(ax_want.lines) > 0
+            for a, b in zip(ax_got.lines, ax_want.lines, strict=True):
+                np.testing.assert_array_equal(a.get_xydata(), b.get_xydata())
+        assert got._suptitle.get_text() == want._suptitle.get_text()
+
+
+def test_uncertainty_budget_bars_stack_each_conditions_shares():
+    """Each condition's bar stacks its components' shares of the variance, the components
+    below 1 % of every result as "other", one legend entry per component."""
+    import xarray as xr
+
+    from flumekit.figures.uncertainty import figure_budget
+
+    rng = np.random.default_rng(5)
+    comps = ["probe_noise", "calibration", "tiny", "water_depth"]
+    share = rng.uniform(0, 1, (4, 3, len(comps)))  # (result, condition, component)
+    share[..., 2] = 0.001
+    share *= 100 / share.sum(axis=-1, keepdims=True)
+    names = ("incident_height", "reflection_coefficient", "theta_amplitude", "capture_factor")
+    budget = xr.Dataset({f"{q}_contribution": (("condition", "uncertainty_component"), s)
+                         for q, s in zip(names, share, strict=True)},
+                        coords={"uncertainty_component": comps,
+                                "wave_period": ("condition", [2.0, 3.0, 3.5]),
+                                "wave_height": ("condition", [0.15, 0.2, 0.25])})
+    fig = _passes(figure_budget(budget))
+    for ax, s in zip(fig.axes, share, strict=True):
+        major = s[:, [0, 1, 3]]
+        parts = np.column_stack([major, s[:, 2]])  # the minor component as "other", last
+        tops = [np.max(c.get_paths()[k].vertices[:, 1]) for c in ax.collections
+                for k in range(3)]
+        np.testing.assert_allclose(tops, np.cumsum(parts, axis=1).T.ravel(), rtol=1e-12)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert labels == ["probe noise", "calibration", "water depth", "other"]
+
+
 def test_figure_10_experiment_visible_and_in_the_legend(flaps):
     ds = flaps[-1]
     comp = comparison_run(ds)
@@ -298,10 +354,9 @@ def test_figure_rules_write_every_format(campaign, tmp_path):
 def test_captions_read_as_what_the_figure_shows():
     """A figure's caption (its files' Description, the report's caption) is its docstring's
     summary without the imperative verb, and the prose paragraph after it."""
-    from flumekit.figures.registry import FIGURES, figure
+    from flumekit.figures.registry import every_figure, figure
 
-    figure("qc")  # loads every figure module
-    for name, entry in FIGURES.items():
+    for name, entry in every_figure().items():
         caption = entry.description
         assert caption and not caption.startswith("Draw "), (name, caption)
         assert "Parameters" not in caption and "----" not in caption, (name, caption)
@@ -327,3 +382,57 @@ def test_thin_keeps_each_columns_extremes_and_gaps():
         idx = np.flatnonzero((col == c) & np.isfinite(y))
         assert idx[np.argmin(y[idx])] in kept and idx[np.argmax(y[idx])] in kept
     assert {999, 1000, 1500} <= kept  # the samples around the gap: it stays a gap
+
+
+def test_a_figure_drawn_without_the_collector_is_freed_at_the_end():
+    """Inside without_collector the cyclic collector does not run; the reference cycles the
+    block made (a figure and its artists) are freed when it ends, and the collector is on."""
+    import gc
+    import weakref
+
+    from flumekit.figures.style import without_collector
+
+    with without_collector():
+        fig, axes = new_figure()
+        axes[0, 0].plot([0, 1], [0, 1])
+        gone = weakref.ref(fig)
+        del fig, axes
+        assert not gc.isenabled() and gone() is not None  # a cycle: only the collector frees it
+    assert gc.isenabled() and gone() is None
+
+
+def test_a_figure_is_looked_up_without_the_figure_modules_after_its_own():
+    """A QC figure's worker does not import the ball-screw figures (and their models)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from flumekit.figures.registry import figure; figure('qc'); "
+            "print('flumekit.figures.ballscrew' in sys.modules, "
+            "'flumekit.figures.qc' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["False", "True"]
+
+
+def test_png_bytes_decode_to_the_pixels_texts_and_resolution(tmp_path):
+    """The PNG encoder: every row filtered from the one above, decoded (Pillow) to the same
+    pixels, RGB and RGBA; Latin-1 and other texts and the resolution read back, by the
+    report's reader too."""
+    from PIL import Image
+
+    from flumekit.figures.style import png_bytes
+    from flumekit.report import _png_text
+
+    rng = np.random.default_rng(7)
+    for bands in (3, 4):
+        pixels = rng.integers(0, 256, (37, 23, bands), dtype=np.uint8)
+        pixels[10:20] = pixels[9]  # rows that repeat the row above, as blank space does
+        texts = {"Title": "Wave separation: run T3.50 (T = 3.5 s)", "Description": "θ ≈ 0.1 π"}
+        path = tmp_path / f"image{bands}.png"
+        path.write_bytes(png_bytes(pixels, 300, texts))
+        with Image.open(path) as image:
+            assert image.mode == {3: "RGB", 4: "RGBA"}[bands]
+            np.testing.assert_array_equal(np.asarray(image), pixels)
+            assert image.text == texts
+            assert image.info["dpi"] == pytest.approx((300, 300), abs=1e-3)
+        assert _png_text(path) == texts
