@@ -4,7 +4,8 @@ The terms and their physics are :class:`flumekit.synth.flume.ExtraTorque`'s (mod
 :mod:`flumekit.synth.flume`); this is their scalar kernel with the signature of an extra torque
 of :mod:`flumekit.hydro.stepping`, its constants in one float array (layout below), its state
 (the compliance's lag and the vapour cavity) in another, and the ten terms of each call
-recorded in one row of the record.
+recorded in one row of the record. The UVP's regular wave field
+(:func:`flumekit.synth.uvp.wave_kinematics`) is summed here too, one point at a time.
 """
 
 from __future__ import annotations
@@ -115,39 +116,66 @@ def flume_torque(j, th, om, p, st, rec):
 
 
 @njit(cache=True)
-def wave_sums(amps, vel, ch, sh, env, cos_t, sin_t, eta, u, w):
-    """Sum the harmonics of one wave at every (time, position) of a 2-D grid, in place.
+def wave_field(t, cwt, swt, lag, cos_p, sin_p, amps, vel, n_harm, ch, sh, current, ramp_time,
+               paired, u, w, eta):
+    """Sum the velocity and elevation of a regular wave and its returning waves, in place.
 
-    η = Σ_n a_n Re pⁿ, u = Σ_n V_n C_n Re pⁿ, w = Σ_n V_n S_n Im pⁿ with p = e (cos θ + i sin θ)
-    (:func:`flumekit.synth.uvp.wave_kinematics`): the powers by repeated multiplication, one
-    point at a time (no array per harmonic).
+    For wave m (the incident one first, then those travelling back), with the envelope
+    e = clip((t - lag_m) / ramp_time, 0, 1) (1 without a ramp) and p = e e^{iθ},
+    cos θ = cos ωt cos φ_m + sin ωt sin φ_m, sin θ = sin ωt cos φ_m - cos ωt sin φ_m:
+    η_m = Σ_n a_n Re pⁿ, u_m = Σ_n V_n C_n Re pⁿ, w_m = Σ_n V_n S_n Im pⁿ
+    (:func:`flumekit.synth.uvp.wave_kinematics`), the powers by repeated multiplication. Then
+    u = u_0 + c_0 e_0² - Σ_m>0 (u_m + c_m e_m²), w = -w_0 - Σ_m>0 w_m, η = Σ_m η_m, each added
+    in that order. One point at a time: no array per harmonic, wave or term.
 
     Parameters
     ----------
+    t, cwt, swt : ndarray
+        Time [s] and cos ωt, sin ωt [-], shape (T,).
+    lag, cos_p, sin_p : ndarray
+        Per wave and position: the ramp's arrival time [s] and cos φ, sin φ [-], shape (M, P).
     amps, vel : ndarray
-        a_n [m] and V_n [m s-1], n = 1..N.
+        a_n [m] and V_n [m s-1] of each wave, shape (M, N) (the first ``n_harm[m]`` used).
+    n_harm : ndarray
+        Harmonics of each wave, shape (M,).
     ch, sh : ndarray
-        C_n and S_n [-], shape (1 or T, P, N): the depth functions at each position.
-    env, cos_t, sin_t : ndarray
-        Envelope e [-] and cos θ, sin θ, shape (T, P).
-    eta, u, w : ndarray
-        Outputs [m], [m s-1], shape (T, P).
+        C_n and S_n [-] at each position, shape (M, P, N).
+    current : ndarray
+        Mean current c_m of each wave at full amplitude [m s-1], shape (M,).
+    ramp_time : float
+        Ramp duration [s]; 0 for the steady state (e = 1).
+    paired : bool
+        False: every time with every position (outputs (T, P)); True: time k with position k
+        only (T == P, outputs (1, P)).
+    u, w, eta : ndarray
+        Outputs [m s-1], [m s-1], [m].
     """
-    nt, npos = env.shape
-    nh = amps.size
-    by_time = ch.shape[0] > 1
-    for i in range(nt):
-        iz = i if by_time else 0
+    nw, npos = lag.shape
+    rows = 1 if paired else t.size
+    for i in range(rows):
         for j in range(npos):
-            e = env[i, j]
-            p1 = complex(e * cos_t[i, j], e * sin_t[i, j])
-            pn = p1
-            ev = amps[0] * pn.real
-            uv = (vel[0] * ch[iz, j, 0]) * pn.real
-            wv = (vel[0] * sh[iz, j, 0]) * pn.imag
-            for n in range(1, nh):
-                pn = pn * p1
-                ev += amps[n] * pn.real
-                uv += (vel[n] * ch[iz, j, n]) * pn.real
-                wv += (vel[n] * sh[iz, j, n]) * pn.imag
-            eta[i, j], u[i, j], w[i, j] = ev, uv, wv
+            k = j if paired else i
+            tk, ct, st = t[k], cwt[k], swt[k]
+            us = ws = es = 0.0
+            for m in range(nw):
+                if ramp_time > 0:
+                    s = (tk - lag[m, j]) / ramp_time
+                    e = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+                else:
+                    e = 1.0
+                cp, sp = cos_p[m, j], sin_p[m, j]
+                p1 = complex(e * (ct * cp + st * sp), e * (st * cp - ct * sp))
+                pn = p1
+                ev = amps[m, 0] * pn.real
+                uv = (vel[m, 0] * ch[m, j, 0]) * pn.real
+                wv = (vel[m, 0] * sh[m, j, 0]) * pn.imag
+                for n in range(1, n_harm[m]):
+                    pn = pn * p1
+                    ev += amps[m, n] * pn.real
+                    uv += (vel[m, n] * ch[m, j, n]) * pn.real
+                    wv += (vel[m, n] * sh[m, j, n]) * pn.imag
+                if m == 0:
+                    us, ws, es = uv + current[0] * (e * e), -wv, ev
+                else:
+                    us, ws, es = (us - uv) - current[m] * (e * e), ws - wv, es + ev
+            u[i, j], w[i, j], eta[i, j] = us, ws, es
