@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from flumekit.hydro.stepping import EXTRA
@@ -179,3 +180,102 @@ def wave_field(t, cwt, swt, lag, cos_p, sin_p, amps, vel, n_harm, ch, sh, curren
                 else:
                     us, ws, es = (us - uv) - current[m] * (e * e), ws - wv, es + ev
             u[i, j], w[i, j], eta[i, j] = us, ws, es
+
+
+@njit(cache=True)
+def beam_echo(u, w, eta, j0, jf, x, z, zf, swl, ca, sa, tan_theta, half_width, theta_dot,
+              noise, draws, v, state):
+    """Project one beam's velocities, mark its channels' echo and add the Doppler noise.
+
+    Channel j of profile i sees the water (state 0) while the transducer (at ``zf``) and every
+    channel up to j are under the free surface and in front of the flap; the flap (state 1)
+    once a channel up to j is behind the flap's seaward face x = z tan θ - t / (2 cos θ); no
+    echo (state 2, before the flap) once one is above the surface. The velocity along the beam
+    is u cos α + w sin α in the water, the flap's θ̇ (z cos α - x sin α) on it, plus
+    ``noise`` times the standard normal ``draws``.
+
+    Parameters
+    ----------
+    u, w, eta : ndarray
+        Velocity [m s-1] and elevation [m] of the wave field, shape (T, ≥ P): the beam's
+        channels in columns ``j0`` on, the transducer's elevation in column ``jf`` of ``eta``.
+    j0, jf : int
+        The columns of the beam's first channel and of its transducer.
+    x, z : ndarray
+        The channels' position [m], shape (P,).
+    zf, swl : float
+        The transducer's elevation and the still water level above the hinge [m].
+    ca, sa : float
+        cos α and sin α of the beam's angle [-].
+    tan_theta, half_width, theta_dot : ndarray
+        tan θ [-], t / (2 cos θ) [m] and θ̇ [rad s-1] per profile, shape (T,).
+    noise : float
+        Standard deviation of the Doppler noise [m s-1].
+    draws : ndarray
+        Standard normal draws, shape (T, P).
+    v : ndarray
+        Output: velocity along the beam [m s-1], shape (T, P).
+    state : ndarray
+        Output: 0 water, 1 flap, 2 no echo, shape (T, P).
+    """
+    nt, npos = v.shape
+    for i in range(nt):
+        wet = zf < swl + eta[i, jf]
+        behind = False
+        for j in range(npos):
+            wet = wet and z[j] < swl + eta[i, j0 + j]
+            behind = behind or x[j] > z[j] * tan_theta[i] - half_width[i]
+            if behind:
+                vj = theta_dot[i] * (z[j] * ca - x[j] * sa)
+            else:
+                vj = u[i, j0 + j] * ca + w[i, j0 + j] * sa
+            v[i, j] = vj + noise * draws[i, j]
+            state[i, j] = 1 if behind else 0
+            if not wet:
+                state[i, j] = 2
+
+
+@njit(cache=True)
+def beam_counts(v, state, no_echo, draws, dv, lo, n_counts, velocity, amplitude):
+    """Quantise one beam's velocities to raw counts and draw its echo amplitude.
+
+    Velocity counts round v / ΔV (the channels without echo take the next of ``no_echo``,
+    in row order) and wrap into [lo, lo + n_counts); the amplitude [counts] is 400 ± 40 in
+    the water, 2000 ± 100 on the flap and 8 ± 3 without echo, from the standard normal
+    ``draws``, rounded.
+
+    Parameters
+    ----------
+    v : ndarray
+        Velocity along the beam [m s-1], shape (T, P).
+    state : ndarray
+        0 water, 1 flap, 2 no echo (:func:`beam_echo`).
+    no_echo : ndarray
+        Random counts of the channels without echo, in row order.
+    draws : ndarray
+        Standard normal draws, shape (T, P).
+    dv : float
+        Velocity resolution ΔV [m s-1].
+    lo, n_counts : int
+        Lowest raw count and the number of counts.
+    velocity : ndarray
+        Output: the quantised velocity [m s-1], shape (T, P).
+    amplitude : ndarray
+        Output: the echo amplitude [counts] (int16), shape (T, P).
+    """
+    nt, npos = v.shape
+    k = 0
+    for i in range(nt):
+        for j in range(npos):
+            s = state[i, j]
+            if s == 2:
+                c = float(no_echo[k])
+                k += 1
+                level, spread = 8.0, 3.0
+            else:
+                c = np.rint(v[i, j] / dv)
+                level = 2000.0 if s == 1 else 400.0
+                spread = 0.1 * level
+            c = (c - lo) % n_counts + lo
+            velocity[i, j] = c * dv
+            amplitude[i, j] = np.int16(np.rint(level + spread * draws[i, j]))

@@ -41,7 +41,7 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.synth.waves import RAMP_WAVES
-from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.uvp.geometry import beam_geometry, flap_face_x, inside_flap
 from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
 
@@ -387,6 +387,8 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
         If ``time`` is not 1-D increasing, ``turbulence`` is out of range or ``theta`` is not
         sampled at ``time``.
     """
+    from flumekit.synth.kernels import beam_counts, beam_echo
+
     rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
     time = np.asarray(time, dtype=float)
     if time.ndim != 1 or time.size < 2 or np.any(np.diff(time) <= 0):
@@ -399,6 +401,8 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     if theta.shape != time.shape:
         raise ValueError(f"theta must be sampled at time: shape {theta.shape} != {time.shape}")
     theta_dot = np.gradient(theta, time)
+    # the flap's seaward face x = z tan θ - t / (2 cos θ) (flumekit.uvp.geometry.flap_face_x)
+    tan_theta, half_width = np.tan(theta), -flap_face_x(0.0, theta, flap_thickness)
     wave = dict(period=period, height=height, depth=depth, hinge_height=hinge_height,
                 reflection=reflection, reflection_phase=reflection_phase,
                 x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order,
@@ -418,40 +422,36 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     geos = [geo.sel(beam=b.name) for b in uvp.beams]
     xs = [g["x"].values for g in geos] + [np.array([b.x for b in uvp.beams])]
     zs = [g["z"].values for g in geos] + [np.array([uvp_elevation + b.dz for b in uvp.beams])]
-    fields = wave_kinematics(np.concatenate(xs)[None, :], np.concatenate(zs)[None, :], t, **wave)
-    ends = np.cumsum([a.size for a in xs])[:-1]
-    u_all, w_all, eta_all = (np.split(f, ends, axis=1) for f in fields)
+    u, w, eta = wave_kinematics(np.concatenate(xs)[None, :], np.concatenate(zs)[None, :], t,
+                                **wave)
+    starts = np.cumsum([0] + [a.size for a in xs])
     out = {}
     for i, (b, g) in enumerate(zip(uvp.beams, geos)):  # the instruments' own draws, in turn
-        x, z = xs[i][None, :], zs[i][None, :]
-        zf = zs[-1][i]
-        u, w, eta = u_all[i], w_all[i], eta_all[i]
-        eta_face = eta_all[-1][:, i:i + 1]
+        x, z, zf = xs[i], zs[i], zs[-1][i]
+        cols = slice(starts[i], starts[i + 1])
         if turbulence is not None:
             su, sw, rho = turbulence
             n1, n2 = _band_limited(rng, (time.size, x.size, 2), dt, (0.05, 1.5)).transpose(2, 0, 1)
-            u = u + su * n1
-            w = w + sw * (rho * n1 + np.sqrt(1 - rho**2) * n2)
-        v = u * np.cos(b.angle) + w * np.sin(b.angle)
-        # the echo path: transducer face and every channel up to this one under the surface
-        swl = depth - hinge_height  # still water level above the hinge [m]
-        wet = np.logical_and.accumulate((z < swl + eta) & (zf < swl + eta_face), axis=1)
-        flap = np.logical_or.accumulate(inside_flap(x, z, theta[:, None], flap_thickness), axis=1)
-        v_flap = theta_dot[:, None] * (z * np.cos(b.angle) - x * np.sin(b.angle))
-        v = np.where(flap, v_flap, v) + noise * rng.standard_normal(v.shape)
-        counts = np.rint(v / dv)
-        dry = ~wet
-        counts[dry] = rng.integers(lo, lo + n_counts, size=int(dry.sum()))  # no echo: noise
-        counts = (counts - lo) % n_counts + lo  # aliasing into the raw range
-        # echo amplitude [counts]: water ~400 +- 40, flap surface ~2000 +- 100, no echo ~8 +- 3
-        level = np.where(dry, 8.0, np.where(flap, 2000.0, 400.0))
-        amp = level + np.where(dry, 3.0, 0.1 * level) * rng.standard_normal(v.shape)
+            u[:, cols] += su * n1
+            w[:, cols] += sw * (rho * n1 + np.sqrt(1 - rho**2) * n2)
+        # the echo path: transducer face and every channel up to this one under the surface,
+        # in front of the flap; the draws in the instrument's order: Doppler noise, the counts
+        # of the channels without echo, the echo amplitude
+        draws = rng.standard_normal((time.size, x.size))
+        v, state = np.empty(draws.shape), np.empty(draws.shape, dtype=np.int8)
+        beam_echo(u, w, eta, starts[i], starts[-2] + i, x, z, zf, depth - hinge_height,
+                  np.cos(b.angle), np.sin(b.angle), tan_theta, half_width, theta_dot, noise,
+                  draws, v, state)
+        no_echo = rng.integers(lo, lo + n_counts, size=int(np.count_nonzero(state == 2)))
+        velocity, amplitude = np.empty(v.shape), np.empty(v.shape, dtype=np.int16)
+        beam_counts(v, state, no_echo, rng.standard_normal(v.shape), dv, lo, n_counts,
+                    velocity, amplitude)
         ds = xr.Dataset(
-            {"beam_velocity": (("time", "channel"), counts * dv,
+            {"beam_velocity": (("time", "channel"), velocity,
                                {"positive": "away_from_transducer",
                                 "sign_convention": "virtual flume: velocity projected on the "
                                 "unit vector from the transducer into the beam"}),
-             "amplitude": (("time", "channel"), np.rint(amp).astype(np.int16))},
+             "amplitude": (("time", "channel"), amplitude)},
             coords={"time": time, "channel": g["channel"].values,
                     "distance": ("channel", g["distance"].values)},
             attrs={**{f"mfprof_{k}": v for k, v in params.items()},
