@@ -276,6 +276,8 @@ def beam_counts(v, state, no_echo, draws, dv, lo, n_counts, velocity, amplitude)
                 c = np.rint(v[i, j] / dv)
                 level = 2000.0 if s == 1 else 400.0
                 spread = 0.1 * level
-            c = (c - lo) % n_counts + lo
+            # wrap into the raw range: (c - lo) mod n_counts + lo, which inside the range is
+            # c itself (+ 0.0: a count -0.0 wraps to +0.0)
+            c = c + 0.0 if lo <= c < lo + n_counts else (c - lo) % n_counts + lo
             velocity[i, j] = c * dv
             amplitude[i, j] = np.int16(np.rint(level + spread * draws[i, j]))
