@@ -49,6 +49,9 @@ CALIBRATION_LEVELS = (-0.10, -0.05, 0.0, 0.05, 0.10)  # static submersions [m]
 #: first sea state's phases (the next ones count on from it)
 SEA_GAMMA = 3.3
 SEA_SEED = 11
+#: a run's truth (waves.nc, flap.nc) is stored uncompressed: its dense float series deflate to
+#: 60-80 % of their size only, and deflating them cost more than the rest of a run's synthesis
+_RUN_TRUTH_COMPRESSED = False
 
 
 @dataclass(frozen=True)
@@ -721,12 +724,12 @@ def _write_run(root, campaign: Campaign, run_id, kind, period, height, repeat, z
         coords={"probe": list(names), "time": t25, "x": ("probe", [xp[p] for p in names])},
         attrs={k: v for k, v in field.attrs.items() if np.isscalar(v)})
     write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
-                  truth_dir / "waves.nc")
+                  truth_dir / "waves.nc", compress=_RUN_TRUTH_COMPRESSED)
     flap_truth = flap.assign(eta_incident=("time", at_flap["eta_incident"][:n100]),
                              eta_reflected=("time", at_flap["eta_reflected"][:n100]),
                              eta_beach=("time", at_flap["eta_beach"][:n100]))
     write_dataset(_finish(flap_truth, f"Virtual flume truth: flap of run {run_id}", "", 0),
-                  truth_dir / "flap.nc")
+                  truth_dir / "flap.nc", compress=_RUN_TRUTH_COMPRESSED)
 
     if kind == "uvp":
         from flumekit.synth.uvp import uvp_beams, write_uvp_run
@@ -852,7 +855,7 @@ def _write_irregular_run(root, campaign: Campaign, run_id: str, repeat: int, sea
                 "frequency": f},
         attrs={**state.attrs, **run_attrs})
     write_dataset(_finish(waves_truth, f"Virtual flume truth: waves of run {run_id}", "", 0),
-                  truth_dir / "waves.nc")
+                  truth_dir / "waves.nc", compress=_RUN_TRUTH_COMPRESSED)
     flap_ds = flap.assign(eta_incident=("time", inc[:n_f]), eta_reflected=("time", ref[:n_f]),
                           eta_beach=("time", bea[:n_f]))
     flap_ds.attrs.update({k: run_attrs[k] for k in ("mean_power", "capture_width",
@@ -861,4 +864,4 @@ def _write_irregular_run(root, campaign: Campaign, run_id: str, repeat: int, sea
                           "energy_flux": state.attrs["energy_flux"],
                           "hm0_target": sea["hm0"], "peak_period_target": sea["tp"]})
     write_dataset(_finish(flap_ds, f"Virtual flume truth: flap of run {run_id}", "", 0),
-                  truth_dir / "flap.nc")
+                  truth_dir / "flap.nc", compress=_RUN_TRUTH_COMPRESSED)

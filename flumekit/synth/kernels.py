@@ -4,13 +4,15 @@ The terms and their physics are :class:`flumekit.synth.flume.ExtraTorque`'s (mod
 :mod:`flumekit.synth.flume`); this is their scalar kernel with the signature of an extra torque
 of :mod:`flumekit.hydro.stepping`, its constants in one float array (layout below), its state
 (the compliance's lag and the vapour cavity) in another, and the ten terms of each call
-recorded in one row of the record.
+recorded in one row of the record. The UVP's regular wave field
+(:func:`flumekit.synth.uvp.wave_kinematics`) is summed here too, one point at a time.
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from flumekit.hydro.stepping import EXTRA
@@ -115,39 +117,167 @@ def flume_torque(j, th, om, p, st, rec):
 
 
 @njit(cache=True)
-def wave_sums(amps, vel, ch, sh, env, cos_t, sin_t, eta, u, w):
-    """Sum the harmonics of one wave at every (time, position) of a 2-D grid, in place.
+def wave_field(t, cwt, swt, lag, cos_p, sin_p, amps, vel, n_harm, ch, sh, current, ramp_time,
+               paired, u, w, eta):
+    """Sum the velocity and elevation of a regular wave and its returning waves, in place.
 
-    η = Σ_n a_n Re pⁿ, u = Σ_n V_n C_n Re pⁿ, w = Σ_n V_n S_n Im pⁿ with p = e (cos θ + i sin θ)
-    (:func:`flumekit.synth.uvp.wave_kinematics`): the powers by repeated multiplication, one
-    point at a time (no array per harmonic).
+    For wave m (the incident one first, then those travelling back), with the envelope
+    e = clip((t - lag_m) / ramp_time, 0, 1) (1 without a ramp) and p = e e^{iθ},
+    cos θ = cos ωt cos φ_m + sin ωt sin φ_m, sin θ = sin ωt cos φ_m - cos ωt sin φ_m:
+    η_m = Σ_n a_n Re pⁿ, u_m = Σ_n V_n C_n Re pⁿ, w_m = Σ_n V_n S_n Im pⁿ
+    (:func:`flumekit.synth.uvp.wave_kinematics`), the powers by repeated multiplication. Then
+    u = u_0 + c_0 e_0² - Σ_m>0 (u_m + c_m e_m²), w = -w_0 - Σ_m>0 w_m, η = Σ_m η_m, each added
+    in that order. One point at a time: no array per harmonic, wave or term.
 
     Parameters
     ----------
+    t, cwt, swt : ndarray
+        Time [s] and cos ωt, sin ωt [-], shape (T,).
+    lag, cos_p, sin_p : ndarray
+        Per wave and position: the ramp's arrival time [s] and cos φ, sin φ [-], shape (M, P).
     amps, vel : ndarray
-        a_n [m] and V_n [m s-1], n = 1..N.
+        a_n [m] and V_n [m s-1] of each wave, shape (M, N) (the first ``n_harm[m]`` used).
+    n_harm : ndarray
+        Harmonics of each wave, shape (M,).
     ch, sh : ndarray
-        C_n and S_n [-], shape (1 or T, P, N): the depth functions at each position.
-    env, cos_t, sin_t : ndarray
-        Envelope e [-] and cos θ, sin θ, shape (T, P).
-    eta, u, w : ndarray
-        Outputs [m], [m s-1], shape (T, P).
+        C_n and S_n [-] at each position, shape (M, P, N).
+    current : ndarray
+        Mean current c_m of each wave at full amplitude [m s-1], shape (M,).
+    ramp_time : float
+        Ramp duration [s]; 0 for the steady state (e = 1).
+    paired : bool
+        False: every time with every position (outputs (T, P)); True: time k with position k
+        only (T == P, outputs (1, P)).
+    u, w, eta : ndarray
+        Outputs [m s-1], [m s-1], [m].
     """
-    nt, npos = env.shape
-    nh = amps.size
-    by_time = ch.shape[0] > 1
-    for i in range(nt):
-        iz = i if by_time else 0
+    nw, npos = lag.shape
+    rows = 1 if paired else t.size
+    for i in range(rows):
         for j in range(npos):
-            e = env[i, j]
-            p1 = complex(e * cos_t[i, j], e * sin_t[i, j])
-            pn = p1
-            ev = amps[0] * pn.real
-            uv = (vel[0] * ch[iz, j, 0]) * pn.real
-            wv = (vel[0] * sh[iz, j, 0]) * pn.imag
-            for n in range(1, nh):
-                pn = pn * p1
-                ev += amps[n] * pn.real
-                uv += (vel[n] * ch[iz, j, n]) * pn.real
-                wv += (vel[n] * sh[iz, j, n]) * pn.imag
-            eta[i, j], u[i, j], w[i, j] = ev, uv, wv
+            k = j if paired else i
+            tk, ct, st = t[k], cwt[k], swt[k]
+            us = ws = es = 0.0
+            for m in range(nw):
+                if ramp_time > 0:
+                    s = (tk - lag[m, j]) / ramp_time
+                    e = 0.0 if s < 0.0 else (1.0 if s > 1.0 else s)
+                else:
+                    e = 1.0
+                cp, sp = cos_p[m, j], sin_p[m, j]
+                p1 = complex(e * (ct * cp + st * sp), e * (st * cp - ct * sp))
+                pn = p1
+                ev = amps[m, 0] * pn.real
+                uv = (vel[m, 0] * ch[m, j, 0]) * pn.real
+                wv = (vel[m, 0] * sh[m, j, 0]) * pn.imag
+                for n in range(1, n_harm[m]):
+                    pn = pn * p1
+                    ev += amps[m, n] * pn.real
+                    uv += (vel[m, n] * ch[m, j, n]) * pn.real
+                    wv += (vel[m, n] * sh[m, j, n]) * pn.imag
+                if m == 0:
+                    us, ws, es = uv + current[0] * (e * e), -wv, ev
+                else:
+                    us, ws, es = (us - uv) - current[m] * (e * e), ws - wv, es + ev
+            u[i, j], w[i, j], eta[i, j] = us, ws, es
+
+
+@njit(cache=True)
+def beam_echo(u, w, eta, j0, jf, x, z, zf, swl, ca, sa, tan_theta, half_width, theta_dot,
+              noise, draws, v, state):
+    """Project one beam's velocities, mark its channels' echo and add the Doppler noise.
+
+    Channel j of profile i sees the water (state 0) while the transducer (at ``zf``) and every
+    channel up to j are under the free surface and in front of the flap; the flap (state 1)
+    once a channel up to j is behind the flap's seaward face x = z tan θ - t / (2 cos θ); no
+    echo (state 2, before the flap) once one is above the surface. The velocity along the beam
+    is u cos α + w sin α in the water, the flap's θ̇ (z cos α - x sin α) on it, plus
+    ``noise`` times the standard normal ``draws``.
+
+    Parameters
+    ----------
+    u, w, eta : ndarray
+        Velocity [m s-1] and elevation [m] of the wave field, shape (T, ≥ P): the beam's
+        channels in columns ``j0`` on, the transducer's elevation in column ``jf`` of ``eta``.
+    j0, jf : int
+        The columns of the beam's first channel and of its transducer.
+    x, z : ndarray
+        The channels' position [m], shape (P,).
+    zf, swl : float
+        The transducer's elevation and the still water level above the hinge [m].
+    ca, sa : float
+        cos α and sin α of the beam's angle [-].
+    tan_theta, half_width, theta_dot : ndarray
+        tan θ [-], t / (2 cos θ) [m] and θ̇ [rad s-1] per profile, shape (T,).
+    noise : float
+        Standard deviation of the Doppler noise [m s-1].
+    draws : ndarray
+        Standard normal draws, shape (T, P).
+    v : ndarray
+        Output: velocity along the beam [m s-1], shape (T, P).
+    state : ndarray
+        Output: 0 water, 1 flap, 2 no echo, shape (T, P).
+    """
+    nt, npos = v.shape
+    for i in range(nt):
+        wet = zf < swl + eta[i, jf]
+        behind = False
+        for j in range(npos):
+            wet = wet and z[j] < swl + eta[i, j0 + j]
+            behind = behind or x[j] > z[j] * tan_theta[i] - half_width[i]
+            if behind:
+                vj = theta_dot[i] * (z[j] * ca - x[j] * sa)
+            else:
+                vj = u[i, j0 + j] * ca + w[i, j0 + j] * sa
+            v[i, j] = vj + noise * draws[i, j]
+            state[i, j] = 1 if behind else 0
+            if not wet:
+                state[i, j] = 2
+
+
+@njit(cache=True)
+def beam_counts(v, state, no_echo, draws, dv, lo, n_counts, velocity, amplitude):
+    """Quantise one beam's velocities to raw counts and draw its echo amplitude.
+
+    Velocity counts round v / ΔV (the channels without echo take the next of ``no_echo``,
+    in row order) and wrap into [lo, lo + n_counts); the amplitude [counts] is 400 ± 40 in
+    the water, 2000 ± 100 on the flap and 8 ± 3 without echo, from the standard normal
+    ``draws``, rounded.
+
+    Parameters
+    ----------
+    v : ndarray
+        Velocity along the beam [m s-1], shape (T, P).
+    state : ndarray
+        0 water, 1 flap, 2 no echo (:func:`beam_echo`).
+    no_echo : ndarray
+        Random counts of the channels without echo, in row order.
+    draws : ndarray
+        Standard normal draws, shape (T, P).
+    dv : float
+        Velocity resolution ΔV [m s-1].
+    lo, n_counts : int
+        Lowest raw count and the number of counts.
+    velocity : ndarray
+        Output: the quantised velocity [m s-1], shape (T, P).
+    amplitude : ndarray
+        Output: the echo amplitude [counts] (int16), shape (T, P).
+    """
+    nt, npos = v.shape
+    k = 0
+    for i in range(nt):
+        for j in range(npos):
+            s = state[i, j]
+            if s == 2:
+                c = float(no_echo[k])
+                k += 1
+                level, spread = 8.0, 3.0
+            else:
+                c = np.rint(v[i, j] / dv)
+                level = 2000.0 if s == 1 else 400.0
+                spread = 0.1 * level
+            # wrap into the raw range: (c - lo) mod n_counts + lo, which inside the range is
+            # c itself (+ 0.0: a count -0.0 wraps to +0.0)
+            c = c + 0.0 if lo <= c < lo + n_counts else (c - lo) % n_counts + lo
+            velocity[i, j] = c * dv
+            amplitude[i, j] = np.int16(np.rint(level + spread * draws[i, j]))

@@ -41,7 +41,7 @@ from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.synth.waves import RAMP_WAVES
-from flumekit.uvp.geometry import beam_geometry, inside_flap
+from flumekit.uvp.geometry import beam_geometry, flap_face_x, inside_flap
 from flumekit.waves.stream_function import depth_ratios
 from flumekit.waves.theory import G, group_velocity
 
@@ -65,39 +65,6 @@ def _theory(theory: str | None, second_order: bool) -> str:
 def _depth_functions(k: float, n: int, depth: float, zb):
     """C_n(z_b), S_n(z_b) of the module notes for n = 1..n, shape (..., n); z_b above the bed."""
     return depth_ratios(k * np.arange(1, n + 1), np.asarray(zb, dtype=float)[..., None], depth)
-
-
-def _wave_sums(amps, vel, k: float, depth: float, zb, env, cos_t, sin_t):
-    """Sum η, u, w of one wave along its direction of travel.
-
-    Σ_n (a_n Re pⁿ, V_n C_n(z_b) Re pⁿ, V_n S_n(z_b) Im pⁿ) with p = e (cos θ + i sin θ), so
-    that harmonic n carries eⁿ; the powers by repeated multiplication (no transcendental
-    function per harmonic), compiled (:func:`flumekit.synth.kernels.wave_sums`) on a 2-D grid
-    of time and position. η has the shape of the phase's arrays, u and w that of everything
-    broadcast with z_b.
-    """
-    from flumekit.synth.kernels import wave_sums
-
-    nh = amps.size
-    ch, sh = _depth_functions(k, nh, depth, zb)
-    b = np.broadcast_shapes(np.shape(env), np.shape(cos_t), np.shape(sin_t), np.shape(zb))
-    grid = b if len(b) >= 2 else (1,) * (2 - len(b)) + b
-    cols = grid[-1]
-    zs = (1,) * (len(grid) - np.ndim(zb)) + np.shape(zb)
-    if all(d == 1 for d in zs[:-1]):  # the depth functions vary along the last axis at most
-        ch, sh = (np.broadcast_to(a.reshape(-1, nh), (cols, nh))[None] for a in (ch, sh))
-    else:
-        ch, sh = (np.broadcast_to(a, grid + (nh,)).reshape(-1, cols, nh) for a in (ch, sh))
-    pshape = np.broadcast_shapes(np.shape(env), np.shape(cos_t), np.shape(sin_t))
-    env2, cos2, sin2 = (np.ascontiguousarray(np.broadcast_to(a, grid), dtype=float).reshape(
-        -1, cols) for a in (env, cos_t, sin_t))
-    eta, u, w = (np.empty(env2.shape) for _ in range(3))
-    wave_sums(np.asarray(amps, float), np.asarray(vel, float), ch, sh, env2, cos2, sin2, eta,
-              u, w)
-    # η depends on the wave's phase only, not on the elevation above the bed
-    pad = (1,) * (len(b) - len(pshape)) + pshape
-    eta = eta.reshape(b)[tuple(slice(0, 1) if p < n else slice(None) for p, n in zip(pad, b))]
-    return eta.reshape(pshape), u.reshape(b), w.reshape(b)
 
 
 def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
@@ -155,56 +122,64 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
     ValueError
         If Kr lies outside [0, 1].
     """
-    from flumekit.synth.waves import ramp_envelope
+    from flumekit.synth.kernels import wave_field
 
     if not 0 <= reflection <= 1:
         raise ValueError(f"reflection coefficient must lie in [0, 1], got {reflection}")
     h = _harmonics(period, height, depth, _theory(theory, second_order), reflection, g, beach)
     omega = 2 * np.pi / period
     k, k_r, k_b = h["k_incident"], h["k_reflected"], h["k_beach"]
-    x = np.asarray(x, dtype=float)
-    t = np.asarray(time, dtype=float)
-    d_inc = x - x_wavemaker
-    d_ref = 2 * x_reflector - x - x_wavemaker
-    x_b = x_reflector if beach is None else beach.x
-    d_beach = 2 * x_b - x - x_wavemaker
-    if ramp_waves is None:
-        e_i = e_r = e_b = 1.0
+    eta_shape = np.broadcast_shapes(np.shape(time), np.shape(x))
+    x, z, t = (np.asarray(a, dtype=float) for a in (x, z, time))
+    shape = np.broadcast_shapes(t.shape, x.shape, z.shape)
+    nd = len(shape)
+    t_ax, x_ax, z_ax = (np.array((1,) * (nd - a.ndim) + a.shape) > 1 for a in (t, x, z))
+    at = np.flatnonzero(t_ax)
+    ap = np.flatnonzero(x_ax | z_ax)
+    # every time with every position when time varies along leading axes only and the
+    # positions along the others (a record at fixed points); else point by point
+    paired = not (at.size == 0 or ap.size == 0 or at[-1] < ap[0])
+    if paired:
+        t, x, z = (np.broadcast_to(a, shape).ravel() for a in (t, x, z))
     else:
-        cg = float(group_velocity(period, depth, g))
-        ramp_time = ramp_waves * period
-        e_i = ramp_envelope(t - d_inc / cg, ramp_time)
-        e_r = ramp_envelope(t - d_ref / cg, ramp_time)
-        e_b = ramp_envelope(t - d_beach / cg, ramp_time)
-    # cos/sin of θ = ωt - (phase of x) by the angle-addition rule: trigonometric functions of t
-    # and of x only, then products (the 2-D arrays need no transcendental function)
-    cwt, swt = np.cos(omega * t), np.sin(omega * t)
-    p_i = k * d_inc
-    p_r = k * (x_reflector - x_wavemaker) + k_r * (x_reflector - x) - reflection_phase
-    ci, si, cr, sr = np.cos(p_i), np.sin(p_i), np.cos(p_r), np.sin(p_r)
-    cos_i, sin_i = cwt * ci + swt * si, swt * ci - cwt * si
-    cos_r, sin_r = cwt * cr + swt * sr, swt * cr - cwt * sr
-    zb = np.asarray(z, dtype=float) + hinge_height
-    eta_i, u_i, w_i = _wave_sums(h["incident"], h["incident_velocity"], k, depth, zb, e_i,
-                                 cos_i, sin_i)
-    eta_r, u_r, w_r = _wave_sums(h["reflected"], h["reflected_velocity"], k_r, depth, zb,
-                                 e_r, cos_r, sin_r)
-    # θ_I = ωt - k d is minus the phase kx - ωt of the wave's own theory, so w flips sign; the
-    # reflected wave travels towards -x, so its u flips sign; the mean (return) currents grow
-    # with the wave energy, e²
-    u = (u_i + h["incident_current"] * np.square(e_i)
-         - u_r - h["reflected_current"] * np.square(e_r))
-    w = -w_i - w_r
-    eta = eta_i + eta_r
+        pos = tuple(1 if a else n for a, n in zip(t_ax, shape))
+        t = t.ravel()
+        x, z = (np.broadcast_to(a, pos).ravel() for a in (x, z))
+    x_b = x_reflector if beach is None else beach.x
+    # per wave: the distance travelled from the wavemaker, and the phase of x in
+    # θ = ωt - phase (cos/sin of θ by the angle-addition rule: trigonometric functions of t
+    # and of x only)
+    waves = [(h["incident"], h["incident_velocity"], k, h["incident_current"],
+              x - x_wavemaker, k * (x - x_wavemaker)),
+             (h["reflected"], h["reflected_velocity"], k_r, h["reflected_current"],
+              2 * x_reflector - x - x_wavemaker,
+              k * (x_reflector - x_wavemaker) + k_r * (x_reflector - x) - reflection_phase)]
     if np.any(h["beach"]):  # the beach's wave, towards -x like the reflected one
-        p_b = k * (x_b - x_wavemaker) + k_b * (x_b - x) - beach.phase
-        cb, sb = np.cos(p_b), np.sin(p_b)
-        eta_b, u_b, w_b = _wave_sums(h["beach"], h["beach_velocity"], k_b, depth, zb, e_b,
-                                     cwt * cb + swt * sb, swt * cb - cwt * sb)
-        u = u - u_b - h["beach_current"] * np.square(e_b)
-        w = w - w_b
-        eta = eta + eta_b
-    return u, w, eta
+        waves.append((h["beach"], h["beach_velocity"], k_b, h["beach_current"],
+                      2 * x_b - x - x_wavemaker,
+                      k * (x_b - x_wavemaker) + k_b * (x_b - x) - beach.phase))
+    if ramp_waves is None:
+        ramp_time, cg = 0.0, 1.0
+    else:
+        ramp_time, cg = ramp_waves * period, float(group_velocity(period, depth, g))
+    n_h = max(wv[0].size for wv in waves)
+    amps, vel = (np.zeros((len(waves), n_h)) for _ in range(2))
+    ch, sh = (np.zeros((len(waves), x.size, n_h)) for _ in range(2))
+    zb = z + hinge_height
+    for m, (a, v, km, _, _, _) in enumerate(waves):
+        amps[m, :a.size], vel[m, :v.size] = a, v
+        ch[m, :, :a.size], sh[m, :, :a.size] = _depth_functions(km, a.size, depth, zb)
+    phase = np.array([wv[5] for wv in waves])
+    out = tuple(np.empty((1 if paired else t.size, x.size)) for _ in range(3))
+    wave_field(t, np.cos(omega * t), np.sin(omega * t), np.array([wv[4] / cg for wv in waves]),
+               np.cos(phase), np.sin(phase), amps, vel,
+               np.array([wv[0].size for wv in waves]), ch, sh,
+               np.array([wv[3] for wv in waves], dtype=float), ramp_time, paired, *out)
+    u, w, eta = (a.reshape(shape) for a in out)
+    # η depends on x and t only, not on the elevation above the bed
+    eta = eta[tuple(slice(0, 1) if zz and not (xx or tt) else slice(None)
+                    for tt, xx, zz in zip(t_ax, x_ax, z_ax))]
+    return u, w, eta.reshape(eta_shape)
 
 
 def incident_upcrossing(*, period: float, height: float, depth: float,
@@ -412,6 +387,8 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
         If ``time`` is not 1-D increasing, ``turbulence`` is out of range or ``theta`` is not
         sampled at ``time``.
     """
+    from flumekit.synth.kernels import beam_counts, beam_echo
+
     rng = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
     time = np.asarray(time, dtype=float)
     if time.ndim != 1 or time.size < 2 or np.any(np.diff(time) <= 0):
@@ -424,6 +401,8 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     if theta.shape != time.shape:
         raise ValueError(f"theta must be sampled at time: shape {theta.shape} != {time.shape}")
     theta_dot = np.gradient(theta, time)
+    # the flap's seaward face x = z tan θ - t / (2 cos θ) (flumekit.uvp.geometry.flap_face_x)
+    tan_theta, half_width = np.tan(theta), -flap_face_x(0.0, theta, flap_thickness)
     wave = dict(period=period, height=height, depth=depth, hinge_height=hinge_height,
                 reflection=reflection, reflection_phase=reflection_phase,
                 x_wavemaker=x_wavemaker, ramp_waves=ramp_waves, second_order=second_order,
@@ -439,38 +418,40 @@ def uvp_beams(time, uvp: UVP, uvp_elevation: float, *, period: float, height: fl
     geo = beam_geometry(uvp, uvp_elevation)
     t = time[:, None]
     dt = float(np.median(np.diff(time)))
+    # the wave field at every channel of every beam and at each transducer's face, at once
+    geos = [geo.sel(beam=b.name) for b in uvp.beams]
+    xs = [g["x"].values for g in geos] + [np.array([b.x for b in uvp.beams])]
+    zs = [g["z"].values for g in geos] + [np.array([uvp_elevation + b.dz for b in uvp.beams])]
+    u, w, eta = wave_kinematics(np.concatenate(xs)[None, :], np.concatenate(zs)[None, :], t,
+                                **wave)
+    starts = np.cumsum([0] + [a.size for a in xs])
     out = {}
-    for b in uvp.beams:  # three beams: a loop over instruments, each fully vectorised
-        g = geo.sel(beam=b.name)
-        x, z = g["x"].values[None, :], g["z"].values[None, :]
-        xf, zf = b.x, uvp_elevation + b.dz
-        u, w, eta = wave_kinematics(x, z, t, **wave)
+    for i, (b, g) in enumerate(zip(uvp.beams, geos)):  # the instruments' own draws, in turn
+        x, z, zf = xs[i], zs[i], zs[-1][i]
+        cols = slice(starts[i], starts[i + 1])
         if turbulence is not None:
             su, sw, rho = turbulence
             n1, n2 = _band_limited(rng, (time.size, x.size, 2), dt, (0.05, 1.5)).transpose(2, 0, 1)
-            u = u + su * n1
-            w = w + sw * (rho * n1 + np.sqrt(1 - rho**2) * n2)
-        v = u * np.cos(b.angle) + w * np.sin(b.angle)
-        # the echo path: transducer face and every channel up to this one under the surface
-        _, _, eta_face = wave_kinematics(np.array([[xf]]), np.array([[zf]]), t, **wave)
-        swl = depth - hinge_height  # still water level above the hinge [m]
-        wet = np.logical_and.accumulate((z < swl + eta) & (zf < swl + eta_face), axis=1)
-        flap = np.logical_or.accumulate(inside_flap(x, z, theta[:, None], flap_thickness), axis=1)
-        v_flap = theta_dot[:, None] * (z * np.cos(b.angle) - x * np.sin(b.angle))
-        v = np.where(flap, v_flap, v) + noise * rng.standard_normal(v.shape)
-        counts = np.rint(v / dv)
-        dry = ~wet
-        counts[dry] = rng.integers(lo, lo + n_counts, size=int(dry.sum()))  # no echo: noise
-        counts = (counts - lo) % n_counts + lo  # aliasing into the raw range
-        # echo amplitude [counts]: water ~400 +- 40, flap surface ~2000 +- 100, no echo ~8 +- 3
-        level = np.where(dry, 8.0, np.where(flap, 2000.0, 400.0))
-        amp = level + np.where(dry, 3.0, 0.1 * level) * rng.standard_normal(v.shape)
+            u[:, cols] += su * n1
+            w[:, cols] += sw * (rho * n1 + np.sqrt(1 - rho**2) * n2)
+        # the echo path: transducer face and every channel up to this one under the surface,
+        # in front of the flap; the draws in the instrument's order: Doppler noise, the counts
+        # of the channels without echo, the echo amplitude
+        draws = rng.standard_normal((time.size, x.size))
+        v, state = np.empty(draws.shape), np.empty(draws.shape, dtype=np.int8)
+        beam_echo(u, w, eta, starts[i], starts[-2] + i, x, z, zf, depth - hinge_height,
+                  np.cos(b.angle), np.sin(b.angle), tan_theta, half_width, theta_dot, noise,
+                  draws, v, state)
+        no_echo = rng.integers(lo, lo + n_counts, size=int(np.count_nonzero(state == 2)))
+        velocity, amplitude = np.empty(v.shape), np.empty(v.shape, dtype=np.int16)
+        beam_counts(v, state, no_echo, rng.standard_normal(v.shape), dv, lo, n_counts,
+                    velocity, amplitude)
         ds = xr.Dataset(
-            {"beam_velocity": (("time", "channel"), counts * dv,
+            {"beam_velocity": (("time", "channel"), velocity,
                                {"positive": "away_from_transducer",
                                 "sign_convention": "virtual flume: velocity projected on the "
                                 "unit vector from the transducer into the beam"}),
-             "amplitude": (("time", "channel"), np.rint(amp).astype(np.int16))},
+             "amplitude": (("time", "channel"), amplitude)},
             coords={"time": time, "channel": g["channel"].values,
                     "distance": ("channel", g["distance"].values)},
             attrs={**{f"mfprof_{k}": v for k, v in params.items()},
