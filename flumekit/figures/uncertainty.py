@@ -96,7 +96,11 @@ def figure_budget(budget: xr.Dataset, axes=None):
             ax.set_ylim(0, 100)
             ax.set_title(sym, fontsize=9)
             ax.set_ylabel(label(text="Share of variance", units="percent"))
-            ax.set_xticks(x, labels, rotation=90 if len(labels) > 6 else 0)
+            # a tick per condition, a label on every step-th: at 8 pt, about 20 rotated labels
+            # fit the axis side by side
+            step = -(-len(labels) // 20)
+            ax.set_xticks(x, [t if i % step == 0 else "" for i, t in enumerate(labels)],
+                          rotation=90 if len(labels) > 6 else 0)
         for ax in np.ravel(axes)[-2:]:
             ax.set_xlabel(label(text="Condition T / H", units="s / m"))
         for ax in np.ravel(axes)[len(shown):]:
