@@ -40,6 +40,13 @@ REFERENCES: dict[str, str] = {
         "wave data,\nv2.1"),
     "hamrock1991": (
         "Hamrock, B. J. (1991). Fundamentals of fluid film lubrication. NASA RP-1255"),
+    "hasselmann1973": (
+        "Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during "
+        "the\nJoint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12)"),
+    "tucker1984": (
+        "Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a "
+        "random\nsea: a common error and its effect upon wave group statistics. Appl. Ocean "
+        "Res. 6(2),\n118-122"),
     "holthuijsen2007": (
         "Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University "
         "Press"),

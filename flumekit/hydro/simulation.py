@@ -362,9 +362,7 @@ class IrregularWave:
 
     References
     ----------
-    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
-    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
-    118-122.
+    %(tucker1984)s.
     """
 
     angular_frequency: np.ndarray

@@ -48,6 +48,7 @@ import xarray as xr
 from scipy import fft as sfft
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.synth.waves import Beach, ramp_envelope, random_phase_components
 from flumekit.waves.theory import G, group_velocity, wavenumber
 
@@ -215,6 +216,7 @@ def analysis_start(frequency, amplitude, *, depth: float, x_min: float, x_wavema
     return float(np.ceil(latest))
 
 
+@doc
 def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: float,
                   gamma: float, seed: int, depth: float, flap: Callable, beach: Beach,
                   x_wavemaker: float, sea: SeaTruth = SeaTruth(), g: float = G
@@ -272,11 +274,8 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
 
     References
     ----------
-    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
-    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
-    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
-    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
-    118-122.
+    %(hasselmann1973)s.
+    %(tucker1984)s.
 
     Examples
     --------

@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import doc
 from flumekit.waves.spectra import jonswap
 from flumekit.waves.stream_function import StreamFunctionWave, stream_function_wave
 from flumekit.waves.theory import G, group_velocity, stokes2_coefficient, wavenumber
@@ -466,6 +467,7 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     return conventions.annotate(ds)
 
 
+@doc
 def random_phase_components(repeat_period: float, hm0: float, peak_period: float,
                             gamma: float, seed: int, band: tuple[float, float]
                             ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -504,9 +506,7 @@ def random_phase_components(repeat_period: float, hm0: float, peak_period: float
 
     References
     ----------
-    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
-    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
-    118-122.
+    %(tucker1984)s.
 
     Examples
     --------
@@ -528,6 +528,7 @@ def random_phase_components(repeat_period: float, hm0: float, peak_period: float
     return f[keep], np.sqrt(2 * s[keep] * df), psi
 
 
+@doc
 def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: float,
                          gamma: float = 3.3, reflection: float = 0.2,
                          reflection_phase: float = 0.0, x_reflector: float = 0.0,
@@ -583,11 +584,8 @@ def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: floa
 
     References
     ----------
-    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
-    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
-    Tucker, M. J., Challenor, P. G. & Carter, D. J. T. (1984). Numerical simulation of a random
-    sea: a common error and its effect upon wave group statistics. Appl. Ocean Res. 6(2),
-    118-122.
+    %(hasselmann1973)s.
+    %(tucker1984)s.
 
     Examples
     --------

@@ -103,7 +103,6 @@ def _equivalent_dof(window: np.ndarray, step: int, n_segments: int) -> float:
 
 
 @doc
-@doc
 def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float | None = None,
              overlap: float = 0.5, window="hann", confidence: float = 0.90,
              detrend="constant") -> xr.Dataset:
@@ -428,7 +427,6 @@ def _parabolic_peak(s: np.ndarray, f: np.ndarray, ipeak: np.ndarray) -> np.ndarr
 
 
 @doc
-@doc
 def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: float = G, *,
                 band=None) -> xr.DataArray:
     """Energy flux per unit crest width of a wave spectrum in finite depth [W m-1].
@@ -493,6 +491,7 @@ def energy_flux(variance_density: xr.DataArray, depth, rho: float = 1000.0, g: f
     return conventions.annotate(flux)
 
 
+@doc
 def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3,
             band: tuple[float, float] | None = None) -> np.ndarray:
     """JONSWAP variance density S(f) [m2 s] scaled so that ∫S df = Hm0²/16 on the given grid.
@@ -530,8 +529,7 @@ def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3,
 
     References
     ----------
-    Hasselmann, K. et al. (1973). Measurements of wind-wave growth and swell decay during the
-    Joint North Sea Wave Project (JONSWAP). Dtsch. Hydrogr. Z. A8(12).
+    %(hasselmann1973)s.
 
     Examples
     --------

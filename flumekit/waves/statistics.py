@@ -29,7 +29,6 @@ def _top_mean(height: np.ndarray, period: np.ndarray, fraction: int) -> tuple[fl
 
 
 @doc
-@doc
 def wave_statistics(eta, sampling_rate: float | None = None, *,
                     crossing: str = "up") -> xr.Dataset:
     """Zero-crossing waves of a surface-elevation record and their statistics.
