@@ -57,6 +57,8 @@ REFERENCES: dict[str, str] = {
 
 #: parameters documented alike in several modules: key -> the numpydoc entry
 PARAMETERS: dict[str, str] = {
+    "run_dataset": ("ds : xarray.Dataset\n"
+                    "    A run's dataset."),
     "angles": ("angles : array_like\n"
                "    Beam angles above the horizontal [rad], shape (n_beam,)."),
     "bore_area": ("bore_area : float\n"

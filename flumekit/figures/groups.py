@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import doc
+
 
 def runs_of(datasets) -> list[xr.Dataset]:
     """Return the per-run datasets from a list of them or from one stacked along ``run``.
@@ -34,6 +36,7 @@ def runs_of(datasets) -> list[xr.Dataset]:
     return runs
 
 
+@doc
 def height_of(ds: xr.Dataset) -> float:
     """Return the wave height [m] that groups a run.
 
@@ -41,8 +44,7 @@ def height_of(ds: xr.Dataset) -> float:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A run's dataset.
+    %(run_dataset)s
 
     Returns
     -------
@@ -68,13 +70,13 @@ def height_of(ds: xr.Dataset) -> float:
     return round(float(ds["incident_height"]) / 0.005) * 0.005
 
 
+@doc
 def period_of(ds: xr.Dataset) -> float:
     """Return the wave period [s] of a run: ``wave_period``, else ``measured_period``.
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A run's dataset.
+    %(run_dataset)s
 
     Returns
     -------

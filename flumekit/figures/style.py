@@ -14,6 +14,8 @@ import re
 from contextlib import contextmanager
 from pathlib import Path
 
+from flumekit.docstrings import doc
+
 #: page widths [in] of a two-column journal layout
 ONE_COLUMN = 3.5
 TWO_COLUMNS = 7.0
@@ -337,6 +339,7 @@ def label(name: str | None = None, symbol: str | None = None, units: str | None 
     return f"{' '.join(parts)} [{units_text(units)}]"
 
 
+@doc
 def condition(ds) -> str:
     """Describe a run's wave condition, e.g. "T = 3.5 s, H = 0.25 m".
 
@@ -346,8 +349,7 @@ def condition(ds) -> str:
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A run's dataset.
+    %(run_dataset)s
 
     Returns
     -------
