@@ -396,7 +396,9 @@ def despike_flags_rows(u, exclude, floor, max_iterations, peaks):
     sp = np.empty(n, dtype=np.bool_)
     for r in range(m):
         unit = floor[r] if floor[r] > 0.0 else 1.0
-        every = True
+        # a bool computed, not the constant True: numba would compile _spikes_row and its
+        # callees twice, once for the literal True of an empty row and once for a bool
+        every = n >= 0
         f = flags[r]
         for i in range(n):  # the row copied once: a transposed view is strided
             v = u[r, i]
