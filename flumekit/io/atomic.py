@@ -116,13 +116,17 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,
                                    dir=path.parent)
         _ACTIVE.add(tmp)
+    except BaseException:
+        _unmask_signals(masked)
+        raise
+    try:
         try:
             os.fchmod(fd, 0o666 & ~umask())
         finally:
             os.close(fd)
-    finally:
-        _unmask_signals(masked)
-    try:
+            # a signal held back meanwhile is delivered here, inside the block that removes
+            # the temporary (unmasked before it, its KeyboardInterrupt left the file behind)
+            _unmask_signals(masked)
         yield Path(tmp)
         os.replace(tmp, path)
     except BaseException:
