@@ -112,28 +112,30 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     # the temporary is registered before a signal handler can run (one arriving between its
     # creation and its registration would leave it behind): Ctrl-C and SIGTERM wait meanwhile
     masked = _mask_signals()
+    tmp = None
     try:
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}{TMP_MARK}.", suffix=path.suffix,
                                    dir=path.parent)
         _ACTIVE.add(tmp)
-    except BaseException:
-        _unmask_signals(masked)
-        raise
-    try:
         try:
             os.fchmod(fd, 0o666 & ~umask())
         finally:
             os.close(fd)
             # a signal held back meanwhile is delivered here, inside the block that removes
-            # the temporary (unmasked before it, its KeyboardInterrupt left the file behind)
+            # the temporary (with other threads running, the mask may not hold it at all)
             _unmask_signals(masked)
+            masked = None
         yield Path(tmp)
         os.replace(tmp, path)
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        if masked is not None:
+            _unmask_signals(masked)
+        if tmp is not None:
+            Path(tmp).unlink(missing_ok=True)
         raise
     finally:
-        _ACTIVE.discard(tmp)
+        if tmp is not None:
+            _ACTIVE.discard(tmp)
 
 
 def _mask_signals():
