@@ -12,6 +12,7 @@ everything that does not depend on a failed target.
 
 from __future__ import annotations
 
+import errno
 import fnmatch
 import os
 import re
@@ -673,8 +674,10 @@ def _full_disk(rule: Rule) -> str | None:
             continue
         free = st.f_bavail * st.f_frsize
         if free < FULL_DISK:
-            return (f"no space left on the disk of {folder} ({free // 1024} kB free): free "
-                    "some space or point `processed` of the pipeline file at another disk")
+            # the system's own words too, as an OSError of a full disk would say
+            return (f"no space left on the disk of {folder} ({os.strerror(errno.ENOSPC)}, "
+                    f"{free // 1024} kB free): free some space or point `processed` of the "
+                    "pipeline file at another disk")
     return None
 
 
