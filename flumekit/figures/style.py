@@ -615,7 +615,11 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
         if check is not None:
             check(fig)
         rgba = np.asarray(canvas.buffer_rgba())
-        pixels = rgba[..., :3] if (rgba[..., 3] == 255).all() else rgba
+        pixels = rgba
+        if (rgba[..., 3] == 255).all():
+            # a drawing in greys alone (a QC figure without flags) as one grey channel
+            grey = (rgba[..., 0] == rgba[..., 1]).all() and (rgba[..., 1] == rgba[..., 2]).all()
+            pixels = rgba[..., :1] if grey else rgba[..., :3]
         texts = {k: v for k, v in (metadata or FORMATS["png"]).items() if v is not None}
         return png_bytes(pixels, fig.get_dpi(), texts)
     finally:
@@ -623,7 +627,7 @@ def _drawn_png(fig, check=None, metadata=None) -> bytes:
 
 
 def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
-    """Encode an RGB or RGBA image as PNG, each row filtered as its difference to the row above.
+    """Encode a grey, RGB or RGBA image as PNG, each row filtered from the row above.
 
     One filter for every row (PNG's "Up"), computed at once, instead of the encoder trying
     five filters on each row: half the time of Pillow's encoder for files about the same
@@ -634,7 +638,8 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
     Parameters
     ----------
     pixels : numpy.ndarray
-        uint8 image, shape (height, width, 3) or (height, width, 4).
+        uint8 image, shape (height, width, bands): 1 (grey), 3 (RGB) or 4 (RGBA); a view of
+        some bands of a larger image is read in place.
     dpi : float
         Resolution [pixels per inch].
     texts : dict of str to str, optional
@@ -665,14 +670,16 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
 
     import numpy as np
 
-    pixels = np.ascontiguousarray(pixels, dtype=np.uint8)
+    pixels = np.asarray(pixels, dtype=np.uint8)
     height, width, bands = pixels.shape
-    rows = pixels.reshape(height, width * bands)
-    filtered = np.empty((height, rows.shape[1] + 1), np.uint8)
+    filtered = np.empty((height, width * bands + 1), np.uint8)
     filtered[:, 0] = 2  # Up: each byte minus the byte above it (modulo 256)
     filtered[0, 0] = 0  # the first row has none above it: unfiltered
-    filtered[0, 1:] = rows[0]
-    np.subtract(rows[1:], rows[:-1], out=filtered[1:, 1:])
+    # the filtered rows written through a (height, width, bands) view: no copy of the image
+    out = np.ndarray((height, width, bands), np.uint8, buffer=filtered, offset=1,
+                     strides=(filtered.strides[0], bands, 1))
+    out[0] = pixels[0]
+    np.subtract(pixels[1:], pixels[:-1], out=out[1:])
 
     def chunk(kind: bytes, data: bytes) -> bytes:
         return (struct.pack(">I", len(data)) + kind + data
@@ -680,7 +687,7 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
 
     per_metre = int(dpi / 0.0254 + 0.5)
     out = [b"\x89PNG\r\n\x1a\n",
-           chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, {3: 2, 4: 6}[bands],
+           chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, {1: 0, 3: 2, 4: 6}[bands],
                                       0, 0, 0)),
            chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1))]
     for key, text in (texts or {}).items():
@@ -689,7 +696,7 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
         except UnicodeEncodeError:
             out.append(chunk(b"iTXt", key.encode("latin-1") + b"\0\0\0\0\0"
                              + text.encode("utf-8")))
-    out += [chunk(b"IDAT", zlib.compress(filtered.tobytes(), PNG_COMPRESS_LEVEL)),
+    out += [chunk(b"IDAT", zlib.compress(filtered, PNG_COMPRESS_LEVEL)),
             chunk(b"IEND", b"")]
     return b"".join(out)
 
@@ -753,6 +760,7 @@ def _layout_once(fig):
         with style(), _mathtext_cached():
             engine.execute(fig)
             placed = _titles_placed(fig)
+            fixed = _ticks_fixed(fig)
     finally:
         fig.set_dpi(dpi)
     # no engine at all, not matplotlib's placeholder for "none": with any engine, savefig
@@ -768,6 +776,77 @@ def _layout_once(fig):
         fig.set_layout_engine(engine)
         for ax in placed:
             ax._autotitlepos = True
+        for ticker, locator, formatter in fixed:
+            ticker.locator, ticker.formatter = locator, formatter
+
+
+def _ticks_fixed(fig) -> list:
+    """Fix the ticks and tick labels of the laid-out ``fig`` at those matplotlib would find again.
+
+    Every draw (the layout's two passes, the titles' places, the check, each format) asks each
+    axis's locator for its ticks and its formatter for their labels, which for the default
+    ones (:class:`~matplotlib.ticker.MaxNLocator`, :class:`~matplotlib.ticker.ScalarFormatter`)
+    depend only on the view limits and the axes' size, both final once laid out. They are
+    replaced by the ticks and labels they give there; other locators and formatters (dates,
+    logarithms, colour bars, a figure's own), and axes whose box each draw sets again (a
+    fixed aspect ratio, an inset's locator), are left to compute theirs.
+
+    Returns
+    -------
+    list of tuple
+        (ticker, locator, formatter) replaced, to be put back.
+    """
+    from matplotlib import ticker as mt
+
+    def moved(ax) -> bool:  # the box or limits are set again at each draw
+        return (getattr(ax, "_colorbar", None) is not None or ax.get_aspect() != "auto"
+                or ax.get_axes_locator() is not None)
+
+    fixed = []
+    # a ticker shared with axes drawn otherwise is left as it is
+    seen = {id(t) for ax in fig.axes if moved(ax) for axis in (ax.xaxis, ax.yaxis)
+            for t in (axis.major, axis.minor)}
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if axis.get_scale() != "linear":
+                continue
+            for ticker in (axis.major, axis.minor):  # shared axes share their tickers
+                locator, formatter = ticker.locator, ticker.formatter
+                if id(ticker) in seen or type(locator) not in (mt.AutoLocator, mt.MaxNLocator) \
+                        or type(formatter) is not mt.ScalarFormatter:
+                    continue
+                seen.add(id(ticker))
+                locs = locator()
+                frozen = _fixed_labels()(formatter.format_ticks(locs), formatter.get_offset())
+                ticker.locator, ticker.formatter = mt.FixedLocator(locs), frozen
+                ticker.locator.set_axis(axis)
+                frozen.set_axis(axis)
+                fixed.append((ticker, locator, formatter))
+    return fixed
+
+
+@functools.cache
+def _fixed_labels():
+    """Return the formatter class of :func:`_ticks_fixed`: the labels and offset text found.
+
+    Made on first use, as matplotlib is imported only when a figure is drawn.
+    """
+    from matplotlib import ticker as mt
+
+    class FixedLabels(mt.Formatter):
+        def __init__(self, labels, offset):
+            self.labels, self.offset = list(labels), offset
+
+        def format_ticks(self, values):
+            return list(self.labels)
+
+        def __call__(self, x, pos=None):
+            return self.labels[pos] if pos is not None and 0 <= pos < len(self.labels) else ""
+
+        def get_offset(self):
+            return self.offset
+
+    return FixedLabels
 
 
 def _titles_placed(fig) -> list:

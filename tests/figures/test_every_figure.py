@@ -416,23 +416,25 @@ def test_a_figure_is_looked_up_without_the_figure_modules_after_its_own():
 
 def test_png_bytes_decode_to_the_pixels_texts_and_resolution(tmp_path):
     """The PNG encoder: every row filtered from the one above, decoded (Pillow) to the same
-    pixels, RGB and RGBA; Latin-1 and other texts and the resolution read back, by the
-    report's reader too."""
+    pixels, grey, RGB and RGBA (views of a canvas' bands); Latin-1 and other texts and the
+    resolution read back, by the report's reader too."""
     from PIL import Image
 
     from flumekit.figures.style import png_bytes
     from flumekit.report import _png_text
 
     rng = np.random.default_rng(7)
-    for bands in (3, 4):
-        pixels = rng.integers(0, 256, (37, 23, bands), dtype=np.uint8)
-        pixels[10:20] = pixels[9]  # rows that repeat the row above, as blank space does
+    for bands in (1, 3, 4):
+        image4 = rng.integers(0, 256, (37, 23, 4), dtype=np.uint8)
+        image4[10:20] = image4[9]  # rows that repeat the row above, as blank space does
+        pixels = image4[..., :bands]  # a view of the canvas' bands, as the figures pass
         texts = {"Title": "Wave separation: run T3.50 (T = 3.5 s)", "Description": "θ ≈ 0.1 π"}
         path = tmp_path / f"image{bands}.png"
         path.write_bytes(png_bytes(pixels, 300, texts))
         with Image.open(path) as image:
-            assert image.mode == {3: "RGB", 4: "RGBA"}[bands]
-            np.testing.assert_array_equal(np.asarray(image), pixels)
+            assert image.mode == {1: "L", 3: "RGB", 4: "RGBA"}[bands]
+            np.testing.assert_array_equal(np.asarray(image), pixels[..., 0] if bands == 1
+                                          else pixels)
             assert image.text == texts
             assert image.info["dpi"] == pytest.approx((300, 300), abs=1e-3)
         assert _png_text(path) == texts
