@@ -142,12 +142,13 @@ def _figure_qc_data(data, params) -> tuple[tuple, dict]:
 
 @register("qc", prepare=_figure_qc_data)
 def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
-    """Draw the raw (grey) and QC'd (black) records of every probe and flap channel of a run.
+    """Draw the QC'd records (black) of every probe and flap channel of a run, and as read (grey).
 
-    The suspect, failed and missing samples are marked at their raw values with the tests that
-    flagged them (counts and what each flags in the channel's title); with ``uvp``, two panels
-    more: the share of each beam's channels that failed per profile, over time, and the share
-    of each channel's evaluated samples that failed.
+    The records as read are drawn where quality control changed them. The suspect, failed and
+    missing samples are marked at their raw values with the tests that flagged them (counts
+    and what each flags in the channel's title); with ``uvp``, two panels more: the share of
+    each beam's channels that failed per profile, over time, and the share of each channel's
+    evaluated samples that failed.
 
     Parameters
     ----------
@@ -183,7 +184,15 @@ def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     for ax, (label, t, raw, clean, flags, units, by) in zip(axes[:, 0], chans, strict=False):
         shown = clean if raw is None else raw
         if raw is not None:
-            ax.plot(*thin(t, raw, fig.get_figwidth()), color="0.7", lw=0.6, label="as read")
+            # the record as read only where quality control changed it (and the samples
+            # either side, to join it to the line): elsewhere it lies under the QC'd line
+            changed = ~((raw == clean) | (np.isnan(raw) & np.isnan(clean)))
+            if changed.any():
+                near = changed.copy()
+                near[1:] |= changed[:-1]
+                near[:-1] |= changed[1:]
+                ax.plot(*thin(t, np.where(near, raw, np.nan), fig.get_figwidth()),
+                        color="0.7", lw=0.6, label="as read")
         ax.plot(*thin(t, clean, fig.get_figwidth()), color="k", lw=0.5, label="after QC")
         counts = []
         for value, (meaning, colour, marker) in FLAG_STYLE.items():

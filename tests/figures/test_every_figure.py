@@ -361,7 +361,7 @@ def test_captions_read_as_what_the_figure_shows():
         assert caption and not caption.startswith("Draw "), (name, caption)
         assert "Parameters" not in caption and "----" not in caption, (name, caption)
     qc = figure("qc").description
-    assert qc.startswith("The raw (grey) and QC'd (black) records")
+    assert qc.startswith("The QC'd records (black) of every probe and flap channel")
     assert "suspect, failed and missing samples" in qc  # the paragraph after the summary
 
 

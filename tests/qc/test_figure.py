@@ -24,9 +24,12 @@ def test_qc_figure_marks_the_failed_samples():
     titles = [ax.get_title(loc="left") for ax in fig.axes]
     assert titles[0].startswith("WP1") and "1 fail" in titles[0]
     assert "0 fail" in titles[1]
-    # the raw record (grey) is drawn with the spike, the QC'd one (black) without it
+    # the raw record (grey) is drawn with the spike, the QC'd one (black) without it; the
+    # grey line only where QC changed the record, joined to the samples either side
     grey, black = fig.axes[0].lines[:2]
     assert grey.get_ydata()[700] - black.get_ydata()[700] > 0.5
+    assert np.flatnonzero(np.isfinite(grey.get_ydata())).tolist() == [699, 700, 701]
+    assert [line.get_label() for line in fig.axes[1].lines] == ["after QC"]  # WP2: unchanged
 
 
 def test_qc_figure_of_a_uvp_run_shows_the_beam_flags():
