@@ -784,12 +784,10 @@ def _ticks_fixed(fig) -> list:
     """Fix the ticks and tick labels of the laid-out ``fig`` at those matplotlib would find again.
 
     Every draw (the layout's two passes, the titles' places, the check, each format) asks each
-    axis's locator for its ticks and its formatter for their labels, which for the default
-    ones (:class:`~matplotlib.ticker.MaxNLocator`, :class:`~matplotlib.ticker.ScalarFormatter`)
+    axis's locator for its ticks and its formatter for their labels (and offset text), which
     depend only on the view limits and the axes' size, both final once laid out. They are
-    replaced by the ticks and labels they give there; other locators and formatters (dates,
-    logarithms, colour bars, a figure's own), and axes whose box each draw sets again (a
-    fixed aspect ratio, an inset's locator), are left to compute theirs.
+    replaced by the ticks and labels they give there. Colour bars, and axes whose box each draw
+    sets again (a fixed aspect ratio, an inset's locator), are left to compute theirs.
 
     Returns
     -------
@@ -808,12 +806,9 @@ def _ticks_fixed(fig) -> list:
             for t in (axis.major, axis.minor)}
     for ax in fig.axes:
         for axis in (ax.xaxis, ax.yaxis):
-            if axis.get_scale() != "linear":
-                continue
             for ticker in (axis.major, axis.minor):  # shared axes share their tickers
                 locator, formatter = ticker.locator, ticker.formatter
-                if id(ticker) in seen or type(locator) not in (mt.AutoLocator, mt.MaxNLocator) \
-                        or type(formatter) is not mt.ScalarFormatter:
+                if id(ticker) in seen or isinstance(locator, mt.NullLocator):
                     continue
                 seen.add(id(ticker))
                 locs = locator()
