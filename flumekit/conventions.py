@@ -615,16 +615,61 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
     # the variables themselves (a DataArray per name would cost more than the annotation)
     variables = obj.variables if isinstance(obj, xr.Dataset) else obj.coords.variables
     for name, target in variables.items():
-        var = VARIABLES.get(str(name))
-        if var is None:
+        if str(name) not in VARIABLES:
             continue
-        new = {**var.attrs(), **{k: v for k, v in target.attrs.items() if k != "units"}}
-        new["units"] = var.units
+        new = _registry_attrs(name, target.attrs)
         target.attrs.clear()
         target.attrs.update(new)
     if isinstance(obj, xr.DataArray) and obj.name in VARIABLES:
         obj.attrs = {**VARIABLES[obj.name].attrs(), **obj.attrs}
     return obj
+
+
+def _registry_attrs(name, attrs: dict) -> dict:
+    """Return ``attrs`` completed by the registry's, with the registry's units (see annotate)."""
+    var = VARIABLES.get(str(name))
+    if var is None:
+        return dict(attrs)
+    return {**var.attrs(), **{k: v for k, v in attrs.items() if k != "units"},
+            "units": var.units}
+
+
+def annotated_dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr.Dataset:
+    """Build a dataset whose registered variables carry the registry's attributes.
+
+    The dataset :func:`annotate` would return for ``xarray.Dataset(data, coords, attrs)``,
+    built once: each variable is made with its attributes, and each dimension coordinate's
+    index from its values, instead of a dataset being built, then copied and annotated.
+
+    Parameters
+    ----------
+    data : dict
+        Data variable name -> ``(dims, values)`` or ``(dims, values, attrs)``.
+    coords : dict
+        Dimension coordinate name -> its values (1-D), or ``(dims, values[, attrs])`` for
+        another coordinate.
+    attrs : dict, optional
+        The dataset's attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset, annotated.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ds = annotated_dataset({"eta_incident": ("time", np.zeros(2))}, {"time": [0.0, 0.1]})
+    >>> ds.time.attrs["units"], ds.eta_incident.attrs["units"], list(ds.indexes)
+    ('s', 'm', ['time'])
+    """
+    def variable(name, v):
+        dims, values, *more = v if isinstance(v, tuple) else ((name,), v)
+        return xr.Variable(dims, values, _registry_attrs(name, more[0] if more else {}))
+
+    return xr.Dataset({k: variable(k, v) for k, v in data.items()},
+                      coords=xr.Coordinates({k: variable(k, v) for k, v in coords.items()}),
+                      attrs=attrs)
 
 
 def check(ds: xr.Dataset) -> None:

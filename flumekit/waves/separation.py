@@ -563,9 +563,7 @@ def separation_dataset(parts: tuple[dict, dict, dict]) -> xr.Dataset:
     xarray.Dataset
         The dataset, annotated (:func:`flumekit.conventions.annotate`).
     """
-    data, coords, attrs = parts
-    ds = xr.Dataset(data, coords=coords, attrs=attrs)
-    return conventions.annotate(ds)
+    return conventions.annotated_dataset(*parts)
 
 
 def check_separation_inputs(eta: xr.DataArray, depth: float, method: str,
