@@ -302,8 +302,9 @@ def _results(graph, report) -> None:
         from flumekit.stages.waves import report as waves_report
 
         print("results:")
-        for t in built:
-            print(f"  {t}: {waves_report(graph.rules[t].outputs['dataset'])}")
+        lines = waves_report([graph.rules[t].outputs["dataset"] for t in built])
+        for t, line in zip(built, lines, strict=True):
+            print(f"  {t}: {line}")
 
 
 def cmd_list(args) -> int:

@@ -129,24 +129,34 @@ def build(inputs, outputs, params) -> Written:
                      f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
 
 
-def report(path) -> str:
-    """Return one line of the statistics of a run's waves product ``path``, for the make summary.
+def report(paths) -> list[str]:
+    """Return one line of the statistics of each run's waves product, for the make summary.
 
     Kr, incident height [m] and period [s] of a regular run; Kr, Hm0 [m], Tp and Te [s] of an
-    irregular one.
+    irregular one. The files are read together, their scalars only
+    (:func:`flumekit.io.run_files.open_runs`).
     """
-    from flumekit.io.netcdf import read_dataset
+    from flumekit.io.run_files import open_runs
 
-    ds = read_dataset(path)
-    if "hm0" in ds:
-        return (f"bulk Kr = {float(ds.reflection_coefficient):.3f}, Hm0 = {float(ds.hm0):.4g} m, "
-                f"Tp = {float(ds.tp):.4g} s, Te = {float(ds.te):.4g} s over "
-                f"{float(ds.analysis_end - ds.analysis_start):.0f} s (irregular)")
-    crit = ds["steady_tolerance"].attrs.get("criterion", "tolerance") \
-        if "steady_tolerance" in ds else "tolerance"
-    return (f"first-harmonic Kr = {float(ds.reflection_coefficient):.3f}, "
-            f"H_I = {float(ds.incident_height):.4g} m, T = {float(ds.measured_period):.4g} s, "
-            f"{int(ds.steady_cycles)} steady cycles ({crit} criterion)")
+    lines = []
+    with open_runs(paths) as runs:
+        for i, (variables, _, _) in enumerate(runs.metas):
+            def value(name, i=i):
+                return runs.values(i, name).item()
+
+            if "hm0" in variables:
+                lines.append(
+                    f"bulk Kr = {value('reflection_coefficient'):.3f}, Hm0 = "
+                    f"{value('hm0'):.4g} m, Tp = {value('tp'):.4g} s, Te = {value('te'):.4g} s "
+                    f"over {value('analysis_end') - value('analysis_start'):.0f} s (irregular)")
+                continue
+            crit = variables["steady_tolerance"][2].get("criterion", "tolerance") \
+                if "steady_tolerance" in variables else "tolerance"
+            lines.append(
+                f"first-harmonic Kr = {value('reflection_coefficient'):.3f}, H_I = "
+                f"{value('incident_height'):.4g} m, T = {value('measured_period'):.4g} s, "
+                f"{int(value('steady_cycles'))} steady cycles ({crit} criterion)")
+    return lines
 
 
 def summary(inputs, outputs, params) -> Written:
