@@ -268,21 +268,16 @@ def _warnings(graph, report) -> list[str]:
 
     They are the datasets' ``flumekit_warnings`` attribute.
     """
+    from flumekit.io.run_files import text_attributes
     from flumekit.stages.runs import WARNINGS, run_warnings
 
+    built = [(graph.rules[t].run, p) for t, *_ in report.ran
+             for p in graph.rules[t].outputs.values() if str(p).endswith(".nc")
+             and Path(p).is_file()]
     found: list[str] = []
-    for t, *_ in report.ran:
-        rule = graph.rules[t]
-        for p in rule.outputs.values():
-            if str(p).endswith(".nc"):
-                import netCDF4
-
-                try:
-                    with netCDF4.Dataset(p) as nc:
-                        text = str(getattr(nc, WARNINGS, ""))
-                except OSError:
-                    continue
-                found += run_warnings(rule.run, text)
+    for (run, _), text in zip(built, text_attributes([p for _, p in built], WARNINGS),
+                              strict=True):
+        found += run_warnings(run, text or "")
     return list(dict.fromkeys(found))
 
 

@@ -197,12 +197,11 @@ def _notes(root: Path) -> str:
 
     A fitted parameter held at its bound: the flap's pressure model of Eq. 13.
     """
-    import netCDF4
+    from flumekit.io.run_files import text_attributes
 
     where: dict[str, list[str]] = {}
-    for p in sorted((root / "flap").glob("*.nc")):
-        with netCDF4.Dataset(p) as nc:
-            note = getattr(nc, "pressure_fit_bounded", None)
+    files = sorted((root / "flap").glob("*.nc"))
+    for p, note in zip(files, text_attributes(files, "pressure_fit_bounded"), strict=True):
         if note:
             where.setdefault(f"flap pressure fit (I_p, K_p of Eq. 13): {note}", []).append(p.stem)
     if not where:

@@ -317,3 +317,61 @@ class Hdf5Runs(_Runs):
                 raise OSError(f"{raw.name}: variable '{name}' ends before its declared size")
             done += got
         _decoded(view, self.metas[i][0][name][3])
+
+
+def text_attributes(files, name: str) -> list[str | None]:
+    """Return the text global attribute ``name`` of each netCDF file, None where it has none.
+
+    Read with h5py from the files' HDF5 root group alone (a netCDF-4 file), not by opening each
+    file with the netCDF library, which reads every variable's description first: the make
+    summary reads one attribute of each product built, a thousand files for a paper campaign.
+    A file h5py cannot open (netCDF-3) is read with the netCDF library.
+
+    Parameters
+    ----------
+    files : sequence of str or pathlib.Path
+        netCDF files.
+    name : str
+        The attribute's name.
+
+    Returns
+    -------
+    list of str or None
+        Its text in each file (as the netCDF library returns it: ASCII as characters, other
+        text as UTF-8 strings), in the order of ``files``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> import xarray as xr
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     paths = [Path(folder) / "a.nc", Path(folder) / "b.nc"]
+    ...     xr.Dataset(attrs={"note": "θ held at its bound"}).to_netcdf(paths[0])
+    ...     xr.Dataset().to_netcdf(paths[1])
+    ...     text_attributes(paths, "note")
+    ['θ held at its bound', None]
+    """
+    import h5py
+
+    out: list[str | None] = []
+    for f in files:
+        try:
+            with h5py.File(f, "r") as h5:
+                value = h5.attrs.get(name)
+        except OSError:  # not HDF5: a netCDF-3 file
+            import netCDF4
+
+            with netCDF4.Dataset(f) as nc:
+                value = getattr(nc, name, None)
+        out.append(_text(value))
+    return out
+
+
+def _text(value) -> str | None:
+    """Return an attribute's value as the netCDF library's text: one string, decoded."""
+    if isinstance(value, np.ndarray):  # a netCDF string attribute is an array of strings
+        items = [_text(v) for v in value.ravel().tolist()]
+        return items[0] if len(items) == 1 else str(items)
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    return None if value is None else str(value)

@@ -207,3 +207,23 @@ def test_the_runs_scalars_stack_as_a_campaign_summary_concatenates_them(tmp_path
     xr.testing.assert_identical(got, want)
     assert set(got.dims) == {"run"} and got["repeat"].dims == ("run",)
     assert [a["flumekit_warnings"] for a in attrs] == [f"warning of run {i}" for i in range(3)]
+
+
+def test_text_attributes_read_as_the_netcdf_library_does(tmp_path):
+    """ASCII (stored as characters), UTF-8 (a string array of one), absent; netCDF-3 too."""
+    import netCDF4
+
+    from flumekit.io.run_files import text_attributes
+
+    texts = ["run T2: 12 cycles, Kr = 0.2", "θ ± 0.1 rad\nsecond line", None]
+    paths = []
+    for i, text in enumerate(texts):
+        for fmt in ("NETCDF4", "NETCDF3_64BIT"):
+            path = tmp_path / f"{i}_{fmt}.nc"
+            xr.Dataset(attrs={} if text is None else {"note": text}).to_netcdf(path, format=fmt)
+            paths.append(path)
+    expected = []
+    for p in paths:
+        with netCDF4.Dataset(p) as nc:
+            expected.append(getattr(nc, "note", None))
+    assert text_attributes(paths, "note") == expected == [t for t in texts for _ in range(2)]
