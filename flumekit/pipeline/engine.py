@@ -472,6 +472,13 @@ def invalidate(graph: Graph, state: State, target: str) -> list[str]:
     return list(remove_outputs(graph, state, [target, *graph.downstream(target)]))
 
 
+#: time between two writes of the state while a build runs [s]: a build killed outright
+#: (kill -9, a power cut) builds again at most the targets of that last second, and a build of
+#: a thousand targets does not write its whole state a thousand times (an interrupt, a failure
+#: and the end of the build write it at once)
+SAVE_EVERY = 1.0
+
+
 @_doc
 def make(graph: Graph, targets: list[str], state: State, executor: Executor, force: bool = False,
          log: Callable[[str], None] | None = None, *, force_targets: Iterable[str] = (),
@@ -492,7 +499,8 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
     %(graph)s
     %(targets)s
     state : State
-        The build state, saved after every finished rule.
+        The build state, saved at most every :data:`SAVE_EVERY` seconds while rules finish,
+        after a failure, and at the end (an interrupt included).
     executor : Executor
         Where rules run (:func:`flumekit.pipeline.executor_for`).
     %(force)s
@@ -532,7 +540,7 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
     report = Report([], [])
     n_total = len(order)
     first_error: BaseException | None = None
-    t_start = time.perf_counter()
+    t_start = saved = time.perf_counter()
     events.start(n_total)
 
     def fail(t: str, e: BaseException) -> None:
@@ -611,7 +619,9 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
                 sig["built"] = time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime())
                 sig["seconds"] = round(seconds, 3)
                 state.targets[t] = sig
-                state.save()
+                if time.perf_counter() - saved >= SAVE_EVERY:
+                    state.save()
+                    saved = time.perf_counter()
                 if sig["outputs"] != old_out or force:
                     changed.add(t)
                 done.add(t)
