@@ -99,6 +99,7 @@ from scipy import fft as sfft
 
 from flumekit import conventions
 from flumekit.campaign import Campaign
+from flumekit.docstrings import doc
 from flumekit.flap.encoder import counts_from_wire, wire_length
 from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
@@ -214,6 +215,7 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     return FlumeHydrodynamics(hydro, radiation)
 
 
+@doc
 def radiation_damping(omega, depth: float, hinge_height: float, width: float,
                       rho: float = 1000.0, g: float = G) -> np.ndarray:
     """Compute the radiation damping ν(ω) = X² / (2 ρ g c_g w) from the 2-D Haskind relation.
@@ -228,10 +230,8 @@ def radiation_damping(omega, depth: float, hinge_height: float, width: float,
         Hinge height c above the bed [m].
     width : float
         Flap width w [m].
-    rho : float, default 1000
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(rho)s
+    %(g)s
 
     Returns
     -------
