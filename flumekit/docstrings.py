@@ -17,7 +17,7 @@ import re
 from collections.abc import Callable, Mapping
 from typing import TypeVar
 
-__all__ = ["PARAMETERS", "REFERENCES", "doc", "fill", "filler"]
+__all__ = ["PARAMETERS", "REFERENCES", "SECTIONS", "doc", "fill", "filler"]
 
 T = TypeVar("T")
 
@@ -139,11 +139,25 @@ PARAMETERS: dict[str, str] = {
                     "    Wave period T [s]."),
 }
 
+#: whole numpydoc sections documented alike in several modules: key -> the section
+SECTIONS: dict[str, str] = {
+    "raises_bore_area": ("Raises\n"
+                         "------\n"
+                         "ValueError\n"
+                         "    A non-positive bore area."),
+    # the spectrum of the random sea and the random-phase method that realises it
+    "references_random_sea": ("References\n"
+                              "----------\n"
+                              "%(hasselmann1973)s.\n"
+                              "%(tucker1984)s."),
+}
+
 _PLACEHOLDER = re.compile(r"%\((\w+)\)s")
-#: what every docstring can name: the shared parameters, each citation as ``key`` and as a
-#: References section opening with it, ``references_key``
-_CITATIONS = {**PARAMETERS, **REFERENCES, **{f"references_{key}": f"References\n----------\n{text}"
-                               for key, text in REFERENCES.items()}}
+#: what every docstring can name: the shared parameters and sections, each citation as ``key``
+#: and as a References section opening with it, ``references_key``
+_CITATIONS = {**PARAMETERS, **SECTIONS, **REFERENCES,
+              **{f"references_{key}": f"References\n----------\n{text}"
+                 for key, text in REFERENCES.items()}}
 
 
 def fill(doc: str | None, snippets: Mapping[str, str] | None = None) -> str | None:
@@ -206,9 +220,10 @@ def filler(snippets: Mapping[str, str] | None = None, **more: str
     snippets : mapping of str to str, optional
         Key -> text, usually one dictionary per module.
     **more : str
-        Further snippets by keyword. :data:`REFERENCES` is always available: ``%(key)s``
-        is the citation and ``%(references_key)s`` a whole References section opening with
-        it (text after the placeholder continues its last line, e.g. the equation cited).
+        Further snippets by keyword. The shared :data:`PARAMETERS` and :data:`SECTIONS` are
+        always available, and so is every work of :data:`REFERENCES`: ``%(key)s`` is the
+        citation and ``%(references_key)s`` a whole References section opening with it (text
+        after the placeholder continues its last line, e.g. the equation cited).
 
     Returns
     -------

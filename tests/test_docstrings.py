@@ -9,7 +9,7 @@ import pkgutil
 import pytest
 
 import flumekit
-from flumekit.docstrings import fill, filler
+from flumekit.docstrings import PARAMETERS, REFERENCES, SECTIONS, fill, filler
 
 
 def _public_objects():
@@ -50,3 +50,9 @@ def test_the_references_are_always_available():
 
     # the continuation line aligns with the placeholder's column
     assert f.__doc__.startswith("Cite U.S. IOOS (2019)") and "\n     v2.1 (gross" in f.__doc__
+
+
+def test_no_shared_snippet_shadows_another():
+    # one table fills every docstring: a key in two of its sources would silently pick one text
+    keys = [*PARAMETERS, *SECTIONS, *REFERENCES, *(f"references_{key}" for key in REFERENCES)]
+    assert len(keys) == len(set(keys))

@@ -510,6 +510,7 @@ def composite_roughness(*rms_roughness: float) -> float:
     return float(np.sqrt(np.sum(arr**2)))
 
 
+@_doc
 def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
     """Return the film parameter λ = h_min / σ (Eq. (7) in Senatore & De Simone 2022).
 
@@ -530,11 +531,7 @@ def film_parameter(min_film_thickness, roughness: float) -> np.ndarray:
     ValueError
         For a non-positive roughness.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358, Eq. (7).
+    %(references_senatore2022)s, Eq. (7).
 
     Examples
     --------
@@ -641,11 +638,7 @@ def stribeck_friction(lam, boundary: float = 0.1, full_film: float = 0.01,
     ValueError
         Unless 0 ≤ ``full_film`` ≤ ``boundary``.
 
-    References
-    ----------
-    Senatore, A. and De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-    9358, Fig. 8.
+    %(references_senatore2022)s, Fig. 8.
 
     Examples
     --------

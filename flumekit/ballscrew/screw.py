@@ -51,9 +51,9 @@ from flumekit.errors import GeometryError
 #: docstring text that several functions of this module share
 _doc = filler(
     friction_nut=("friction_nut : float or array_like\n"
-                  "    Ball-nut friction coefficient f [-]."),
+                  "    Ball-nut friction coefficient f [-], finite and ≥ 0."),
     friction_screw=("friction_screw : float or array_like\n"
-                    "    Ball-screw friction coefficient f_B [-]."),
+                    "    Ball-screw friction coefficient f_B [-], finite and ≥ 0."),
     lead_angle_=("lead_angle_ : float\n"
                  "    Lead angle α [rad]."),
     lubricant=("lubricant : Lubricant\n"
@@ -61,11 +61,18 @@ _doc = filler(
     pto=("pto : PTOCoefficients\n"
          "    The coefficients of Eq. (3)."),
     friction_angle=("rho : float or array_like\n"
-                    "    Rolling-friction angle ρ [rad]."),
+                    "    Rolling-friction angle ρ [rad], finite and ≥ 0."),
     screw=("screw : BallScrew\n"
            "    The ball screw."),
     slip_angle=("slip_angle : float\n"
-                "    Slip angle γ_B [rad]."))
+                "    Slip angle γ_B [rad]."),
+    # the ball contact of Eqs. (4)-(6), in the order of the functions' arguments
+    ball_contact=("%(lead_angle_)s\n"
+                  "%(contact_angle)s\n"
+                  "%(friction_nut)s\n"
+                  "%(friction_screw)s\n"
+                  "%(friction_angle)s\n"
+                  "%(slip_angle)s"))
 
 
 @_doc
@@ -359,15 +366,7 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     ----------
     normal_load : float or array_like
         Closing force Q = Q_A = Q_B [N].
-    %(lead_angle_)s
-    %(contact_angle)s
-    friction_nut : float or array_like
-        Ball-nut friction coefficient f [-], finite and ≥ 0.
-    friction_screw : float or array_like
-        Ball-screw friction coefficient f_B [-], finite and ≥ 0.
-    rho : float or array_like
-        Rolling-friction angle ρ [rad], finite and ≥ 0.
-    %(slip_angle)s
+    %(ball_contact)s
     pitch_radius : float
         Pitch radius r_m [m].
     mode : {"indirect", "direct"}
@@ -428,13 +427,7 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
 
     Parameters
     ----------
-    lead_angle_ : float
-        Lead angle α [rad], in (0, 90°).
-    %(contact_angle)s
-    %(friction_nut)s
-    %(friction_screw)s
-    %(friction_angle)s
-    %(slip_angle)s
+    %(ball_contact)s
     strict : bool
         Raise instead of returning 0 where the screw self-locks.
 
@@ -478,12 +471,7 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
 
     Parameters
     ----------
-    %(lead_angle_)s
-    %(contact_angle)s
-    %(friction_nut)s
-    %(friction_screw)s
-    %(friction_angle)s
-    %(slip_angle)s
+    %(ball_contact)s
 
     Returns
     -------

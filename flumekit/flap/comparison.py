@@ -65,10 +65,15 @@ _doc = filler(
                            "    Simulator time step [s]."),
     flap_params=("flap_params : flumekit.campaign.Flap\n"
                  "    The flap (inertia, width)."),
+    flap_params_compared=("flap_params : flumekit.campaign.Flap\n"
+                          "    The flap (inertia, buoyancy stiffness, width)."),
     friction=("friction : bool, optional\n"
               "    Include the LuGre friction."),
     with_friction=("friction : bool, optional\n"
                    "    Include the LuGre friction in the simulator."),
+    linear_pto_damping=("linear_pto_damping : {\"energy_equivalent\", \"optimal\"}, optional\n"
+                        "    How the linear model's ν_pto is set (:data:`LINEAR_PTO_DAMPING`, "
+                        "module notes)."),
     hydro_written=("hydro : xarray.Dataset\n"
                    "    Coefficient container as written (real and imaginary parts)."),
     hydro_stored=("hydro : xarray.Dataset\n"
@@ -458,16 +463,14 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
     waves : xarray.Dataset
         The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
     %(hydro_stored)s
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, buoyancy stiffness, width).
+    %(flap_params_compared)s
     %(pto)s
     %(depth)s
     %(simulator_dt_optional)s
     %(simulator)s
     %(with_friction)s
     %(spin_up_periods)s
-    linear_pto_damping : str, optional
-        How the linear model's ν_pto is set, one of :data:`LINEAR_PTO_DAMPING`.
+    %(linear_pto_damping)s
 
     Returns
     -------
@@ -853,16 +856,14 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
     waves : xarray.Dataset
         The run's waves product (``spectrum_incident``, ``eta_incident``, ``energy_flux``).
     %(hydro_stored)s
-    flap_params : flumekit.campaign.Flap
-        The flap (inertia, stiffness, width).
+    %(flap_params_compared)s
     %(pto)s
     %(simulator_dt_optional)s
     %(simulator)s
     %(with_friction)s
     spin_up : float, optional
         Seconds of incident wave the simulator runs before the analysed span [s].
-    linear_pto_damping : {"energy_equivalent", "optimal"}, optional
-        How the linear model's ν_pto is set (:func:`linear_model_irregular`).
+    %(linear_pto_damping)s
 
     Returns
     -------
@@ -880,10 +881,7 @@ def compare_irregular_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset
         An unknown ``linear_pto_damping``, an empty spectrum, or an incident wave that does
         not cover the analysed span.
 
-    References
-    ----------
-    Renzi, E., Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in
-    a channel. J. Fluid Mech. 701, 482-510 (Eq. 2.33, 2.37).
+    %(references_renzi_dias2012)s, Eqs. (2.33), (2.37).
     Babarit, A. (2015). A database of capture width ratio of wave energy converters.
     Renewable Energy 80, 610-628.
 

@@ -33,10 +33,7 @@ def flow_rate(rod_velocity, bore_area: float) -> np.ndarray:
     numpy.ndarray
         Q [m3 s-1], positive while the rod is pushed in.
 
-    Raises
-    ------
-    ValueError
-        A non-positive bore area.
+    %(raises_bore_area)s
 
     %(references_brito2020)s, §3.2.
 

@@ -252,10 +252,7 @@ def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     numpy.ndarray
         F_p [N].
 
-    Raises
-    ------
-    ValueError
-        A non-positive bore area.
+    %(raises_bore_area)s
 
     %(references_brito2020)s, §2.2.
 

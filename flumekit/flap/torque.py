@@ -38,7 +38,10 @@ _doc = filler(
                     "ValueError\n"
                     "    A non-positive moment of inertia."),
     flap_angle=("theta : array_like\n"
-                "    Flap angle [rad]."))
+                "    Flap angle [rad]."),
+    lever_arm=("lever_arm : array_like\n"
+               "    Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β "
+               "(:mod:`flumekit.flap.geometry`)."))
 
 __doc__ = fill(__doc__)
 
@@ -111,8 +114,7 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     ----------
     force_pressure : array_like
         Pressure force pushing the rod out, A P_int [N].
-    lever_arm : array_like
-        Signed lever arm m of the rod about the hinge [m], abs(m) = r sin β.
+    %(lever_arm)s
 
     Returns
     -------
@@ -140,8 +142,7 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     ----------
     force_friction : array_like
         Friction force resisting the rod's extension (> 0 while extending) [N].
-    lever_arm : array_like
-        Signed lever arm m of the rod about the hinge [m].
+    %(lever_arm)s
 
     Returns
     -------

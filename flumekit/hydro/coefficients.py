@@ -37,13 +37,8 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
-from flumekit.docstrings import fill, filler
+from flumekit.docstrings import doc, fill
 from flumekit.errors import FlumekitError
-
-#: docstring text that several functions of this module share
-_doc = filler(
-    hydro_container=("hydro : xarray.Dataset\n"
-                     "    Coefficient container (:func:`hydro_dataset`)."))
 
 __doc__ = fill(__doc__)
 
@@ -132,7 +127,7 @@ def hydro_dataset(angular_frequency, added_inertia, radiation_damping, excitatio
     return conventions.annotate(ds)
 
 
-@_doc
+@doc
 def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     """Compute the Fourier transform of a radiation kernel that is a sum of damped cosines.
 
@@ -171,7 +166,7 @@ def kernel_response(omega, amplitude, decay_rate, frequency) -> np.ndarray:
     return np.sum(a * z / (z * z + be * be), axis=-1)
 
 
-@_doc
+@doc
 def from_kernel(angular_frequency, amplitude, decay_rate, frequency, *,
                 added_inertia_infinite: float, excitation_torque,
                 hydrostatic_stiffness: float) -> xr.Dataset:
@@ -328,7 +323,7 @@ def _excitation_from(ds: xr.Dataset, names: tuple[str, ...]) -> xr.DataArray:
                      f"expected one of {list(names)} (complex, or _real/_imag parts)")
 
 
-@_doc
+@doc
 def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> xr.Dataset:
     """Build the container from the Renzi-Dias model's coefficients (over ``period``).
 
@@ -499,7 +494,7 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
 
 # --- checks -------------------------------------------------------------------------------
 
-@_doc
+@doc
 def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     """List the frequencies where the radiation damping is negative (below −rtol·max B).
 
@@ -508,7 +503,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
 
     Parameters
     ----------
-    %(hydro_container)s
+    %(hydro)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping below which B counts as negative.
 
@@ -534,7 +529,7 @@ def passivity_report(hydro: xr.Dataset, rtol: float = 1e-6) -> xr.Dataset:
     return rep
 
 
-@_doc
+@doc
 def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
     """Raise :class:`HydroError` listing the frequencies where B(ω) < −rtol·max B.
 
@@ -543,7 +538,7 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
 
     Parameters
     ----------
-    %(hydro_container)s
+    %(hydro)s
     rtol : float, optional
         Tolerance [-] relative to the largest damping (see :func:`passivity_report`).
 
@@ -566,13 +561,13 @@ def check_passive(hydro: xr.Dataset, rtol: float = 1e-6) -> None:
             "coefficients.")
 
 
-@_doc
+@doc
 def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     """Clip negative radiation damping to zero, recorded in ``attrs["passivity_fix"]``.
 
     Parameters
     ----------
-    %(hydro_container)s
+    %(hydro)s
 
     Returns
     -------
@@ -595,7 +590,7 @@ def make_passive(hydro: xr.Dataset) -> xr.Dataset:
     return out
 
 
-@_doc
+@doc
 def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = None,
                                dt: float | None = None, **irf_options) -> xr.Dataset:
     """Estimate the infinite-frequency added inertia by the Ogilvie (1964) relation.
@@ -612,7 +607,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
 
     Parameters
     ----------
-    %(hydro_container)s
+    %(hydro)s
     duration : float, optional
         Length of K(t) [s] (default of :func:`flumekit.hydro.radiation.impulse_response`).
     dt : float, optional
@@ -650,7 +645,7 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
     return conventions.annotate(out)
 
 
-@_doc
+@doc
 def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | None = 0.05,
                                     at_frequency: float | None = None,
                                     **irf_options) -> xr.Dataset:

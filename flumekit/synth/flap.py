@@ -99,6 +99,7 @@ from scipy import fft as sfft
 
 from flumekit import conventions
 from flumekit.campaign import Campaign
+from flumekit.docstrings import doc
 from flumekit.flap.encoder import counts_from_wire, wire_length
 from flumekit.flap.friction import LuGre, friction_series
 from flumekit.flap.geometry import rod_kinematics
@@ -169,6 +170,7 @@ class FlumeHydrodynamics(NamedTuple):
     radiation: object  # flumekit.hydro.radiation.StateSpace of the radiation kernel
 
 
+@doc
 def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
                         irf_step: float = 0.005, rtol: float = 1e-3) -> FlumeHydrodynamics:
     """Build the Renzi-Dias coefficients of the flap in the flume and their radiation model.
@@ -199,10 +201,7 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     FlumeHydrodynamics
         The coefficient container (with A∞) and the state-space radiation model.
 
-    References
-    ----------
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-    channel. J. Fluid Mech. 701, 482-510.
+    %(references_renzi_dias2012)s.
     """
     from flumekit.hydro.radiation import fit_state_space, impulse_response
 
@@ -214,6 +213,7 @@ def flume_hydrodynamics(campaign: Campaign, truth: FlapTruth = FlapTruth(), *,
     return FlumeHydrodynamics(hydro, radiation)
 
 
+@doc
 def radiation_damping(omega, depth: float, hinge_height: float, width: float,
                       rho: float = 1000.0, g: float = G) -> np.ndarray:
     """Compute the radiation damping ν(ω) = X² / (2 ρ g c_g w) from the 2-D Haskind relation.
@@ -228,10 +228,8 @@ def radiation_damping(omega, depth: float, hinge_height: float, width: float,
         Hinge height c above the bed [m].
     width : float
         Flap width w [m].
-    rho : float, default 1000
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(rho)s
+    %(g)s
 
     Returns
     -------
@@ -246,6 +244,7 @@ def radiation_damping(omega, depth: float, hinge_height: float, width: float,
     return x**2 / (2 * rho * g * cg * width)
 
 
+@doc
 def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
                     truth: FlapTruth = FlapTruth()) -> tuple[np.ndarray, np.ndarray]:
     """Compute the complex reflection R(f) and transmission T(f) of the flap in two dimensions.
@@ -286,8 +285,7 @@ def flap_scattering(frequency, campaign: Campaign, loss_damping: float,
     ----------
     Newman, J. N. (1976). The interaction of stationary vessels with regular waves. Proc. 11th
     Symp. Naval Hydrodynamics, 491-501 (2-D energy relations of a body radiating to both sides).
-    Renzi, E. & Dias, F. (2012). Resonant behaviour of an oscillating wave energy converter in a
-    channel. J. Fluid Mech. 701, 482-510 (Eq. 3.1).
+    %(renzi_dias2012)s, Eq. (3.1).
 
     Examples
     --------

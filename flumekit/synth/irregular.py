@@ -152,6 +152,7 @@ class IrregularSea(NamedTuple):
     repeat_period: float  # T_R [s]
 
 
+@doc
 def analysis_start(frequency, amplitude, *, depth: float, x_min: float, x_wavemaker: float,
                    x_beach: float, ramp_time: float, returning, developed: float,
                    g: float = G) -> float:
@@ -174,8 +175,7 @@ def analysis_start(frequency, amplitude, *, depth: float, x_min: float, x_wavema
         and of the beach's wave at x = 0 per unit incident amplitude.
     developed : float
         Share of each wave's variance that must have arrived [-].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -249,8 +249,7 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
         Wavemaker position [m].
     sea : SeaTruth
         Ramp, band, developed share, lead-out, low-pass taper.
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -272,10 +271,7 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
     wave's travel from the wavemaker to the beach and back to the farthest position, so
     nothing wraps round into the record.
 
-    References
-    ----------
-    %(hasselmann1973)s.
-    %(tucker1984)s.
+    %(references_random_sea)s
 
     Examples
     --------
@@ -363,6 +359,7 @@ def irregular_sea(rate: float, duration: float, x, *, hm0: float, peak_period: f
                         float(start), repeat)
 
 
+@doc
 def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float], *,
                     depth: float, f_max: float, reflection: Callable | None = None,
                     rho: float = 1000.0, g: float = G) -> xr.Dataset:
@@ -385,10 +382,8 @@ def sea_state_truth(time, eta_incident, eta_returning, span: tuple[float, float]
         f -> R_eff(f), the returning wave's complex amplitude over the incident one at x = 0;
         without it the dataset has no ``reflection_*_spectrum``. (To recompute the truth of a
         virtual run over another span: the series at x = 0 are in ``truth/<run>/flap.nc``.)
-    rho : float
-        Water density [kg m-3].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(rho)s
+    %(g)s
 
     Returns
     -------

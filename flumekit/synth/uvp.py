@@ -39,6 +39,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.campaign import UVP, Campaign
+from flumekit.docstrings import doc
 from flumekit.io.mfprof import FILETIME_UNIX_EPOCH, velocity_range
 from flumekit.synth.waves import RAMP_WAVES
 from flumekit.uvp.geometry import beam_geometry, flap_face_x, inside_flap
@@ -67,6 +68,7 @@ def _depth_functions(k: float, n: int, depth: float, zb):
     return depth_ratios(k * np.arange(1, n + 1), np.asarray(zb, dtype=float)[..., None], depth)
 
 
+@doc
 def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
                     hinge_height: float = 0.10, reflection: float = 0.2,
                     reflection_phase: float = 0.0, x_reflector: float = 0.0,
@@ -107,8 +109,7 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
     beach : flumekit.synth.waves.Beach, optional
         The wave returning from the beach, as in
         :func:`flumekit.synth.waves.regular_wave_field`; None: none.
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -182,6 +183,7 @@ def wave_kinematics(x, z, time, *, period: float, height: float, depth: float,
     return u, w, eta.reshape(eta_shape)
 
 
+@doc
 def incident_upcrossing(*, period: float, height: float, depth: float,
                         x_wavemaker: float = X_WAVEMAKER, second_order: bool = True,
                         theory: str | None = None, harmonics: bool = True,
@@ -207,8 +209,7 @@ def incident_upcrossing(*, period: float, height: float, depth: float,
         ``"stream"``, ``"stokes2"`` or ``"linear"``.
     harmonics : bool, default True
         False keeps the first harmonic only (its wavenumber is still the theory's).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------

@@ -159,8 +159,7 @@ def nonlinear_wave(period: float, height: float, depth: float, g: float = G
         Crest-to-trough wave height [m].
     depth : float
         Still water depth [m].
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -170,6 +169,7 @@ def nonlinear_wave(period: float, height: float, depth: float, g: float = G
     return stream_function_wave(period, height, depth, current="stokes", g=g)
 
 
+@doc
 def wave_harmonics(period: float, height: float, depth: float, reflection: float = 0.0,
                    theory: str = "stream", g: float = G, beach: float = 0.0
                    ) -> dict[str, object]:
@@ -188,8 +188,7 @@ def wave_harmonics(period: float, height: float, depth: float, reflection: float
     theory : str, default "stream"
         ``"stream"`` (stream function, :mod:`flumekit.waves.stream_function`),
         ``"stokes2"`` (second-order Stokes) or ``"linear"``.
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
     beach : float, default 0
         First-harmonic amplitude of the wave returning from the beach, over a1 [-].
 
@@ -301,6 +300,7 @@ def harmonic_sum(amplitudes, envelope, cos_theta) -> np.ndarray:
     return out
 
 
+@doc
 def regular_wave_field(time, x, *, period: float, height: float, depth: float,
                        reflection: float = 0.2, reflection_phase: float = 0.0,
                        x_reflector: float = 0.0, ramp_waves: float = RAMP_WAVES,
@@ -345,8 +345,7 @@ def regular_wave_field(time, x, *, period: float, height: float, depth: float,
     beach : Beach, optional
         The wave returning from the flume's beach; None: no beach reflection (a perfect
         absorber).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -504,9 +503,7 @@ def random_phase_components(repeat_period: float, hm0: float, peak_period: float
     1984): the realised spectrum over one repeat period is the target exactly, and the sea is
     Gaussian by the central limit theorem over the many components.
 
-    References
-    ----------
-    %(tucker1984)s.
+    %(references_tucker1984)s.
 
     Examples
     --------
@@ -560,8 +557,7 @@ def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: floa
         Random generator or seed of the phases (deterministic for a given seed).
     f_max : float, optional
         Highest component frequency [Hz]; default min(5/Tp, Nyquist).
-    g : float
-        Gravitational acceleration [m s-2].
+    %(g)s
 
     Returns
     -------
@@ -582,10 +578,7 @@ def irregular_wave_field(time, x, *, hm0: float, peak_period: float, depth: floa
     random phases: η_I = Σ a_n cos(ω_n t - k_n (x - x_r) + ψ_n),
     η_R = Kr Σ a_n cos(ω_n t + k_n (x - x_r) + ψ_n + φ).
 
-    References
-    ----------
-    %(hasselmann1973)s.
-    %(tucker1984)s.
+    %(references_random_sea)s
 
     Examples
     --------

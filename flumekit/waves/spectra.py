@@ -527,9 +527,7 @@ def jonswap(frequency, hm0: float, peak_period: float, gamma: float = 3.3,
     grid, so that the discrete components hold exactly Hm0²/16 of variance (the usual closed-form
     scale, e.g. Goda's, is within a few per cent of it for γ = 1-7).
 
-    References
-    ----------
-    %(hasselmann1973)s.
+    %(references_hasselmann1973)s.
 
     Examples
     --------
