@@ -235,9 +235,12 @@ class RunModel:
             v = v + d["probe_resolution"]
         if "calibration" in d:
             v = v * (1.0 + d["calibration"])[:, None]
-        x = self.eta["x"].values + d.get("probe_position", 0.0)
         # the coordinates are shared, not copied: nothing downstream writes into them
-        return self.eta.copy(deep=False, data=v).assign_coords(x=("probe", x))
+        eta = self.eta.copy(deep=False, data=v)
+        if "probe_position" not in d:
+            return eta
+        x = self.eta["x"].values + d["probe_position"]
+        return eta.assign_coords(x=("probe", x))
 
     def _waves(self, ds: list[dict]) -> np.ndarray:
         """Return the waves results (len(ds), len(WAVES_RESULTS)), NaN where refused."""
