@@ -139,7 +139,7 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.flap.geometry", "flumekit.flap.pressure",
                                     "flumekit.figures.style", "flumekit.figures.check",
                                     "flumekit.figures.groups", "flumekit.figures.qc",
-                                    "flumekit.figures.simulator",
+                                    "flumekit.figures.simulator", "flumekit.figures.separated",
                                     "flumekit.pipeline.cache", "flumekit.pipeline.code",
                                     "flumekit.pipeline.engine", "flumekit.pipeline.executors",
                                     "flumekit.pipeline.raw", "flumekit.pipeline.render",

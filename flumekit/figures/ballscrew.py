@@ -6,11 +6,7 @@ Each function takes the scenario dataset(s) and returns a matplotlib Figure (no 
 - lumped thermal dataset (:func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`): Figs. 9, 16;
 - FEM dataset (:func:`flumekit.ballscrew.thermal.fem.thermal_fem`): Figs. 10, 17, 18.
 
-References
-----------
-Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-multibody system coupled to fluid-film lubrication model and thermal analysis. Energies 15,
-9358.
+%(references_senatore2022)s.
 """
 
 from __future__ import annotations
@@ -19,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit.ballscrew.scenario import GENERATOR_REGIONS
+from flumekit.docstrings import fill, filler
 from flumekit.figures.registry import register
 from flumekit.figures.style import (
     ONE_COLUMN,
@@ -30,6 +27,23 @@ from flumekit.figures.style import (
     title,
     value_label,
 )
+
+__doc__ = fill(__doc__)
+
+#: the datasets the figures are drawn from and what the thermal figures return, written once
+_doc = filler(
+    efficiency=("eff : xarray.Dataset\n"
+                "    Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`."),
+    lumped=("lumped : xarray.Dataset\n"
+            "    Lumped thermal dataset of\n"
+            "    :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`."),
+    fem=("fem : xarray.Dataset\n"
+         "    FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`."),
+    efficiency_only="Parameters\n----------\n%(efficiency)s",
+    lumped_only="Parameters\n----------\n%(lumped)s",
+    fem_only="Parameters\n----------\n%(fem)s",
+    temperatures=("Returns\n-------\nmatplotlib.figure.Figure\n"
+                  "    Temperatures [°C] against time [min]."))
 
 KELVIN = 273.15
 #: the paper's colours of Fig. 16: EMRG red, nut black, screw blue
@@ -54,85 +68,58 @@ def _scenario(ds: xr.Dataset, what: str) -> str:
 
 
 def _time_series(ds: xr.Dataset, name: str, scale: float, ylabel: str, what: str):
+    values = ds[name].values * scale
     fig, axes = new_figure(width=ONE_COLUMN, height=2.6)
     ax = axes[0, 0]
     with style():
-        ax.plot(ds["time"].values, ds[name].values * scale, color="k")
+        ax.plot(ds["time"].values, values, color="k")
         ax.set_xlabel(_TIME)
         ax.set_ylabel(ylabel)
         ax.set_xlim(ds["time"].values[0], ds["time"].values[-1])
-        title(fig, _scenario(ds, what))
+        title(fig, _scenario(ds, what.format(low=np.nanmin(values), high=np.nanmax(values))))
     return fig
 
 
-def figure_11(eff: xr.Dataset):
-    """Draw Fig. 11: the axial force F_PTO on the nut as a function of time.
-
-    Parameters
-    ----------
-    eff : xarray.Dataset
-        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        F_PTO [kN] against time [s].
-
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 11.
-    """
-    return _time_series(eff, "pto_force", 1e-3, label("pto_force", "$F_{PTO}$", units="kN",
-                                                      text="Axial force"), "Axial force on the nut")
+#: the figures of one variable of the efficiency dataset against time: figure number ->
+#: (what it shows, the symbol and units of its y axis, variable, factor to those units, y-axis
+#: label, title opening, in which ``{low}`` and ``{high}`` stand for the extremes drawn)
+_TIME_SERIES = {
+    11: ("the axial force F_PTO on the nut", "F_PTO [kN]", "pto_force", 1e-3,
+         label("pto_force", "$F_{PTO}$", units="kN", text="Axial force"),
+         "Axial force on the nut"),
+    12: ("the screw rotation speed ω_screw", "ω_screw [rpm]", "screw_speed", 60 / (2 * np.pi),
+         label(text=r"Screw speed $\omega_{screw}$", units="rpm"), "Screw rotation speed"),
+    13: ("the nut velocity v_nut", "v_nut [m s-1]", "nut_velocity", 1.0,
+         label("nut_velocity", "$v_{nut}$", text="Nut velocity"), "Nut velocity"),
+    15: ("the indirect efficiency η of the ball screw", "η [%]", "ballscrew_efficiency", 100.0,
+         label(text=r"Indirect efficiency $\eta$", units="%"),
+         "Efficiency ({low:.0f}-{high:.0f} %)"),
+}
 
 
-def figure_12(eff: xr.Dataset):
-    """Draw Fig. 12: the screw rotation speed ω_screw as a function of time.
+def _time_series_figure(number: int):
+    """Make the function that draws Fig. ``number`` of :data:`_TIME_SERIES`, documented."""
+    shows, axis, name, scale, ylabel, what = _TIME_SERIES[number]
 
-    Parameters
-    ----------
-    eff : xarray.Dataset
-        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+    def figure(eff: xr.Dataset):
+        return _time_series(eff, name, scale, ylabel, what)
+
+    figure.__name__ = figure.__qualname__ = f"figure_{number}"
+    figure.__doc__ = f"""Draw Fig. {number}: {shows} as a function of time.
+
+    %(efficiency_only)s
 
     Returns
     -------
     matplotlib.figure.Figure
-        ω_screw [rpm] against time [s].
+        {axis} against time [s].
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 12.
+    %(references_senatore2022)s, Fig. {number}.
     """
-    return _time_series(eff, "screw_speed", 60 / (2 * np.pi),
-                        label(text=r"Screw speed $\omega_{screw}$", units="rpm"),
-                        "Screw rotation speed")
+    return _doc(figure)
 
 
-def figure_13(eff: xr.Dataset):
-    """Draw Fig. 13: the nut velocity v_nut as a function of time.
-
-    Parameters
-    ----------
-    eff : xarray.Dataset
-        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        v_nut [m s-1] against time [s].
-
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 13.
-    """
-    return _time_series(eff, "nut_velocity", 1.0,
-                        label("nut_velocity", "$v_{nut}$", text="Nut velocity"), "Nut velocity")
+figure_11, figure_12, figure_13, figure_15 = map(_time_series_figure, (11, 12, 13, 15))
 
 
 #: lubrication regimes by film parameter λ (Senatore & De Simone 2022, §3.2)
@@ -140,27 +127,21 @@ REGIMES = ((0.0, 1.0, "boundary", "tab:red"), (1.0, 3.0, "mixed", "tab:olive"),
            (3.0, np.inf, "full film", "tab:green"))
 
 
+@_doc
 def figure_14(eff: xr.Dataset):
     """Draw Fig. 14: the film parameters and friction coefficients against time.
 
     The film parameters λ_nut, λ_screw (lubrication regimes shaded) and the friction
     coefficients f_ball-nut, f_ball-screw.
 
-    Parameters
-    ----------
-    eff : xarray.Dataset
-        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
+    %(efficiency_only)s
 
     Returns
     -------
     matplotlib.figure.Figure
         λ [-] and f [-] against time [s].
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 14.
+    %(references_senatore2022)s, Fig. 14.
     """
     from matplotlib.patches import Patch
 
@@ -189,31 +170,7 @@ def figure_14(eff: xr.Dataset):
     return fig
 
 
-def figure_15(eff: xr.Dataset):
-    """Draw Fig. 15: the indirect efficiency η of the ball screw as a function of time.
-
-    Parameters
-    ----------
-    eff : xarray.Dataset
-        Efficiency dataset of :func:`flumekit.ballscrew.screw.efficiency`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        η [%] against time [s].
-
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 15.
-    """
-    eta = eff["ballscrew_efficiency"].values * 100
-    return _time_series(eff, "ballscrew_efficiency", 100.0,
-                        label(text=r"Indirect efficiency $\eta$", units="%"),
-                        f"Efficiency ({np.nanmin(eta):.0f}-{np.nanmax(eta):.0f} %)")
-
-
+@_doc
 def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
     """Draw Fig. 9 (our counterpart): mechanical and electrical losses over one operating cycle.
 
@@ -223,8 +180,7 @@ def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
 
     Parameters
     ----------
-    lumped : xarray.Dataset
-        Lumped thermal dataset of :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`.
+    %(lumped)s
     zoom : float, optional
         Duration shown in (b) [s].
 
@@ -233,11 +189,7 @@ def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
     matplotlib.figure.Figure
         Power losses [W] against time [s].
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 9.
+    %(references_senatore2022)s, Fig. 9.
     """
     cycle = float(lumped.attrs.get("cycle_duration", 600.0))
     one = lumped.sel(time=slice(0.0, cycle))
@@ -261,71 +213,73 @@ def figure_9(lumped: xr.Dataset, zoom: float = 20.0):
     return fig
 
 
-def figure_16(lumped: xr.Dataset):
-    """Draw Fig. 16: lumped thermal profiles (dashed) and their exponential fits (solid).
+def _temperatures(ds: xr.Dataset, curves, what: str):
+    """Draw temperature histories against time in minutes, page-wide, legend on the right.
 
-    Parameters
-    ----------
-    lumped : xarray.Dataset
-        Lumped thermal dataset of :func:`flumekit.ballscrew.thermal.lumped.thermal_lumped`.
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Temperatures [°C] against time [min].
-
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 16.
+    ``curves`` holds one (temperature [K] over ``ds``'s time, keyword arguments of ``plot``)
+    pair per line; ``what`` opens the title.
     """
-    t = lumped["time"].values
-    t0 = float(lumped.attrs.get("initial_temperature", KELVIN + 20))
+    t = ds["time"].values
     fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
     ax = axes[0, 0]
     with style():
-        for comp in lumped["component"].values:
-            c = COMPONENT_COLOURS.get(str(comp), None)
-            temp = lumped["temperature"].sel(component=comp).values
-            d = float(lumped["temperature_rise_fit"].sel(component=comp))
-            tau = float(lumped["time_constant_fit"].sel(component=comp))
-            ax.plot(t / 60, temp - KELVIN, ls="--", color=c, label=f"{value_label(comp)}, model")
-            ax.plot(t / 60, t0 + d * (1 - np.exp(-t / tau)) - KELVIN, ls="-", color=c, lw=0.8,
-                    label=f"{value_label(comp)}, fit: ΔT = {d:.1f} K, τ = {tau / 60:.1f} min")
+        for temperature, kw in curves:
+            ax.plot(t / 60, temperature - KELVIN, **kw)
         ax.set_xlabel(_MINUTES)
         ax.set_ylabel(_TEMPERATURE)
-        title(fig, _scenario(lumped, "Lumped thermal model"))
+        title(fig, _scenario(ds, what))
         legend(fig, where="right")
     return fig
 
 
-def _triangles(fem: xr.Dataset) -> np.ndarray:
-    q = fem["cell_nodes"].values
-    return np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
+@_doc
+def figure_16(lumped: xr.Dataset):
+    """Draw Fig. 16: lumped thermal profiles (dashed) and their exponential fits (solid).
+
+    One colour per component; a fit reads T(t) = T_0 + ΔT (1 - exp(-t/τ)), its ΔT and τ in
+    the legend.
+
+    %(lumped_only)s
+
+    %(temperatures)s
+
+    %(references_senatore2022)s, Fig. 16.
+    """
+    t = lumped["time"].values
+    t0 = float(lumped.attrs.get("initial_temperature", KELVIN + 20))
+    curves = []
+    for comp in lumped["component"].values:
+        c = COMPONENT_COLOURS.get(str(comp), None)
+        d = float(lumped["temperature_rise_fit"].sel(component=comp))
+        tau = float(lumped["time_constant_fit"].sel(component=comp))
+        curves += [(lumped["temperature"].sel(component=comp).values,
+                    {"ls": "--", "color": c, "label": f"{value_label(comp)}, model"}),
+                   (t0 + d * (1 - np.exp(-t / tau)),
+                    {"ls": "-", "color": c, "lw": 0.8, "label": f"{value_label(comp)}, fit: "
+                     f"ΔT = {d:.1f} K, τ = {tau / 60:.1f} min"})]
+    return _temperatures(lumped, curves, "Lumped thermal model")
 
 
+def _triangles(quads: np.ndarray) -> np.ndarray:
+    """Split quadrilateral cells (node indices, shape (n, 4)) into triangles for tripcolor."""
+    return np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+
+
+@_doc
 def figure_10(fem: xr.Dataset):
     """Draw Fig. 10: the axisymmetric section of the PTO with its material regions.
 
     Drawn with the axis of symmetry horizontal (axial position along x, radius up), so the
     long, slender section fills a page-wide figure.
 
-    Parameters
-    ----------
-    fem : xarray.Dataset
-        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+    %(fem_only)s
 
     Returns
     -------
     matplotlib.figure.Figure
         Radius [mm] against axial position [mm].
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 10.
+    %(references_senatore2022)s, Fig. 10.
     """
     from matplotlib import colormaps
     from matplotlib.patches import Patch
@@ -338,8 +292,9 @@ def figure_10(fem: xr.Dataset):
     fig, axes = new_figure(width=TWO_COLUMNS, height=min(1.3 + 6.3 * aspect, 6.0))
     ax = axes[0, 0]
     with style():
-        ax.tripcolor(z, r, _triangles(fem), facecolors=np.concatenate([reg, reg]).astype(float),
-                     cmap=cmap, vmin=-0.5, vmax=len(names) - 0.5, edgecolors="none")
+        ax.tripcolor(z, r, _triangles(fem["cell_nodes"].values),
+                     facecolors=np.concatenate([reg, reg]).astype(float), cmap=cmap,
+                     vmin=-0.5, vmax=len(names) - 0.5, edgecolors="none")
         ax.set_xlabel(label(text="Axial position", units="mm"))
         ax.set_ylabel(label(text="Radius $r$", units="mm"))
         ax.set_aspect("equal")
@@ -356,37 +311,25 @@ def _generator_cells(fem: xr.Dataset) -> np.ndarray:
     return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
 
 
-def _generator_cells(fem: xr.Dataset) -> np.ndarray:
-    """Mask of the cells in the EMRG (stator, air gap, rotor and its hub)."""
-    names = np.array([str(x) for x in fem["region"].values])
-    return np.isin(names[fem["cell_region"].values], GENERATOR_REGIONS)
-
-
+@_doc
 def figure_17(fem: xr.Dataset):
     """Draw Fig. 17: the temperature field of the EMRG at the snapshot times.
 
     The snapshots at 641, 1840, 3225 and 6000 s of the generator (EMRG), the paper's most
     thermally stressed component.
 
-    Parameters
-    ----------
-    fem : xarray.Dataset
-        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+    %(fem_only)s
 
     Returns
     -------
     matplotlib.figure.Figure
         Temperature [°C] over the section, axial position against r [mm].
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 17.
+    %(references_senatore2022)s, Fig. 17.
     """
     r, z = fem["radial_coordinate"].values * 1e3, fem["axial_coordinate"].values * 1e3
     q = fem["cell_nodes"].values[_generator_cells(fem)]
-    tri = np.concatenate([q[:, [0, 1, 2]], q[:, [0, 2, 3]]])
+    tri = _triangles(q)
     nodes = np.unique(q)
     fields = fem["temperature_field"].values - KELVIN
     vmin, vmax = float(fields[:, nodes].min()), float(fields[:, nodes].max())
@@ -407,40 +350,26 @@ def figure_17(fem: xr.Dataset):
     return fig
 
 
+@_doc
 def figure_18(fem: xr.Dataset):
     """Draw Fig. 18: the time evolution of the EMRG temperature at its control points.
 
-    Parameters
-    ----------
-    fem : xarray.Dataset
-        FEM dataset of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+    Only the control points inside the generator (stator, air gap, rotor and its hub) are
+    drawn, each labelled with its radius r and axial position z.
 
-    Returns
-    -------
-    matplotlib.figure.Figure
-        Temperatures [°C] against time [min].
+    %(fem_only)s
 
-    References
-    ----------
-    Senatore, A. & De Simone, A. (2022). Modeling and simulation of a wave energy converter:
-    multibody system coupled to fluid-film lubrication model and thermal analysis. Energies
-    15, 9358, Fig. 18.
+    %(temperatures)s
+
+    %(references_senatore2022)s, Fig. 18.
     """
-    t = fem["time"].values
     inside = np.isin([str(x) for x in fem["control_region"].values], GENERATOR_REGIONS)
-    fig, axes = new_figure(width=TWO_COLUMNS, height=3.0)
-    ax = axes[0, 0]
-    with style():
-        for p in fem["control_point"].values[inside]:
-            pt = fem.sel(control_point=p)
-            ax.plot(t / 60, pt["control_temperature"].values - KELVIN,
-                    label=f"{value_label(p)} (r = {float(pt['control_radius']) * 1e3:.0f} mm, "
-                          f"z = {float(pt['control_axial']) * 1e3:.0f} mm)")
-        ax.set_xlabel(_MINUTES)
-        ax.set_ylabel(_TEMPERATURE)
-        title(fig, _scenario(fem, "EMRG temperature at its control points (FEM)"))
-        legend(fig, where="right")
-    return fig
+    points = [(p, fem.sel(control_point=p)) for p in fem["control_point"].values[inside]]
+    return _temperatures(fem, [
+        (pt["control_temperature"].values,
+         {"label": f"{value_label(p)} (r = {float(pt['control_radius']) * 1e3:.0f} mm, "
+                   f"z = {float(pt['control_axial']) * 1e3:.0f} mm)"}) for p, pt in points],
+        "EMRG temperature at its control points (FEM)")
 
 
 FIGURES = {9: figure_9, 10: figure_10, 11: figure_11, 12: figure_12, 13: figure_13, 14: figure_14,

@@ -6,11 +6,7 @@ pyplot. Runs are grouped by the ``wave_height`` coordinate that the pipeline att
 by the incident height rounded to 5 mm. Figs. 8-10 take the model curves (linear model,
 simulator) as ``models``: ``{source: summaries}`` (see :mod:`flumekit.figures.simulator`).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8.
+%(references_brito2020)s.
 """
 
 from __future__ import annotations
@@ -19,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import signal as sig
+from flumekit.docstrings import fill, filler
 from flumekit.figures.groups import by_height, height_of, period_of, runs_of
 from flumekit.figures.registry import register
 from flumekit.figures.simulator import (
@@ -29,10 +26,12 @@ from flumekit.figures.simulator import (
     add_figure_10,
     height_colours,
 )
+from flumekit.figures.snippets import SNIPPETS
 from flumekit.figures.style import (
     COLOURS,
     ONE_COLUMN,
     TWO_COLUMNS,
+    figure_axes,
     label,
     legend,
     long_name,
@@ -44,6 +43,20 @@ from flumekit.figures.style import (
     title,
     value_label,
 )
+
+__doc__ = fill(__doc__)
+
+#: parameters that several figures of this module document alike, written once
+_doc = filler(
+    SNIPPETS,
+    flap_run=("flap : xarray.Dataset\n"
+              "    Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`)."),
+    regular_flaps=("flaps : xarray.Dataset or sequence of xarray.Dataset\n"
+                   "    Processed flap datasets of the regular runs, or one stacked along "
+                   "``run``."),
+    model_summaries=("models : dict, optional\n"
+                     "    {source: run summaries} of the models (``\"analytical\"``, "
+                     "``\"simulator\"``)."))
 
 _TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
 _PERIOD = label("wave_period", "$T$", text="Wave period")
@@ -113,6 +126,7 @@ def _crest_trough(ax, levels, lab: str | None = "crest and trough of the steady 
 
 
 @register("fig05b")
+@_doc
 def figure_5b(flap: xr.Dataset, ax=None):
     """Draw the full time series of the normalised flap angle θ/θ_s against t/T (Fig. 5b).
 
@@ -123,8 +137,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
 
     Parameters
     ----------
-    flap : xarray.Dataset
-        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
+    %(flap_run)s
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; default a new two-column figure.
 
@@ -133,20 +146,13 @@ def figure_5b(flap: xr.Dataset, ax=None):
     matplotlib.figure.Figure
         θ/θ_s [-] against t/T [-].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 5b.
+    %(references_brito2020)s, Fig. 5b.
     """
     _require(flap, "theta", "theta_amplitude", "theta_phase_mean", "measured_period",
              "steady_start")
     period = float(flap.measured_period)
     scale = float(flap.theta_amplitude)
-    if ax is None:
-        fig, axes = new_figure(width=TWO_COLUMNS, height=2.4)
-        ax = axes[0, 0]
-    fig = ax.figure
+    fig, ax = figure_axes(ax, height=2.4)
     with style():
         ax.plot(*thin(flap.time.values / period, flap.theta.values / scale, fig.get_figwidth()),
                 color=COLOURS["experiment"], lw=0.5, label="measured")
@@ -162,6 +168,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
 
 
 @register("fig06bcd")
+@_doc
 def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=None):
     """Draw normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
 
@@ -173,25 +180,17 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
 
     Parameters
     ----------
-    flap : xarray.Dataset
-        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
-    start : float, optional
-        First t/T shown [-] (the paper: 65).
-    n_waves : int, optional
-        Number of periods shown [-].
+    %(flap_run)s
+    %(fig6_window)s
     axes : sequence of matplotlib.axes.Axes, optional
-        Three axes to draw into; default a new figure.
+        Three axes to draw θ, P_int and θ̇ into, top to bottom; default a new figure.
 
     Returns
     -------
     matplotlib.figure.Figure
         Normalised θ, P_int and θ̇ [-] against t/T [-].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 6b-d.
+    %(references_brito2020)s, Fig. 6b-d.
     """
     _require(flap, "theta", "chamber_pressure", "theta_dot", "theta_phase_mean",
              "chamber_pressure_phase_mean", "theta_dot_phase_mean", "measured_period")
@@ -226,6 +225,7 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
 
 
 @register("fig07", prepare=_sorted_runs)
+@_doc
 def figure_7(flaps, n_waves: int = 3, axes=None):
     """Draw the measured and fitted torque of the cylinder pressure force (Fig. 7), per run.
 
@@ -246,11 +246,7 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
     matplotlib.figure.Figure
         Pressure torque [N m] against t/T [-], one panel per run.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 7 and Eq. (13).
+    %(references_brito2020)s, Fig. 7 and Eq. (13).
     """
     runs = runs_of(flaps)
     if axes is None:
@@ -312,6 +308,7 @@ def _heights(flaps, models) -> list[float]:
 
 
 @register("fig08", prepare=_experiment_and_models, stacked=True)
+@_doc
 def figure_8(flaps, models: dict | None = None, ax=None):
     """Draw the amplitude of the hydrodynamic torque against the wave period (Fig. 8).
 
@@ -321,10 +318,8 @@ def figure_8(flaps, models: dict | None = None, ax=None):
 
     Parameters
     ----------
-    flaps : xarray.Dataset or sequence of xarray.Dataset
-        Processed flap datasets of the regular runs, or one stacked along ``run``.
-    models : dict, optional
-        {source: run summaries} of the models (``"analytical"``, ``"simulator"``).
+    %(regular_flaps)s
+    %(model_summaries)s
     ax : matplotlib.axes.Axes, optional
         Axes to draw into; default a new figure.
 
@@ -333,18 +328,11 @@ def figure_8(flaps, models: dict | None = None, ax=None):
     matplotlib.figure.Figure
         T_h amplitude [N m] against T [s].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 8.
+    %(references_brito2020)s, Fig. 8.
     """
     groups = by_height(flaps, "torque_amplitude")
     heights = _heights(flaps, models)
-    if ax is None:
-        fig, axes = new_figure(width=ONE_COLUMN, height=3.9)
-        ax = axes[0, 0]
-    fig = ax.figure
+    fig, ax = figure_axes(ax, width=ONE_COLUMN, height=3.9)
     with style():
         _experiment_points(ax, groups, heights, lambda v: v["torque_amplitude"])
         for source, runs in (models or {}).items():
@@ -357,6 +345,7 @@ def figure_8(flaps, models: dict | None = None, ax=None):
 
 
 @register("fig09", prepare=_experiment_and_models, stacked=True)
+@_doc
 def figure_9(flaps, models: dict | None = None, axes=None):
     """Draw (a) the amplitude of θ and (b) the capture factor C_f against the period (Fig. 9).
 
@@ -364,23 +353,17 @@ def figure_9(flaps, models: dict | None = None, axes=None):
 
     Parameters
     ----------
-    flaps : xarray.Dataset or sequence of xarray.Dataset
-        Processed flap datasets of the regular runs, or one stacked along ``run``.
-    models : dict, optional
-        {source: run summaries} of the models (``"analytical"``, ``"simulator"``).
+    %(regular_flaps)s
+    %(model_summaries)s
     axes : sequence of matplotlib.axes.Axes, optional
-        Two axes to draw into; default a new figure.
+        Two axes, for (a) the rotation and (b) the capture factor; default a new figure.
 
     Returns
     -------
     matplotlib.figure.Figure
         (a) θ amplitude / π [-] and (b) C_f [-] against T [s].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 9.
+    %(references_brito2020)s, Fig. 9.
     """
     groups = by_height(flaps, "theta_amplitude", "capture_factor")
     heights = _heights(flaps, models)
@@ -405,6 +388,7 @@ def figure_9(flaps, models: dict | None = None, axes=None):
 
 
 @register("fig10", prepare=_figure_10_data)
+@_doc
 def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | None = None,
               axes=None):
     """Draw the normalised phase averages over the quasi-steady window (Fig. 10).
@@ -419,8 +403,7 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
 
     Parameters
     ----------
-    flap : xarray.Dataset
-        Processed flap dataset of one run (:func:`flumekit.flap.analyse_run`).
+    %(flap_run)s
     eta : xarray.DataArray, optional
         Surface elevation [m] on a ``time`` coordinate of the same clock (e.g. the probe
         nearest the flap from the waves dataset); phase-averaged here over the flap's window.
@@ -436,11 +419,7 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
     matplotlib.figure.Figure
         The normalised phase averages [-] against t/T [-].
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 10.
+    %(references_brito2020)s, Fig. 10.
     """
     _require(flap, "theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean",
              "incident_power", "mean_power", "incident_height", "steady_start",

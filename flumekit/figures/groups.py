@@ -5,7 +5,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from flumekit.docstrings import doc
+from flumekit.docstrings import filler
+
+#: the Parameters section of the functions that read one value of a run
+_doc = filler(run_only="Parameters\n----------\n%(run_dataset)s")
 
 
 def runs_of(datasets) -> list[xr.Dataset]:
@@ -36,15 +39,13 @@ def runs_of(datasets) -> list[xr.Dataset]:
     return runs
 
 
-@doc
+@_doc
 def height_of(ds: xr.Dataset) -> float:
     """Return the wave height [m] that groups a run.
 
     The declared ``wave_height``, else the measured ``incident_height`` rounded to 5 mm.
 
-    Parameters
-    ----------
-    %(run_dataset)s
+    %(run_only)s
 
     Returns
     -------
@@ -70,18 +71,23 @@ def height_of(ds: xr.Dataset) -> float:
     return round(float(ds["incident_height"]) / 0.005) * 0.005
 
 
-@doc
+@_doc
 def period_of(ds: xr.Dataset) -> float:
     """Return the wave period [s] of a run: ``wave_period``, else ``measured_period``.
 
-    Parameters
-    ----------
-    %(run_dataset)s
+    %(run_only)s
 
     Returns
     -------
     float
         The period [s].
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> from flumekit.figures.groups import period_of
+    >>> period_of(xr.Dataset({"wave_period": 2.0, "measured_period": 1.98}))
+    2.0
     """
     return float(ds["wave_period"]) if "wave_period" in ds.variables else float(ds.measured_period)
 

@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit.figures.registry import register
+from flumekit.figures.separated import separated_elevations, separated_series
 from flumekit.figures.style import (
     COLOURS,
     TWO_COLUMNS,
@@ -51,19 +52,16 @@ def separation(waves: xr.Dataset, n_waves: int = 12):
     Returns
     -------
     matplotlib.figure.Figure
-        Two columns wide.
+        Two columns wide: (a) elevations [m] against time [s], (b) variance densities
+        [m2 s] and Kr(f) [-] against frequency [Hz], (c) exceedance probability [-] against
+        H/Hm0 [-].
 
     References
     ----------
     Longuet-Higgins, M. S. (1952). On the statistical distribution of the heights of sea
     waves. Journal of Marine Research 11, 245-266.
     """
-    missing = [n for n in _NEEDS if n not in waves.variables]
-    if missing:
-        raise ValueError(f"the waves dataset lacks {missing}: pass the output of "
-                         "analyse_irregular_run")
-    t = waves["time"].values
-    inc, ref = waves["eta_incident"].values, waves["eta_reflected"].values
+    t, inc, ref = separated_series(waves, _NEEDS, "analyse_irregular_run")
     tp = float(waves["tp"])
     t0 = float(waves["analysis_start"])
     shown = np.isfinite(inc) & (t >= t0) & (t <= t0 + n_waves * tp)
@@ -78,12 +76,8 @@ def separation(waves: xr.Dataset, n_waves: int = 12):
                            gridspec_kw={"width_ratios": [1.3, 1.2, 1.0]})
     ax_t, ax_f, ax_h = axes[0]
     with style():
-        for name, series in (("incident", inc), ("reflected", ref)):
-            ax_t.plot(t[shown], series[shown], color=COLOURS[name], lw=0.7, label=name)
-        ax_t.set_xlim(t[shown][0], t[shown][-1])
-        ax_t.set_xlabel(label("time", "$t$"))
-        ax_t.set_ylabel(label("eta", r"$\eta$", text="Elevation"))
-        ax_t.set_title(f"(a) at x = {x_ref:g} m")
+        separated_elevations(ax_t, t[shown], inc[shown], ref[shown], f"at x = {x_ref:g} m",
+                             lw=0.7)
 
         good = np.isfinite(s_i) & np.isfinite(s_r)
         for name, s in (("incident", s_i), ("reflected", s_r)):

@@ -16,8 +16,20 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import filler
 from flumekit.figures.groups import by_height
 from flumekit.figures.style import COLOURS, style, value_label
+
+#: parameters and returns that the model curves of Figs. 8-10 share, written once
+_doc = filler(
+    source_line=("label : str, optional\n"
+                 "    Source name (\"analytical\", \"simulator\"): its line style."),
+    heights=("heights : iterable of float, optional\n"
+             "    Every wave height [m] of the figure, for consistent colours; default these."),
+    axes_drawn=("Returns\n"
+                "-------\n"
+                "sequence of matplotlib.axes.Axes\n"
+                "    ``axes``."))
 
 #: line style of each model source in Figs. 8 and 9 (the experiment is drawn as markers)
 SOURCE_LINES = {"analytical": "-", "simulator": "--"}
@@ -65,6 +77,7 @@ def _by_height_lines(ax, groups, label, heights, value):
                 label=f"H = {h:g} m ({value_label(label)})")
 
 
+@_doc
 def add_figure_8(ax, summaries, label: str = "simulator", heights=None):
     """Draw a model's amplitude of the hydrodynamic torque T_h against T, per height (Fig. 8).
 
@@ -74,21 +87,15 @@ def add_figure_8(ax, summaries, label: str = "simulator", heights=None):
         Axes of :func:`flumekit.figures.flap.figure_8` (or any Axes).
     summaries : xarray.Dataset or sequence of xarray.Dataset
         Run summaries of the model (``torque_amplitude`` [N m]).
-    label : str, optional
-        Source name ("analytical", "simulator"): its line style.
-    heights : iterable of float, optional
-        Every wave height [m] of the figure, for consistent colours; default these.
+    %(source_line)s
+    %(heights)s
 
     Returns
     -------
     matplotlib.axes.Axes
         ``ax``.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 8.
+    %(references_brito2020)s, Fig. 8.
     """
     with style():
         _by_height_lines(ax, by_height(summaries, "torque_amplitude"), label, heights,
@@ -96,6 +103,7 @@ def add_figure_8(ax, summaries, label: str = "simulator", heights=None):
     return ax
 
 
+@_doc
 def add_figure_9(axes, summaries, label: str = "simulator", heights=None):
     """Draw a model's (a) θ amplitude / π and (b) capture factor C_f against T (Fig. 9).
 
@@ -105,21 +113,12 @@ def add_figure_9(axes, summaries, label: str = "simulator", heights=None):
         Two Axes, as in the figure of :func:`flumekit.figures.flap.figure_9`.
     summaries : xarray.Dataset or sequence of xarray.Dataset
         Run summaries of the model (``theta_amplitude`` [rad], ``capture_factor`` [-]).
-    label : str, optional
-        Source name ("analytical", "simulator"): its line style.
-    heights : iterable of float, optional
-        Every wave height [m] of the figure, for consistent colours; default these.
+    %(source_line)s
+    %(heights)s
 
-    Returns
-    -------
-    sequence of matplotlib.axes.Axes
-        ``axes``.
+    %(axes_drawn)s
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 9.
+    %(references_brito2020)s, Fig. 9.
     """
     if len(axes) != 2:
         raise ValueError("figure 9 needs two axes: (a) rotation, (b) capture factor")
@@ -130,6 +129,7 @@ def add_figure_9(axes, summaries, label: str = "simulator", heights=None):
     return axes
 
 
+@_doc
 def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
                   label: str = "simulator"):
     """Draw a model's phase averages in the normalisation of Fig. 10.
@@ -151,16 +151,9 @@ def add_figure_10(axes, summary: xr.Dataset, sim: xr.Dataset | None = None,
     label : str, optional
         Source name: its colour and legend label.
 
-    Returns
-    -------
-    sequence of matplotlib.axes.Axes
-        ``axes``.
+    %(axes_drawn)s
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 10.
+    %(references_brito2020)s, Fig. 10.
     """
     from flumekit import signal as sig
 

@@ -4,11 +4,7 @@ Both take the field dataset of :func:`flumekit.uvp.velocity_field` (dims phase, 
 ``u_normalised``, ``w_normalised`` and the ``water_depth`` attribute) and return a matplotlib
 ``Figure`` built with the object-oriented API (no pyplot state).
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, §4, Figs. 11-12.
+%(references_brito2020)s, §4, Figs. 11-12.
 """
 
 from __future__ import annotations
@@ -16,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import doc, fill
 from flumekit.figures.registry import register
 from flumekit.figures.style import (
     COLOURS,
@@ -28,6 +25,8 @@ from flumekit.figures.style import (
     title,
 )
 
+__doc__ = fill(__doc__)
+
 PHASES = (0.0, 0.06, 0.15, 0.27, 0.38, 0.44)  # t/T of Figs. 11 and 12
 
 
@@ -38,9 +37,13 @@ def _depth(field: xr.Dataset) -> float:
     return h
 
 
+def _phase_index(data: xr.Dataset | xr.DataArray, p: float) -> int:
+    """Return the index of the phase of ``data`` nearest to t/T = ``p``, across the cycle's end."""
+    return int(np.argmin(np.abs(((data["phase"].values - p + 0.5) % 1.0) - 0.5)))
+
+
 def _at_phase(field: xr.Dataset, p: float) -> xr.Dataset:
-    k = int(np.argmin(np.abs(((field["phase"].values - p + 0.5) % 1.0) - 0.5)))
-    return field.isel(phase=k)
+    return field.isel(phase=_phase_index(field, p))
 
 
 def _field_title(field: xr.Dataset, what: str) -> str:
@@ -93,6 +96,7 @@ def _reference_length(vmax: float) -> float:
 
 
 @register("fig11")
+@doc
 def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
           arrow: float = 0.9):
     """Draw the phase-averaged vector field (⟨u⟩, ⟨w⟩)/U0 and contours of ⟨u⟩/U0 (Fig. 11).
@@ -121,11 +125,7 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
     matplotlib.figure.Figure
         Two columns wide, z/h against x/h [-], with a reference arrow below the panels.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 11.
+    %(references_brito2020)s, Fig. 11.
     """
     h = _depth(field)
     x, z = field["x"].values / h, field["z"].values / h
@@ -204,6 +204,7 @@ def _column(field: xr.Dataset, name: str, x: float):
 
 
 @register("fig12")
+@doc
 def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
           truth: xr.Dataset | None = None):
     """Draw the ⟨u⟩/U0 and ⟨w⟩/U0 profiles at x/h = ``x_over_h`` (Fig. 12).
@@ -229,11 +230,7 @@ def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
     matplotlib.figure.Figure
         z/h against ⟨u⟩/U0 and ⟨w⟩/U0 [-], one panel per phase with data.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 12.
+    %(references_brito2020)s, Fig. 12.
     """
     h = _depth(field)
     x = x_over_h * h
@@ -244,11 +241,8 @@ def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
         tcols = {c: _column(truth, f"{c}_normalised", xc if np.isfinite(xc) else x)
                  for c, (_, xc) in cols.items()}
 
-    def at(col, p):
-        return int(np.argmin(np.abs(((col["phase"].values - p + 0.5) % 1.0) - 0.5)))
-
-    shown = [p for p in phases
-             if any(np.isfinite(cols[c][0].values[at(cols[c][0], p)]).any() for c in "uw")]
+    shown = [p for p in phases if any(np.isfinite(col.values[_phase_index(col, p)]).any()
+                                      for col, _ in cols.values())]
     if not shown:
         raise ValueError(f"the field has no velocity at or near x/h = {x_over_h:g} at any of "
                          f"the phases {list(phases)}")
@@ -262,7 +256,7 @@ def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
         for ax, p, tag in zip(axes.flat, shown, "abcdefgh"):
             for c in "uw":
                 col, xc = cols[c]
-                k = at(col, p)
+                k = _phase_index(col, p)
                 ax.plot(col.values[k], z, "-o", ms=2.5, color=colour[c],
                         label=rf"$\langle {c}\rangle/U_0$ at x/h = {xc / h:.2f}")
                 if c in tcols:

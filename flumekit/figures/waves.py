@@ -3,11 +3,7 @@
 All read the processed waves dataset of one run (:func:`flumekit.waves.analyse_run`); the
 separation figure also takes the output of :func:`flumekit.waves.separate`.
 
-References
-----------
-Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-investigation of the flow field in the vicinity of an oscillating wave surge converter.
-J. Mar. Sci. Eng. 8, Figs. 5a and 6a.
+%(references_brito2020)s, Figs. 5a and 6a.
 """
 
 from __future__ import annotations
@@ -15,7 +11,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import fill, filler
 from flumekit.figures.registry import register
+from flumekit.figures.separated import separated_elevations, separated_series
+from flumekit.figures.snippets import SNIPPETS
 from flumekit.figures.style import (
     COLOURS,
     TWO_COLUMNS,
@@ -28,6 +27,19 @@ from flumekit.figures.style import (
     thin,
     title,
 )
+
+__doc__ = fill(__doc__)
+
+#: parameters that Figs. 5a and 6a share, written once
+_doc = filler(
+    SNIPPETS,
+    waves_run=("waves : xarray.Dataset\n"
+               "    Processed waves dataset of one run (output of "
+               ":func:`flumekit.waves.analyse_run`)."),
+    probe_shown=("probe : str, optional\n"
+                 "    Probe to show; default the probe closest to the dataset's ``x_ref``."),
+    ax_new=("ax : matplotlib.axes.Axes, optional\n"
+            "    Axes to draw into; default a new two-column figure."))
 
 _TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
 
@@ -52,27 +64,32 @@ def _normalised(waves: xr.Dataset, probe) -> tuple[str, np.ndarray, np.ndarray, 
     return p, waves.time.values / period, waves.eta.sel(probe=p).values / scale, period, scale
 
 
-def _scales(scale: float, period: float) -> str:
-    """Describe the normalising scales of the elevation figures, for the title."""
-    return f"$A_s$ = {scale:.3f} m, $T$ = {period:.2f} s"
+def _elevation_axes(fig, ax, xlim: tuple[float, float], waves: xr.Dataset, what: str, p: str,
+                    scale: float, period: float) -> None:
+    """Label the axes of η/A_s against t/T, add the legend and a title with the probe and scales.
 
-
-def _probe_text(waves: xr.Dataset, p: str) -> str:
-    return f"probe {p} at x = {float(waves.x.sel(probe=p)):.2f} m"
+    The title names the run, ``what`` is shown at probe ``p`` (its position) and the
+    normalising scales: the amplitude scale A_s [m] and the period T [s].
+    """
+    ax.set_xlim(*xlim)
+    ax.set_xlabel(_TIME_OVER_PERIOD)
+    ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
+    where = f"probe {p} at x = {float(waves.x.sel(probe=p)):.2f} m"
+    title(fig, run_title(waves, f"{what}, {where}")
+          + f"\n$A_s$ = {scale:.3f} m, $T$ = {period:.2f} s")
+    legend(fig)
 
 
 @register("fig05a")
+@_doc
 def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     """Draw the full time series of the normalised elevation η/A_s against t/T (Fig. 5a).
 
     Parameters
     ----------
-    waves : xarray.Dataset
-        Processed waves dataset of one run (output of :func:`flumekit.waves.analyse_run`).
-    probe : str, optional
-        Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new two-column figure.
+    %(waves_run)s
+    %(probe_shown)s
+    %(ax_new)s
 
     Returns
     -------
@@ -82,11 +99,7 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         crest criterion) and, dashed where it opens later, the start of the analysis window
         (the separated reflection settled too).
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 5a.
+    %(references_brito2020)s, Fig. 5a.
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
@@ -101,31 +114,22 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         if crest is not None and float(waves.steady_start) > crest + 0.5 * period:
             ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9, ls="--",
                        label="analysis window from (reflection settled)")
-        ax.set_xlim(tt[0], tt[-1])
-        ax.set_xlabel(_TIME_OVER_PERIOD)
-        ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
-        title(fig, run_title(waves, f"Normalised surface elevation, {_probe_text(waves, p)}")
-              + f"\n{_scales(scale, period)}")
-        legend(fig)
+        _elevation_axes(fig, ax, (tt[0], tt[-1]), waves, "Normalised surface elevation", p,
+                        scale, period)
     return fig
 
 
 @register("fig06a")
+@_doc
 def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=None, ax=None):
     """Draw five consecutive waves of the normalised elevation (Brito et al. 2020, Fig. 6a).
 
     Parameters
     ----------
-    waves : xarray.Dataset
-        Processed waves dataset of one run (output of :func:`flumekit.waves.analyse_run`).
-    start : float, optional
-        First t/T shown [-] (the paper: 65).
-    n_waves : int, optional
-        Number of periods shown [-].
-    probe : str, optional
-        Probe to show; default the probe closest to the dataset's ``x_ref``.
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into; default a new two-column figure.
+    %(waves_run)s
+    %(fig6_window)s
+    %(probe_shown)s
+    %(ax_new)s
 
     Returns
     -------
@@ -133,11 +137,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
         η/A_s [-] against t/T [-], with the amplitude scale as a dash-dotted line at
         η/A_s = 1.
 
-    References
-    ----------
-    Brito, M., Ferreira, R. M. L., Teixeira, L., Neves, M. G. & Gil, L. (2020). Experimental
-    investigation of the flow field in the vicinity of an oscillating wave surge converter.
-    J. Mar. Sci. Eng. 8, Fig. 6a.
+    %(references_brito2020)s, Fig. 6a.
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     stop = start + n_waves
@@ -149,12 +149,7 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     with style():
         ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        ax.set_xlim(start, stop)
-        ax.set_xlabel(_TIME_OVER_PERIOD)
-        ax.set_ylabel(label(text=r"$\eta/A_s$", units="1"))
-        title(fig, run_title(waves, f"Five waves, {_probe_text(waves, p)}")
-              + f"\n{_scales(scale, period)}")
-        legend(fig)
+        _elevation_axes(fig, ax, (start, stop), waves, "Five waves", p, scale, period)
     return fig
 
 
@@ -190,7 +185,8 @@ def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
     Returns
     -------
     matplotlib.figure.Figure
-        Two columns wide.
+        Two columns wide: (a) elevations [m] against time [s], (b) variance densities [m2 s]
+        against frequency [Hz].
 
     References
     ----------
@@ -199,12 +195,7 @@ def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
     """
     need = ("eta_incident", "eta_reflected", "spectrum_incident", "spectrum_reflected",
             "reflection_coefficient", "incident_height")
-    missing = [n for n in need if n not in waves.variables]
-    if missing:
-        raise ValueError(f"the waves dataset lacks {missing}: pass the output of analyse_run "
-                         "or separate")
-    t = waves["time"].values
-    inc, ref = waves["eta_incident"].values, waves["eta_reflected"].values
+    t, inc, ref = separated_series(waves, need, "analyse_run or separate")
     ok = np.isfinite(inc) & np.isfinite(ref)
     if not ok.any():
         raise ValueError("the separated series hold no finite sample")
@@ -222,12 +213,8 @@ def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
     ax_t, ax_f = axes[0]
     x_ref = float(waves.attrs.get("x_ref", 0.0))
     with style():
-        for name, series in (("incident", inc), ("reflected", ref)):
-            ax_t.plot(t[shown], series[shown], color=COLOURS[name], label=name)
-        ax_t.set_xlim(t[shown][0], t[shown][-1])
-        ax_t.set_xlabel(label("time", "$t$"))
-        ax_t.set_ylabel(label("eta", r"$\eta$", text="Elevation"))
-        ax_t.set_title(f"(a) at the reference point x = {x_ref:g} m")
+        separated_elevations(ax_t, t[shown], inc[shown], ref[shown],
+                             f"at the reference point x = {x_ref:g} m")
         from flumekit.waves.irregular import band_average
 
         # masked bins stay out of the bands: their separation is not defined
