@@ -676,10 +676,10 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
     filtered[:, 0] = 2  # Up: each byte minus the byte above it (modulo 256)
     filtered[0, 0] = 0  # the first row has none above it: unfiltered
     # the filtered rows written through a (height, width, bands) view: no copy of the image
-    out = np.ndarray((height, width, bands), np.uint8, buffer=filtered, offset=1,
-                     strides=(filtered.strides[0], bands, 1))
-    out[0] = pixels[0]
-    np.subtract(pixels[1:], pixels[:-1], out=out[1:])
+    rows = np.ndarray((height, width, bands), np.uint8, buffer=filtered, offset=1,
+                      strides=(filtered.strides[0], bands, 1))
+    rows[0] = pixels[0]
+    np.subtract(pixels[1:], pixels[:-1], out=rows[1:])
 
     def chunk(kind: bytes, data: bytes) -> bytes:
         return (struct.pack(">I", len(data)) + kind + data
