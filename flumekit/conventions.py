@@ -663,13 +663,44 @@ def annotated_dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr
     >>> ds.time.attrs["units"], ds.eta_incident.attrs["units"], list(ds.indexes)
     ('s', 'm', ['time'])
     """
-    def variable(name, v):
+    def variable(name, v, coordinate=False):
         dims, values, *more = v if isinstance(v, tuple) else ((name,), v)
-        return xr.Variable(dims, values, _registry_attrs(name, more[0] if more else {}))
+        kind = xr.IndexVariable if coordinate and dims == (name,) else xr.Variable
+        return kind(dims, values, _registry_attrs(name, more[0] if more else {}))
 
-    return xr.Dataset({k: variable(k, v) for k, v in data.items()},
-                      coords=xr.Coordinates({k: variable(k, v) for k, v in coords.items()}),
-                      attrs=attrs)
+    data_vars = {k: variable(k, v) for k, v in data.items()}
+    coord_vars = {k: variable(k, v, coordinate=True) for k, v in coords.items()}
+    direct = _dataset_direct(data_vars, coord_vars, attrs)
+    if direct is not None:
+        return direct
+    return xr.Dataset(data_vars, coords=xr.Coordinates(coord_vars), attrs=attrs)
+
+
+def _dataset_direct(data_vars: dict, coord_vars: dict, attrs: dict | None):
+    """Return the dataset of these variables made without xarray's merge, or None.
+
+    What ``xarray.Dataset(data_vars, coords, attrs)`` builds when every dimension has one size,
+    the names are distinct and each dimension coordinate is one-dimensional: its default
+    index made from the coordinate's values. The merge and alignment of the constructor,
+    which check all of that for any input, are most of the cost of a small dataset (the
+    separation's, built once per record and per Monte Carlo draw). None where those
+    conditions do not hold or this xarray has no ``Dataset._construct_direct``: the caller
+    then builds the dataset through the constructor, which raises what is wrong.
+    """
+    import pandas as pd
+    from xarray.indexes import PandasIndex
+
+    construct = getattr(xr.Dataset, "_construct_direct", None)
+    if construct is None or set(data_vars) & set(coord_vars):
+        return None
+    sizes: dict = {}
+    for var in (*coord_vars.values(), *data_vars.values()):
+        for dim, n in zip(var.dims, var.shape, strict=True):
+            if sizes.setdefault(dim, n) != n:
+                return None
+    indexes = {k: PandasIndex(pd.Index(v.values), k) for k, v in coord_vars.items()
+               if v.dims == (k,)}
+    return construct({**data_vars, **coord_vars}, set(coord_vars), sizes, attrs, indexes)
 
 
 def check(ds: xr.Dataset) -> None:
