@@ -294,7 +294,7 @@ def _results(graph, report) -> None:
     """Print the make summary's results: each waves run built now, with its first-harmonic Kr."""
     built = [t for t, *_ in report.ran if t.startswith("waves/")]
     if built:
-        from flumekit.stages.waves import report as waves_report
+        from flumekit.stages.waves_run import report as waves_report
 
         print("results:")
         lines = waves_report([graph.rules[t].outputs["dataset"] for t in built])

@@ -129,36 +129,6 @@ def build(inputs, outputs, params) -> Written:
                      f"flumekit waves stage from {inputs['eta']}", record=eta_ds)
 
 
-def report(paths) -> list[str]:
-    """Return one line of the statistics of each run's waves product, for the make summary.
-
-    Kr, incident height [m] and period [s] of a regular run; Kr, Hm0 [m], Tp and Te [s] of an
-    irregular one. The files are read together, their scalars only
-    (:func:`flumekit.io.run_files.open_runs`).
-    """
-    from flumekit.io.run_files import open_runs
-
-    lines = []
-    with open_runs(paths) as runs:
-        for i, (variables, _, _) in enumerate(runs.metas):
-            def value(name, i=i):
-                return runs.values(i, name).item()
-
-            if "hm0" in variables:
-                lines.append(
-                    f"bulk Kr = {value('reflection_coefficient'):.3f}, Hm0 = "
-                    f"{value('hm0'):.4g} m, Tp = {value('tp'):.4g} s, Te = {value('te'):.4g} s "
-                    f"over {value('analysis_end') - value('analysis_start'):.0f} s (irregular)")
-                continue
-            crit = variables["steady_tolerance"][2].get("criterion", "tolerance") \
-                if "steady_tolerance" in variables else "tolerance"
-            lines.append(
-                f"first-harmonic Kr = {value('reflection_coefficient'):.3f}, H_I = "
-                f"{value('incident_height'):.4g} m, T = {value('measured_period'):.4g} s, "
-                f"{int(value('steady_cycles'))} steady cycles ({crit} criterion)")
-    return lines
-
-
 def summary(inputs, outputs, params) -> Written:
     """Stack every run's ``waves/<run>.nc`` along ``run`` into ``waves_summary.nc``."""
     return stack_runs(inputs, outputs, "Wave statistics of every run")
