@@ -52,7 +52,7 @@ REFERENCES: dict[str, str] = {
         "Press"),
     "ogilvie1964": (
         "Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of "
-        "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-80"),
+        "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-128"),
 }
 
 #: parameters documented alike in several modules: key -> the numpydoc entry
