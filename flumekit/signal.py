@@ -144,7 +144,8 @@ def cycles(x: np.ndarray, time: np.ndarray, min_period: float = 0.0) -> Cycles:
     """
     x = np.asarray(x, dtype=float)
     idx = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0)) + 1
-    if min_period > 0 and idx.size > 1:
+    # with every crossing min_period after the one before, the loop below keeps them all
+    if min_period > 0 and idx.size > 1 and not np.all(np.diff(time[idx]) >= min_period):
         keep = [0]
         # crossings are few (one per wave), so this loop is over waves, not samples
         for j in range(1, idx.size):
