@@ -268,8 +268,8 @@ def _warnings(graph, report) -> list[str]:
 
     They are the datasets' ``flumekit_warnings`` attribute.
     """
+    from flumekit.conventions import WARNINGS, run_warnings
     from flumekit.io.run_files import text_attributes
-    from flumekit.stages.runs import WARNINGS, run_warnings
 
     built = [(graph.rules[t].run, p) for t, *_ in report.ran
              for p in graph.rules[t].outputs.values() if str(p).endswith(".nc")

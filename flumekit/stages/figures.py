@@ -16,7 +16,7 @@ stage knows no figure function.
 from __future__ import annotations
 
 from flumekit.pipeline.rules import Rule
-from flumekit.stages.common import RAW, raw_reading, read_inputs
+from flumekit.stages.common import RAW, raw_reading
 from flumekit.stages.context import Context
 
 VERSION = "4"
@@ -70,7 +70,7 @@ def rules(ctx: Context, p: dict) -> list[Rule]:
         ``figure/<target>`` (default: the figure's name).
         """
         name = target or figure
-        out.append(Rule(f"figure/{name}", "flumekit.stages.figures:draw", inputs=inputs,
+        out.append(Rule(f"figure/{name}", "flumekit.stages.figures_run:draw", inputs=inputs,
                         outputs={f: ctx.out("figures", f"{name}.{f}") for f in formats},
                         params={"figure": figure, **params}, version=VERSION))
 
@@ -128,37 +128,3 @@ def _qc_inputs(ctx: Context, run) -> dict:
     if ctx.campaign.uvp is not None and run.kind == "uvp":
         inputs["uvp"] = ctx.out("qc", "uvp", f"{run.id}.nc")
     return inputs
-
-
-def draw(inputs, outputs, params) -> None:
-    """Draw the registered figure ``params["figure"]`` and save it in every format.
-
-    The figure is drawn from the rule's inputs (processed datasets, stacked along ``run`` for
-    a figure registered so; raw files through their readers) and saved after passing the
-    figure test (:mod:`flumekit.figures.check`).
-    """
-    from flumekit.figures.style import without_collector
-
-    with without_collector():
-        _draw(inputs, outputs, params)
-
-
-def _draw(inputs, outputs, params) -> None:
-    """:func:`draw`, inside :func:`flumekit.figures.style.without_collector`."""
-    from flumekit.figures.check import assert_passes
-    from flumekit.figures.registry import figure
-    from flumekit.figures.style import laid_out, save, style
-
-    entry = figure(params["figure"])
-    if entry.stacked:
-        from flumekit.io.processed import stack_files
-
-        data = {"runs": stack_files([inputs[k] for k in sorted(inputs)])}
-    else:
-        data = read_inputs(inputs, params.get("reading"))
-    with style():
-        fig = entry.draw(data, params)
-    with laid_out(fig):  # one layout, and one drawing for the check and the PNG
-        save(fig, *outputs.values(),
-             check=lambda f: assert_passes(f, f"figure {entry.name}"),
-             description=entry.description)

@@ -6,9 +6,6 @@ from flumekit.docstrings import doc
 from flumekit.io.atomic import Written
 from flumekit.stages.record_start import declared_start
 
-# the summaries' stacking, here too for the callers that import it from the run helpers
-from flumekit.stages.summaries import stack_runs  # noqa: F401
-
 
 @doc
 def run_params(run, campaign=None) -> dict:
@@ -136,16 +133,3 @@ def write_run(ds, outputs: dict, params: dict, title: str, source: str, record=N
         ds = declared_start(ds, declared, params["run"])
     return write_product(ds, outputs["dataset"], f"{title} of run {params['run']}", source,
                          params, compress=compress)
-
-
-def __getattr__(name: str):
-    """Return ``WARNINGS`` or ``run_warnings`` of :mod:`flumekit.conventions`.
-
-    For the callers outside ``stages/`` that import them from here (loaded on use: planning
-    imports no xarray).
-    """
-    if name in ("WARNINGS", "run_warnings"):
-        from flumekit import conventions
-
-        return getattr(conventions, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -83,7 +83,7 @@ def rules(ctx: Context, params: dict) -> list[Rule]:
 
         formats = ctx.stage_params("figures", FIG)["formats"]
         formats = [formats] if isinstance(formats, str) else list(formats)
-        out.append(Rule("figure/uncertainty_budget", "flumekit.stages.figures:draw",
+        out.append(Rule("figure/uncertainty_budget", "flumekit.stages.figures_run:draw",
                         inputs={"budget": ctx.out("budget.nc")},
                         outputs={f: ctx.out("figures", f"uncertainty_budget.{f}")
                                  for f in formats},

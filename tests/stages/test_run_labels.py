@@ -10,7 +10,8 @@ import numpy as np
 import xarray as xr
 
 from flumekit.io.netcdf import read_dataset
-from flumekit.stages.runs import stack_runs, write_run
+from flumekit.stages.runs import write_run
+from flumekit.stages.summaries import stack_runs
 
 # 1 to 40 characters; a name that is another's prefix (run1, run10), unicode, dots
 NAMES = ["r", "run1", "run10", "T3.50_H0.250_r1", "uvp_z0.05", "uvp_z0.125", "Welle_ÄÖÜ_ß",
