@@ -339,3 +339,11 @@ def test_cycles_are_named():
                                              "flumekit.c (line 1) -> flumekit.a")
     del graph["flumekit.c"]["flumekit.a"]
     assert import_cycles(graph) == []
+
+
+def test_stage_modules_stay_small():
+    """A stage only wires (reads, calls one domain function, writes): a stage module past
+    150 lines holds domain code that belongs in its package."""
+    long = {p.name: n for p in sorted((PACKAGE / "stages").glob("*.py"))
+            if (n := len(p.read_text().splitlines())) > 150}
+    assert long == {}, long
