@@ -13,8 +13,10 @@ import functools
 import hashlib
 import json
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import xarray as xr
+if TYPE_CHECKING:  # imported where a dataset is made: the names alone need no xarray
+    import xarray as xr
 
 CONVENTIONS = "CF-1.8"
 #: attribute of a ``time`` coordinate: the instant of time 0, ISO 8601 (ending in ``Z`` when in
@@ -611,6 +613,8 @@ def annotate(obj: xr.Dataset | xr.DataArray) -> xr.Dataset | xr.DataArray:
     >>> ds.time.attrs["units"], ds.time.attrs["standard_name"]
     ('s', 'time')
     """
+    import xarray as xr
+
     obj = obj.copy()  # shallow: new variables with copies of their attrs, the data shared
     # the variables themselves (a DataArray per name would cost more than the annotation)
     variables = obj.variables if isinstance(obj, xr.Dataset) else obj.coords.variables
@@ -663,6 +667,8 @@ def annotated_dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr
     >>> ds.time.attrs["units"], ds.eta_incident.attrs["units"], list(ds.indexes)
     ('s', 'm', ['time'])
     """
+    import xarray as xr
+
     def variable(name, v, coordinate=False):
         dims, values, *more = v if isinstance(v, tuple) else ((name,), v)
         kind = xr.IndexVariable if coordinate and dims == (name,) else xr.Variable
@@ -688,6 +694,7 @@ def _dataset_direct(data_vars: dict, coord_vars: dict, attrs: dict | None):
     then builds the dataset through the constructor, which raises what is wrong.
     """
     import pandas as pd
+    import xarray as xr
     from xarray.indexes import PandasIndex
 
     construct = getattr(xr.Dataset, "_construct_direct", None)
