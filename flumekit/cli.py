@@ -274,9 +274,17 @@ def _warnings(graph, report) -> list[str]:
     built = [(graph.rules[t].run, p) for t, *_ in report.ran
              for p in graph.rules[t].outputs.values() if str(p).endswith(".nc")
              and Path(p).is_file()]
+    try:
+        texts = text_attributes([p for _, p in built], WARNINGS)
+    except OSError:  # a product that cannot be read: the others' warnings all the same
+        texts = []
+        for _, p in built:
+            try:
+                texts += text_attributes([p], WARNINGS)
+            except OSError:
+                texts.append(None)
     found: list[str] = []
-    for (run, _), text in zip(built, text_attributes([p for _, p in built], WARNINGS),
-                              strict=True):
+    for (run, _), text in zip(built, texts, strict=True):
         found += run_warnings(run, text or "")
     return list(dict.fromkeys(found))
 
