@@ -756,11 +756,15 @@ def _layout_once(fig):
     dpi = fig.get_dpi()
     fig.set_dpi(STYLE["savefig.dpi"])
     _agg_canvas(fig)
+    remembered = _ticks_remembered(fig)
     try:
         with style(), _mathtext_cached():
             engine.execute(fig)
             placed = _titles_placed(fig)
             fixed = _ticks_fixed(fig)
+    except BaseException:
+        remembered()
+        raise
     finally:
         fig.set_dpi(dpi)
     # no engine at all, not matplotlib's placeholder for "none": with any engine, savefig
@@ -778,6 +782,48 @@ def _layout_once(fig):
             ax._autotitlepos = True
         for ticker, locator, formatter in fixed:
             ticker.locator, ticker.formatter = locator, formatter
+        remembered()
+
+
+def _ticks_remembered(fig):
+    """Let each axis of ``fig`` update its ticks once per state, until the returned call.
+
+    matplotlib updates an axis's ticks (locator, formatter, every tick's place and label)
+    whenever anything asks where they are: in a layout pass, each of the axes' four spines, its
+    title, and the tick boxes of every axes its labels align with (all rows of a column of
+    shared axes) ask again, some ten times per state. While the state the ticks depend on is
+    the same (the view and data limits, the axes' box on the canvas, the tickers), the ticks
+    are those of the last update, which is returned instead. Returns the call that gives the
+    axes their own update back.
+    """
+    axes = [axis for ax in fig.axes for axis in (ax.xaxis, ax.yaxis)]
+
+    def remembering(axis):
+        update = type(axis)._update_ticks
+        last: list = [None, []]
+
+        def state():
+            return (tuple(axis.get_view_interval()), tuple(axis.get_data_interval()),
+                    axis.axes.bbox.bounds, axis.major.locator, axis.major.formatter,
+                    axis.minor.locator, axis.minor.formatter)
+
+        def _update_ticks():
+            now = state()
+            if last[0] != now:  # the tickers compare by identity
+                last[1] = update(axis)
+                last[0] = state()  # an update may set the limits (autoscaling)
+            return list(last[1])
+
+        return _update_ticks
+
+    for axis in axes:
+        axis._update_ticks = remembering(axis)
+
+    def restore():
+        for axis in axes:
+            axis.__dict__.pop("_update_ticks", None)
+
+    return restore
 
 
 def _ticks_fixed(fig) -> list:

@@ -438,3 +438,41 @@ def test_png_bytes_decode_to_the_pixels_texts_and_resolution(tmp_path):
             assert image.text == texts
             assert image.info["dpi"] == pytest.approx((300, 300), abs=1e-3)
         assert _png_text(path) == texts
+
+
+def test_ticks_updated_once_per_state_give_the_same_pixels(tmp_path, monkeypatch):
+    """Each axis's ticks updated once per state during :func:`save`: the PNG of a figure of
+    shared rows (offset texts, labels of different widths) has the pixels it has when every
+    request updates them again, as matplotlib does, and each axis has its own update back."""
+    from PIL import Image
+
+    from flumekit.figures import style as st
+
+    def drawing():
+        fig, axes = new_figure(3, 1)
+        t = np.linspace(0.0, 600.0, 2000)
+        for i, ax in enumerate(axes[:, 0]):
+            ax.plot(t, 1e5 + 10.0 ** (2 * i) * np.sin(t / 7.0), lw=0.5)
+            ax.set_ylabel("[Pa]")
+            ax.set_title(f"panel {i}", loc="left")
+        for ax in axes[1:, 0]:
+            ax.sharex(axes[0, 0])
+        axes[-1, 0].set_xlabel("Time [s]")
+        title(fig, "Three shared rows")
+        return fig
+
+    updates = []
+    update = type(Figure().add_subplot().xaxis)._update_ticks
+    monkeypatch.setattr(type(Figure().add_subplot().xaxis), "_update_ticks",
+                        lambda axis: updates.append(axis) or update(axis))
+    fig = drawing()
+    (path,) = st.save(fig, tmp_path / "a.png")
+    remembered, n_remembered = np.asarray(Image.open(path)), len(updates)
+    assert not any("_update_ticks" in vars(axis) for ax in fig.axes
+                   for axis in (ax.xaxis, ax.yaxis))
+    monkeypatch.setattr(st, "_ticks_remembered", lambda fig: lambda: None)
+    updates.clear()
+    (path,) = st.save(drawing(), tmp_path / "b.png")
+    every_time = np.asarray(Image.open(path))
+    assert (remembered == every_time).all()
+    assert 3 * n_remembered < len(updates), (n_remembered, len(updates))
