@@ -164,6 +164,32 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
         Wrong dims, missing or repeated positions, fewer than 8 samples, non-uniform time or
         non-finite samples (the message names the first probe holding one).
     """
+    v, t, x, probes = unpack_probe_time(eta)
+    check_probe_arrays(v, t, x, probes)
+    return v, t, x, probes
+
+
+def unpack_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+    """Return the arrays of an elevation record, its values unchecked (:func:`as_probe_time`).
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+        ``probe``.
+
+    Returns
+    -------
+    tuple
+        Values (probe, time) [m], time [s], positions [m] and probe labels.
+
+    Raises
+    ------
+    TypeError
+        When ``eta`` is not a DataArray.
+    ValueError
+        Wrong dims or no positions.
+    """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
                         f"{type(eta).__name__}")
@@ -178,18 +204,43 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     x = np.asarray(coords["x"].values, dtype=float)
     t = np.asarray(coords["time"].values, dtype=float)
     v = np.asarray(eta.values, dtype=float)
+    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
+    return v, t, x, probes
+
+
+def check_probe_arrays(values: np.ndarray, time: np.ndarray, x: np.ndarray, probes: list, *,
+                       masked: bool = False) -> None:
+    """Check the arrays of an elevation record as :func:`as_probe_time` checks its DataArray.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s].
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    masked : bool
+        Whether NaN samples (masked by quality control) are allowed; infinite ones never are.
+
+    Raises
+    ------
+    ValueError
+        Missing or repeated positions, fewer than 8 samples, non-uniform time or non-finite
+        samples (the message names the first probe holding one).
+    """
     if not np.all(np.isfinite(x)) or np.unique(x).size != x.size:
         raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
-    if t.size < 8:
-        raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
-    uniform_step(t, "eta")
-    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
-    bad = ~np.isfinite(v)
+    if time.size < 8:
+        raise ValueError(f"eta has {time.size} samples; separation needs at least 8")
+    uniform_step(time, "eta")
+    bad = np.isinf(values) if masked else ~np.isfinite(values)
     if bad.any():
         p = int(np.flatnonzero(bad.any(axis=1))[0])
         raise ValueError(f"eta holds {int(bad.sum())} non-finite samples (first in probe "
                          f"{probes[p]!r}); fill or cut gaps before separating")
-    return v, t, x, probes
 
 
 def separate(eta, depth: float, method: str = "mansard_funke",
@@ -592,18 +643,53 @@ def check_separation_inputs(eta: xr.DataArray, depth: float, method: str,
         An unknown method, a non-positive depth, a max_condition not above 1, the wrong number
         of probes, or a record :func:`as_probe_time` refuses.
     """
+    _check_arguments(depth, method, max_condition)
+    v, t, x, probes = as_probe_time(eta)
+    _check_probe_count(x, probes, method)
+    return v, t, x, probes
+
+
+def check_separation_arrays(values: np.ndarray, time: np.ndarray, x: np.ndarray, probes: list,
+                            depth: float, method: str, max_condition: float) -> None:
+    """Check the arguments of :func:`separate` given as the arrays of :func:`as_probe_time`.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Surface elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s].
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    depth, method, max_condition
+        As in :func:`check_separation_inputs`: depth [m], method, condition number [-].
+
+    Raises
+    ------
+    ValueError
+        As :func:`check_separation_inputs`.
+    """
+    _check_arguments(depth, method, max_condition)
+    check_probe_arrays(values, time, x, probes)
+    _check_probe_count(x, probes, method)
+
+
+def _check_arguments(depth: float, method: str, max_condition: float) -> None:
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
         raise ValueError(f"depth must be positive and finite, got {depth}")
     if not max_condition > 1:
         raise ValueError(f"max_condition must exceed 1, got {max_condition}")
-    v, t, x, probes = as_probe_time(eta)
+
+
+def _check_probe_count(x: np.ndarray, probes: list, method: str) -> None:
     n_min, n_max = METHODS[method]
     if x.size < n_min or (n_max is not None and x.size > n_max):
         need = f"exactly {n_min}" if n_min == n_max else f"at least {n_min}"
         raise ValueError(f"method {method!r} needs {need} probes, got {x.size} ({probes})")
-    return v, t, x, probes
 
 
 def _band_bins(t: np.ndarray, band: tuple[float, float] | None
