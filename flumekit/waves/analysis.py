@@ -26,7 +26,7 @@ from flumekit.waves.separation import (
     unpack_probe_time,
 )
 from flumekit.waves.steady import reflection_settling
-from flumekit.waves.stream_function import nonlinear_wavenumber
+from flumekit.waves.stream_function import nonlinear_wavenumbers
 from flumekit.waves.theory import G, energy_flux
 
 
@@ -498,14 +498,16 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     active = [i for i, o in enumerate(out) if not isinstance(o, ValueError)]
     for _ in range(2):  # the heights move k by < 1e-3 after the first pass
         still = []
-        for i in active:
-            data = out[i][0]
-            try:
-                ks = [nonlinear_wavenumber(records[i].period, float(data[h][1]), depths[i], g)
-                      for h in ("incident_height", "reflected_height")]
-            except ValueError as e:  # beyond the highest steady wave: keep the linear k
-                warnings.warn(f"separation with the linear wavenumber: {e}", SeparationWarning,
-                              stacklevel=3)
+        # the incident and reflected waves of every record, solved together
+        waves = [(records[i].period, float(out[i][0][h][1]), depths[i])
+                 for i in active for h in ("incident_height", "reflected_height")]
+        solved = nonlinear_wavenumbers(*zip(*waves), g=g) if waves else []
+        for j, i in enumerate(active):
+            ks = solved[2 * j:2 * j + 2]
+            refused = [k for k in ks if isinstance(k, ValueError)]
+            if refused:  # beyond the highest steady wave: keep the linear k
+                warnings.warn(f"separation with the linear wavenumber: {refused[0]}",
+                              SeparationWarning, stacklevel=3)
                 continue
             p, x, probes = prepared[i]
             try:
