@@ -204,8 +204,9 @@ def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     t_p = pressure_torque(f_p, rod.lever_arm)
     t_f = friction_torque(f_f, rod.lever_arm)
     t_pto = t_p + t_f
+    t_g = gravity_torque(theta, flap.buoyancy_stiffness)
     t_h = hydrodynamic_torque(theta, theta_ddot, t_pto, inertia=flap.inertia,
-                              buoyancy_stiffness=flap.buoyancy_stiffness)
+                              buoyancy_stiffness=flap.buoyancy_stiffness, torque_gravity=t_g)
     q = flow_rate(rod.velocity, pto.bore_area)
     w_out = pto_power(p, q)
     series = {
@@ -218,7 +219,7 @@ def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         "force_pressure": f_p, "force_friction": f_f,
         "bristle_deflection": z_b, "film_thickness_parameter": h_l,
         "torque_pressure": t_p, "torque_friction": t_f, "torque_pto": t_pto,
-        "torque_gravity": gravity_torque(theta, flap.buoyancy_stiffness),
+        "torque_gravity": t_g,
         "torque_inertia": inertia_torque(theta_ddot, flap.inertia),
         "torque_hydrodynamic": t_h, "flow_rate": q, "power": w_out}
     return _Measured(t, fs, series, compression)

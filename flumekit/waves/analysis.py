@@ -13,7 +13,7 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.docstrings import doc
-from flumekit.signal import quasi_steady_window
+from flumekit.signal import cycles, quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
 from flumekit.waves.separation import (
@@ -375,6 +375,8 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
                                        else [])
     found: dict[str, tuple] = {}
     failure = None
+    # each probe's cycles, the same for both criteria
+    split = [cycles(v[p], t, min_period=0.75 * period) for p in range(v.shape[0])]
     for criterion, factor in criteria:
         try:
             windows = []
@@ -382,7 +384,8 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
                 try:
                     windows.append(quasi_steady_window(v[p], t, tolerance=tolerance,
                                                        min_period=0.75 * period,
-                                                       noise_factor=factor))
+                                                       noise_factor=factor,
+                                                       zero_cycles=split[p]))
                 except ValueError as e:  # name the probe (a dead probe, a short record)
                     raise ValueError(f"probe {probes[p]}: {e}") from None
         except ValueError as e:
