@@ -266,7 +266,7 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     parts = _separation_passes([recs[i] for i in idx], [depths[i] for i in idx], method=method,
                                x_ref=x_ref, bound_harmonics=bound_harmonics,
                                amplitude_dispersion=amplitude_dispersion,
-                               max_condition=max_condition, g=g)
+                               max_condition=max_condition, g=g, elevations=False)
     out = {k: np.full(len(recs), np.nan) for k in VARIANT_RESULTS}
     for i, part in zip(idx, parts, strict=True):
         if isinstance(part, ValueError):
@@ -458,7 +458,7 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
 
 def _separation_passes(records: list, depths: list, *, method: str, x_ref: float,
                        bound_harmonics: bool, amplitude_dispersion: bool,
-                       max_condition: float, g: float) -> list:
+                       max_condition: float, g: float, elevations: bool = True) -> list:
     """Separate the steady windows of runs (or of draws of one run) as :func:`analyse_run` does.
 
     The first pass with the linear wavenumbers; with ``amplitude_dispersion`` and
@@ -473,6 +473,8 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
         Still water depth of each [m].
     method, x_ref, bound_harmonics, amplitude_dispersion, max_condition, g
         As in :func:`analyse_run`.
+    elevations : bool
+        Whether the separated elevations are synthesised (the scalar results need them not).
 
     Returns
     -------
@@ -483,7 +485,7 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     """
     kw = dict(regular=True, bound_harmonics=bound_harmonics, window=None,
               max_condition=max_condition, warn_fraction=0.01, gauge_weights=None, g=g,
-              detection="given")
+              detection="given", elevations=elevations)
     prepared, out = [], []
     for rec, depth in zip(records, depths, strict=True):
         try:

@@ -486,7 +486,8 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
 def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, method: str,
                       x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
                       window: str | None, max_condition: float, warn_fraction: float,
-                      gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
+                      gauge_weights, g: float, detection: str,
+                      elevations: bool = True) -> tuple[dict, dict, dict]:
     """Separate a prepared record; return the parts of the dataset of :func:`separate`.
 
     Parameters
@@ -507,6 +508,9 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
         As in :func:`separate` (wavenumbers [rad m-1], g [m s-2]).
     detection : str
         What the regular-wave detection found ("given" when the caller said).
+    elevations : bool
+        Whether to synthesise ``eta_incident`` and ``eta_reflected`` (an inverse FFT of the
+        record each); a caller that reads the statistics alone leaves them out.
 
     Returns
     -------
@@ -557,21 +561,23 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
                                                  f, k, x, max_condition, warn_fraction)
     m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
     # the waves' phase shifts from the probes' origin to x_ref, per distinct wavenumber
-    shift_i = np.exp(-1j * ks * x_ref)
-    shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
-    if group is not None:
-        shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
-    eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
+    data = {}
+    if elevations:
+        shift_i = np.exp(-1j * ks * x_ref)
+        shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
+        if group is not None:
+            shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
+        eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
+        data = {"eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r)}
 
     df = freq[1]
-    data = {
-        "eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r),
+    data.update({
         "spectrum_incident": ("frequency", e_inc / df),
         "spectrum_reflected": ("frequency", e_ref / df),
         "condition_number": ("frequency", cond), "masked": ("frequency", masked.astype(np.int8)),
         "wave_number": ("frequency", k),
         "masked_energy_fraction": ((), masked_fraction),
-    }
+    })
     coords = {"time": t, "frequency": f}
     if regular:
         nh = rec.coef.shape[1]
