@@ -29,6 +29,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
@@ -39,6 +40,16 @@ from flumekit.waves.records import (
     spectrum_harmonic_fraction,
 )
 from flumekit.waves.theory import G, wavenumber
+
+#: docstring text that several functions of this module share
+_doc = filler(probe_arrays=("values : numpy.ndarray\n"
+                            "    Elevation [m], shape (probe, time).\n"
+                            "time : numpy.ndarray\n"
+                            "    Time [s].\n"
+                            "x : numpy.ndarray\n"
+                            "    Probe positions [m].\n"
+                            "probes : list\n"
+                            "    Probe labels."))
 
 __all__ = ["METHODS", "SeparationWarning", "as_probe_time", "lstsq_normal", "separate"]
 
@@ -136,6 +147,7 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
     return np.linalg.solve(gram, r), cond, masked
 
 
+@_doc
 def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
     """Check an elevation record for separation and return its arrays.
 
@@ -147,14 +159,7 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
     Returns
     -------
-    values : numpy.ndarray
-        Elevation [m], shape (probe, time).
-    time : numpy.ndarray
-        Time [s].
-    x : numpy.ndarray
-        Probe positions [m].
-    probes : list
-        Probe labels.
+    %(probe_arrays)s
 
     Raises
     ------
@@ -208,20 +213,14 @@ def unpack_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.nda
     return v, t, x, probes
 
 
+@_doc
 def check_probe_arrays(values: np.ndarray, time: np.ndarray, x: np.ndarray, probes: list, *,
                        masked: bool = False) -> None:
     """Check the arrays of an elevation record as :func:`as_probe_time` checks its DataArray.
 
     Parameters
     ----------
-    values : numpy.ndarray
-        Elevation [m], shape (probe, time).
-    time : numpy.ndarray
-        Time [s].
-    x : numpy.ndarray
-        Probe positions [m].
-    probes : list
-        Probe labels.
+    %(probe_arrays)s
     masked : bool
         Whether NaN samples (masked by quality control) are allowed; infinite ones never are.
 
