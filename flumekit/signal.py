@@ -9,6 +9,7 @@ call them. Functions take numpy arrays with time along the last axis and uniform
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,8 +79,21 @@ def lowpass(x: np.ndarray, sampling_rate: float, cutoff: float, order: int = 4,
     from scipy import signal as _sig
 
     _check_rate(sampling_rate, cutoff)
-    sos = _sig.butter(order, cutoff, btype="low", fs=sampling_rate, output="sos")
+    # a copy: the cached design stays as designed whatever a filter routine does with it
+    sos = _butter_lowpass(order, float(cutoff), float(sampling_rate)).copy()
     return _sig.sosfiltfilt(sos, np.asarray(x, dtype=float), axis=axis)
+
+
+@functools.lru_cache(maxsize=64)
+def _butter_lowpass(order: int, cutoff: float, sampling_rate: float) -> np.ndarray:
+    """Return the second-order sections of the Butterworth low-pass of :func:`lowpass`.
+
+    Cached: the design costs as much as filtering a record of ten thousand samples, and the
+    reruns of one record (uncertainty draws) filter with the same one.
+    """
+    from scipy import signal as _sig
+
+    return _sig.butter(order, cutoff, btype="low", fs=sampling_rate, output="sos")
 
 
 def derivative(x: np.ndarray, sampling_rate: float, axis: int = -1) -> np.ndarray:
@@ -177,7 +191,8 @@ class SteadyWindow:
 
 
 def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02,
-                        min_period: float = 0.0, noise_factor: float = 0.0) -> SteadyWindow:
+                        min_period: float = 0.0, noise_factor: float = 0.0,
+                        zero_cycles: Cycles | None = None) -> SteadyWindow:
     """Longest run of cycles whose crest lies within a tolerance of the amplitude scale.
 
     Brito et al. (2020, §2.5) compare each cycle's maximum with the amplitude scale and call the
@@ -201,8 +216,10 @@ def quasi_steady_window(x: np.ndarray, time: np.ndarray, tolerance: float = 0.02
         the peak, whose scatter has a heavier upper tail than a Gaussian's, and one or two
         such crests must not cut a window of a hundred steady cycles in two (a ramp-up, a
         trend over consecutive cycles, is still rejected). 0 applies ``tolerance`` alone.
+    zero_cycles : :func:`cycles` of ``x``, ``time`` and ``min_period`` when the caller has them
+        (it tries several criteria on one record).
     """
-    c = cycles(x, time, min_period=min_period)
+    c = cycles(x, time, min_period=min_period) if zero_cycles is None else zero_cycles
     if c.crest.size < 4:
         raise ValueError("fewer than four wave cycles: no quasi-steady window can be found")
     # nanmedian: a cycle holding masked (NaN) samples has a NaN crest and is never steady

@@ -87,11 +87,99 @@ class _Measured(NamedTuple):
     compression: int  # sign of θ̇ that compresses the chamber (Eq. 13)
 
 
+class Kinematics(NamedTuple):
+    """The part of the measured chain that the encoder and the sampling alone determine.
+
+    θ from the encoder (Eq. 1), its low-passed derivatives, the rod kinematics and the LuGre
+    friction of the rod's motion: what a rerun that perturbs only the chamber pressure or the
+    flap's inertia shares with the run (:func:`encoder_kinematics`).
+    """
+
+    counts: np.ndarray  # encoder counts [-]
+    time: np.ndarray  # sample times [s]
+    sampling_rate: float  # [Hz]
+    wire: np.ndarray  # wire shortening [m]
+    out_of_domain: np.ndarray  # samples outside the domain of Eq. (1)
+    theta_raw: np.ndarray  # θ before the low-pass [rad]
+    theta: np.ndarray  # [rad]
+    theta_dot: np.ndarray  # [rad s-1]
+    theta_ddot: np.ndarray  # [rad s-2]
+    rod: object  # flumekit.flap.geometry.RodKinematics
+    friction: tuple  # force [N], bristle deflection [m], film thickness [-]
+
+
+def _sampling(time) -> tuple[np.ndarray, float]:
+    t = np.asarray(time, dtype=float)
+    return t, 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)
+
+
+@_doc
+def encoder_kinematics(time, encoder_counts, *, pto: PTO, encoder: Encoder,
+                       cutoff: float = DEFAULT_CUTOFF, zero_count: float = 0.0,
+                       max_flagged_fraction: float = 0.0) -> Kinematics:
+    """Return the encoder's part of the measured chain: θ, its derivatives, rod and friction.
+
+    What :func:`steady_measured` computes from the encoder and the sampling alone, before the
+    chamber pressure and the flap's inertia enter: the reruns of an uncertainty propagation
+    that perturb only those pass it back (``kinematics``) instead of recomputing it.
+
+    Parameters
+    ----------
+    time : array_like
+        Sample times [s], uniform.
+    encoder_counts : array_like
+        Wire-encoder counts [-].
+    pto : PTO
+        The PTO (anchors, LuGre friction or None).
+    encoder : Encoder
+        The wire encoder of Eq. (1).
+    %(cutoff)s
+    %(zero_count)s
+    %(max_flagged_fraction)s
+
+    Returns
+    -------
+    Kinematics
+        θ [rad], θ̇ [rad s-1], θ̈ [rad s-2], the rod kinematics and the friction force [N]
+        with its states, and the counts and times they were computed from.
+
+    Raises
+    ------
+    flumekit.errors.InputError
+        More encoder samples outside the domain of Eq. (1) than ``max_flagged_fraction``.
+
+    %(references_brito2020)s, §2.3, Eq. (1), Appendix B.
+
+    Examples
+    --------
+    >>> from flumekit.flap.analysis import encoder_kinematics
+    >>> k = encoder_kinematics(t, counts, pto=c.pto, encoder=c.encoder)  # doctest: +SKIP
+    >>> k.theta_dot.max()  # doctest: +SKIP
+    """
+    t, fs = _sampling(time)
+    counts = np.asarray(encoder_counts)
+    if counts.shape != t.shape:
+        raise ValueError(f"flap analysis: time {t.shape} and encoder counts {counts.shape} "
+                         "must have the same length")
+    # Eq. (1): encoder -> wire -> angle
+    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
+    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
+    theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
+    theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
+    # PTO kinematics and friction
+    rod = rod_kinematics(theta, theta_dot, pto.bed_anchor, pto.flap_anchor)
+    if pto.friction is not None:
+        friction = friction_series(rod.velocity, 1.0 / fs, LuGre.from_campaign(pto.friction))
+    else:
+        friction = (np.zeros_like(t),) * 3
+    return Kinematics(counts, t, fs, wire, wa.out_of_domain, theta_raw, theta, theta_dot,
+                      theta_ddot, rod, friction)
+
+
 def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
               encoder: Encoder, cutoff: float, zero_count: float,
-              max_flagged_fraction: float) -> _Measured:
-    t = np.asarray(time, dtype=float)
-    fs = 1.0 / sig.uniform_step(t, "flap analysis", min_samples=16)
+              max_flagged_fraction: float, kinematics: Kinematics | None = None) -> _Measured:
+    t, fs = _sampling(time)
     counts = np.asarray(encoder_counts)
     p = np.asarray(chamber_pressure, dtype=float)
     if counts.shape != t.shape or p.shape != t.shape:
@@ -100,38 +188,38 @@ def _measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
     if not np.all(np.isfinite(p)):
         raise InputError(None, f"{int((~np.isfinite(p)).sum())} chamber pressure samples are "
                          "not finite")
-    # Eq. (1): encoder -> wire -> angle
-    wire = wire_from_counts(counts, encoder.counts_per_metre, zero_count)
-    wa = angle_from_wire(wire, encoder.L5, encoder.L7)
-    theta_raw = _fill_flagged(wa.theta, wa.out_of_domain, t, max_flagged_fraction)
-    theta, theta_dot, theta_ddot = sig.smooth_derivatives(theta_raw, fs, cutoff)
-
-    # PTO kinematics and forces
-    rod = rod_kinematics(theta, theta_dot, pto.bed_anchor, pto.flap_anchor)
+    k = kinematics
+    if k is None:
+        k = encoder_kinematics(t, counts, pto=pto, encoder=encoder, cutoff=cutoff,
+                               zero_count=zero_count, max_flagged_fraction=max_flagged_fraction)
+    # given, it must be of these counts and this sampling (and these times where it filled in)
+    elif not (k.sampling_rate == fs and np.array_equal(k.counts, counts)
+              and (not k.out_of_domain.any() or np.array_equal(k.time, t))):
+        raise ValueError("flap analysis: the kinematics passed are of other encoder counts or "
+                         "another sampling")
+    theta, theta_ddot, rod = k.theta, k.theta_ddot, k.rod
+    f_f, z_b, h_l = k.friction
     compression = -1 if np.median(rod.lever_arm) > 0 else 1  # θ̇ > 0 shortens the rod if m < 0
     f_p = pressure_force(p, pto.bore_area)
-    if pto.friction is not None:
-        f_f, z_b, h_l = friction_series(rod.velocity, 1.0 / fs, LuGre.from_campaign(pto.friction))
-    else:
-        f_f = z_b = h_l = np.zeros_like(t)
     t_p = pressure_torque(f_p, rod.lever_arm)
     t_f = friction_torque(f_f, rod.lever_arm)
     t_pto = t_p + t_f
+    t_g = gravity_torque(theta, flap.buoyancy_stiffness)
     t_h = hydrodynamic_torque(theta, theta_ddot, t_pto, inertia=flap.inertia,
-                              buoyancy_stiffness=flap.buoyancy_stiffness)
+                              buoyancy_stiffness=flap.buoyancy_stiffness, torque_gravity=t_g)
     q = flow_rate(rod.velocity, pto.bore_area)
     w_out = pto_power(p, q)
     series = {
-        "encoder_counts": counts, "wire_shortening": wire,
-        "domain_flag": wa.out_of_domain.astype(np.int8),
-        "theta": theta, "theta_dot": theta_dot, "theta_ddot": theta_ddot,
-        "theta_unfiltered": theta_raw, "rod_length": rod.length, "rod_velocity": rod.velocity,
-        "beta": rod.beta,
+        "encoder_counts": counts, "wire_shortening": k.wire,
+        "domain_flag": k.out_of_domain.astype(np.int8),
+        "theta": theta, "theta_dot": k.theta_dot, "theta_ddot": theta_ddot,
+        "theta_unfiltered": k.theta_raw, "rod_length": rod.length,
+        "rod_velocity": rod.velocity, "beta": rod.beta,
         "lever_arm": rod.lever_arm, "chamber_pressure": p,
         "force_pressure": f_p, "force_friction": f_f,
         "bristle_deflection": z_b, "film_thickness_parameter": h_l,
         "torque_pressure": t_p, "torque_friction": t_f, "torque_pto": t_pto,
-        "torque_gravity": gravity_torque(theta, flap.buoyancy_stiffness),
+        "torque_gravity": t_g,
         "torque_inertia": inertia_torque(theta_ddot, flap.inertia),
         "torque_hydrodynamic": t_h, "flow_rate": q, "power": w_out}
     return _Measured(t, fs, series, compression)
@@ -274,7 +362,8 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
 def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
                     encoder: Encoder, period: float, cutoff: float = DEFAULT_CUTOFF,
                     zero_count: float = 0.0, tolerance: float = 0.02,
-                    max_flagged_fraction: float = 0.0) -> tuple:
+                    max_flagged_fraction: float = 0.0,
+                    kinematics: Kinematics | None = None) -> tuple:
     """Return the measured chain of a regular run and the quasi-steady window of θ (§2.5).
 
     What :func:`analyse_run` and :func:`run_results` compute first; it depends neither on the
@@ -289,6 +378,10 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     tolerance : float
         Relative crest tolerance of the quasi-steady window [-].
     %(max_flagged_fraction)s
+    kinematics : Kinematics, optional
+        :func:`encoder_kinematics` of these times and counts with these ``pto``, ``encoder``,
+        ``cutoff``, ``zero_count`` and ``max_flagged_fraction``, when the caller has it (the
+        reruns that perturb only the pressure or the flap's inertia).
 
     Returns
     -------
@@ -301,11 +394,12 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
     flumekit.errors.InputError
         More encoder samples outside the domain of Eq. (1) than ``max_flagged_fraction``.
     ValueError
-        A non-positive period, fewer than two quasi-steady cycles.
+        A non-positive period, fewer than two quasi-steady cycles; ``kinematics`` of other
+        counts or another sampling.
     """
     m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
                   cutoff=cutoff, zero_count=zero_count,
-                  max_flagged_fraction=max_flagged_fraction)
+                  max_flagged_fraction=max_flagged_fraction, kinematics=kinematics)
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
     return m, steady_window(m.series["theta"], m.time, period, tolerance)

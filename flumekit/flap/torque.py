@@ -162,7 +162,8 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
 
 @_doc
 def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
-                        buoyancy_stiffness: float) -> np.ndarray:
+                        buoyancy_stiffness: float,
+                        torque_gravity=None) -> np.ndarray:
     """Compute the hydrodynamic torque on the flap, T_h = I θ̈ + T_g + T_PTO (Eq. 11).
 
     Parameters
@@ -176,6 +177,9 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
         Moment of inertia about the hinge [kg m2].
     buoyancy_stiffness : float
         Net buoyancy stiffness C [N m rad-1].
+    torque_gravity : array_like, optional
+        :func:`gravity_torque` of ``theta`` and ``buoyancy_stiffness`` [N m], when the caller
+        has it (the flap analysis stores it as a series of its own).
 
     Returns
     -------
@@ -193,5 +197,7 @@ def hydrodynamic_torque(theta, theta_ddot, torque_pto, *, inertia: float,
     25.0
     """
     # Eq. (11) in Brito et al. 2020
-    return (inertia_torque(theta_ddot, inertia) + gravity_torque(theta, buoyancy_stiffness)
+    if torque_gravity is None:
+        torque_gravity = gravity_torque(theta, buoyancy_stiffness)
+    return (inertia_torque(theta_ddot, inertia) + np.asarray(torque_gravity, dtype=float)
             + np.asarray(torque_pto, dtype=float))

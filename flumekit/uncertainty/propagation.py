@@ -52,6 +52,8 @@ SHAPES = {"probe_noise": "probe_time", "probe_resolution": "probe_time",
           "encoder_resolution": "flap_time", "pressure_accuracy": "flap_time",
           "flap_inertia": "scalar", "clock_offset": "scalar"}
 FLAP_ONLY = ("encoder_resolution", "pressure_accuracy", "flap_inertia", "clock_offset")
+#: the flap analysis' keywords that its encoder kinematics take
+KINEMATICS_KW = ("pto", "encoder", "cutoff", "zero_count", "max_flagged_fraction")
 
 
 @dataclass(frozen=True)
@@ -209,6 +211,8 @@ class RunModel:
         self._base_waves = None
         self._base = None  # the unperturbed run's results
         self._chains: dict = {}  # the unperturbed flap record's chain and window per period
+        self._kinematics = None  # the unperturbed encoder's part of that chain
+        self._arrays = None  # the records' arrays (flumekit.waves.analysis.ProbeArrays)
 
     def size(self, inp: Input) -> tuple[int, ...]:
         """Return the shape of one draw of ``inp``.
@@ -226,21 +230,24 @@ class RunModel:
         return {"probe_time": (self.n_probes, self.n_samples), "probe": (self.n_probes,),
                 "scalar": (), "flap_time": (self.n_flap,)}[inp.shape]
 
-    def _eta(self, d: dict) -> xr.DataArray:
-        """Return the records and probe positions perturbed by ``d``."""
-        v = self.eta.values
+    def _eta(self, d: dict):
+        """Return the records and probe positions perturbed by ``d`` (a ProbeArrays)."""
+        from flumekit.waves.analysis import ProbeArrays
+        from flumekit.waves.separation import unpack_probe_time
+
+        if self._arrays is None:
+            self._arrays = ProbeArrays(*unpack_probe_time(self.eta))
+        v, t, x, probes = self._arrays
         if "probe_noise" in d:
             v = v + d["probe_noise"]
         if "probe_resolution" in d:
             v = v + d["probe_resolution"]
         if "calibration" in d:
             v = v * (1.0 + d["calibration"])[:, None]
-        # the coordinates are shared, not copied: nothing downstream writes into them
-        eta = self.eta.copy(deep=False, data=v)
-        if "probe_position" not in d:
-            return eta
-        x = self.eta["x"].values + d["probe_position"]
-        return eta.assign_coords(x=("probe", x))
+        if "probe_position" in d:
+            x = x + d["probe_position"]
+        # time and labels are shared, not copied: nothing downstream writes into them
+        return ProbeArrays(v, t, x, probes)
 
     def _waves(self, ds: list[dict]) -> np.ndarray:
         """Return the waves results (len(ds), len(WAVES_RESULTS)), NaN where refused."""
@@ -297,7 +304,7 @@ class RunModel:
         """
         import dataclasses
 
-        from flumekit.flap.analysis import run_results, steady_measured
+        from flumekit.flap.analysis import encoder_kinematics, run_results, steady_measured
 
         r = self.flap_record
         kw = dict(self.flap_kw)
@@ -321,6 +328,14 @@ class RunModel:
                 if isinstance(self._chains[period], ValueError):
                     raise self._chains[period]
                 kw["measured"] = self._chains[period]
+            elif not any(k in d for k in ("encoder_resolution", "clock_offset")):
+                # the encoder's counts and times unperturbed: its part of the chain is the run's
+                if self._kinematics is None:
+                    self._kinematics = encoder_kinematics(time, counts, **{
+                        k: v for k, v in kw.items() if k in KINEMATICS_KW})
+                kw["measured"] = steady_measured(time, counts, pressure, **{
+                    k: v for k, v in kw.items() if k != "n_phase"}, period=period,
+                    kinematics=self._kinematics)
             res = run_results(time, counts, pressure, depth=self.depth
                               + float(d.get("water_depth", 0.0)), period=period,
                               incident_height=incident_height, **kw)

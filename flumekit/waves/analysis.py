@@ -13,19 +13,20 @@ import xarray as xr
 
 from flumekit import conventions
 from flumekit.docstrings import doc
-from flumekit.signal import quasi_steady_window
+from flumekit.signal import cycles, quasi_steady_window
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import probe_record
 from flumekit.waves.separation import (
     SeparationWarning,
-    as_probe_time,
-    check_separation_inputs,
+    check_probe_arrays,
+    check_separation_arrays,
     prepare_separation,
     separate_prepared,
     separation_dataset,
+    unpack_probe_time,
 )
 from flumekit.waves.steady import reflection_settling
-from flumekit.waves.stream_function import nonlinear_wavenumber
+from flumekit.waves.stream_function import nonlinear_wavenumbers
 from flumekit.waves.theory import G, energy_flux
 
 
@@ -125,12 +126,14 @@ def analyse_run(eta, depth: float, period: float, x_ref: float = 0.0, *,
         A non-positive period, no harmonics, or quasi-steady windows of the probes that overlap
         over fewer than ``min_cycles`` periods (the message lists each probe's window).
     """
-    rec = _steady_record(eta, depth, period, x=x, sampling_rate=sampling_rate,
+    if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
+        eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
+    rec = _steady_record(ProbeArrays(*unpack_probe_time(eta)), depth, period,
                          separation_probes=separation_probes, n_harmonics=n_harmonics,
                          tolerance=tolerance, min_cycles=min_cycles,
                          noise_factor=noise_factor, reflection_tolerance=reflection_tolerance,
                          g=g)
-    eta, v, t, x = rec.eta, rec.values, rec.time, rec.x
+    v, t, x = rec.values, rec.time, rec.x
     windows, criterion, t_meas, n_per = rec.windows, rec.criterion, rec.period, rec.cycles
     i0, n, dt = rec.start, rec.samples, rec.step
     crest_start, settling = rec.crest_start, rec.settling
@@ -207,8 +210,10 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
 
     Parameters
     ----------
-    etas : sequence of xarray.DataArray
-        The variants' calibrated surface elevations [m] (probe, time) with ``x`` [m].
+    etas : sequence of xarray.DataArray or ProbeArrays
+        The variants' calibrated surface elevations [m] (probe, time) with ``x`` [m], as
+        DataArrays or as their arrays (:class:`ProbeArrays`, what a caller that perturbs the
+        values of one record passes without building a DataArray per variant).
     depths : sequence of float
         Still water depth of each variant [m].
     %(target_period)s
@@ -244,6 +249,9 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     """
     recs, ok = [], []
     for eta, depth in zip(etas, depths, strict=True):
+        if not isinstance(eta, ProbeArrays):
+            eta = ProbeArrays(*unpack_probe_time(eta if isinstance(eta, xr.DataArray)
+                                                 else probe_record(eta)))
         try:
             recs.append(_steady_record(eta, depth, period,
                                        separation_probes=separation_probes,
@@ -258,7 +266,7 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     parts = _separation_passes([recs[i] for i in idx], [depths[i] for i in idx], method=method,
                                x_ref=x_ref, bound_harmonics=bound_harmonics,
                                amplitude_dispersion=amplitude_dispersion,
-                               max_condition=max_condition, g=g)
+                               max_condition=max_condition, g=g, elevations=False)
     out = {k: np.full(len(recs), np.nan) for k in VARIANT_RESULTS}
     for i, part in zip(idx, parts, strict=True):
         if isinstance(part, ValueError):
@@ -273,11 +281,35 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     return out
 
 
+class ProbeArrays(NamedTuple):
+    """A run's probe records as arrays: what the waves analysis reads of their DataArray.
+
+    ``values`` (probe, time) [m], NaN where quality control masked; ``time`` [s]; ``x`` the
+    probe positions [m]; ``probes`` the probe labels
+    (:func:`flumekit.waves.separation.unpack_probe_time`).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s], uniform.
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    """
+
+    values: np.ndarray
+    time: np.ndarray
+    x: np.ndarray
+    probes: list
+
+
 class _SteadyRecord(NamedTuple):
     """A run's records checked, and the quasi-steady window the separation analyses."""
 
-    eta: xr.DataArray  # the records (probe, time) [m]
-    values: np.ndarray  # their values (probe, time) [m], NaN where quality control masked
+    values: np.ndarray  # the records (probe, time) [m], NaN where quality control masked
     time: np.ndarray  # [s]
     x: np.ndarray  # probe positions [m]
     windows: list  # each probe's quasi-steady window (signal.quasi_steady_window)
@@ -287,40 +319,46 @@ class _SteadyRecord(NamedTuple):
     start: int  # first sample of the window
     samples: int  # samples of the window
     step: float  # sampling step [s]
-    steady: xr.DataArray  # the separation probes' records over the window [m]
+    steady: ProbeArrays  # the separation probes' records over the window [m]
     band: tuple  # the separation's band [Hz]
     crest_start: float  # where every probe's crests are quasi-steady [s]
     settling: object  # the reflection's settling (waves.steady.reflection_settling)
 
 
-def _steady_record(eta, depth: float, period: float, *, x=None, sampling_rate=None,
-                   separation_probes=None, n_harmonics: int = 8, tolerance: float = 0.02,
-                   min_cycles: int = 10, noise_factor: float = 4.0,
-                   reflection_tolerance: float = 0.002, g: float = G) -> _SteadyRecord:
+def _steady_record(rec: ProbeArrays, depth: float, period: float, *, separation_probes=None,
+                   n_harmonics: int = 8, tolerance: float = 0.02, min_cycles: int = 10,
+                   noise_factor: float = 4.0, reflection_tolerance: float = 0.002,
+                   g: float = G) -> _SteadyRecord:
     """Check a run's records and find the window the separation analyses (:func:`analyse_run`)."""
-    if x is not None or sampling_rate is not None or not isinstance(eta, xr.DataArray):
-        eta = probe_record(eta, x=x, sampling_rate=sampling_rate)
+    v, t, x, probes = rec
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
     # quasi-steady test below, so the window avoids them, and `separate` checks the window
-    v, t, x, probes = as_probe_time(eta.fillna(0.0))
-    v = np.asarray(eta.transpose("probe", "time").values, dtype=float)
+    check_probe_arrays(v, t, x, probes, masked=True)
     if not period > 0:
         raise ValueError(f"period must be positive, got {period}")
     if n_harmonics < 1:
         raise ValueError(f"n_harmonics must be at least 1, got {n_harmonics}")
-    eta = eta.transpose("probe", "time")
-    sep = eta if separation_probes is None else eta.sel(probe=list(separation_probes))
+    if separation_probes is None:
+        sep = rec
+    else:
+        index = {p: i for i, p in enumerate(probes)}
+        missing = [p for p in separation_probes if p not in index]
+        if missing:
+            raise KeyError(f"separation probes {missing} are not among the probes {probes}")
+        rows = [index[p] for p in separation_probes]
+        sep = ProbeArrays(v[rows], t, x[rows], list(separation_probes))
     found = _steady_window(v, t, probes, period, tolerance, min_cycles, noise_factor, sep,
                            depth, reflection_tolerance, g)
     windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling = found
     f1 = 1.0 / t_meas
     band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
-    return _SteadyRecord(eta, v, t, x, windows, criterion, t_meas, n_per, i0, n, dt,
-                         sep.isel(time=slice(i0, i0 + n)), band, crest_start, settling)
+    steady = ProbeArrays(sep.values[:, i0:i0 + n], t[i0:i0 + n], sep.x, sep.probes)
+    return _SteadyRecord(v, t, x, windows, criterion, t_meas, n_per, i0, n, dt, steady, band,
+                         crest_start, settling)
 
 
 def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
-                   tolerance: float, min_cycles: int, noise_factor: float, sep: xr.DataArray,
+                   tolerance: float, min_cycles: int, noise_factor: float, sep: ProbeArrays,
                    depth: float, reflection_tolerance: float, g: float):
     """Return the common quasi-steady window of the probes (see :func:`analyse_run`).
 
@@ -337,6 +375,8 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
                                        else [])
     found: dict[str, tuple] = {}
     failure = None
+    # each probe's cycles, the same for both criteria
+    split = [cycles(v[p], t, min_period=0.75 * period) for p in range(v.shape[0])]
     for criterion, factor in criteria:
         try:
             windows = []
@@ -344,7 +384,8 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
                 try:
                     windows.append(quasi_steady_window(v[p], t, tolerance=tolerance,
                                                        min_period=0.75 * period,
-                                                       noise_factor=factor))
+                                                       noise_factor=factor,
+                                                       zero_cycles=split[p]))
                 except ValueError as e:  # name the probe (a dead probe, a short record)
                     raise ValueError(f"probe {probes[p]}: {e}") from None
         except ValueError as e:
@@ -372,7 +413,7 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
     # the separated reflection settled too (waves.steady): a wave returning from behind the
     # device after the crests have settled changes Kr but no crest by the tolerance
     crest_start = start
-    settling = reflection_settling(sep.values, t, sep.x.values, t_meas, depth, start, end,
+    settling = reflection_settling(sep.values, t, sep.x, t_meas, depth, start, end,
                                    tolerance=reflection_tolerance, noise_factor=noise_factor,
                                    g=g)
     n_settled = int(np.floor((settling.end - settling.start) / t_meas + 1e-9))
@@ -417,7 +458,7 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
 
 def _separation_passes(records: list, depths: list, *, method: str, x_ref: float,
                        bound_harmonics: bool, amplitude_dispersion: bool,
-                       max_condition: float, g: float) -> list:
+                       max_condition: float, g: float, elevations: bool = True) -> list:
     """Separate the steady windows of runs (or of draws of one run) as :func:`analyse_run` does.
 
     The first pass with the linear wavenumbers; with ``amplitude_dispersion`` and
@@ -432,6 +473,8 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
         Still water depth of each [m].
     method, x_ref, bound_harmonics, amplitude_dispersion, max_condition, g
         As in :func:`analyse_run`.
+    elevations : bool
+        Whether the separated elevations are synthesised (the scalar results need them not).
 
     Returns
     -------
@@ -442,11 +485,12 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     """
     kw = dict(regular=True, bound_harmonics=bound_harmonics, window=None,
               max_condition=max_condition, warn_fraction=0.01, gauge_weights=None, g=g,
-              detection="given")
+              detection="given", elevations=elevations)
     prepared, out = [], []
     for rec, depth in zip(records, depths, strict=True):
         try:
-            v, t, x, probes = check_separation_inputs(rec.steady, depth, method, max_condition)
+            v, t, x, probes = rec.steady
+            check_separation_arrays(v, t, x, probes, depth, method, max_condition)
             p = prepare_separation(v, t, rec.band, None, True, rec.period)
             prepared.append((p, x, probes))
             out.append(separate_prepared(p, x, probes, depth, method, x_ref, wavenumbers=None,
@@ -459,14 +503,16 @@ def _separation_passes(records: list, depths: list, *, method: str, x_ref: float
     active = [i for i, o in enumerate(out) if not isinstance(o, ValueError)]
     for _ in range(2):  # the heights move k by < 1e-3 after the first pass
         still = []
-        for i in active:
-            data = out[i][0]
-            try:
-                ks = [nonlinear_wavenumber(records[i].period, float(data[h][1]), depths[i], g)
-                      for h in ("incident_height", "reflected_height")]
-            except ValueError as e:  # beyond the highest steady wave: keep the linear k
-                warnings.warn(f"separation with the linear wavenumber: {e}", SeparationWarning,
-                              stacklevel=3)
+        # the incident and reflected waves of every record, solved together
+        waves = [(records[i].period, float(out[i][0][h][1]), depths[i])
+                 for i in active for h in ("incident_height", "reflected_height")]
+        solved = nonlinear_wavenumbers(*zip(*waves), g=g) if waves else []
+        for j, i in enumerate(active):
+            ks = solved[2 * j:2 * j + 2]
+            refused = [k for k in ks if isinstance(k, ValueError)]
+            if refused:  # beyond the highest steady wave: keep the linear k
+                warnings.warn(f"separation with the linear wavenumber: {refused[0]}",
+                              SeparationWarning, stacklevel=3)
                 continue
             p, x, probes = prepared[i]
             try:

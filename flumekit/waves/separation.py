@@ -29,6 +29,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit import conventions
+from flumekit.docstrings import filler
 from flumekit.signal import uniform_step
 from flumekit.waves.layout import MAX_CONDITION
 from flumekit.waves.records import (
@@ -39,6 +40,16 @@ from flumekit.waves.records import (
     spectrum_harmonic_fraction,
 )
 from flumekit.waves.theory import G, wavenumber
+
+#: docstring text that several functions of this module share
+_doc = filler(probe_arrays=("values : numpy.ndarray\n"
+                            "    Elevation [m], shape (probe, time).\n"
+                            "time : numpy.ndarray\n"
+                            "    Time [s].\n"
+                            "x : numpy.ndarray\n"
+                            "    Probe positions [m].\n"
+                            "probes : list\n"
+                            "    Probe labels."))
 
 __all__ = ["METHODS", "SeparationWarning", "as_probe_time", "lstsq_normal", "separate"]
 
@@ -136,6 +147,7 @@ def lstsq_normal(columns: np.ndarray, rhs: np.ndarray, max_condition: float,
     return np.linalg.solve(gram, r), cond, masked
 
 
+@_doc
 def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
     """Check an elevation record for separation and return its arrays.
 
@@ -147,14 +159,7 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
 
     Returns
     -------
-    values : numpy.ndarray
-        Elevation [m], shape (probe, time).
-    time : numpy.ndarray
-        Time [s].
-    x : numpy.ndarray
-        Probe positions [m].
-    probes : list
-        Probe labels.
+    %(probe_arrays)s
 
     Raises
     ------
@@ -163,6 +168,32 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     ValueError
         Wrong dims, missing or repeated positions, fewer than 8 samples, non-uniform time or
         non-finite samples (the message names the first probe holding one).
+    """
+    v, t, x, probes = unpack_probe_time(eta)
+    check_probe_arrays(v, t, x, probes)
+    return v, t, x, probes
+
+
+def unpack_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray, list]:
+    """Return the arrays of an elevation record, its values unchecked (:func:`as_probe_time`).
+
+    Parameters
+    ----------
+    eta : xarray.DataArray
+        Surface elevation [m] over ('probe', 'time') with probe positions ``x`` [m] on
+        ``probe``.
+
+    Returns
+    -------
+    tuple
+        Values (probe, time) [m], time [s], positions [m] and probe labels.
+
+    Raises
+    ------
+    TypeError
+        When ``eta`` is not a DataArray.
+    ValueError
+        Wrong dims or no positions.
     """
     if not isinstance(eta, xr.DataArray):
         raise TypeError(f"eta must be an xarray.DataArray with dims ('probe', 'time'), got "
@@ -178,18 +209,37 @@ def as_probe_time(eta: xr.DataArray) -> tuple[np.ndarray, np.ndarray, np.ndarray
     x = np.asarray(coords["x"].values, dtype=float)
     t = np.asarray(coords["time"].values, dtype=float)
     v = np.asarray(eta.values, dtype=float)
+    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
+    return v, t, x, probes
+
+
+@_doc
+def check_probe_arrays(values: np.ndarray, time: np.ndarray, x: np.ndarray, probes: list, *,
+                       masked: bool = False) -> None:
+    """Check the arrays of an elevation record as :func:`as_probe_time` checks its DataArray.
+
+    Parameters
+    ----------
+    %(probe_arrays)s
+    masked : bool
+        Whether NaN samples (masked by quality control) are allowed; infinite ones never are.
+
+    Raises
+    ------
+    ValueError
+        Missing or repeated positions, fewer than 8 samples, non-uniform time or non-finite
+        samples (the message names the first probe holding one).
+    """
     if not np.all(np.isfinite(x)) or np.unique(x).size != x.size:
         raise ValueError(f"probe positions x must be finite and distinct, got {x.tolist()}")
-    if t.size < 8:
-        raise ValueError(f"eta has {t.size} samples; separation needs at least 8")
-    uniform_step(t, "eta")
-    probes = coords["probe"].values.tolist() if "probe" in coords else list(range(x.size))
-    bad = ~np.isfinite(v)
+    if time.size < 8:
+        raise ValueError(f"eta has {time.size} samples; separation needs at least 8")
+    uniform_step(time, "eta")
+    bad = np.isinf(values) if masked else ~np.isfinite(values)
     if bad.any():
         p = int(np.flatnonzero(bad.any(axis=1))[0])
         raise ValueError(f"eta holds {int(bad.sum())} non-finite samples (first in probe "
                          f"{probes[p]!r}); fill or cut gaps before separating")
-    return v, t, x, probes
 
 
 def separate(eta, depth: float, method: str = "mansard_funke",
@@ -435,7 +485,8 @@ def prepare_separation(v: np.ndarray, t: np.ndarray, band, window: str | None, r
 def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, method: str,
                       x_ref: float, *, regular: bool, bound_harmonics: bool, wavenumbers,
                       window: str | None, max_condition: float, warn_fraction: float,
-                      gauge_weights, g: float, detection: str) -> tuple[dict, dict, dict]:
+                      gauge_weights, g: float, detection: str,
+                      elevations: bool = True) -> tuple[dict, dict, dict]:
     """Separate a prepared record; return the parts of the dataset of :func:`separate`.
 
     Parameters
@@ -456,6 +507,9 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
         As in :func:`separate` (wavenumbers [rad m-1], g [m s-2]).
     detection : str
         What the regular-wave detection found ("given" when the caller said).
+    elevations : bool
+        Whether to synthesise ``eta_incident`` and ``eta_reflected`` (an inverse FFT of the
+        record each); a caller that reads the statistics alone leaves them out.
 
     Returns
     -------
@@ -506,21 +560,23 @@ def separate_prepared(rec: PreparedRecord, x: np.ndarray, probes, depth: float, 
                                                  f, k, x, max_condition, warn_fraction)
     m0_i, m0_r = float(e_inc.sum()), float(e_ref.sum())
     # the waves' phase shifts from the probes' origin to x_ref, per distinct wavenumber
-    shift_i = np.exp(-1j * ks * x_ref)
-    shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
-    if group is not None:
-        shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
-    eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
+    data = {}
+    if elevations:
+        shift_i = np.exp(-1j * ks * x_ref)
+        shift_r = np.conj(shift_i) if ks_r is ks else np.exp(1j * ks_r * x_ref)
+        if group is not None:
+            shift_i, shift_r = np.take(shift_i, group), np.take(shift_r, group)
+        eta_i, eta_r = _elevations_at(a_inc[:, 0] * shift_i, a_ref[:, 0] * shift_r, sel, n)
+        data = {"eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r)}
 
     df = freq[1]
-    data = {
-        "eta_incident": ("time", eta_i), "eta_reflected": ("time", eta_r),
+    data.update({
         "spectrum_incident": ("frequency", e_inc / df),
         "spectrum_reflected": ("frequency", e_ref / df),
         "condition_number": ("frequency", cond), "masked": ("frequency", masked.astype(np.int8)),
         "wave_number": ("frequency", k),
         "masked_energy_fraction": ((), masked_fraction),
-    }
+    })
     coords = {"time": t, "frequency": f}
     if regular:
         nh = rec.coef.shape[1]
@@ -592,18 +648,53 @@ def check_separation_inputs(eta: xr.DataArray, depth: float, method: str,
         An unknown method, a non-positive depth, a max_condition not above 1, the wrong number
         of probes, or a record :func:`as_probe_time` refuses.
     """
+    _check_arguments(depth, method, max_condition)
+    v, t, x, probes = as_probe_time(eta)
+    _check_probe_count(x, probes, method)
+    return v, t, x, probes
+
+
+def check_separation_arrays(values: np.ndarray, time: np.ndarray, x: np.ndarray, probes: list,
+                            depth: float, method: str, max_condition: float) -> None:
+    """Check the arguments of :func:`separate` given as the arrays of :func:`as_probe_time`.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        Surface elevation [m], shape (probe, time).
+    time : numpy.ndarray
+        Time [s].
+    x : numpy.ndarray
+        Probe positions [m].
+    probes : list
+        Probe labels.
+    depth, method, max_condition
+        As in :func:`check_separation_inputs`: depth [m], method, condition number [-].
+
+    Raises
+    ------
+    ValueError
+        As :func:`check_separation_inputs`.
+    """
+    _check_arguments(depth, method, max_condition)
+    check_probe_arrays(values, time, x, probes)
+    _check_probe_count(x, probes, method)
+
+
+def _check_arguments(depth: float, method: str, max_condition: float) -> None:
     if method not in METHODS:
         raise ValueError(f"unknown separation method {method!r}; choose one of {sorted(METHODS)}")
     if not depth > 0 or not np.isfinite(depth):
         raise ValueError(f"depth must be positive and finite, got {depth}")
     if not max_condition > 1:
         raise ValueError(f"max_condition must exceed 1, got {max_condition}")
-    v, t, x, probes = as_probe_time(eta)
+
+
+def _check_probe_count(x: np.ndarray, probes: list, method: str) -> None:
     n_min, n_max = METHODS[method]
     if x.size < n_min or (n_max is not None and x.size > n_max):
         need = f"exactly {n_min}" if n_min == n_max else f"at least {n_min}"
         raise ValueError(f"method {method!r} needs {need} probes, got {x.size} ({probes})")
-    return v, t, x, probes
 
 
 def _band_bins(t: np.ndarray, band: tuple[float, float] | None

@@ -185,6 +185,64 @@ def nonlinear_wavenumber(period: float, height: float, depth: float, g: float = 
     return stream_function_wave(period, height, depth, current="stokes", g=g).wavenumber
 
 
+def nonlinear_wavenumbers(periods, heights, depths, g: float = G) -> list:
+    """:func:`nonlinear_wavenumber` of many waves, solved together where they can be.
+
+    The waves whose nearest grid wave starts the chord iteration are iterated together
+    (:func:`_chord_many`); each result is the one :func:`nonlinear_wavenumber` returns for
+    that wave alone.
+
+    Parameters
+    ----------
+    periods, heights, depths : sequence of float
+        Period [s], height [m] and depth [m] of each wave.
+    g : float
+        Gravitational acceleration [m s-2].
+
+    Returns
+    -------
+    list
+        Per wave its wavenumber [rad m-1] (a float) or the ValueError that refuses it.
+
+    Examples
+    --------
+    >>> from flumekit.waves.stream_function import nonlinear_wavenumbers
+    >>> k = nonlinear_wavenumbers([3.5, 3.5], [0.25, 0.05], [0.825, 0.825])
+    >>> [round(x, 4) for x in k]
+    [0.6399, 0.6599]
+    """
+    n = 20  # stream_function_wave's default modes
+    out: list = [None] * len(heights)
+    batch = []  # (wave, its anchor, T (g/h)^½, H/h)
+    for i, (period, height, depth) in enumerate(zip(periods, heights, depths, strict=True)):
+        try:
+            if height > 1e-4 * depth and all(np.isfinite(v) and v > 0
+                                             for v in (period, height, depth, g)):
+                t_nd, h_nd, _, _ = _dimensionless(period, height, depth, g)
+                anchor = _anchor(t_nd, h_nd, n, "stokes")
+                if anchor is not None:
+                    batch.append((i, anchor, t_nd, h_nd))
+                    continue
+            out[i] = nonlinear_wavenumber(period, height, depth, g)
+        except ValueError as e:
+            out[i] = e
+    if batch:
+        cosm, sinm, weights = _collocation(n)
+        v, res = _chord_many(np.stack([b[1][0] for b in batch]),
+                             np.stack([b[1][1] for b in batch]), n,
+                             np.array([b[3] for b in batch]), np.array([b[2] for b in batch]),
+                             ("stokes", cosm, sinm, weights))
+        for (i, _, _, _), x, r in zip(batch, v, res, strict=True):
+            if np.all(np.isfinite(x)) and r < 1e-10:
+                out[i] = float(x[0] / depths[i])
+            else:  # the chord does not reach it: the wave's own fallbacks
+                try:
+                    out[i] = nonlinear_wavenumber(periods[i], heights[i], depths[i], g)
+                except ValueError as e:
+                    out[i] = e
+    return out
+
+
 @doc
 def depth_ratios(jk, zb, depth: float) -> tuple[np.ndarray, np.ndarray]:
     """cosh(jk z_b)/cosh(jk h) and sinh(jk z_b)/cosh(jk h) [-], the depth dependence of mode j.
@@ -313,6 +371,13 @@ def _grid_wave(tg: int, hg: int, n: int, current: str
     return v, np.linalg.inv(_jacobian(v, n, h_nd, t_nd, current, *_collocation(n)))
 
 
+def _anchor(t_nd: float, h_nd: float, n: int, current: str
+            ) -> tuple[np.ndarray, np.ndarray] | None:
+    """Return the grid wave nearest to (T (g/h)^½, H/h) that starts :func:`_solve`'s Newton."""
+    hg = round(h_nd / _ANCHOR_STEP[1])
+    return _grid_wave(round(t_nd / _ANCHOR_STEP[0]), hg, n, current) if hg >= 1 else None
+
+
 def _chord(v: np.ndarray, jac_inv: np.ndarray, args: tuple, max_iter: int = 40
            ) -> tuple[np.ndarray, float]:
     """Solve by the chord method: Newton's iteration with the Jacobian of the start fixed.
@@ -323,12 +388,33 @@ def _chord(v: np.ndarray, jac_inv: np.ndarray, args: tuple, max_iter: int = 40
     reaches a step below 1e-13 several times sooner than :func:`_newton`. Returns the root
     (or the last iterate) and its residual, which the caller checks.
     """
+    n, height, period, *fixed = args
+    x, res = _chord_many(v[None], jac_inv[None], n, np.array([height]), np.array([period]),
+                         tuple(fixed), max_iter)
+    return x[0], float(res[0])
+
+
+def _chord_many(v: np.ndarray, jac_inv: np.ndarray, n: int, height: np.ndarray,
+                period: np.ndarray, fixed: tuple, max_iter: int = 40
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_chord` of many waves (rows of ``v``, their heights and periods) at once.
+
+    The residuals of the waves not yet converged are evaluated together; each wave stops as
+    :func:`_chord` stops it, and its step is its own matrix-vector product, so that a wave's
+    root is the one it has alone.
+    """
+    v = np.array(v, dtype=float)
+    active = np.arange(v.shape[0])
     for _ in range(max_iter):
-        step = jac_inv @ _residuals(v, *args)
-        v = v - step
-        if not np.max(np.abs(step)) >= 1e-13:  # converged (or NaN: the caller refuses it)
+        if not active.size:
             break
-    return v, float(np.max(np.abs(_residuals(v, *args))))
+        r = _residuals(v[active], n, height[active, None], period[active, None], *fixed)
+        step = np.stack([jac_inv[b] @ r[j] for j, b in enumerate(active)])  # a few waves
+        v[active] = v[active] - step
+        # converged (or NaN: the caller refuses it)
+        active = active[np.max(np.abs(step), axis=-1) >= 1e-13]
+    res = np.max(np.abs(_residuals(v, n, height[:, None], period[:, None], *fixed)), axis=-1)
+    return v, res
 
 
 @functools.lru_cache(maxsize=8)
@@ -353,8 +439,7 @@ def _solve(t_nd: float, h_nd: float, n: int, current: str, height_steps: int | N
     cosm, sinm, weights = _collocation(n)
     fixed = (t_nd, current, cosm, sinm, weights)
     if height_steps is None:
-        hg = round(h_nd / _ANCHOR_STEP[1])
-        anchor = _grid_wave(round(t_nd / _ANCHOR_STEP[0]), hg, n, current) if hg >= 1 else None
+        anchor = _anchor(t_nd, h_nd, n, current)
         if anchor is not None:
             x, res = _chord(anchor[0], anchor[1], (n, h_nd) + fixed)
             if not (np.all(np.isfinite(x)) and res < 1e-10):  # too far for a fixed Jacobian
@@ -389,6 +474,28 @@ def _solve(t_nd: float, h_nd: float, n: int, current: str, height_steps: int | N
                              "raise height_steps")
         previous.append(x)
     return previous[-1]
+
+
+@functools.lru_cache(maxsize=256)
+def _limits(t_nd: float) -> tuple[float, float]:
+    """Linear k h and the highest wave's H/h of the dimensionless period T (g/h)^½.
+
+    Cached: the incident and reflected waves of a record, and its passes, share the period.
+    """
+    k0 = float(wavenumber(2 * np.pi / t_nd, 1.0, 1.0))
+    return k0, float(highest_wave(2 * np.pi / k0, 1.0))
+
+
+def _dimensionless(period: float, height: float, depth: float, g: float
+                   ) -> tuple[float, float, float, float]:
+    """T (g/h)^½, H/h, the linear k h and the highest wave's H/h; ValueError above 0.95 of it."""
+    t_nd = period * np.sqrt(g / depth)
+    h_nd = height / depth
+    k0, h_max = _limits(float(t_nd))
+    if h_nd >= 0.95 * h_max:
+        raise ValueError(f"wave height {height} m is too close to or above the highest wave "
+                         f"(about {h_max * depth:.3g} m for T = {period} s in h = {depth} m)")
+    return t_nd, h_nd, k0, h_max
 
 
 def stream_function_wave(period: float, height: float, depth: float, *, n_modes: int = 20,
@@ -440,13 +547,7 @@ def stream_function_wave(period: float, height: float, depth: float, *, n_modes:
     n = int(n_modes)
     if n < 2:
         raise ValueError(f"n_modes must be at least 2, got {n_modes}")
-    t_nd = period * np.sqrt(g / depth)
-    h_nd = height / depth
-    k0 = float(wavenumber(2 * np.pi / t_nd, 1.0, 1.0))
-    h_max = float(highest_wave(2 * np.pi / k0, 1.0))
-    if h_nd >= 0.95 * h_max:
-        raise ValueError(f"wave height {height} m is too close to or above the highest wave "
-                         f"(about {h_max * depth:.3g} m for T = {period} s in h = {depth} m)")
+    t_nd, h_nd, k0, h_max = _dimensionless(period, height, depth, g)
     cosm, _, weights = _collocation(n)
     v = _solve(t_nd, h_nd, n, current, height_steps, k0, h_max,
                f"T = {period} s, H = {height} m, h = {depth} m")

@@ -85,12 +85,12 @@ def test_amplitude_dispersion_falls_back_to_linear_with_a_warning(monkeypatch):
     import flumekit.waves.analysis as analysis
     from flumekit.waves import SeparationWarning
 
-    def too_high(*args, **kwargs):
-        raise ValueError("wave height 0.7 m is above the highest wave")
+    def too_high(periods, heights, depths, g):  # every wave refused
+        return [ValueError("wave height 0.7 m is above the highest wave") for _ in heights]
 
     da, _ = run(3.5, 0.25)
     nl = analyse_run(da, H, 3.5, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
-    monkeypatch.setattr(analysis, "nonlinear_wavenumber", too_high)
+    monkeypatch.setattr(analysis, "nonlinear_wavenumbers", too_high)
     with pytest.warns(SeparationWarning, match="linear wavenumber"):
         ds = analyse_run(da, H, 3.5, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
     k0 = float(wavenumber(2 * np.pi / float(ds.measured_period), H))
