@@ -676,35 +676,63 @@ def annotated_dataset(data: dict, coords: dict, attrs: dict | None = None) -> xr
 
     data_vars = {k: variable(k, v) for k, v in data.items()}
     coord_vars = {k: variable(k, v, coordinate=True) for k, v in coords.items()}
-    direct = _dataset_direct(data_vars, coord_vars, attrs)
-    if direct is not None:
-        return direct
-    return xr.Dataset(data_vars, coords=xr.Coordinates(coord_vars), attrs=attrs)
+    return dataset_of_variables(data_vars, coord_vars, attrs)
 
 
-def _dataset_direct(data_vars: dict, coord_vars: dict, attrs: dict | None):
-    """Return the dataset of these variables made without xarray's merge, or None.
+def dataset_of_variables(data_vars: dict, coord_vars: dict, attrs: dict | None = None,
+                         dims_from_data: bool = False) -> xr.Dataset:
+    """Return ``xarray.Dataset(data_vars, coords, attrs)`` of ready variables, made directly.
 
-    What ``xarray.Dataset(data_vars, coords, attrs)`` builds when every dimension has one size,
-    the names are distinct and each dimension coordinate is one-dimensional: its default
-    index made from the coordinate's values. The merge and alignment of the constructor,
-    which check all of that for any input, are most of the cost of a small dataset (the
-    separation's, built once per record and per Monte Carlo draw). None where those
-    conditions do not hold or this xarray has no ``Dataset._construct_direct``: the caller
-    then builds the dataset through the constructor, which raises what is wrong.
+    When every dimension has one size, the names are distinct and each dimension coordinate
+    is one-dimensional, the dataset is made from the variables as they are, each dimension
+    coordinate with its default index: the merge and alignment of the constructor, which
+    check all of that for any input, are most of the cost of a small dataset (the
+    separation's, built once per record and per Monte Carlo draw; a product read). Otherwise,
+    or where this xarray has no ``Dataset._construct_direct``, the constructor builds it (and
+    raises what is wrong).
+
+    Parameters
+    ----------
+    data_vars, coord_vars : dict of str to xarray.Variable
+        The data variables, and the coordinates (dimension coordinates as
+        ``xarray.IndexVariable``), in the order the dataset lists them: data first.
+    attrs : dict, optional
+        The dataset's attributes.
+    dims_from_data : bool
+        Order the dimensions as the data variables first use them (as a dataset read from a
+        file has them), not the coordinates.
+
+    Returns
+    -------
+    xarray.Dataset
+        The dataset; its variables are those given (not copies).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> ds = dataset_of_variables({"theta": xr.Variable("time", np.zeros(2))},
+    ...                           {"time": xr.IndexVariable("time", [0.0, 0.1])})
+    >>> list(ds.data_vars), list(ds.indexes)
+    (['theta'], ['time'])
     """
     import pandas as pd
     import xarray as xr
     from xarray.indexes import PandasIndex
 
     construct = getattr(xr.Dataset, "_construct_direct", None)
-    if construct is None or set(data_vars) & set(coord_vars):
-        return None
-    sizes: dict = {}
-    for var in (*coord_vars.values(), *data_vars.values()):
+    sizes: dict | None = {}
+    order = (*data_vars.values(), *coord_vars.values()) if dims_from_data else (
+        *coord_vars.values(), *data_vars.values())
+    for var in order:
         for dim, n in zip(var.dims, var.shape, strict=True):
             if sizes.setdefault(dim, n) != n:
-                return None
+                sizes = None
+                break
+        if sizes is None:
+            break
+    if construct is None or set(data_vars) & set(coord_vars) or sizes is None:
+        return xr.Dataset(data_vars, coords=xr.Coordinates(coord_vars), attrs=attrs)
     indexes = {k: PandasIndex(pd.Index(v.values), k) for k, v in coord_vars.items()
                if v.dims == (k,)}
     return construct({**data_vars, **coord_vars}, set(coord_vars), sizes, attrs, indexes)

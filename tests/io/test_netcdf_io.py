@@ -1,6 +1,6 @@
-"""The netCDF writer (flumekit.io.netcdf.write_dataset): the netCDF4 library called directly
-writes the file xarray's ``to_netcdf`` writes, byte for byte, and leaves to xarray what it
-does not know."""
+"""Writing and reading netCDF (flumekit.io.netcdf): the netCDF4 library called directly writes
+the file xarray's ``to_netcdf`` writes, byte for byte, and reads the dataset xarray's
+``open_dataset`` reads (encodings included); each leaves to xarray what it does not know."""
 
 import filecmp
 
@@ -92,3 +92,67 @@ def test_what_the_writer_does_not_know_is_left_to_xarray(tmp_path, change):
         written, by_xarray, _ = _both(ds, tmp_path)
         back = netcdf.read_dataset(by_xarray)
         assert ("time_bounds" if change == "bounds" else "start") in back
+
+
+def _same(a, b) -> bool:
+    """Equal as :func:`xarray.Dataset.identical` and in every order, type and encoding."""
+    def attrs(x, y):
+        return list(x) == list(y) and all(
+            type(x[k]) is type(y[k]) and np.array_equal(x[k], y[k]) for k in x)
+
+    def encoding(v):
+        return {k: str(e) for k, e in v.encoding.items()}
+
+    return (a.identical(b) and list(a.variables) == list(b.variables)
+            and list(a.dims) == list(b.dims) and list(a.coords) == list(b.coords)
+            and list(a.indexes) == list(b.indexes) and attrs(a.attrs, b.attrs)
+            and all(a[k].dtype == b[k].dtype and attrs(a[k].attrs, b[k].attrs)
+                    and encoding(a.variables[k]) == encoding(b.variables[k])
+                    for k in a.variables))
+
+
+@pytest.mark.parametrize("compress", [True, False])
+def test_the_netcdf4_library_reads_the_dataset_xarray_reads(tmp_path, compress):
+    ds = _product()
+    ds["eta"][0, :5] = np.nan
+    path = tmp_path / "p.nc"
+    ds.to_netcdf(path, engine="netcdf4", encoding=netcdf._encoding(ds, compress))
+    read = netcdf._netcdf4_read(path)
+    assert read is not None
+    assert _same(netcdf._xarray_read(path), read)
+    assert _same(netcdf.read_dataset(path), read)
+    assert read["labels"].dtype.kind == "U" and read["n_cycles"].dtype == np.int32
+    assert "x" in read.coords and "run" in read.coords and np.isnan(read["eta"][0, 0])
+
+
+def test_a_float_fill_value_other_than_nan_reads_as_nan(tmp_path):
+    path = tmp_path / "f.nc"
+    ds = xr.Dataset({"h": ("time", [1.0, -999.0, 3.0])}, coords={"time": [0.0, 0.1, 0.2]})
+    ds.to_netcdf(path, encoding={"h": {"_FillValue": -999.0}})
+    read = netcdf.read_dataset(path)
+    assert _same(netcdf._xarray_read(path), read)
+    assert np.isnan(read["h"][1]) and read["h"].encoding["_FillValue"] == -999.0
+
+
+@pytest.mark.parametrize("case", ["integer fill", "scale factor", "netCDF-3", "unlimited",
+                                  "characters"])
+def test_what_the_reader_does_not_know_is_left_to_xarray(tmp_path, case):
+    path = tmp_path / "r.nc"
+    ds = xr.Dataset({"n": ("time", np.array([1, 2, 3], np.int16))},
+                    coords={"time": [0.0, 0.1, 0.2]})
+    kw: dict = {}
+    if case == "integer fill":
+        kw["encoding"] = {"n": {"_FillValue": np.int16(2)}}
+    elif case == "scale factor":
+        ds["n"] = ds["n"] * 0.5
+        kw["encoding"] = {"n": {"dtype": "int16", "scale_factor": 0.5}}
+    elif case == "netCDF-3":
+        kw["format"] = "NETCDF3_64BIT"
+    elif case == "unlimited":
+        kw["unlimited_dims"] = ["time"]
+    else:
+        ds["c"] = ("time", np.array(["a", "b", "c"]))
+        kw["encoding"] = {"c": {"dtype": "S1"}}
+    ds.to_netcdf(path, **kw)
+    assert netcdf._netcdf4_read(path) is None
+    assert netcdf.read_dataset(path).identical(netcdf._xarray_read(path))
