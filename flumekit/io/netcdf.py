@@ -181,8 +181,9 @@ def _netcdf4_written(ds: xr.Dataset, path, encoding: dict[str, dict]) -> bool:
     attributes, then the dimensions in the order the variables first use them, then each
     variable with its attributes (and the ``coordinates`` attribute xarray gives it) and its
     values; floats, integers and variable-length strings, compressed as ``encoding`` says.
-    Without xarray's store (file manager, locks, array wrappers, encoders) a product of forty
-    small variables is written in half the time. Anything else (a type, an attribute, an
+    xarray's store (file manager and locks taken for every call, array wrappers, encoders)
+    costs about as much as the library's own writing for a product of many small variables.
+    Anything else (a type, an attribute, an
     encoding or a name this function does not know, cell bounds, whose attributes xarray
     thins) returns False before the file is created, for xarray to write it.
     """
@@ -374,11 +375,12 @@ def _netcdf4_read(path) -> xr.Dataset | None:
     decode_timedelta=False).load()`` gives for the files flumekit writes (a test holds them
     equal, encodings included): data variables then coordinates (those named by a
     ``coordinates`` attribute, and the dimensions'), each in the file's order; floats NaN
-    where their ``_FillValue`` stands; variable-length strings as a NumPy string array.
-    Without xarray's store and decoders a product is read in two thirds of the time. A file
-    with anything else (attributes xarray decodes, an integer with a fill value, character
-    arrays or other types, groups, an unlimited dimension, another format than netCDF-4)
-    gives None before anything is read, for xarray to read it.
+    where their ``_FillValue`` stands; variable-length strings as a NumPy string array;
+    without xarray's store, lazy arrays and decoders, which cost about half as much again as
+    the library's reading. A file with anything else (attributes xarray decodes, an integer
+    with a fill value, character arrays, enumerations or other types, groups, an unlimited
+    dimension, another format than netCDF-4) gives None before anything is read, for xarray
+    to read it.
     """
     import netCDF4
 
@@ -391,18 +393,21 @@ def _netcdf4_read(path) -> xr.Dataset | None:
         described = []
         for name, v in nc.variables.items():
             attrs = {k: v.getncattr(k) for k in v.ncattrs()}
-            if _DECODED & set(attrs) or not (v.dtype is str or np.dtype(v.dtype).kind in "fiu"):
+            # variable-length strings (their dtype str), or a primitive number type (not an
+            # enumeration's or a ragged array's, whose dtype is that of their values)
+            text = v.dtype is str
+            if _DECODED & set(attrs) or not (text or isinstance(v.datatype, np.dtype)
+                                             and v.datatype.kind in "fiu"):
                 return None
             fill = attrs.pop("_FillValue", None)
-            if fill is not None and (v.dtype is str or np.dtype(v.dtype).kind != "f"):
+            if fill is not None and (text or v.datatype.kind != "f"):
                 return None
             described.append((name, v, attrs, fill))
         variables, coords = {}, set()
         for name, v, attrs, fill in described:
             v.set_auto_maskandscale(False)
             values = np.asarray(v[...])
-            encoding = {"dtype": np.dtype(v.dtype) if v.dtype is not str else str,
-                        **v.filters()}
+            encoding = {"dtype": v.dtype, **v.filters()}
             chunking = v.chunking()
             encoding.update(contiguous=chunking == "contiguous",
                             chunksizes=None if chunking == "contiguous" else tuple(chunking))

@@ -156,3 +156,21 @@ def test_what_the_reader_does_not_know_is_left_to_xarray(tmp_path, case):
     ds.to_netcdf(path, **kw)
     assert netcdf._netcdf4_read(path) is None
     assert netcdf.read_dataset(path).identical(netcdf._xarray_read(path))
+
+
+def test_enumerations_and_ragged_arrays_are_left_to_xarray(tmp_path):
+    import netCDF4
+
+    path = tmp_path / "types.nc"
+    with netCDF4.Dataset(path, "w") as nc:
+        nc.createDimension("n", 2)
+        kind = nc.createEnumType(np.uint8, "flag_type", {"ok": 1, "bad": 4})
+        nc.createVariable("flag", kind, ("n",))[:] = np.array([1, 4], np.uint8)
+    assert netcdf._netcdf4_read(path) is None
+    path = tmp_path / "ragged.nc"
+    with netCDF4.Dataset(path, "w") as nc:
+        nc.createDimension("n", 2)
+        ragged = nc.createVLType(np.float64, "ragged_type")
+        var = nc.createVariable("r", ragged, ("n",))
+        var[0], var[1] = np.array([1.0]), np.array([2.0, 3.0])
+    assert netcdf._netcdf4_read(path) is None
