@@ -25,7 +25,8 @@ _doc = filler(
 
 def _encoding(ds: xr.Dataset, compress: bool = True) -> dict[str, dict]:
     enc: dict[str, dict] = {}
-    for name, var in {**ds.coords, **ds.data_vars}.items():
+    for name in [*ds.coords, *ds.data_vars]:  # Variables: no DataArray built for each
+        var = ds.variables[name]
         e: dict = {}
         if var.dtype.kind == "f":
             e["dtype"] = "float64" if var.dtype == np.float64 else str(var.dtype)
@@ -70,9 +71,9 @@ def _cf_time(ds: xr.Dataset) -> xr.Dataset:
     so too. :func:`read_dataset` does not decode them, so code and analysts keep plain
     seconds.
     """
-    names = [n for n in ds.coords if ds[n].dtype.kind in "fiu" and (
-        n == "time" or (ds[n].attrs.get("units") == "s"
-                        and ds[n].attrs.get(conventions.RECORD_START)))]
+    coords = {n: ds.variables[n] for n in ds.coords}
+    names = [n for n, c in coords.items() if c.dtype.kind in "fiu" and (
+        n == "time" or (c.attrs.get("units") == "s" and c.attrs.get(conventions.RECORD_START)))]
     if not names:
         return ds
     ds = ds.copy()
@@ -233,7 +234,7 @@ def _netcdf4_written(ds: xr.Dataset, path, encoding: dict[str, dict]) -> bool:
             continue
         if name in dims or name in others:
             continue
-        mine = sorted(c for c in others if set(ds[c].dims) <= set(dims))
+        mine = sorted(c for c in others if set(ds.variables[c].dims) <= set(dims))
         if mine:
             attrs["coordinates"] = " ".join(mine)
             named.update(mine)
