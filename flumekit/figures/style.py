@@ -593,8 +593,9 @@ def without_collector():
             gc.enable()
 
 
-#: zlib level of the PNGs: level 3 writes files about the size of the default level 6
-#: in half the time (the encoding of a 300 dpi figure cost as much as drawing it)
+#: deflate level of the PNGs, compressed with zlib-ng: at level 3 it writes files a little
+#: smaller than zlib's level 3 in half the time (zlib's default level 6 took twice as long
+#: again for files 10 % smaller); encoding a 300 dpi figure cost as much as drawing it
 PNG_COMPRESS_LEVEL = 3
 
 
@@ -669,6 +670,7 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
     import zlib
 
     import numpy as np
+    from zlib_ng import zlib_ng
 
     pixels = np.asarray(pixels, dtype=np.uint8)
     height, width, bands = pixels.shape
@@ -696,7 +698,7 @@ def png_bytes(pixels, dpi: float, texts: dict | None = None) -> bytes:
         except UnicodeEncodeError:
             out.append(chunk(b"iTXt", key.encode("latin-1") + b"\0\0\0\0\0"
                              + text.encode("utf-8")))
-    out += [chunk(b"IDAT", zlib.compress(filtered, PNG_COMPRESS_LEVEL)),
+    out += [chunk(b"IDAT", zlib_ng.compress(filtered, PNG_COMPRESS_LEVEL)),
             chunk(b"IEND", b"")]
     return b"".join(out)
 
