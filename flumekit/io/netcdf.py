@@ -346,8 +346,66 @@ def read_dataset(path: str | Path) -> xr.Dataset:
     --------
     flumekit.open_processed : Every run of a stage along ``run``.
     """
+    if _remembered is None:
+        ds = _netcdf4_read(path)
+        return _xarray_read(path) if ds is None else ds
+    return _remembered_read(path)
+
+
+#: the datasets this process read (:func:`remember_reads`): path -> (file identity, dataset);
+#: None where they are not remembered
+_remembered = None
+_remembered_limit = 0
+
+
+def remember_reads(max_bytes: int | None) -> None:
+    """Let :func:`read_dataset` remember what it reads in this process, or stop (None).
+
+    A file read again, unchanged, is then copied from memory instead of read and decoded again:
+    the pipeline's worker processes, which live for one build, read each run's products for
+    several rules (the calibration for every run). Unchanged means the same file: the same
+    device, inode, size, modification and status-change times (a product is replaced by a new
+    file, :func:`flumekit.io.atomic.atomic_path`, never rewritten in place). The caller gets a
+    deep copy each time, so nothing it changes reaches the next reader. The least recently
+    read datasets are forgotten beyond ``max_bytes`` of data.
+
+    Parameters
+    ----------
+    max_bytes : int or None
+        Memory for the remembered datasets' values [B]; None forgets them all and stops.
+
+    Examples
+    --------
+    >>> from flumekit.io.netcdf import remember_reads
+    >>> remember_reads(64 * 2**20)
+    >>> remember_reads(None)
+    """
+    global _remembered, _remembered_limit
+    from collections import OrderedDict
+
+    _remembered = None if max_bytes is None else OrderedDict()
+    _remembered_limit = 0 if max_bytes is None else int(max_bytes)
+
+
+def _remembered_read(path) -> xr.Dataset:
+    """Read ``path`` through the memory of :func:`remember_reads`."""
+    import os
+
+    name = os.path.abspath(path)
+    st = os.stat(name)
+    key = (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns)
+    known = _remembered.get(name)
+    if known is not None and known[0] == key:
+        _remembered.move_to_end(name)
+        return known[1].copy(deep=True)
     ds = _netcdf4_read(path)
-    return _xarray_read(path) if ds is None else ds
+    if ds is None:
+        ds = _xarray_read(path)
+    _remembered[name] = (key, ds.copy(deep=True))
+    total = sum(d.nbytes for _, d in _remembered.values())
+    while total > _remembered_limit and _remembered:
+        total -= _remembered.popitem(last=False)[1][1].nbytes
+    return ds
 
 
 def _xarray_read(path) -> xr.Dataset:

@@ -119,6 +119,11 @@ def _terminate(signum, frame):
     os._exit(128 + signum)
 
 
+#: memory of a pool worker for the datasets it has read [B] (:func:`flumekit.io.netcdf.
+#: remember_reads`)
+WORKER_READ_MEMORY = 128 * 2**20
+
+
 def _worker_init() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, _terminate)
@@ -133,6 +138,11 @@ def _worker_init() -> None:
     # the driver may have died between the fork and the prctl above
     if os.getppid() == 1:
         raise SystemExit(1)
+    # a worker lives for one build, in which no product is rewritten in place: the products
+    # several rules read (a run's waves, the calibration) are read once per worker
+    from flumekit.io.netcdf import remember_reads
+
+    remember_reads(WORKER_READ_MEMORY)
 
 
 class PoolExecutor(Executor):

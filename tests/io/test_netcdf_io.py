@@ -3,6 +3,7 @@ the file xarray's ``to_netcdf`` writes, byte for byte, and reads the dataset xar
 ``open_dataset`` reads (encodings included); each leaves to xarray what it does not know."""
 
 import filecmp
+import os
 
 import numpy as np
 import pytest
@@ -174,3 +175,73 @@ def test_enumerations_and_ragged_arrays_are_left_to_xarray(tmp_path):
         var = nc.createVariable("r", ragged, ("n",))
         var[0], var[1] = np.array([1.0]), np.array([2.0, 3.0])
     assert netcdf._netcdf4_read(path) is None
+
+
+@pytest.fixture
+def remembering():
+    netcdf.remember_reads(64 * 2**20)
+    yield
+    netcdf.remember_reads(None)
+
+
+def _counted_reads(monkeypatch) -> list:
+    reads = []
+    read = netcdf._netcdf4_read
+
+    def counted(path):
+        reads.append(path)
+        return read(path)
+
+    monkeypatch.setattr(netcdf, "_netcdf4_read", counted)
+    return reads
+
+
+def test_a_remembered_file_is_read_once_and_each_reader_gets_its_own_copy(
+        tmp_path, monkeypatch, remembering):
+    path = tmp_path / "p.nc"
+    netcdf.write_dataset(_product(), path)
+    reads = _counted_reads(monkeypatch)
+    first = netcdf.read_dataset(path)
+    first["eta"].values[0, 0] = 1e9  # a reader that changes its dataset in place
+    first.attrs["title"] = "changed"
+    second = netcdf.read_dataset(path)
+    assert len(reads) == 1
+    assert second["eta"].values[0, 0] != 1e9 and second.attrs["title"] == "a product"
+    assert second.identical(netcdf._netcdf4_read(path))
+
+
+def test_a_remembered_file_replaced_or_rewritten_is_read_again(tmp_path, monkeypatch,
+                                                                 remembering):
+    path = tmp_path / "p.nc"
+    netcdf.write_dataset(_product(), path)
+    reads = _counted_reads(monkeypatch)
+    netcdf.read_dataset(path)
+    kr = {"units": "1", "long_name": "Kr"}
+    # a new file in its place (another inode)
+    netcdf.write_dataset(_product().assign(kr=((), 0.3, kr)), path)
+    assert float(netcdf.read_dataset(path)["kr"]) == 0.3
+    # rewritten in place, the same size: the file's times tell it (set apart here, as a
+    # rewrite within the same tick of the file system's clock would not be)
+    other = tmp_path / "other.nc"
+    netcdf.write_dataset(_product().assign(kr=((), 0.4, kr)), other)
+    before = path.stat()
+    path.write_bytes(other.read_bytes())
+    assert path.stat().st_ino == before.st_ino and path.stat().st_size == before.st_size
+    os.utime(path, ns=(before.st_atime_ns, before.st_mtime_ns + 10**9))
+    assert float(netcdf.read_dataset(path)["kr"]) == 0.4
+    assert len(reads) == 3
+
+
+def test_reads_beyond_the_memory_are_forgotten_and_none_stops(tmp_path, monkeypatch):
+    path = tmp_path / "p.nc"
+    netcdf.write_dataset(_product(), path)
+    reads = _counted_reads(monkeypatch)
+    try:
+        netcdf.remember_reads(1000)  # less than the dataset: nothing is kept
+        netcdf.read_dataset(path)
+        netcdf.read_dataset(path)
+        assert len(reads) == 2
+    finally:
+        netcdf.remember_reads(None)
+    netcdf.read_dataset(path)
+    assert len(reads) == 3 and netcdf._remembered is None
