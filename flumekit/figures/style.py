@@ -939,13 +939,14 @@ def _common_glyphs(path: str, face: int) -> frozenset:
 
 
 #: tables of a TrueType font that the font a PDF embeds (FontFile2) never reads: OpenType
-#: layout (substitution, positioning, kerning, the math layout). The PDF places every glyph
-#: itself; subsetting these tables was two thirds of the time of a subset
-_LAYOUT_TABLES = ["GSUB", "GPOS", "GDEF", "kern", "MATH", "BASE", "JSTF"]
+#: layout (substitution, positioning, kerning, the math layout; the PDF places every glyph
+#: itself, and subsetting them was two thirds of the time of a subset) and FontForge's time
+#: stamp, which the subsetter cannot subset (it would say so on standard error)
+_DROPPED_TABLES = ["GSUB", "GPOS", "GDEF", "kern", "MATH", "BASE", "JSTF", "FFTM"]
 
 
 def _font_subset(path: str, face: int, glyphs: frozenset) -> tuple[bytes, dict]:
-    """Subset the TrueType font ``path`` to ``glyphs``, without its layout tables.
+    """Subset the TrueType font ``path`` to ``glyphs``, without the tables a PDF never reads.
 
     Returns the subset font's file and the map from the font's glyph indices to the subset's.
     """
@@ -955,7 +956,7 @@ def _font_subset(path: str, face: int, glyphs: frozenset) -> tuple[bytes, dict]:
 
     options = subset.Options(glyph_names=True, recommended_glyphs=True, font_number=face,
                              layout_features=[])
-    options.drop_tables += _LAYOUT_TABLES
+    options.drop_tables += _DROPPED_TABLES
     with subset.load_font(path, options) as font:
         subsetter = subset.Subsetter(options=options)
         subsetter.populate(gids=set(glyphs))
@@ -970,7 +971,7 @@ def _font_subsets_cached():
     """Subset the TrueType fonts embedded in PDFs once per glyph set, within the context.
 
     Per font and glyph set (``pdf.fonttype`` 42), for the life of the process, without the
-    layout tables (:data:`_LAYOUT_TABLES`). Every subset, computed or remembered, is embedded
+    layout tables (:data:`_DROPPED_TABLES`). Every subset, computed or remembered, is embedded
     from its saved bytes: the PDF has the same bytes whichever figure came first. Where
     matplotlib's private subsetting helpers are not the ones expected (another matplotlib
     version), nothing is changed.

@@ -476,3 +476,31 @@ def test_ticks_updated_once_per_state_give_the_same_pixels(tmp_path, monkeypatch
     every_time = np.asarray(Image.open(path))
     assert (remembered == every_time).all()
     assert 3 * n_remembered < len(updates), (n_remembered, len(updates))
+
+
+def test_pdf_fonts_are_subset_without_layout_tables_and_say_nothing(tmp_path, caplog,
+                                                                    monkeypatch):
+    """The embedded subset keeps the glyphs asked for and drops the tables a PDF never
+    reads; saving a PDF warns of nothing (the subsetter's warnings would reach the make's
+    output)."""
+    import io
+    import logging
+
+    from fontTools.ttLib import TTFont
+    from matplotlib import font_manager
+
+    from flumekit.figures import style
+    from flumekit.figures.style import _font_subset, save
+
+    monkeypatch.setattr(style, "_SUBSETS", {})  # subset here, not remembered from before
+    path = font_manager.findfont("DejaVu Sans")
+    glyphs = frozenset(range(3, 40))
+    data, index = _font_subset(path, 0, glyphs)
+    font = TTFont(io.BytesIO(data))
+    assert not {"GSUB", "GPOS", "GDEF", "kern", "FFTM"} & set(font.keys())
+    assert {"glyf", "hmtx", "loca", "head"} <= set(font.keys())
+    assert glyphs <= set(index) and len(font.getGlyphOrder()) < 100
+    with caplog.at_level(logging.WARNING, logger="fontTools"):
+        (pdf,) = save(_figure(), tmp_path / "f.pdf")
+    assert not caplog.records, caplog.records
+    assert b"FontFile2" in pdf.read_bytes()
