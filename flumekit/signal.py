@@ -151,6 +151,30 @@ class Cycles:
         return self.crest - self.trough
 
 
+def _spaced(tc: np.ndarray, min_period: float) -> list[int]:
+    """Return the crossings kept: the first, then each first one ``min_period`` after the last.
+
+    ``tc`` the crossing times [s], increasing. The next crossing of each is searched for all at
+    once, with the test ``tc[j] - tc[k] >= min_period`` itself (a search for
+    ``tc[k] + min_period`` alone can round to the neighbouring crossing); only the kept
+    crossings, one per wave, are then followed in turn.
+    """
+    n = tc.size
+    ahead = np.arange(n)
+    nxt = np.searchsorted(tc, tc + min_period)
+    while True:  # at most a step or two, where the sum rounded
+        down = (nxt - 1 > ahead) & (tc[np.maximum(nxt - 1, 0)] - tc >= min_period)
+        up = (nxt < n) & ~(tc[np.minimum(nxt, n - 1)] - tc >= min_period)
+        if not (down.any() or up.any()):
+            break
+        nxt = nxt - down + up
+    nxt = nxt.tolist()
+    keep = [0]
+    while nxt[keep[-1]] < n:
+        keep.append(nxt[keep[-1]])
+    return keep
+
+
 def cycles(x: np.ndarray, time: np.ndarray, min_period: float = 0.0) -> Cycles:
     """Split a 1-D signal into zero-up-crossing cycles and return crest, trough and period.
 
@@ -160,12 +184,7 @@ def cycles(x: np.ndarray, time: np.ndarray, min_period: float = 0.0) -> Cycles:
     idx = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0)) + 1
     # with every crossing min_period after the one before, the loop below keeps them all
     if min_period > 0 and idx.size > 1 and not np.all(np.diff(time[idx]) >= min_period):
-        keep = [0]
-        # crossings are few (one per wave), so this loop is over waves, not samples
-        for j in range(1, idx.size):
-            if time[idx[j]] - time[idx[keep[-1]]] >= min_period:
-                keep.append(j)
-        idx = idx[keep]
+        idx = idx[_spaced(time[idx], min_period)]
     if idx.size < 2:
         empty = np.empty(0)
         return Cycles(empty, empty, empty, empty)

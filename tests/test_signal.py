@@ -59,6 +59,31 @@ def test_cycles_merges_noisy_crossings_closer_than_min_period():
     assert cycles(np.ones(10), np.arange(10.0)).period.size == 0
 
 
+def test_cycles_merge_keeps_the_crossings_of_the_sequential_rule():
+    # each kept crossing is the first whose time minus the last kept one's is >= min_period, the
+    # difference as computed: on a grid of 0.1 s far from t = 0 a crossing exactly min_period
+    # on is kept or not as that difference rounds, not as t + min_period does
+    rng = np.random.default_rng(7)
+    t = 1000.0 + 0.1 * np.arange(4000)
+    x = np.sin(2 * np.pi * t / 1.9) + 0.8 * rng.standard_normal(t.size)
+    idx = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0)) + 1
+    tc = t[idx]
+    for min_period in (0.3, 0.7, 1.3):
+        keep = [0]
+        for j in range(1, tc.size):
+            if tc[j] - tc[keep[-1]] >= min_period:
+                keep.append(j)
+        kept = idx[keep]
+        expected = t[kept - 1] + (-x[kept - 1] / (x[kept] - x[kept - 1])) * (t[kept] - t[kept - 1])
+        got = cycles(x, t, min_period=min_period)
+        assert np.array_equal(got.start, expected[:-1])
+        assert np.array_equal(got.crest, np.maximum.reduceat(x, kept)[:-1])
+    # some of those differences are exactly one of the min_periods but for the rounding
+    diffs = tc[None, :] - tc[:, None]
+    assert np.any((diffs < 0.3) & (diffs > 0.3 - 1e-9)) or np.any(
+        (diffs < 0.7) & (diffs > 0.7 - 1e-9))
+
+
 def test_quasi_steady_window_of_an_exponential_ramp():
     # x = (1 - e^(-t/τ)) sin ωt: cycle n (from nT) has its crest near nT + T/4 with value
     # e(nT + T/4); the 2 % criterion starts at the first n with e >= 0.98 (scale -> 1)
