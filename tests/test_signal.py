@@ -1,5 +1,7 @@
 """Shared signal tools: cycles, quasi-steady window, phase averaging, against analytic truths."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -9,6 +11,8 @@ from scipy import stats
 from flumekit.signal import (
     cycles,
     lowpass,
+    median_rows,
+    nanmedian,
     phase_average,
     quasi_steady_window,
     resample_cycles,
@@ -82,6 +86,30 @@ def test_cycles_merge_keeps_the_crossings_of_the_sequential_rule():
     diffs = tc[None, :] - tc[:, None]
     assert np.any((diffs < 0.3) & (diffs > 0.3 - 1e-9)) or np.any(
         (diffs < 0.7) & (diffs > 0.7 - 1e-9))
+
+
+def test_nanmedian_and_median_rows_give_numpys_numbers():
+    # the same bits as numpy's, signed zeros and NaN included, odd and even counts
+    rng = np.random.default_rng(3)
+    for trial in range(300):
+        n = int(rng.integers(1, 120))
+        x = np.round(rng.standard_normal(n), 1 + trial % 3)
+        x[rng.random(n) < 0.2] = np.nan
+        x[rng.random(n) < 0.2] = -0.0
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # all NaN
+            expected = np.float64(np.nanmedian(x))
+        assert np.float64(nanmedian(x)).tobytes() == expected.tobytes() or (
+            np.isnan(expected) and np.isnan(nanmedian(x)))
+        rows = np.round(rng.standard_normal((1 + 2 * (trial % 3), n)), 1)
+        rows[rng.random(rows.shape) < 0.1] = np.nan
+        rows[rng.random(rows.shape) < 0.2] = -0.0
+        got, want = median_rows(rows), np.median(rows, axis=0)
+        assert np.array_equal(got, want, equal_nan=True)
+        assert np.array_equal(np.signbit(got), np.signbit(want))
+    assert np.isnan(nanmedian([np.nan, np.nan]))
+    with pytest.raises(ValueError, match="odd number of rows"):
+        median_rows(np.zeros((4, 3)))
 
 
 def test_quasi_steady_window_of_an_exponential_ramp():
