@@ -1,5 +1,7 @@
 """Shared signal tools: cycles, quasi-steady window, phase averaging, against analytic truths."""
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -9,6 +11,8 @@ from scipy import stats
 from flumekit.signal import (
     cycles,
     lowpass,
+    median_rows,
+    nanmedian,
     phase_average,
     quasi_steady_window,
     resample_cycles,
@@ -57,6 +61,55 @@ def test_cycles_merges_noisy_crossings_closer_than_min_period():
     np.testing.assert_allclose(merged.period, T, atol=0.15)
     assert abs(np.mean(merged.period) - T) < 0.01
     assert cycles(np.ones(10), np.arange(10.0)).period.size == 0
+
+
+def test_cycles_merge_keeps_the_crossings_of_the_sequential_rule():
+    # each kept crossing is the first whose time minus the last kept one's is >= min_period, the
+    # difference as computed: on a grid of 0.1 s far from t = 0 a crossing exactly min_period
+    # on is kept or not as that difference rounds, not as t + min_period does
+    rng = np.random.default_rng(7)
+    t = 1000.0 + 0.1 * np.arange(4000)
+    x = np.sin(2 * np.pi * t / 1.9) + 0.8 * rng.standard_normal(t.size)
+    idx = np.flatnonzero((x[:-1] < 0) & (x[1:] >= 0)) + 1
+    tc = t[idx]
+    for min_period in (0.3, 0.7, 1.3):
+        keep = [0]
+        for j in range(1, tc.size):
+            if tc[j] - tc[keep[-1]] >= min_period:
+                keep.append(j)
+        kept = idx[keep]
+        expected = t[kept - 1] + (-x[kept - 1] / (x[kept] - x[kept - 1])) * (t[kept] - t[kept - 1])
+        got = cycles(x, t, min_period=min_period)
+        assert np.array_equal(got.start, expected[:-1])
+        assert np.array_equal(got.crest, np.maximum.reduceat(x, kept)[:-1])
+    # some of those differences are exactly one of the min_periods but for the rounding
+    diffs = tc[None, :] - tc[:, None]
+    assert np.any((diffs < 0.3) & (diffs > 0.3 - 1e-9)) or np.any(
+        (diffs < 0.7) & (diffs > 0.7 - 1e-9))
+
+
+def test_nanmedian_and_median_rows_give_numpys_numbers():
+    # the same bits as numpy's, signed zeros and NaN included, odd and even counts
+    rng = np.random.default_rng(3)
+    for trial in range(300):
+        n = int(rng.integers(1, 120))
+        x = np.round(rng.standard_normal(n), 1 + trial % 3)
+        x[rng.random(n) < 0.2] = np.nan
+        x[rng.random(n) < 0.2] = -0.0
+        with np.errstate(all="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # all NaN
+            expected = np.float64(np.nanmedian(x))
+        assert np.float64(nanmedian(x)).tobytes() == expected.tobytes() or (
+            np.isnan(expected) and np.isnan(nanmedian(x)))
+        rows = np.round(rng.standard_normal((1 + 2 * (trial % 3), n)), 1)
+        rows[rng.random(rows.shape) < 0.1] = np.nan
+        rows[rng.random(rows.shape) < 0.2] = -0.0
+        got, want = median_rows(rows), np.median(rows, axis=0)
+        assert np.array_equal(got, want, equal_nan=True)
+        assert np.array_equal(np.signbit(got), np.signbit(want))
+    assert np.isnan(nanmedian([np.nan, np.nan]))
+    with pytest.raises(ValueError, match="odd number of rows"):
+        median_rows(np.zeros((4, 3)))
 
 
 def test_quasi_steady_window_of_an_exponential_ramp():

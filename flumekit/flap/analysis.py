@@ -363,7 +363,8 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
                     encoder: Encoder, period: float, cutoff: float = DEFAULT_CUTOFF,
                     zero_count: float = 0.0, tolerance: float = 0.02,
                     max_flagged_fraction: float = 0.0,
-                    kinematics: Kinematics | None = None) -> tuple:
+                    kinematics: Kinematics | None = None, chain: _Measured | None = None
+                    ) -> tuple:
     """Return the measured chain of a regular run and the quasi-steady window of θ (§2.5).
 
     What :func:`analyse_run` and :func:`run_results` compute first; it depends neither on the
@@ -382,6 +383,11 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
         :func:`encoder_kinematics` of these times and counts with these ``pto``, ``encoder``,
         ``cutoff``, ``zero_count`` and ``max_flagged_fraction``, when the caller has it (the
         reruns that perturb only the pressure or the flap's inertia).
+    chain : tuple, optional
+        The measured chain (the first element of the result) of an earlier call on these same
+        records and parameters, when the caller has it: the chain depends neither on the
+        period nor on the tolerance, so only the window is searched (the reruns that change
+        only the period).
 
     Returns
     -------
@@ -397,9 +403,11 @@ def steady_measured(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: 
         A non-positive period, fewer than two quasi-steady cycles; ``kinematics`` of other
         counts or another sampling.
     """
-    m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto, encoder=encoder,
-                  cutoff=cutoff, zero_count=zero_count,
-                  max_flagged_fraction=max_flagged_fraction, kinematics=kinematics)
+    m = chain
+    if m is None:
+        m = _measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
+                      encoder=encoder, cutoff=cutoff, zero_count=zero_count,
+                      max_flagged_fraction=max_flagged_fraction, kinematics=kinematics)
     if not (np.isfinite(period) and period > 0):
         raise ValueError(f"period must be > 0, got {period}")
     return m, steady_window(m.series["theta"], m.time, period, tolerance)

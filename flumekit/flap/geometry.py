@@ -122,10 +122,14 @@ def flap_point(point, theta) -> tuple[np.ndarray, np.ndarray]:
     >>> round(float(x), 12), round(float(z), 12)
     (1.0, 0.0)
     """
+    from flumekit.flap.kernels import rotate
+
     x0, z0 = _point("flap point", point)
     th = np.asarray(theta, dtype=float)
-    c, s = np.cos(th), np.sin(th)
-    return x0 * c + z0 * s, -x0 * s + z0 * c
+    x, z = np.empty(th.shape), np.empty(th.shape)
+    rotate(float(x0), float(z0), np.ascontiguousarray(th).reshape(-1), x.reshape(-1),
+           z.reshape(-1))
+    return x[()], z[()]
 
 
 @dataclass(frozen=True)

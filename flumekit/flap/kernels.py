@@ -43,7 +43,11 @@ __doc__ = fill(__doc__)
 _FRICTION_ERRORS = "numpy"
 
 __all__ = ["cylinder_accel", "cylinder_advance", "cylinder_params", "cylinder_predict",
-           "friction_loop", "lugre_advance", "lugre_force", "lugre_step"]
+           "film_factors", "friction_loop", "lugre_advance", "lugre_force", "lugre_step", "rotate"]
+
+
+#: film factors not known in advance: each step computes its own (:func:`film_factors`)
+_FILM_PER_STEP = (math.nan, math.nan, math.nan)
 
 
 @_doc
@@ -65,16 +69,35 @@ def lugre_step(z, h, v, dt, c):
     z, h : float
         The state at the end of the step.
     """
+    return _lugre_step(z, h, v, dt, c, _FILM_PER_STEP)
+
+
+@njit(cache=True, error_model=_FRICTION_ERRORS)
+def film_factors(dt, c):
+    """Return the film's decay over half a step, exp(-dt / (2 τ)), for τ_hp, τ_hm and τ_h0.
+
+    What :func:`lugre_step` computes at every step: a loop of steps of one ``dt`` [s] computes
+    them once (``c`` the parameters of :func:`flumekit.flap.friction.kernel_constants`).
+    """
+    return (math.exp(-0.5 * dt / c[10]), math.exp(-0.5 * dt / c[11]),
+            math.exp(-0.5 * dt / c[12]))
+
+
+@njit(cache=True, error_model=_FRICTION_ERRORS)
+def _lugre_step(z, h, v, dt, c, film):
+    """:func:`lugre_step` with the film factors of ``dt`` (:func:`film_factors`), NaN: not known."""
     s0, fc, fs, ivs, n = c[0], c[3], c[4], c[5], c[6]
     vb, kf, hmax, thp, thm, th0 = c[7], c[8], c[9], c[10], c[11], c[12]
     a = abs(v)
     # film state, Eqs. (A6)-(A8): exact exponential towards h_ss for frozen v
     if a == 0.0:
-        hss, tau = 0.0, th0
+        hss, tau, j = 0.0, th0, 2
     else:
         hss = kf * a ** (2.0 / 3.0) if a < vb else hmax
-        tau = thp if h <= hss else thm
-    eh = math.exp(-0.5 * dt / tau)
+        tau, j = (thp, 0) if h <= hss else (thm, 1)
+    eh = film[j]
+    if eh != eh:  # not known in advance
+        eh = math.exp(-0.5 * dt / tau)
     if a == 0.0:  # dwell: the bristles hold their deflection
         return z, hss + (h - hss) * eh * eh
     hmid = hss + (h - hss) * eh
@@ -107,11 +130,17 @@ def lugre_advance(z, h, v0, v1, dt, c):
     z, h : float
         The state at the end of the step ([m], [-]).
     """
-    if v0 * v1 < 0.0:
+    return _lugre_advance(z, h, v0, v1, dt, c, _FILM_PER_STEP)
+
+
+@njit(cache=True, error_model=_FRICTION_ERRORS)
+def _lugre_advance(z, h, v0, v1, dt, c, film):
+    """:func:`lugre_advance` with the film factors of ``dt`` (:func:`film_factors`)."""
+    if v0 * v1 < 0.0:  # steps of other lengths: their film factors are their own
         s = v0 / (v0 - v1)
         z, h = lugre_step(z, h, 0.5 * v0, s * dt, c)
         return lugre_step(z, h, 0.5 * v1, (1.0 - s) * dt, c)
-    return lugre_step(z, h, 0.5 * (v0 + v1), dt, c)
+    return _lugre_step(z, h, 0.5 * (v0 + v1), dt, c, film)
 
 
 @njit(cache=True, error_model=_FRICTION_ERRORS)
@@ -136,14 +165,30 @@ def friction_loop(v, dt, z, h, substeps, c, zs, hs):
     """
     zs[0], hs[0] = z, h
     hsub = dt / substeps
+    film = film_factors(hsub, c)  # every step but the split ones at reversals is hsub long
     for k in range(1, v.size):
         v0, dv = v[k - 1], (v[k] - v[k - 1]) / substeps
         if substeps == 1:
-            z, h = lugre_advance(z, h, v0, v[k], dt, c)
+            z, h = _lugre_advance(z, h, v0, v[k], dt, c, film)
         else:
             for j in range(substeps):
-                z, h = lugre_advance(z, h, v0 + j * dv, v0 + (j + 1) * dv, hsub, c)
+                z, h = _lugre_advance(z, h, v0 + j * dv, v0 + (j + 1) * dv, hsub, c, film)
         zs[k], hs[k] = z, h
+
+
+@njit(cache=True)
+def rotate(x0, z0, theta, x, z):
+    """Rotate the point (x0, z0) [m] about the origin by each angle of ``theta`` [rad].
+
+    Writes x0 cos θ + z0 sin θ into ``x`` and −x0 sin θ + z0 cos θ into ``z`` (1-D arrays of
+    the size of ``theta``): the sine and cosine of one angle computed together, which costs
+    less than two passes of numpy's, with the same numbers
+    (:func:`flumekit.flap.geometry.flap_point`).
+    """
+    for i in range(theta.size):
+        c, s = math.cos(theta[i]), math.sin(theta[i])
+        x[i] = x0 * c + z0 * s
+        z[i] = -x0 * s + z0 * c
 
 
 # --- the hydraulic cylinder (flumekit.flap.simulator.HydraulicCylinder) ----------------------

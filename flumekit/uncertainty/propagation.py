@@ -211,6 +211,7 @@ class RunModel:
         self._base_waves = None
         self._base = None  # the unperturbed run's results
         self._chains: dict = {}  # the unperturbed flap record's chain and window per period
+        self._chain = None  # that chain, which is the same whatever the period
         self._kinematics = None  # the unperturbed encoder's part of that chain
         self._arrays = None  # the records' arrays (flumekit.waves.analysis.ProbeArrays)
 
@@ -304,7 +305,7 @@ class RunModel:
         """
         import dataclasses
 
-        from flumekit.flap.analysis import encoder_kinematics, run_results, steady_measured
+        from flumekit.flap.analysis import run_results, steady_measured
 
         r = self.flap_record
         kw = dict(self.flap_kw)
@@ -318,28 +319,38 @@ class RunModel:
         time = r["time"] + float(d.get("clock_offset", 0.0))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
+            steady_kw = {k: v for k, v in kw.items() if k != "n_phase"}
             if not any(k in FLAP_ONLY for k in d):  # the flap's records and set-up unperturbed
-                if period not in self._chains:  # its window depends on the period alone
+                if period not in self._chains:  # the window depends on the period alone
                     try:
-                        self._chains[period] = steady_measured(time, counts, pressure, **{
-                            k: v for k, v in kw.items() if k != "n_phase"}, period=period)
+                        self._chains[period] = steady_measured(
+                            time, counts, pressure, **steady_kw, period=period,
+                            kinematics=self._encoder_kinematics(time, counts, kw),
+                            chain=self._chain)
                     except ValueError as e:
                         self._chains[period] = e
                 if isinstance(self._chains[period], ValueError):
                     raise self._chains[period]
+                self._chain = self._chains[period][0]
                 kw["measured"] = self._chains[period]
             elif not any(k in d for k in ("encoder_resolution", "clock_offset")):
                 # the encoder's counts and times unperturbed: its part of the chain is the run's
-                if self._kinematics is None:
-                    self._kinematics = encoder_kinematics(time, counts, **{
-                        k: v for k, v in kw.items() if k in KINEMATICS_KW})
-                kw["measured"] = steady_measured(time, counts, pressure, **{
-                    k: v for k, v in kw.items() if k != "n_phase"}, period=period,
-                    kinematics=self._kinematics)
+                kw["measured"] = steady_measured(
+                    time, counts, pressure, **steady_kw, period=period,
+                    kinematics=self._encoder_kinematics(time, counts, kw))
             res = run_results(time, counts, pressure, depth=self.depth
                               + float(d.get("water_depth", 0.0)), period=period,
                               incident_height=incident_height, **kw)
         return {k: float(res[k]) for k in FLAP_RESULTS}
+
+    def _encoder_kinematics(self, time, counts, kw: dict):
+        """Return the unperturbed encoder's part of the flap chain (computed once)."""
+        from flumekit.flap.analysis import encoder_kinematics
+
+        if self._kinematics is None:
+            self._kinematics = encoder_kinematics(time, counts, **{
+                k: v for k, v in kw.items() if k in KINEMATICS_KW})
+        return self._kinematics
 
     def evaluate(self, ds: list[dict]) -> np.ndarray:
         """Return all results for many sets of perturbations at once.

@@ -248,6 +248,7 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
     [0.1, 0.101]
     """
     recs, ok = [], []
+    shared: dict = {}  # the probes' windows of records that several variants share
     for eta, depth in zip(etas, depths, strict=True):
         if not isinstance(eta, ProbeArrays):
             eta = ProbeArrays(*unpack_probe_time(eta if isinstance(eta, xr.DataArray)
@@ -257,7 +258,8 @@ def variant_results(etas, depths, period: float, x_ref: float = 0.0, *,
                                        separation_probes=separation_probes,
                                        n_harmonics=n_harmonics, tolerance=tolerance,
                                        min_cycles=min_cycles, noise_factor=noise_factor,
-                                       reflection_tolerance=reflection_tolerance, g=g))
+                                       reflection_tolerance=reflection_tolerance, g=g,
+                                       probe_windows=shared))
             ok.append(True)
         except ValueError:
             recs.append(None)
@@ -328,8 +330,12 @@ class _SteadyRecord(NamedTuple):
 def _steady_record(rec: ProbeArrays, depth: float, period: float, *, separation_probes=None,
                    n_harmonics: int = 8, tolerance: float = 0.02, min_cycles: int = 10,
                    noise_factor: float = 4.0, reflection_tolerance: float = 0.002,
-                   g: float = G) -> _SteadyRecord:
-    """Check a run's records and find the window the separation analyses (:func:`analyse_run`)."""
+                   g: float = G, probe_windows: dict | None = None) -> _SteadyRecord:
+    """Check a run's records and find the window the separation analyses (:func:`analyse_run`).
+
+    ``probe_windows``: a dict that keeps :func:`_probe_windows` of each records' arrays (by
+    identity) for the next variant of the same records (other probe positions, another depth).
+    """
     v, t, x, probes = rec
     # samples masked by quality control (NaN) may remain: the cycles holding them fail the
     # quasi-steady test below, so the window avoids them, and `separate` checks the window
@@ -347,8 +353,15 @@ def _steady_record(rec: ProbeArrays, depth: float, period: float, *, separation_
             raise KeyError(f"separation probes {missing} are not among the probes {probes}")
         rows = [index[p] for p in separation_probes]
         sep = ProbeArrays(v[rows], t, x[rows], list(separation_probes))
+    known = None
+    if probe_windows is not None:
+        key = (id(v), id(t), tuple(probes))
+        if key not in probe_windows:  # the arrays kept with them: their ids stay theirs
+            probe_windows[key] = (v, t, _probe_windows(v, t, probes, period, tolerance,
+                                                       noise_factor))
+        known = probe_windows[key][2]
     found = _steady_window(v, t, probes, period, tolerance, min_cycles, noise_factor, sep,
-                           depth, reflection_tolerance, g)
+                           depth, reflection_tolerance, g, probe_windows=known)
     windows, criterion, t_meas, n_per, i0, n, dt, crest_start, settling = found
     f1 = 1.0 / t_meas
     band = (0.5 * f1, min((n_harmonics + 0.5) * f1, 0.5 / dt * (1 - 1e-9)))
@@ -357,20 +370,14 @@ def _steady_record(rec: ProbeArrays, depth: float, period: float, *, separation_
                          crest_start, settling)
 
 
-def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
-                   tolerance: float, min_cycles: int, noise_factor: float, sep: ProbeArrays,
-                   depth: float, reflection_tolerance: float, g: float):
-    """Return the common quasi-steady window of the probes (see :func:`analyse_run`).
+def _probe_windows(v: np.ndarray, t: np.ndarray, probes: list, period: float,
+                   tolerance: float, noise_factor: float) -> tuple[dict, ValueError | None]:
+    """Return each probe's quasi-steady window under each criterion (:func:`_steady_window`).
 
-    The probes' windows, the criterion kept, the measured period [s], the whole periods, the
-    first sample and the samples of the window cut to them, the sampling step [s], where the
-    crests' window starts [s] and the reflection's settling.
+    What the records alone and the period determine (not the probe positions nor the depth):
+    criterion -> (the windows, their common start and end [s], the mean period [s], the whole
+    periods between), and the last criterion's failure (a ValueError naming the probe).
     """
-    # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
-    # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
-    # The noise-aware criterion is also the measure of what follows the ramp: the paper's is
-    # kept unless it keeps fewer than 80 % of those cycles (its 2 % is then the noise level
-    # and it rejects steady cycles at random).
     criteria = [("tolerance", 0.0)] + ([("crest noise", noise_factor)] if noise_factor > 0
                                        else [])
     found: dict[str, tuple] = {}
@@ -396,6 +403,28 @@ def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
         t_meas = float(np.mean([w.period for w in windows]))
         n_per = int(np.floor((end - start) / t_meas + 1e-9))
         found[criterion] = (windows, start, end, t_meas, n_per)
+    return found, failure
+
+
+def _steady_window(v: np.ndarray, t: np.ndarray, probes: list, period: float,
+                   tolerance: float, min_cycles: int, noise_factor: float, sep: ProbeArrays,
+                   depth: float, reflection_tolerance: float, g: float,
+                   probe_windows: tuple | None = None):
+    """Return the common quasi-steady window of the probes (see :func:`analyse_run`).
+
+    The probes' windows, the criterion kept, the measured period [s], the whole periods, the
+    first sample and the samples of the window cut to them, the sampling step [s], where the
+    crests' window starts [s] and the reflection's settling. ``probe_windows``: those of
+    :func:`_probe_windows` when the caller has them (variants that share the records).
+    """
+    # quasi-steady window of every probe (Brito et al. 2020, §2.5): the paper's criterion first;
+    # where the crest noise defeats it, the noise-aware tolerance (signal.quasi_steady_window)
+    # The noise-aware criterion is also the measure of what follows the ramp: the paper's is
+    # kept unless it keeps fewer than 80 % of those cycles (its 2 % is then the noise level
+    # and it rejects steady cycles at random).
+    if probe_windows is None:
+        probe_windows = _probe_windows(v, t, probes, period, tolerance, noise_factor)
+    found, failure = probe_windows
     if not found:
         raise failure
     enough = max(min_cycles, 2)

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from flumekit.docstrings import doc
+from flumekit.signal import median_rows, nanmedian
 from flumekit.waves.separation import lstsq_normal
 from flumekit.waves.theory import G, wavenumber
 
@@ -145,14 +146,14 @@ def reflection_settling(eta: np.ndarray, time: np.ndarray, x: np.ndarray, period
     with np.errstate(divide="ignore", invalid="ignore"):
         r = a_ref / a_inc
     half = r[n_blocks // 2:]
-    settled = complex(np.nanmedian(half.real), np.nanmedian(half.imag))
+    settled = complex(nanmedian(half.real), nanmedian(half.imag))
     dev = np.abs(r - settled)
-    sigma = float(np.nanmedian(dev[n_blocks // 2:])) / np.sqrt(2.0 * np.log(2.0))
+    sigma = nanmedian(dev[n_blocks // 2:]) / np.sqrt(2.0 * np.log(2.0))
     tol = max(float(tolerance), noise_factor * sigma)
     # the median of each block's deviation and its neighbours': one disturbed block (a spike
     # the crest test let through) does not cut the window
     padded = np.concatenate([dev[:1], dev, dev[-1:]])
-    smooth = np.median(np.stack([padded[:-2], padded[1:-1], padded[2:]]), axis=0)
+    smooth = median_rows(np.stack([padded[:-2], padded[1:-1], padded[2:]]))
     ok = np.concatenate([[False], smooth <= tol, [False]])  # NaN (a masked block): not settled
     edges = np.flatnonzero(np.diff(ok.astype(int)))
     runs = edges.reshape(-1, 2)
