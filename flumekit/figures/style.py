@@ -795,14 +795,18 @@ def _ticks_remembered(fig):
     title, and the tick boxes of every axes its labels align with (all rows of a column of
     shared axes) ask again, some ten times per state. While the state the ticks depend on is
     the same (the view and data limits, the axes' box on the canvas, the tickers), the ticks
-    are those of the last update, which is returned instead. Returns the call that gives the
-    axes their own update back.
+    are those of the last update, which is returned instead. So are the boxes of the tick
+    labels, which every axis of such a column measures again for each of its siblings in each
+    draw: the last boxes measured with the same renderer, state and ticks. Returns the call
+    that gives the axes their own methods back.
     """
     axes = [axis for ax in fig.axes for axis in (ax.xaxis, ax.yaxis)]
 
     def remembering(axis):
-        update = type(axis)._update_ticks
+        cls = type(axis)
+        update, measure = cls._update_ticks, cls._get_ticklabel_bboxes
         last: list = [None, []]
+        boxes: list = [None, ([], [])]
 
         def state():
             return (tuple(axis.get_view_interval()), tuple(axis.get_data_interval()),
@@ -816,14 +820,24 @@ def _ticks_remembered(fig):
                 last[0] = state()  # an update may set the limits (autoscaling)
             return list(last[1])
 
-        return _update_ticks
+        def _get_ticklabel_bboxes(ticks, renderer):
+            # the ticks of one state have the places and labels of its update; the renderer
+            # (compared by identity, held while the context lasts) gives the resolution
+            now = (renderer, renderer.points_to_pixels(1.0), state(), tuple(map(id, ticks)))
+            if boxes[0] != now:
+                boxes[1] = measure(axis, ticks, renderer)
+                boxes[0] = now
+            return list(boxes[1][0]), list(boxes[1][1])
+
+        return _update_ticks, _get_ticklabel_bboxes
 
     for axis in axes:
-        axis._update_ticks = remembering(axis)
+        axis._update_ticks, axis._get_ticklabel_bboxes = remembering(axis)
 
     def restore():
         for axis in axes:
             axis.__dict__.pop("_update_ticks", None)
+            axis.__dict__.pop("_get_ticklabel_bboxes", None)
 
     return restore
 

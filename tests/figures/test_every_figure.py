@@ -441,9 +441,10 @@ def test_png_bytes_decode_to_the_pixels_texts_and_resolution(tmp_path):
 
 
 def test_ticks_updated_once_per_state_give_the_same_pixels(tmp_path, monkeypatch):
-    """Each axis's ticks updated once per state during :func:`save`: the PNG of a figure of
-    shared rows (offset texts, labels of different widths) has the pixels it has when every
-    request updates them again, as matplotlib does, and each axis has its own update back."""
+    """Each axis's ticks updated, and their labels measured, once per state during
+    :func:`save`: the PNG (and PDF) of a figure of shared rows (offset texts, labels of
+    different widths) has the pixels (bytes) it has when every request updates and measures
+    them again, as matplotlib does, and each axis has its own methods back."""
     from PIL import Image
 
     from flumekit.figures import style as st
@@ -461,21 +462,27 @@ def test_ticks_updated_once_per_state_give_the_same_pixels(tmp_path, monkeypatch
         title(fig, "Three shared rows")
         return fig
 
-    updates = []
-    update = type(Figure().add_subplot().xaxis)._update_ticks
-    monkeypatch.setattr(type(Figure().add_subplot().xaxis), "_update_ticks",
+    updates, measures = [], []
+    axis_class = type(Figure().add_subplot().xaxis)
+    update, measure = axis_class._update_ticks, axis_class._get_ticklabel_bboxes
+    monkeypatch.setattr(axis_class, "_update_ticks",
                         lambda axis: updates.append(axis) or update(axis))
+    monkeypatch.setattr(axis_class, "_get_ticklabel_bboxes",
+                        lambda axis, *a: measures.append(axis) or measure(axis, *a))
     fig = drawing()
-    (path,) = st.save(fig, tmp_path / "a.png")
-    remembered, n_remembered = np.asarray(Image.open(path)), len(updates)
-    assert not any("_update_ticks" in vars(axis) for ax in fig.axes
-                   for axis in (ax.xaxis, ax.yaxis))
+    path, _ = st.save(fig, tmp_path / "a.png", tmp_path / "a.pdf")
+    remembered, n_remembered = np.asarray(Image.open(path)), (len(updates), len(measures))
+    assert not any({"_update_ticks", "_get_ticklabel_bboxes"} & set(vars(axis))
+                   for ax in fig.axes for axis in (ax.xaxis, ax.yaxis))
     monkeypatch.setattr(st, "_ticks_remembered", lambda fig: lambda: None)
     updates.clear()
-    (path,) = st.save(drawing(), tmp_path / "b.png")
+    measures.clear()
+    path, _ = st.save(drawing(), tmp_path / "b.png", tmp_path / "b.pdf")
     every_time = np.asarray(Image.open(path))
     assert (remembered == every_time).all()
-    assert 3 * n_remembered < len(updates), (n_remembered, len(updates))
+    assert (tmp_path / "a.pdf").read_bytes() == (tmp_path / "b.pdf").read_bytes()
+    assert 3 * n_remembered[0] < len(updates), (n_remembered, len(updates))
+    assert 2 * n_remembered[1] <= len(measures), (n_remembered, len(measures))
 
 
 def test_pdf_fonts_are_subset_without_layout_tables_and_say_nothing(tmp_path, caplog,
