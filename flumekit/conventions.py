@@ -567,22 +567,23 @@ def attrs(name: str) -> dict[str, str]:
     Parameters
     ----------
     name : str
-        A name of :data:`VARIABLES`.
+        A variable's name in :data:`VARIABLES`, e.g. ``"hm0"``.
 
     Returns
     -------
     dict of str to str
-        ``units``, ``long_name`` and ``standard_name`` where registered.
+        ``units`` (UDUNITS), ``long_name`` and, where the CF table has one, ``standard_name``.
 
     Raises
     ------
     KeyError
-        For a name not in the registry.
+        For a ``name`` that :data:`VARIABLES` does not hold.
 
     Examples
     --------
-    >>> attrs("time")["units"]
-    's'
+    >>> a = attrs("hm0")
+    >>> a["units"], a["standard_name"]
+    ('m', 'sea_surface_wave_significant_height')
     """
     try:
         return VARIABLES[name].attrs()

@@ -210,7 +210,7 @@ def arm_angle(heave, geometry: BuoyGeometry) -> np.ndarray:
     Raises
     ------
     flumekit.errors.GeometryError
-        When the heave is out of reach of the arm.
+        Where |sin θ_rest + z / L| ≥ 1: the heave is out of the arm's reach.
 
     Examples
     --------

@@ -150,12 +150,13 @@ def hottest_region(fem_ds: xr.Dataset) -> str:
     Parameters
     ----------
     fem_ds : xarray.Dataset
-        Output of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`.
+        Output of :func:`flumekit.ballscrew.thermal.fem.thermal_fem`: ``temperature_field``
+        [K] over (snapshot_time, node), ``cell_nodes``, ``cell_region`` and ``region``.
 
     Returns
     -------
     str
-        The region's name.
+        The region's name; in the paper's scenario the EMRG (Figs. 17-18).
     """
     field = fem_ds["temperature_field"].values[-1]
     cells = fem_ds["cell_nodes"].values

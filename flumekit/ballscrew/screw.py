@@ -381,6 +381,8 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
 
     Raises
     ------
+    flumekit.errors.GeometryError
+        For a lead angle outside (0, 90°).
     ValueError
         For an unknown ``mode`` or a negative or non-finite friction coefficient or angle.
 
@@ -397,6 +399,8 @@ def ball_forces(normal_load, lead_angle_: float, contact_angle: float, friction_
     s = {"indirect": 1.0, "direct": -1.0}.get(mode)
     if s is None:
         raise ValueError(f"mode must be 'indirect' or 'direct', got {mode!r}")
+    if not 0 < lead_angle_ < np.pi / 2:
+        raise GeometryError(f"lead angle must lie in (0, 90°), got {lead_angle_}")
     q = np.asarray(normal_load, float)
     a, b, g = lead_angle_, contact_angle, slip_angle
     f, fb, r = (np.asarray(x, float) for x in (friction_nut, friction_screw, rho))
@@ -441,20 +445,22 @@ def indirect_efficiency(lead_angle_: float, contact_angle: float, friction_nut, 
     flumekit.errors.GeometryError
         For a lead angle outside (0, 90°).
     ValueError
-        With ``strict``, where the screw self-locks.
+        With ``strict``, where the screw self-locks; for a negative or non-finite friction
+        coefficient or angle.
 
     %(references_senatore2022)s, Eqs. (4)-(6).
 
     Examples
     --------
+    Frictionless contact with a rolling-friction angle ρ: η = tan(α − ρ) / tan α, and 0 once
+    ρ exceeds the lead angle α = 5° (tan ρ = 0.1):
+
     >>> import numpy as np
     >>> from flumekit.ballscrew.screw import indirect_efficiency
-    >>> a, rho = np.radians(5.0), np.arctan(0.01)
-    >>> round(float(indirect_efficiency(a, np.pi / 2, 0.0, 0.0, rho)), 6)  # tan(α - ρ) / tan α
-    0.884925
+    >>> a = np.radians(5.0)
+    >>> indirect_efficiency(a, np.pi / 2, 0.0, 0.0, np.arctan([0.01, 0.1])).round(6)
+    array([0.884925, 0.      ])
     """
-    if not 0 < lead_angle_ < np.pi / 2:
-        raise GeometryError(f"lead angle must lie in (0, 90°), got {lead_angle_}")
     f, m = ball_forces(1.0, lead_angle_, contact_angle, friction_nut, friction_screw, rho,
                        slip_angle, 1.0, "indirect")
     locked = m <= 0
@@ -477,6 +483,13 @@ def direct_efficiency(lead_angle_: float, contact_angle: float, friction_nut, fr
     -------
     numpy.ndarray
         η_d [-], clipped to [0, 1].
+
+    Raises
+    ------
+    flumekit.errors.GeometryError
+        For a lead angle outside (0, 90°).
+    ValueError
+        For a negative or non-finite friction coefficient or angle.
 
     %(references_senatore2022)s, Eqs. (4)-(6).
 

@@ -314,12 +314,12 @@ def label(name: str | None = None, symbol: str | None = None, units: str | None 
     Returns
     -------
     str
-        The label.
+        ``"text symbol [units]"``, with the units as :func:`units_text` writes them.
 
     Raises
     ------
     ValueError
-        Neither a registered name nor explicit units.
+        If both ``name`` and ``units`` are None.
 
     Examples
     --------

@@ -310,12 +310,6 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
                        after: int) -> xr.DataArray:
     """Continue the steady incident wave periodically by whole periods before and after.
 
-    The separation defines the incident wave only in the quasi-steady window (NaN elsewhere);
-    the simulator starts from rest, so the record is continued backwards under a half-cosine
-    ramp (spin-up to the steady state before the window) and forwards unramped (so that the
-    simulator's end taper falls after the window). Periodic continuation is exact for the
-    regular waves of the window.
-
     Parameters
     ----------
     eta : xarray.DataArray
@@ -328,6 +322,14 @@ def periodic_extension(eta: xr.DataArray, period: float, before: int,
         Number of periods added after the window.
 
     %(returns_incident)s
+
+    Notes
+    -----
+    The separation defines the incident wave only in the quasi-steady window (NaN elsewhere)
+    and the simulator starts from rest, so the record is continued backwards under a
+    half-cosine ramp (spin-up to the steady state before the window) and forwards unramped (so
+    that the simulator's end taper falls after the window). Periodic continuation is exact for
+    the regular waves of the window.
 
     Examples
     --------
@@ -459,9 +461,11 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
     Parameters
     ----------
     flap : xarray.Dataset
-        The run's flap product (:func:`flumekit.flap.analysis.analyse_run`).
+        The run's flap product (:func:`flumekit.flap.analysis.analyse_run`): the experiment's
+        :data:`SCALARS` and :data:`PHASED`, ``phase`` and ``incident_power`` [W].
     waves : xarray.Dataset
-        The run's waves product (``eta_incident``, ``measured_period``, ``incident_height``).
+        The run's waves product: ``eta_incident`` [m], ``measured_period`` [s] and
+        ``incident_height`` [m].
     %(hydro_stored)s
     %(flap_params_compared)s
     %(pto)s
@@ -483,7 +487,8 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
     Raises
     ------
     ValueError
-        An unknown ``linear_pto_damping``.
+        An unknown ``linear_pto_damping``; with the simulator, an incident wave that is not
+        sampled uniformly over the steady window.
 
     %(references_brito2020)s, Eq. (A1).
     %(renzi_dias2012)s, Eq. (2.40).

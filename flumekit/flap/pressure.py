@@ -242,6 +242,9 @@ def fit_pressure_model(chamber_pressure, theta_dot, theta_ddot, *,
 def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
     """Compute the pressure force pushing the rod out, F_p = A P_int.
 
+    P_int is the gauge pressure of the chamber that pushes the rod out; a suction (P_int < 0)
+    pulls the rod in.
+
     Parameters
     ----------
     %(chamber_pressure)s
@@ -258,9 +261,11 @@ def pressure_force(chamber_pressure, bore_area: float) -> np.ndarray:
 
     Examples
     --------
+    >>> import numpy as np
     >>> from flumekit.flap.pressure import pressure_force
-    >>> pressure_force([1.0e4, -500.0], 0.002)
-    array([20., -1.])
+    >>> area = np.pi * 0.05**2 / 4  # a 50 mm bore [m2]
+    >>> pressure_force([2.0e5, -500.0], area).round(2)
+    array([392.7 ,  -0.98])
     """
     if not bore_area > 0:
         raise ValueError(f"bore area must be > 0, got {bore_area}")

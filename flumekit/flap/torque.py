@@ -108,7 +108,8 @@ def inertia_torque(theta_ddot, inertia: float) -> np.ndarray:
 def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder pressure force, T_p = −m F_p.
 
-    Eq. (12) with the lever arm.
+    Eq. (12) with the lever arm that the paper leaves out. Where m < 0, a chamber pressure that
+    pushes the rod out resists a positive θ.
 
     Parameters
     ----------
@@ -120,6 +121,11 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
     -------
     numpy.ndarray
         T_p [N m], positive when it opposes a positive θ.
+
+    See Also
+    --------
+    flumekit.flap.pressure.pressure_force : F_p from the chamber pressure.
+    flumekit.flap.geometry.rod_kinematics : The signed lever arm m along θ.
 
     %(references_brito2020)s, Eq. (12).
 
@@ -136,7 +142,8 @@ def pressure_torque(force_pressure, lever_arm) -> np.ndarray:
 def friction_torque(force_friction, lever_arm) -> np.ndarray:
     """Compute the resisting torque of the cylinder friction force, T_f = m F_f.
 
-    Eq. (12) with the lever arm.
+    Eq. (12) with the lever arm that the paper leaves out. Sliding friction opposes the rod's
+    motion, so T_f opposes θ̇ whatever the sign of m.
 
     Parameters
     ----------
@@ -147,15 +154,22 @@ def friction_torque(force_friction, lever_arm) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        T_f [N m], positive when it opposes a positive θ.
+        T_f [N m], positive when it opposes a positive θ; its power T_f θ̇ is a loss over a cycle.
+
+    See Also
+    --------
+    flumekit.flap.friction.friction_series : F_f of the LuGre model along a rod velocity.
 
     %(references_brito2020)s, Eq. (12).
 
     Examples
     --------
+    With m < 0, a positive θ̇ shortens the rod, so friction pushes it out (F_f < 0); the
+    second value is the return stroke:
+
     >>> from flumekit.flap.torque import friction_torque
-    >>> float(friction_torque(-30.0, -0.2))
-    6.0
+    >>> friction_torque([-30.0, 30.0], -0.2)
+    array([ 6., -6.])
     """
     return np.asarray(lever_arm, dtype=float) * np.asarray(force_friction, dtype=float)
 

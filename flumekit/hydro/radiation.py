@@ -281,20 +281,6 @@ def impulse_response(hydro: xr.Dataset, duration: float | None = None, dt: float
 
 
 @_doc
-def cosine_transform(irf: xr.DataArray, omega) -> np.ndarray:
-    """Compute C(ω) = ∫₀^L K(t) cos(ωt) dt (equals B(ω) for an exact K).
-
-    %(parameters_transform)s
-
-    Returns
-    -------
-    numpy.ndarray
-        C(ω) [N m s], shape of ``omega``.
-    """
-    return filon(irf["lag"].values, irf.values, omega, "cos")
-
-
-@_doc
 def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute S(ω) = ∫₀^L K(t) sin(ωt) dt (equals ω(A∞ − A(ω)) for an exact K).
 
@@ -314,14 +300,22 @@ def sine_transform(irf: xr.DataArray, omega) -> np.ndarray:
 def memory_response(irf: xr.DataArray, omega) -> np.ndarray:
     """Compute K̂(ω) = C(ω) + i S(ω), the memory torque per unit θ̇ amplitude.
 
+    C(ω) = ∫₀^L K(t) cos(ωt) dt and S(ω) = ∫₀^L K(t) sin(ωt) dt (:func:`sine_transform`).
+
     %(parameters_transform)s
 
     Returns
     -------
     numpy.ndarray of complex
         K̂(ω) [N m s] (time factor e^{-iωt}), shape of ``omega``.
+
+    Notes
+    -----
+    For an exact K, C(ω) is the radiation damping B(ω) and S(ω) is ω (A∞ − A(ω)), so K̂ tells
+    how well a truncated impulse response, or a state-space fit of it, keeps the coefficients
+    it came from.
     """
-    return cosine_transform(irf, omega) + 1j * sine_transform(irf, omega)
+    return filon(irf["lag"].values, irf.values, omega, "cos") + 1j * sine_transform(irf, omega)
 
 
 # --- state space -----------------------------------------------------------------------------

@@ -163,6 +163,9 @@ def rigid_body_dataset(angular_frequency, added_mass, radiation_damping, excitat
 def failed_frequencies(ds: xr.Dataset) -> np.ndarray:
     """Return the angular frequencies [rad s-1] at which any coefficient is not finite.
 
+    A frequency fails where the added mass, the radiation damping or the excitation force
+    holds a non-finite value in any mode: a BEM solver writes NaN where it did not converge.
+
     Parameters
     ----------
     %(ds)s

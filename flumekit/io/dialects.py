@@ -145,10 +145,13 @@ def read_channels(path: str | Path, dialect: Dialect, channels: list[Channel],
 
     Examples
     --------
+    A pressure recorded in kPa is returned in Pa:
+
     >>> import tempfile
+    >>> from flumekit.io.tables import write_table
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     f = Path(folder) / "flap.csv"
-    ...     _ = f.write_text("time [s],pressure [kPa]\n0.0,1.5\n0.01,2.0\n")
+    ...     f = write_table(Path(folder) / "flap.csv", [("time", "s"), ("pressure", "kPa")],
+    ...                     [[0.0, 1.5], [0.01, 2.0]], fmt="%g")
     ...     rec = read_channels(f, Dialect(), [Channel("pressure", "pressure")])
     >>> rec.values, rec.units, rec.time
     (array([[1500., 2000.]]), ('kPa',), array([0.  , 0.01]))
@@ -200,7 +203,7 @@ FOREIGN = ((b"PK\x03\x04", "a ZIP archive (an Excel .xlsx workbook?)"),
 
 @doc
 def sniff_format(path: Path) -> str | None:
-    """Return the format a file's first bytes prove (:data:`SIGNATURES`), or None.
+    r"""Return the format a file's first bytes prove (:data:`SIGNATURES`), or None.
 
     Parameters
     ----------
@@ -211,6 +214,17 @@ def sniff_format(path: Path) -> str | None:
     str or None
         ``"hdf5"`` (also netCDF-4), ``"tdms"`` or ``"netcdf"`` (classic); None for text and
         anything else.
+
+    Examples
+    --------
+    An HDF5 file saved under a ``.csv`` name is still HDF5:
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     f = Path(folder) / "run.csv"
+    ...     _ = f.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(8))
+    ...     sniff_format(f), sniff_format(Path(__file__))
+    ('hdf5', None)
     """
     with open(path, "rb") as f:
         head = f.read(8)

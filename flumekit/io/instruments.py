@@ -128,10 +128,13 @@ def read_calibration(path: str | Path, probes: tuple[str, ...],
 
     Examples
     --------
+    A file in the raw campaign's format, as :func:`flumekit.io.tables.write_table` writes it:
+
     >>> import tempfile
+    >>> from flumekit.io.tables import write_table
+    >>> levels = [[-0.05, 0.5], [0.0, 1.0], [0.05, 1.5]]  # level [m], WP1 [V]
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     f = Path(folder) / "probes.csv"
-    ...     _ = f.write_text("level [m],WP1 [V]\n-0.05,0.5\n0.0,1.0\n0.05,1.5\n")
+    ...     f = write_table(Path(folder) / "probes.csv", [("level", "m"), ("WP1", "V")], levels)
     ...     cal = read_calibration(f, ("WP1",))
     >>> cal["calibration_voltage"].values.ravel(), cal["level"].values
     (array([0.5, 1. , 1.5]), array([-0.05,  0.  ,  0.05]))
@@ -189,13 +192,17 @@ def read_probes(path: str | Path, probes: tuple[str, ...], sampling_rate: float,
 
     Examples
     --------
+    Two probes sampled at 100 Hz, written as the virtual flume writes them:
+
     >>> import tempfile
+    >>> from flumekit.io.tables import write_table
+    >>> t = np.arange(3) / 100.0
+    >>> columns = [("time", "s"), ("WP1", "V"), ("WP2", "V")]
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     f = Path(folder) / "probes.csv"
-    ...     _ = f.write_text("time [s],WP1 [V],WP2 [V]\n0.00,1.0,2.0\n0.01,1.5,2.5\n")
+    ...     f = write_table(Path(folder) / "probes.csv", columns, np.c_[t, 1 + t, 2 - t])
     ...     ds = read_probes(f, ("WP1", "WP2"), sampling_rate=100.0)
     >>> ds["probe_voltage"].dims, ds["probe_voltage"].values[1], ds["time"].values
-    (('probe', 'time'), array([2. , 2.5]), array([0.  , 0.01]))
+    (('probe', 'time'), array([2.  , 1.99, 1.98]), array([0.  , 0.01, 0.02]))
     """
     path = Path(path)
     d = _dialect(dialect)
@@ -237,9 +244,11 @@ def read_flap(path: str | Path, sampling_rate: float, dialect: Dialect | dict | 
     Examples
     --------
     >>> import tempfile
+    >>> from flumekit.io.tables import write_table
     >>> with tempfile.TemporaryDirectory() as folder:
-    ...     f = Path(folder) / "flap.csv"
-    ...     _ = f.write_text("time [s],encoder [counts],pressure [kPa]\n0.0,0,1.0\n0.01,3,1.2\n")
+    ...     f = write_table(Path(folder) / "flap.csv",
+    ...                     [("time", "s"), ("encoder", "counts"), ("pressure", "kPa")],
+    ...                     [[0.0, 0, 1.0], [0.01, 3, 1.2]], fmt=["%.2f", "%d", "%.1f"])
     ...     ds = read_flap(f, sampling_rate=100.0)
     >>> ds["encoder_counts"].values, ds["chamber_pressure"].values
     (array([0, 3]), array([1000., 1200.]))

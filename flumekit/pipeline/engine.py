@@ -61,7 +61,7 @@ class Graph:
     Raises
     ------
     ValueError
-        When two rules build the same target.
+        When two rules have the same ``target``.
 
     Examples
     --------

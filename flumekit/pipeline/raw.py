@@ -47,6 +47,10 @@ FORBIDDEN_IN_RUN_NAMES = ("\\", "/", "*", "?", "[", "]", "\0")
 class Synthesis:
     """What the virtual flume is to write into the raw folder (planned from its design).
 
+    :func:`synthesis_plan` returns one for an absent or empty raw folder (where the pipeline
+    allows it), or a virtual campaign with planned runs still missing; never for a lab's own
+    recordings.
+
     Parameters
     ----------
     %(size)s
@@ -148,6 +152,9 @@ def check_run_names(raw: Path, names: list[str]) -> None:
 @_doc
 def read_marker(raw: Path) -> dict | None:
     """Read the virtual flume's marker of a raw folder.
+
+    The marker (:data:`flumekit.synth.MARKER`, JSON) is the file the virtual flume writes
+    into every campaign it synthesises; a lab's own raw folder has none.
 
     Parameters
     ----------

@@ -461,17 +461,10 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
                  hold_seconds: float = 0.2, hold_factor: float = 4.0) -> np.ndarray:
     """Flag dropouts: a channel that falls away from its signal (FAIL), in either of two forms.
 
-    * Level: samples far outside the record's robust envelope, ``|x - median(x)|`` above
-      ``threshold`` robust standard deviations of x over the record (1.4826 MAD; a sinusoid
-      reaches 0.95 of them, so the default 6 leaves room for steep crests and a still-water
-      lead-in of up to about half the record).
+    * Level: samples far outside the record's robust envelope (:func:`level_test`).
     * Hold: a run of identical values (a logger writing 0 or repeating its last value) longer
       than ``hold_seconds`` and than ``hold_factor`` times the channel's own longest runs of
-      identical values (but the longest 1 %). A noisy channel never repeats a value for long,
-      while a quantised one at rest or at a flap's reversal does, so the threshold follows the
-      record. The lead-in (the instrument at rest before the waves arrive, until it first
-      leaves its initial level by more than two quanta) is exempt, and so is a run that a
-      quantised signal enters and leaves by one quantum (slow motion, not a hold).
+      identical values (but the longest 1 %).
 
     Parameters
     ----------
@@ -485,6 +478,18 @@ def dropout_test(x: np.ndarray, sampling_rate: float, threshold: float = 6.0,
         Multiple of the channel's typical longest run of identical values [-].
 
     %(returns_flags)s
+
+    Notes
+    -----
+    The level form flags ``|x - median(x)|`` above ``threshold`` robust standard deviations of
+    x over the record (1.4826 MAD). A sinusoid reaches 0.95 of them, so the default 6 leaves
+    room for steep crests and a still-water lead-in of up to about half the record.
+
+    The hold threshold follows the record: a noisy channel never repeats a value for long,
+    while a quantised one at rest or at a flap's reversal does. The lead-in (the instrument at
+    rest before the waves arrive, until it first leaves its initial level by more than two
+    quanta) is exempt, and so is a run that a quantised signal enters and leaves by one quantum
+    (slow motion, not a hold).
 
     Examples
     --------
@@ -586,23 +591,11 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
                min_share: float = 0.1) -> np.ndarray:
     """Flag blocks of a channel that hold more noise than signal (FAIL).
 
-    A physical signal sampled far above its band (waves of a period T at a rate fs with
-    T fs >> 1) changes little from one sample to the next: its lag-one autocorrelation is
-    cos(2 pi / (T fs)), 0.99 for a 2 s wave at 25 Hz, 0.81 for a 0.5 s one. White noise has
-    none (0), and spikes alternating in sign (a broken channel, electrical interference at
-    the Nyquist frequency) have -1, which the spike test cannot see: every sample is as far
-    from its neighbours as the next, so the robust local scale is the spikes'. A block of
-    ``block`` samples (the last block ends at the record's end) fails when
+    A block of ``block`` samples (the last block ends at the record's end) fails when
 
     * its lag-one autocorrelation r1 is below ``max_autocorrelation``, and
-    * its high-frequency energy, half the mean square first difference (the variance for
-      white noise; the spectrum weighted by 2 sin²(pi f / fs), which is about
-      (2 pi f / fs)² / 2 for a slow signal), exceeds ``min_share`` of the channel's variance
-      over the record.
-
-    The second condition keeps the quiet still-water lead-in of a probe, which is noise but
-    tiny beside the waves, from failing. A channel that is noise from end to end fails
-    everywhere (its high-frequency energy is its variance).
+    * its high-frequency energy, half the mean square first difference, exceeds
+      ``min_share`` of the channel's variance over the record.
 
     Parameters
     ----------
@@ -615,6 +608,21 @@ def noise_test(x: np.ndarray, block: int, max_autocorrelation: float = 0.5,
         Share of the channel's variance its high-frequency energy must exceed [-].
 
     %(returns_flags)s
+
+    Notes
+    -----
+    A physical signal sampled far above its band (waves of a period T at a rate fs with
+    T fs >> 1) changes little from one sample to the next: its lag-one autocorrelation is
+    cos(2 pi / (T fs)), 0.99 for a 2 s wave at 25 Hz, 0.81 for a 0.5 s one. White noise has
+    none (0), and spikes alternating in sign (a broken channel, electrical interference at
+    the Nyquist frequency) have -1, which the spike test cannot see: every sample is as far
+    from its neighbours as the next, so the robust local scale is the spikes'.
+
+    The high-frequency energy is the variance for white noise; for a signal it is the spectrum
+    weighted by 2 sin²(pi f / fs), about (2 pi f / fs)² / 2 for a slow one. Requiring it to be
+    a share of the variance keeps the quiet still-water lead-in of a probe, which is noise but
+    tiny beside the waves, from failing. A channel that is noise from end to end fails
+    everywhere (its high-frequency energy is its variance).
 
     Examples
     --------

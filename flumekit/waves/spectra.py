@@ -164,14 +164,14 @@ def spectrum(eta, sampling_rate: float | None = None, *, segment_duration: float
 
     References
     ----------
-    Welch, P. D. (1967). The use of fast Fourier transform for the estimation of power spectra:
-    a method based on time averaging over short, modified periodograms. IEEE Transactions on
-    Audio and Electroacoustics 15(2), 70-73.
+    %(holthuijsen2007)s, Chapter 3.
 
     Percival, D. B. & Walden, A. T. (1993). Spectral analysis for physical applications.
     Cambridge University Press, Section 6.17, Eq. (292b).
 
-    %(holthuijsen2007)s, Chapter 3.
+    Welch, P. D. (1967). The use of fast Fourier transform for the estimation of power spectra:
+    a method based on time averaging over short, modified periodograms. IEEE Transactions on
+    Audio and Electroacoustics 15(2), 70-73.
 
     Examples
     --------

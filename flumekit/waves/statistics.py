@@ -75,15 +75,15 @@ def wave_statistics(eta, sampling_rate: float | None = None, *,
 
     References
     ----------
-    IAHR/PIANC (1986). List of sea-state parameters. Supplement to PIANC Bulletin 52.
-
     Goda, Y. (2010). Random seas and design of maritime structures, 3rd ed. World Scientific,
     Chapter 2 (zero-crossing method and wave height statistics).
 
+    %(holthuijsen2007)s, Chapter 4.
+
+    IAHR/PIANC (1986). List of sea-state parameters. Supplement to PIANC Bulletin 52.
+
     Longuet-Higgins, M. S. (1952). On the statistical distribution of the heights of sea
     waves. J. Marine Research 11(3), 245-266.
-
-    %(holthuijsen2007)s, Chapter 4.
 
     Examples
     --------

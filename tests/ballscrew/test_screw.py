@@ -134,6 +134,12 @@ def test_bad_parameters_raise(reference):
         ballscrew.BallScrew(preload_per_ball=0.0)
     with pytest.raises(ValueError, match="friction"):
         ballscrew.Lubricant(friction_full_film=0.2, friction_boundary=0.1)
+    # a lead angle outside (0, 90°) is refused in both directions of power flow, never
+    # answered with a clipped efficiency
+    for efficiency in (ballscrew.direct_efficiency, ballscrew.indirect_efficiency):
+        for angle in (0.0, -0.1, np.pi / 2, 2.0):
+            with pytest.raises(GeometryError, match="lead angle"):
+                efficiency(angle, np.pi / 2, 0.0, 0.0, 0.01)
 
 
 def test_figures_11_to_15(reference):
