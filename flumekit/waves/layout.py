@@ -47,6 +47,16 @@ def probe_spacing(period, depth, g: float = G) -> tuple[np.ndarray, np.ndarray]:
     method they cite (Mansard & Funke 1980) recommends x12 = L/10 and L/6 < x13 < L/3 with
     x13 ≠ L/5, 3L/10; the paper's x13 = 0.35 L lies just beyond L/3, which is still
     well-conditioned at the design period (condition number √2, see :func:`condition_number`).
+
+    Examples
+    --------
+    Table 1 of Brito et al. (2020), T = 2, 3 and 4 s in 0.825 m:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import probe_spacing
+    >>> x12, x23 = probe_spacing([2.0, 3.0, 4.0], 0.825)
+    >>> np.round(x12, 2).tolist(), np.round(x23, 2).tolist()
+    ([0.49, 0.8, 1.1], [1.23, 2.0, 2.75])
     """
     L = wavelength(period, depth, g)
     return L / 10.0, L / 4.0
@@ -77,6 +87,27 @@ def condition_number(x, frequency, depth, g: float = G) -> np.ndarray:
     S = Σ_p e^(2ikx_p) has eigenvalues P ± abs(S), so
     cond(M) = sqrt((P + abs(S)) / (P - abs(S))). For three probes
     P² - abs(S)² = 4 Σ_pairs sin²(k Δx), the denominator of Mansard & Funke (1980).
+
+    Examples
+    --------
+    Two probes a quarter of a wavelength apart are the best two-probe layout (condition
+    number 1); at the Goda & Suzuki limit Δx = L/20 the condition number is
+    :data:`MAX_CONDITION`, and half a wavelength apart the probes cannot tell the two waves
+    apart:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import MAX_CONDITION, condition_number, wavelength
+    >>> L = float(wavelength(3.0, 0.825))  # T = 3 s in 0.825 m
+    >>> cond = [float(condition_number([0.0, dx], 1 / 3.0, 0.825)) for dx in (L / 4, L / 20)]
+    >>> np.round(cond, 3).tolist(), round(MAX_CONDITION, 3)
+    ([1.0, 6.314], 6.314)
+    >>> float(condition_number([0.0, L / 2], 1 / 3.0, 0.825))
+    inf
+
+    The paper's three probes (x12 = L/10, x13 = 0.35 L) at the design period: √2.
+
+    >>> round(float(condition_number([0.0, L / 10, 0.35 * L], 1 / 3.0, 0.825)), 4)
+    1.4142
     """
     x = np.asarray(x, dtype=float)
     f = np.asarray(frequency, dtype=float)
@@ -117,6 +148,23 @@ def check_layout(x, depth, band: tuple[float, float], max_condition: float = MAX
     ------
     ValueError
         Fewer than two or repeated probe positions, or an empty band.
+
+    Examples
+    --------
+    Two probes 1 m apart cannot separate the waves whose half wavelength is 1 m (L = 2 m at
+    0.88 Hz in 0.825 m): a tenth of the band 0.3-1.2 Hz is masked. A third probe at 0.3 m
+    mends it.
+
+    >>> from flumekit.waves import check_layout
+    >>> ds = check_layout([0.0, 1.0], 0.825, band=(0.3, 1.2))
+    >>> ds.attrs["ill_conditioned_fraction"]
+    0.1
+    >>> print(ds.attrs["advice"])  # doctest: +NORMALIZE_WHITESPACE
+    ill-conditioned between 0.834 and 0.92 Hz (k·Δx/π of the pairs near [1.0]); move a probe
+    so that not all spacings are near multiples of L/2
+    >>> ds3 = check_layout([0.0, 0.3, 1.0], 0.825, band=(0.3, 1.2))
+    >>> ds3.attrs["ill_conditioned_fraction"], ds3.probe_spacing.values.tolist()
+    (0.0, [0.3, 1.0, 0.7])
     """
     x = np.asarray(x, dtype=float)
     if x.ndim != 1 or x.size < 2:

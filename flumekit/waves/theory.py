@@ -94,6 +94,21 @@ def wavelength(period, depth, g: float = G) -> np.ndarray:
     -------
     numpy.ndarray
         Wavelength [m] from the linear dispersion relation (:func:`wavenumber`).
+
+    Examples
+    --------
+    The deep-water and shallow-water limits, and a flume wave between them:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import wavelength
+    >>> round(float(wavelength(1.0, 10.0)), 4)  # deep (kh = 40): g T² / 2π
+    1.5613
+    >>> round(float(9.81 * 1.0**2 / (2 * np.pi)), 4)
+    1.5613
+    >>> round(float(wavelength(20.0, 0.1)), 2)  # shallow (kh = 0.03): T sqrt(g h) = 19.81
+    19.81
+    >>> np.round(wavelength([2.0, 3.0, 4.0], 0.825), 2).tolist()  # in the 0.825 m flume
+    [4.9, 8.01, 10.98]
     """
     return 2 * np.pi / wavenumber(2 * np.pi / np.asarray(period, dtype=float), depth, g)
 
@@ -116,6 +131,23 @@ def phase_velocity(period, depth, g: float = G) -> np.ndarray:
     -------
     numpy.ndarray
         Phase velocity [m s-1], the wavelength over the period.
+
+    Examples
+    --------
+    c obeys the dispersion relation ω² = g k tanh(kh) with k = ω / c, and tends to
+    sqrt(g h) in shallow water:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import phase_velocity
+    >>> c = float(phase_velocity(2.0, 0.825))
+    >>> round(c, 3)
+    2.451
+    >>> omega = 2 * np.pi / 2.0
+    >>> k = omega / c
+    >>> bool(np.isclose(omega**2, 9.81 * k * np.tanh(k * 0.825), rtol=1e-12))
+    True
+    >>> round(float(phase_velocity(30.0, 0.5)), 3), round(float(np.sqrt(9.81 * 0.5)), 3)
+    (2.214, 2.215)
     """
     return wavelength(period, depth, g) / np.asarray(period, dtype=float)
 
@@ -129,7 +161,20 @@ def group_velocity(period, depth, g: float = G) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        Group velocity [m s-1].
+        Group velocity [m s-1], n c with n = (1 + 2kh / sinh 2kh) / 2: the speed at which
+        the wave energy travels.
+
+    Examples
+    --------
+    The ratio n = c_g / c goes from 1/2 in deep water to 1 in shallow water:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import group_velocity, phase_velocity
+    >>> period = np.array([1.0, 2.0, 30.0])  # deep, the flume, shallow
+    >>> depth = np.array([10.0, 0.825, 0.5])
+    >>> n = group_velocity(period, depth) / phase_velocity(period, depth)
+    >>> np.round(n, 3).tolist()
+    [0.5, 0.759, 0.999]
     """
     omega = 2 * np.pi / np.asarray(period, dtype=float)
     depth = np.asarray(depth, dtype=float)
@@ -162,6 +207,22 @@ def energy_flux(height, period, depth, rho: float = 1000.0, g: float = G) -> np.
     ----------
     Brito, M. et al. (2020). Experimental investigation of the flow field in the vicinity of
     an oscillating wave surge converter. J. Mar. Sci. Eng. 8, Eq. (A2).
+
+    Examples
+    --------
+    The flux is the energy density E = ρ g H² / 8 carried at c_g; in deep water
+    P = ρ g² H² T / (32 π):
+
+    >>> import numpy as np
+    >>> from flumekit.waves import energy_flux, group_velocity
+    >>> round(float(energy_flux(0.1, 2.0, 0.825)), 2)  # H = 0.1 m, T = 2 s in 0.825 m
+    22.8
+    >>> round(float(1000.0 * 9.81 * 0.1**2 / 8 * group_velocity(2.0, 0.825)), 2)  # E c_g
+    22.8
+    >>> round(float(energy_flux(0.1, 1.0, 10.0)), 3)  # deep water
+    9.573
+    >>> round(1000.0 * 9.81**2 * 0.1**2 * 1.0 / (32 * np.pi), 3)
+    9.573
     """
     height = np.asarray(height, dtype=float)
     if np.any(~(height >= 0)):
@@ -193,6 +254,25 @@ def stokes2_coefficient(k, depth) -> np.ndarray:
     ----------
     Dean, R. G. & Dalrymple, R. A. (1991). Water wave mechanics for engineers and scientists.
     World Scientific, Eq. (11.33).
+
+    Examples
+    --------
+    B against the textbook form at kh = 1, its deep-water limit, and the second-order crest
+    and trough of a 0.1 m, 2 s wave in 0.825 m: the crest rises higher above the still water
+    level than the trough falls below it, and the height stays 2a:
+
+    >>> import numpy as np
+    >>> from flumekit.waves import stokes2_coefficient, wavenumber
+    >>> round(float(stokes2_coefficient(1.0, 1.0)), 4)
+    1.3696
+    >>> round(float(np.cosh(1) * (2 + np.cosh(2)) / (4 * np.sinh(1) ** 3)), 4)
+    1.3696
+    >>> float(stokes2_coefficient(20.0, 1.0))  # deep water: 1/2
+    0.5
+    >>> a, k = 0.05, float(wavenumber(2 * np.pi / 2.0, 0.825))
+    >>> b = float(stokes2_coefficient(k, 0.825))
+    >>> round(a + b * k * a**2, 4), round(a - b * k * a**2, 4)  # crest, trough depth [m]
+    (0.054, 0.046)
     """
     kh = np.asarray(k, dtype=float) * np.asarray(depth, dtype=float)
     q = np.exp(-2.0 * kh)
