@@ -163,6 +163,8 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.io.tables", "flumekit.io.dialects",
                                     "flumekit.io.processed", "flumekit.io.run_files",
                                     "flumekit.io.hdf5_headers", "flumekit.waves.steady",
+                                    "flumekit.waves.theory", "flumekit.waves.layout",
+                                    "flumekit.waves.analysis",
                                     "flumekit.uncertainty.propagation"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
