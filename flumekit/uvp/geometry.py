@@ -34,7 +34,7 @@ def channel_positions(distance, beam_x: float, beam_z: float, angle: float
 
     Returns
     -------
-    x, z : Channel positions [m], shaped like ``distance``.
+    x, z : Channel positions [m], ``distance`` broadcast with the other arguments.
 
     Examples
     --------
