@@ -24,6 +24,7 @@ import numpy as np
 from flumekit.docstrings import doc
 
 
+@doc
 def paired_velocity(v_lower, v_upper, alpha: float) -> tuple[np.ndarray, np.ndarray]:
     """⟨u⟩, ⟨w⟩ from the downward (UP1) and upward (UP3) beams, Eqs. (9)-(10).
 
@@ -41,6 +42,23 @@ def paired_velocity(v_lower, v_upper, alpha: float) -> tuple[np.ndarray, np.ndar
     -------
     tuple[numpy.ndarray, numpy.ndarray]
         u, w [m s-1].
+
+    References
+    ----------
+    %(brito2020)s, Eqs. (9)-(10).
+
+    Examples
+    --------
+    A uniform flow u = 0.3, w = -0.1 m/s seen by the beams at ∓30° (each measures
+    u cos a + w sin a) is recovered exactly:
+
+    >>> import numpy as np
+    >>> from flumekit.uvp import paired_velocity
+    >>> alpha, u, w = np.pi / 6, 0.3, -0.1
+    >>> v1 = u * np.cos(-alpha) + w * np.sin(-alpha)  # UP1, pointing down
+    >>> v3 = u * np.cos(alpha) + w * np.sin(alpha)  # UP3, pointing up
+    >>> [round(float(c), 12) for c in paired_velocity(v1, v3, alpha)]
+    [0.3, -0.1]
     """
     if not 0 < alpha < np.pi / 2:
         raise ValueError(f"alpha must lie in (0, pi/2), got {alpha}")
@@ -70,6 +88,26 @@ def least_squares_velocity(v, angles, rcond: float = 1e-6
         only), w is NaN; where they determine neither, both are NaN.
     cu, cw : Coefficients, shape (..., n_beam), with u = Σ cu_b v_b and w = Σ cw_b v_b
         (0 for missing beams; NaN rows where the component is undetermined).
+
+    Examples
+    --------
+    The three beams at -30°, 0 and +30° see the uniform flow u = 0.3, w = -0.1 m/s at three
+    points: at the first all beams see it, at the second UP3 does not, at the third only the
+    horizontal UP2 does, which gives u but not w.
+
+    >>> import numpy as np
+    >>> from flumekit.uvp import least_squares_velocity
+    >>> angles = np.radians([-30.0, 0.0, 30.0])
+    >>> v = 0.3 * np.cos(angles) - 0.1 * np.sin(angles)
+    >>> points = np.array([v, [v[0], v[1], np.nan], [np.nan, v[1], np.nan]])
+    >>> u, w, cu, cw = least_squares_velocity(points, angles)
+    >>> u.round(12).tolist(), w.round(12).tolist()
+    ([0.3, 0.3, 0.3], [-0.1, -0.1, nan])
+
+    With all three beams, w = v_UP3 - v_UP1 (2 sin 30° = 1) and UP2 does not enter it:
+
+    >>> cw[0].round(12).tolist()
+    [-1.0, 0.0, 1.0]
     """
     v = np.asarray(v, dtype=float)
     a = np.asarray(angles, dtype=float)
@@ -95,7 +133,32 @@ def least_squares_velocity(v, angles, rcond: float = 1e-6
 
 
 def combine_ci(coefficients, ci) -> np.ndarray:
-    """Half-width of the CI of Σ c_b v_b for independent beams: sqrt(Σ c_b² ci_b²)."""
+    """Half-width of the CI of Σ c_b v_b for independent beams: sqrt(Σ c_b² ci_b²).
+
+    Parameters
+    ----------
+    coefficients : array_like
+        Coefficients c_b of the beams, shape (..., n_beam), e.g. ``cu`` or ``cw`` of
+        :func:`least_squares_velocity`.
+    ci : array_like
+        CI half-widths of the beam velocities [m s-1], broadcastable with ``coefficients``;
+        ignored (may be NaN) where the coefficient is 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        CI half-width [m s-1], shape (...).
+
+    Examples
+    --------
+    With the beams at ∓30°, w = v_UP3 - v_UP1 (coefficients -1, 0, 1), so beam CIs of 3 and
+    4 cm/s give 5 cm/s for w; the missing (NaN) value of the horizontal beam does not enter.
+
+    >>> import numpy as np
+    >>> from flumekit.uvp import combine_ci
+    >>> round(float(combine_ci([-1.0, 0.0, 1.0], [0.03, np.nan, 0.04])), 12)  # √(3² + 4²)
+    0.05
+    """
     c = np.asarray(coefficients, dtype=float)
     e = np.where(c == 0, 0.0, np.asarray(ci, dtype=float))
     return np.sqrt(np.sum((c * e) ** 2, axis=-1))

@@ -40,6 +40,24 @@ def reynolds_stresses(variance, angles, rcond: float = 1e-6
     uu, ww, uw : shape (...). Where only horizontal beams see a point, uu is their mean and
     ww, uw are NaN; where the system is otherwise singular, all three are NaN. Sampling noise
     can make ww slightly negative where it is small: values are returned as estimated.
+
+    Examples
+    --------
+    Known stresses ⟨u'²⟩ = 0.004, ⟨w'²⟩ = 0.001, ⟨u'w'⟩ = -0.0005 m²/s² give the three beams
+    at -30°, 0 and +30° the variances cos²a ⟨u'²⟩ + sin²a ⟨w'²⟩ + 2 sin a cos a ⟨u'w'⟩, from
+    which the stresses come back exactly:
+
+    >>> import numpy as np
+    >>> from flumekit.uvp import reynolds_stresses
+    >>> a = np.radians([-30.0, 0.0, 30.0])
+    >>> var = np.cos(a) ** 2 * 0.004 + np.sin(a) ** 2 * 0.001 - 2 * np.sin(a) * np.cos(a) * 0.0005
+    >>> [round(float(s), 12) for s in reynolds_stresses(var, a)]
+    [0.004, 0.001, -0.0005]
+
+    Where only the horizontal beam sees the point, only ⟨u'²⟩ is known:
+
+    >>> [float(s) for s in reynolds_stresses([np.nan, 0.004, np.nan], a)]
+    [0.004, nan, nan]
     """
     var = np.asarray(variance, dtype=float)
     a = np.asarray(angles, dtype=float)
@@ -68,5 +86,33 @@ def reynolds_stresses(variance, angles, rcond: float = 1e-6
 
 
 def turbulent_kinetic_energy(uu, ww) -> np.ndarray:
-    """K = (⟨u'²⟩ + ⟨w'²⟩) / 2 from the two measured components [m² s⁻²]."""
+    """K = (⟨u'²⟩ + ⟨w'²⟩) / 2 from the two measured components [m² s⁻²].
+
+    The transverse ⟨v'²⟩ of the full k = (⟨u'²⟩ + ⟨v'²⟩ + ⟨w'²⟩) / 2 is not measured by the
+    UVP and is left out (no isotropy assumption adds it).
+
+    Parameters
+    ----------
+    uu : array_like
+        Longitudinal normal stress ⟨u'²⟩ [m² s⁻²].
+    ww : array_like
+        Vertical normal stress ⟨w'²⟩ [m² s⁻²], broadcastable with ``uu``.
+
+    Returns
+    -------
+    numpy.ndarray
+        K [m² s⁻²].
+
+    Examples
+    --------
+    Fluctuations u' = 0.1 sin ωt and w' = 0.05 cos ωt m/s have the variances 0.1²/2 and
+    0.05²/2 over a period, so K = (0.005 + 0.00125) / 2:
+
+    >>> import numpy as np
+    >>> from flumekit.uvp import turbulent_kinetic_energy
+    >>> wt = 2 * np.pi * np.arange(100) / 100  # one period
+    >>> u, w = 0.1 * np.sin(wt), 0.05 * np.cos(wt)
+    >>> round(float(turbulent_kinetic_energy(np.mean(u**2), np.mean(w**2))), 12)
+    0.003125
+    """
     return 0.5 * (np.asarray(uu, dtype=float) + np.asarray(ww, dtype=float))
