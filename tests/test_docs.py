@@ -165,6 +165,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.io.hdf5_headers", "flumekit.waves.steady",
                                     "flumekit.waves.theory", "flumekit.waves.layout",
                                     "flumekit.waves.analysis",
+                                    "flumekit.uvp.geometry", "flumekit.uvp.decomposition",
+                                    "flumekit.uvp.turbulence", "flumekit.uvp.phase",
+                                    "flumekit.uvp.field",
                                     "flumekit.uncertainty.propagation"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
