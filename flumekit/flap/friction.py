@@ -62,6 +62,15 @@ _doc = filler(
           "    Step [s], > 0."),
     model=("model : LuGre\n"
            "    Friction parameters."),
+    # a function of the velocity alone
+    parameters_velocity=("Parameters\n"
+                         "----------\n"
+                         "%(velocity)s\n"
+                         "%(model)s"),
+    raises_step=("Raises\n"
+                 "------\n"
+                 "ValueError\n"
+                 "    A step that is not > 0."),
     velocity=("velocity : float or array_like\n"
               "    Rod extension rate v [m s-1]."),
     references_lugre=("References\n"
@@ -166,10 +175,7 @@ def film_steady_state(velocity, model: LuGre) -> np.ndarray:
     h_ss = K_f min(abs(v), v_b)^(2/3): the film grows with the speed up to v_b, where it
     reaches its largest thickness h_max = 1 − F_c/F_s (:attr:`LuGre.film_max`).
 
-    Parameters
-    ----------
-    %(velocity)s
-    %(model)s
+    %(parameters_velocity)s
 
     Returns
     -------
@@ -237,10 +243,7 @@ def steady_friction(velocity, model: LuGre) -> np.ndarray:
     The limit of the dynamic model at constant velocity (ż = 0, h = h_ss): the Stribeck curve
     of the cylinder, odd in v.
 
-    Parameters
-    ----------
-    %(velocity)s
-    %(model)s
+    %(parameters_velocity)s
 
     Returns
     -------
@@ -290,10 +293,7 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
         State at the end of the step. The film thickness used in g over the step is the exact
         film at the middle of the step.
 
-    Raises
-    ------
-    ValueError
-        A step that is not > 0.
+    %(raises_step)s
 
     %(references_lugre)s
 
@@ -345,10 +345,7 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
     FrictionState
         State at the end of the step.
 
-    Raises
-    ------
-    ValueError
-        A step that is not > 0.
+    %(raises_step)s
 
     %(references_lugre)s
 
