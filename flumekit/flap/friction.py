@@ -475,8 +475,8 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
     Examples
     --------
     Starting from rest at a constant 0.02 m/s (below v_b, on the falling branch of the
-    Stribeck curve), the force settles on :func:`steady_friction` within a few film time
-    constants:
+    Stribeck curve): at the first sample the bristles are straight (z = 0, ż = v) and only
+    the damping acts, (σ1 + σ2) v = 43 N; the force then settles on :func:`steady_friction`:
 
     %(model_example)s
     >>> from flumekit.flap.friction import friction_series, steady_friction
