@@ -579,6 +579,25 @@ def forward_dynamics(time, net_vertical_force, geometry: BuoyGeometry, damping: 
         When the integration fails.
 
     %(references_senatore2022)s, Sect. 2 and Eq. (3).
+
+    Examples
+    --------
+    The inverse of :func:`inverse_dynamics`: the force that makes the buoy heave 0.5 m against
+    a viscous PTO of 4e4 N s/m (F_PTO = −K v), fed back here with that damping, gives back
+    the heave it was computed from:
+
+    >>> from flumekit.ballscrew.buoy import (BuoyGeometry, forward_dynamics, inverse_dynamics,
+    ...                                      kinematics, reference_motion)
+    >>> geometry = BuoyGeometry()
+    >>> kin = kinematics(reference_motion(amplitude=0.5, samples_per_period=200), geometry)
+    >>> force = inverse_dynamics(kin, -4.0e4 * kin.nut_velocity.values, geometry)
+    >>> motion = forward_dynamics(kin.time.values, force.net_vertical_force.values, geometry,
+    ...                           damping=4.0e4, rtol=1e-6,
+    ...                           initial_velocity=float(kin.buoy_heave_velocity[0]))
+    >>> round(float(motion.buoy_heave.max()), 3)
+    0.5
+    >>> float(abs(motion.buoy_heave - kin.buoy_heave).max()) < 1e-3  # [m]
+    True
     """
     t = np.asarray(time, float)
     fz = np.asarray(net_vertical_force, float)

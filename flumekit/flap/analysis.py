@@ -336,6 +336,38 @@ def analyse_run(time, encoder_counts, chamber_pressure, *, flap: Flap, pto: PTO,
         pressure record the Eq. (13) fit cannot use.
 
     %(references_brito2020)s, §2.3, §2.5, §3.1-3.3, Eqs. (1), (11)-(14), (A2).
+
+    Examples
+    --------
+    A run made from a known motion, θ = 0.2 sin(π t) for 40 s at 100 Hz: the encoder counts
+    from Eq. (1), the chamber pressure from Eq. (13) with K_p = 2e5 Pa s2 rad-2 and
+    I_p = 300 Pa s2 rad-1 (the flume's device, a PTO without friction). The analysis finds the
+    motion's amplitude and period in the counts and fits back the K_p and I_p of the pressure:
+
+    >>> import numpy as np
+    >>> from flumekit.campaign import PTO, Encoder, Flap
+    >>> from flumekit.flap.analysis import analyse_run
+    >>> from flumekit.flap.encoder import counts_from_wire, wire_length
+    >>> from flumekit.flap.pressure import chamber_pressure_model
+    >>> flap = Flap(width=1.31, thickness=0.17, inertia=14.74, hinge_height=0.1,
+    ...             buoyancy_stiffness=605.0)
+    >>> pto = PTO(bed_anchor=(1.04, 0.0), flap_anchor=(0.09, 0.47), bore_diameter=0.05,
+    ...           atmospheric_pressure=101325.0, vapour_pressure=2339.0)
+    >>> encoder = Encoder(L5=1.53, L7=1.48, counts_per_metre=6000.0, sampling_rate=100.0)
+    >>> t = np.arange(0.0, 40.0, 0.01)
+    >>> theta = 0.2 * np.sin(np.pi * t)
+    >>> wire = encoder.L7 - wire_length(theta, encoder.L5, encoder.L7)  # shortening
+    >>> counts = counts_from_wire(wire, encoder.counts_per_metre)
+    >>> pressure = chamber_pressure_model(0.2 * np.pi * np.cos(np.pi * t),
+    ...                                   -0.2 * np.pi**2 * np.sin(np.pi * t), 2.0e5, 300.0)
+    >>> ds = analyse_run(t, counts, pressure, flap=flap, pto=pto, encoder=encoder,
+    ...                  depth=0.825, period=2.0, incident_height=0.1)
+    >>> round(float(ds.theta_amplitude), 3), round(float(ds.measured_period), 3)
+    (0.2, 2.0)
+    >>> round(float(ds.pressure_loss_coefficient), -3), round(float(ds.fluid_inertia), -1)
+    (200000.0, 300.0)
+    >>> round(float(ds.pressure_fit_r2), 4), int(ds.steady_cycles)
+    (1.0, 19)
     """
     m, win = steady_measured(time, encoder_counts, chamber_pressure, flap=flap, pto=pto,
                              encoder=encoder, period=period, cutoff=cutoff,

@@ -492,6 +492,47 @@ def compare_run(flap: xr.Dataset, waves: xr.Dataset, hydro: xr.Dataset, *, flap_
 
     %(references_brito2020)s, Eq. (A1).
     %(renzi_dias2012)s, Eq. (2.40).
+
+    Examples
+    --------
+    A flap that moves exactly as the linear model predicts is matched by it. With coefficients
+    constant in frequency (μ = 80 kg m2, ν = 100 N m s, excitation 1600 N m per metre of
+    amplitude), I = 20 kg m2 and C = 400 N m/rad, the flap resonates at ω = 2 rad/s
+    (C = ω²(I + μ)); a PTO of ν_pto = 300 N m s then gives Θ = F A / (ω (ν + ν_pto)) = 0.2 rad
+    in waves of A = 0.1 m, absorbing ½ ν_pto ω² Θ² = 24 W. The run below moves so, with
+    T_h = (C − ω² I) θ + ν_pto θ̇ (Eq. 11); the linear model recovers ν_pto from it by energy
+    equivalence:
+
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.campaign import Flap
+    >>> from flumekit.flap.comparison import compare_run
+    >>> from flumekit.flap.summary import summarise_run
+    >>> omega = np.linspace(1.0, 4.0, 7)
+    >>> constant = lambda value: ("angular_frequency", np.full(omega.size, value))
+    >>> hydro = xr.Dataset({"added_inertia": constant(80.0), "radiation_damping": constant(100.0),
+    ...                     "excitation_torque_real": constant(1600.0),
+    ...                     "excitation_torque_imag": constant(0.0)},
+    ...                    coords={"angular_frequency": omega},
+    ...                    attrs={"depth": 0.8, "flap_width": 1.0, "rho": 1000.0, "g": 9.81})
+    >>> t = np.arange(0.0, 20 * np.pi, 0.01)  # 20 periods of T = π s
+    >>> theta, theta_dot = 0.2 * np.sin(2 * t), 0.4 * np.cos(2 * t)
+    >>> run = xr.Dataset({"theta": ("time", theta), "theta_dot": ("time", theta_dot),
+    ...                   "power": ("time", 300.0 * theta_dot**2),
+    ...                   "torque_hydrodynamic": ("time", 320.0 * theta + 300.0 * theta_dot)},
+    ...                  coords={"time": t})
+    >>> flap = summarise_run(run, period=np.pi, incident_height=0.2, depth=0.8,
+    ...                      flap_width=1.0).merge(run.theta_dot)
+    >>> waves = xr.Dataset({"measured_period": np.pi, "incident_height": 0.2})
+    >>> device = Flap(width=1.0, thickness=0.1, inertia=20.0, hinge_height=0.1,
+    ...               buoyancy_stiffness=400.0)
+    >>> ds = compare_run(flap, waves, hydro, flap_params=device, pto=None, depth=0.8,
+    ...                  simulator=False)  # the PTO is read by the simulator only
+    >>> ds.source.values.tolist(), round(float(ds.pto_damping), 1)
+    (['experiment', 'analytical'], 300.0)
+    >>> ds.theta_amplitude.round(4).values.tolist(), ds.mean_power.round(2).values.tolist()
+    ([0.2, 0.2], [24.0, 24.0])
+    >>> ds.torque_amplitude.round(1).values.tolist()  # abs(C − ω² I − i ω ν_pto) Θ
+    [136.0, 136.0]
     """
     sources = {"experiment": {n: flap[n].values for n in (*SCALARS, *PHASED)}}
     sources["analytical"], extra = linear_model(flap, waves, hydro, flap_params.inertia,

@@ -61,7 +61,34 @@ _doc = filler(
     step=("dt : float\n"
           "    Step [s], > 0."),
     model=("model : LuGre\n"
-           "    Friction parameters."))
+           "    Friction parameters."),
+    # a function of the velocity alone
+    parameters_velocity=("Parameters\n"
+                         "----------\n"
+                         "%(velocity)s\n"
+                         "%(model)s"),
+    raises_step=("Raises\n"
+                 "------\n"
+                 "ValueError\n"
+                 "    A step that is not > 0."),
+    velocity=("velocity : float or array_like\n"
+              "    Rod extension rate v [m s-1]."),
+    references_lugre=("References\n"
+                      "----------\n"
+                      "%(brito2020)s, Appendix B, Eqs. (A3)-(A9).\n"
+                      "Canudas de Wit, C., Olsson, H., Åström, K. J. & Lischinsky, P. (1995). A "
+                      "new model for\ncontrol of systems with friction. IEEE Trans. Autom. "
+                      "Control 40(3), 419-425.\n"
+                      "Yanada, H. & Sekikawa, Y. (2008). Modeling of dynamic behaviors of "
+                      "friction. Mechatronics\n18(7), 330-339."),
+    # the parameters of the default campaign's cylinder (flumekit/data/default_campaign.toml)
+    model_example=(">>> from flumekit.flap.friction import LuGre\n"
+                   ">>> model = LuGre(sigma0=1.0e6, sigma1=2.0e3, sigma2=150.0, "
+                   "coulomb_force=40.0,\n"
+                   "...               static_force=70.0, stribeck_velocity=0.01, "
+                   "stribeck_exponent=1.0,\n"
+                   "...               minimum_friction_velocity=0.05, tau_hp=0.02, "
+                   "tau_hm=0.2, tau_h0=20.0)"))
 
 
 class FrictionState(NamedTuple):
@@ -141,14 +168,67 @@ class LuGre:
         return self.film_max / self.minimum_friction_velocity ** (2.0 / 3.0)
 
 
+@_doc
 def film_steady_state(velocity, model: LuGre) -> np.ndarray:
-    """Steady film thickness h_ss(v) [-] (Eqs. A8-A9)."""
+    """Steady film thickness h_ss(v) [-] (Eqs. A8-A9).
+
+    h_ss = K_f min(abs(v), v_b)^(2/3): the film grows with the speed up to v_b, where it
+    reaches its largest thickness h_max = 1 − F_c/F_s (:attr:`LuGre.film_max`).
+
+    %(parameters_velocity)s
+
+    Returns
+    -------
+    numpy.ndarray
+        h_ss [-], in [0, h_max].
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    At rest there is no film; from v_b = 0.05 m/s on it is h_max = 1 − 40/70 = 3/7:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import film_steady_state
+    >>> film_steady_state([0.0, -0.05, 0.5], model).round(4).tolist()
+    [0.0, 0.4286, 0.4286]
+    """
     a = np.minimum(np.abs(np.asarray(velocity, dtype=float)), model.minimum_friction_velocity)
     return model.film_gain * a ** (2.0 / 3.0)
 
 
+@_doc
 def stribeck(velocity, film, model: LuGre) -> np.ndarray:
-    """Stribeck function g(v, h) [N] (Eq. A5 in the corrected form, see the module notes)."""
+    """Stribeck function g(v, h) [N] (Eq. A5 in the corrected form, see the module notes).
+
+    g = F_c + [(1 − h) F_s − F_c] exp(−(abs(v)/v_s)^n): the friction the bristles carry
+    when sliding steadily at v on a film h, from the breakaway force F_s (at rest, no film)
+    down to the Coulomb force F_c.
+
+    Parameters
+    ----------
+    %(velocity)s
+    film : float or array_like
+        Film thickness h [-].
+    %(model)s
+
+    Returns
+    -------
+    numpy.ndarray
+        g [N], broadcast over ``velocity`` and ``film``.
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    Breakaway at rest without a film, Coulomb friction on a full film, and one Stribeck
+    velocity into the decay, F_c + (F_s − F_c)/e:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import stribeck
+    >>> stribeck([0.0, 1.0, 0.01], [0.0, model.film_max, 0.0], model).round(3).tolist()
+    [70.0, 40.0, 51.036]
+    """
     v = np.abs(np.asarray(velocity, dtype=float))
     h = np.asarray(film, dtype=float)
     fc, fs = model.coulomb_force, model.static_force
@@ -156,10 +236,33 @@ def stribeck(velocity, film, model: LuGre) -> np.ndarray:
                                                ** model.stribeck_exponent)
 
 
+@_doc
 def steady_friction(velocity, model: LuGre) -> np.ndarray:
     """Steady-state friction force F_ss(v) = sign(v) g(v, h_ss(v)) + σ2 v [N].
 
-    The limit of the dynamic model at constant velocity (ż = 0, h = h_ss).
+    The limit of the dynamic model at constant velocity (ż = 0, h = h_ss): the Stribeck curve
+    of the cylinder, odd in v.
+
+    %(parameters_velocity)s
+
+    Returns
+    -------
+    numpy.ndarray
+        F_ss [N], positive when it resists extension (v > 0); 0 at v = 0.
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    Above v_b = 0.05 m/s the full film removes the Stribeck peak, F_ss = F_c + σ2 v
+    (40 + 150 × 0.16 = 64 N); at low speed the friction first falls with v, then rises:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import steady_friction
+    >>> steady_friction([-0.16, 0.16], model).round(6).tolist()
+    [-64.0, 64.0]
+    >>> steady_friction([0.001, 0.02, 0.05], model).round(1).tolist()
+    [65.3, 44.9, 47.5]
     """
     v = np.asarray(velocity, dtype=float)
     return np.sign(v) * stribeck(v, film_steady_state(v, model), model) + model.sigma2 * v
@@ -186,8 +289,27 @@ def friction_step(state: FrictionState, velocity: float, dt: float,
 
     Returns
     -------
-    State at the end of the step. The film thickness used in g over the step is the exact film
-    at the middle of the step.
+    FrictionState
+        State at the end of the step. The film thickness used in g over the step is the exact
+        film at the middle of the step.
+
+    %(raises_step)s
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    The step is exact for a frozen velocity, so one long step from rest lands on the steady
+    state: z = g/σ0 = F_c/σ0 on the full film, and the force of :func:`steady_friction`,
+    F_c + σ2 v = 64 N at 0.16 m/s:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import FrictionState, friction_force, friction_step
+    >>> state = friction_step(FrictionState(), 0.16, 1.0, model)
+    >>> round(state.z * 1e6, 6), round(state.h / model.film_max, 6)  # 40 µm, h = h_max
+    (40.0, 1.0)
+    >>> round(float(friction_force(state, 0.16, model)), 6)
+    64.0
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
@@ -217,6 +339,33 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
         Rod extension rate at the start and end of the step [m s-1].
     %(step)s
     %(model)s
+
+    Returns
+    -------
+    FrictionState
+        State at the end of the step.
+
+    %(raises_step)s
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    A reversal from −0.1 to 0.1 m/s is two frozen half steps of :func:`friction_step`, each at
+    its own mid velocity ∓0.05 m/s; the same step is what :func:`friction_series` takes
+    between two samples:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import (FrictionState, friction_advance, friction_series,
+    ...                                     friction_step)
+    >>> start = FrictionState(z=-4.0e-5, h=0.2)
+    >>> state = friction_advance(start, -0.1, 0.1, 0.01, model)
+    >>> halves = friction_step(friction_step(start, -0.05, 0.005, model), 0.05, 0.005, model)
+    >>> state == halves
+    True
+    >>> _, z, h = friction_series([-0.1, 0.1], 0.01, model, state=start)
+    >>> bool(np.isclose(z[1], state.z, rtol=1e-12) and np.isclose(h[1], state.h, rtol=1e-12))
+    True
     """
     if not dt > 0:
         raise ValueError(f"friction step must be > 0, got {dt}")
@@ -227,6 +376,7 @@ def friction_advance(state: FrictionState, velocity_start: float, velocity_end: 
     return FrictionState(z, h)
 
 
+@_doc
 def friction_force(state: FrictionState, velocity, model: LuGre):
     """Friction force F = σ0 z + σ1 ż + σ2 v [N] (Eq. A3) for a state and a rod velocity.
 
@@ -235,6 +385,31 @@ def friction_force(state: FrictionState, velocity, model: LuGre):
     lags by half a step), the micro-damping term σ1 ż stays right at velocity reversals: for a
     0.16 m/s sine at the 100 Hz step the largest force error falls from 5.5 % to 0.5 % of the
     amplitude (flumekit.bench.flap). Vectorised over ``velocity`` and the state arrays.
+
+    Parameters
+    ----------
+    state : FrictionState or tuple of array_like
+        Bristle deflection z [m] and film thickness h [-].
+    %(velocity)s
+    %(model)s
+
+    Returns
+    -------
+    numpy.ndarray
+        F [N], positive when it resists extension.
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    Bristles bent by F_c/σ0 = 40 µm on the full film: at rest they hold σ0 z = 40 N; sliding
+    at 0.16 m/s they are in their steady state (ż = 0) and the viscous σ2 v = 24 N adds on:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import FrictionState, friction_force
+    >>> state = FrictionState(z=4.0e-5, h=model.film_max)
+    >>> friction_force(state, [0.0, 0.16], model).round(6).tolist()
+    [40.0, 64.0]
     """
     z = np.asarray(state[0], dtype=float)
     h = np.asarray(state[1], dtype=float)
@@ -286,8 +461,30 @@ def friction_series(velocity, dt: float, model: LuGre, state: FrictionState = Fr
 
     Returns
     -------
-    force, z, h : Friction force [N], bristle deflection [m] and film thickness [-] at the
-        samples.
+    force, z, h : numpy.ndarray
+        Friction force [N], bristle deflection [m] and film thickness [-] at the samples.
+
+    Raises
+    ------
+    ValueError
+        A velocity that is not a non-empty 1-D finite series, a step that is not > 0, or
+        ``substeps`` not an integer ≥ 1.
+
+    %(references_lugre)s
+
+    Examples
+    --------
+    Starting from rest at a constant 0.02 m/s (below v_b, on the falling branch of the
+    Stribeck curve): at the first sample the bristles are straight (z = 0, ż = v) and only
+    the damping acts, (σ1 + σ2) v = 43 N; the force then settles on :func:`steady_friction`:
+
+    %(model_example)s
+    >>> from flumekit.flap.friction import friction_series, steady_friction
+    >>> force, z, h = friction_series(np.full(300, 0.02), 0.01, model)  # 3 s at 100 Hz
+    >>> round(float(force[0]), 3), round(float(force[-1]), 3)
+    (43.0, 44.856)
+    >>> round(float(steady_friction(0.02, model)), 3)
+    44.856
     """
     v = np.asarray(velocity, dtype=float)
     if v.ndim != 1 or v.size == 0:

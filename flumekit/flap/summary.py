@@ -220,6 +220,28 @@ def summarise_run(sim: xr.Dataset, *, period: float, incident_height: float, dep
         Fewer than two quasi-steady cycles, or a non-positive incident height.
 
     %(references_brito2020)s, §2.5-§3.3.
+
+    Examples
+    --------
+    A flap that spins up over 10 s to θ = 0.1 sin(π t) on a linear damper of 300 N m s: the
+    quasi-steady window starts after the ramp, the amplitude is the one put in and the mean
+    power is ½ ν ω² Θ² = 14.80 W; C_f divides it by W_I of Eq. (A2):
+
+    >>> import numpy as np, xarray as xr
+    >>> from flumekit.flap.summary import summarise_run
+    >>> t = np.arange(0.0, 60.0, 0.01)
+    >>> sim = xr.Dataset({"theta": ("time", 0.1 * np.minimum(t / 10.0, 1.0) * np.sin(np.pi * t))},
+    ...                  coords={"time": t})
+    >>> sim["theta_dot"] = sim.theta.differentiate("time")
+    >>> sim["power"] = 300.0 * sim.theta_dot**2
+    >>> sim["torque_hydrodynamic"] = 50.0 * sim.theta_dot
+    >>> s = summarise_run(sim, period=2.0, incident_height=0.1, depth=0.825, flap_width=1.31)
+    >>> float(s.steady_start) >= 10.0, round(float(s.theta_amplitude), 4)
+    (True, 0.1)
+    >>> round(float(s.mean_power), 2), round(float(s.incident_power), 2)
+    (14.8, 29.87)
+    >>> bool(np.isclose(s.capture_factor, s.mean_power / s.incident_power))
+    True
     """
     t = sim["time"].values
     win = steady_window(sim["theta"].values, t, period, tolerance)
