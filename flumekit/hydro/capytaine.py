@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.hydro.bem_layout import (
     excitation_of,
@@ -34,6 +35,7 @@ from flumekit.hydro.bem_layout import (
 from flumekit.hydro.rigid_body import DOFS, rigid_body_dataset
 
 
+@doc
 def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
                    wave_direction: float = 0.0, reference_point=None) -> xr.Dataset:
     """Read the six-dof coefficients of one body from a Capytaine dataset or netCDF file.
@@ -63,10 +65,7 @@ def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
         The file is missing or not a usable Capytaine result (missing variables or dofs, an
         unknown wave direction), naming the file.
 
-    References
-    ----------
-    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
-    J. Open Source Software 4(36), 1341.
+    %(references_ancellin_dias2019)s.
 
     Examples
     --------

@@ -411,6 +411,7 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
                          source=coefficients.attrs.get("source", "Renzi & Dias (2012)"))
 
 
+@doc
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
                    hydrostatic_stiffness: float | None = None,
                    failed: str = "drop") -> xr.Dataset:
@@ -461,10 +462,7 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     flumekit.hydro.capytaine.read_capytaine, flumekit.hydro.rigid_body.about_hinge :
         For a six-dof rigid body (rotations about a body point, as WEC-Sim's files).
 
-    References
-    ----------
-    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
-    J. Open Source Software 4(36), 1341.
+    %(references_ancellin_dias2019)s.
 
     Examples
     --------
