@@ -53,6 +53,9 @@ REFERENCES: dict[str, str] = {
     "ogilvie1964": (
         "Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of "
         "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-128"),
+    "ancellin_dias2019": (
+        "Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow "
+        "solver.\nJ. Open Source Software 4(36), 1341"),
 }
 
 #: parameters documented alike in several modules: key -> the numpydoc entry

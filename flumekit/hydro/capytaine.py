@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from flumekit.docstrings import doc
 from flumekit.errors import InputError
 from flumekit.hydro.bem_layout import (
     excitation_of,
@@ -34,6 +35,7 @@ from flumekit.hydro.bem_layout import (
 from flumekit.hydro.rigid_body import DOFS, rigid_body_dataset
 
 
+@doc
 def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
                    wave_direction: float = 0.0, reference_point=None) -> xr.Dataset:
     """Read the six-dof coefficients of one body from a Capytaine dataset or netCDF file.
@@ -63,10 +65,40 @@ def read_capytaine(source: str | Path | xr.Dataset, *, body: str | None = None,
         The file is missing or not a usable Capytaine result (missing variables or dofs, an
         unknown wave direction), naming the file.
 
-    References
-    ----------
-    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
-    J. Open Source Software 4(36), 1341.
+    %(references_ancellin_dias2019)s.
+
+    Examples
+    --------
+    A file as Capytaine writes it for a body "flap" of a multi-body run: dofs named
+    ``flap__Surge`` ..., the limits ω = 0 and ω = ∞ among the frequencies, the complex
+    excitation split along ``complex``:
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.hydro.capytaine import read_capytaine
+    >>> from flumekit.hydro.rigid_body import DOFS
+    >>> dofs = [f"flap__{d}" for d in DOFS]
+    >>> a = np.eye(6) * np.array([400.0, 300.0, 250.0, 200.0])[:, None, None]  # per ω
+    >>> f = np.zeros((2, 4, 1, 6))
+    >>> f[:, :, 0, 4] = [[30.0], [-40.0]]  # pitch moment 30 − 40i, as ("re", "im")
+    >>> rad = ("omega", "radiating_dof", "influenced_dof")
+    >>> raw = xr.Dataset(
+    ...     {"added_mass": (rad, a), "radiation_damping": (rad, 0.1 * a),
+    ...      "excitation_force": (("complex", "omega", "wave_direction", "influenced_dof"), f)},
+    ...     coords={"omega": [0.0, 1.0, 2.0, np.inf], "radiating_dof": dofs,
+    ...             "influenced_dof": dofs, "wave_direction": [0.0], "complex": ["re", "im"]})
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = Path(tmp) / "flap.nc"
+    ...     raw.to_netcdf(path)
+    ...     body = read_capytaine(path, body="flap", reference_point=(0.0, 0.0, -3.9))
+    >>> body["angular_frequency"].values.tolist()  # ω = 0 and ω = ∞ left out
+    [1.0, 2.0]
+    >>> complex(body["excitation_force"].sel(influenced_dof="Pitch")[0])
+    (30-40j)
+    >>> float(body["added_mass_infinite"].sel(radiating_dof="Pitch", influenced_dof="Pitch"))
+    200.0
     """
     path = None if isinstance(source, xr.Dataset) else Path(source)
     try:

@@ -236,6 +236,19 @@ def split_complex(hydro: xr.Dataset) -> xr.Dataset:
     xarray.Dataset
         The same dataset with each complex variable replaced by its real and imaginary parts
         (same units, long name suffixed with "(real part)" / "(imag part)").
+
+    Examples
+    --------
+    netCDF has no complex type; the excitation torque F = 20 + 2i N m m-1 at ω = 1 rad/s
+    becomes two real variables:
+
+    >>> from flumekit.hydro.coefficients import hydro_dataset, split_complex
+    >>> hydro = hydro_dataset([1.0, 2.0], [60.0, 50.0], [5.0, 10.0], [20 + 2j, 30 + 1j], 400.0)
+    >>> flat = split_complex(hydro)
+    >>> sorted(name for name in flat.data_vars if name.startswith("excitation"))
+    ['excitation_torque_imag', 'excitation_torque_real']
+    >>> flat["excitation_torque_imag"].values.tolist(), flat["excitation_torque_imag"].units
+    ([2.0, 1.0], 'N m m-1')
     """
     out = hydro.copy()
     for name in [n for n in hydro.data_vars if hydro[n].dtype.kind == "c"]:
@@ -300,6 +313,22 @@ def merge_complex(ds: xr.Dataset) -> xr.Dataset:
     -------
     xarray.Dataset
         The dataset with each pair replaced by one complex variable.
+
+    Examples
+    --------
+    A round trip through :func:`split_complex` gives back the container, values and
+    attributes alike:
+
+    >>> from flumekit.hydro.coefficients import hydro_dataset, merge_complex, split_complex
+    >>> hydro = hydro_dataset([0.5, 1.5], [80.0, 70.0], [2.0, 6.0], [10 - 1j, 15 + 3j], 300.0)
+    >>> merge_complex(split_complex(hydro)).identical(hydro)
+    True
+
+    Parts named ``_re``/``_im`` are joined too:
+
+    >>> import xarray as xr
+    >>> complex(merge_complex(xr.Dataset({"f_re": 3.0, "f_im": -4.0}))["f"])
+    (3-4j)
     """
     out = ds.copy()
     for name in list(ds.data_vars):
@@ -350,6 +379,25 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
         :func:`hydro_dataset` rejects.
 
     %(references_renzi_dias2012)s.
+
+    Examples
+    --------
+    Coefficients over the wave period T, the excitation as real and imaginary parts, become
+    the container over ω = 2π/T, ascending:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.hydro.coefficients import from_renzi_dias
+    >>> model = xr.Dataset({"added_inertia": ("period", [50.0, 60.0]),
+    ...                     "radiation_damping": ("period", [10.0, 5.0]),
+    ...                     "excitation_torque_real": ("period", [30.0, 20.0]),
+    ...                     "excitation_torque_imag": ("period", [1.0, 2.0])},
+    ...                    coords={"period": [np.pi, 2 * np.pi]})
+    >>> hydro = from_renzi_dias(model, hydrostatic_stiffness=400.0)
+    >>> hydro["angular_frequency"].values.tolist()  # 2π / T
+    [1.0, 2.0]
+    >>> hydro["added_inertia"].values.tolist(), hydro["excitation_torque"].values.tolist()
+    ([60.0, 50.0], [(20+2j), (30+1j)])
     """
     dim = "period" if "period" in coefficients.dims else DIM
     if dim not in coefficients.dims:
@@ -363,6 +411,7 @@ def from_renzi_dias(coefficients: xr.Dataset, hydrostatic_stiffness: float) -> x
                          source=coefficients.attrs.get("source", "Renzi & Dias (2012)"))
 
 
+@doc
 def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: float = 0.0,
                    hydrostatic_stiffness: float | None = None,
                    failed: str = "drop") -> xr.Dataset:
@@ -413,10 +462,29 @@ def from_capytaine(bem: xr.Dataset, dof: str | None = None, wave_direction: floa
     flumekit.hydro.capytaine.read_capytaine, flumekit.hydro.rigid_body.about_hinge :
         For a six-dof rigid body (rotations about a body point, as WEC-Sim's files).
 
-    References
-    ----------
-    Ancellin, M. & Dias, F. (2019). Capytaine: a Python-based linear potential flow solver.
-    J. Open Source Software 4(36), 1341.
+    %(references_ancellin_dias2019)s.
+
+    Examples
+    --------
+    A run with one rotation dof, its excitation as diffraction plus Froude-Krylov parts and an
+    ω = ∞ radiation problem (no diffraction there, hence NaN):
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.hydro.coefficients import from_capytaine
+    >>> rad, exc = ("omega", "radiating_dof", "influenced_dof"), ("omega", "wave_direction",
+    ...                                                           "influenced_dof")
+    >>> bem = xr.Dataset({"added_mass": (rad, [[[60.0]], [[50.0]], [[40.0]]]),
+    ...                   "radiation_damping": (rad, [[[5.0]], [[10.0]], [[0.0]]]),
+    ...                   "diffraction_force": (exc, [[[15 + 2j]], [[20 + 1j]], [[np.nan]]]),
+    ...                   "Froude_Krylov_force": (exc, [[[5.0]], [[10.0]], [[np.nan]]])},
+    ...                  coords={"omega": [1.0, 2.0, np.inf], "radiating_dof": ["Flap"],
+    ...                          "influenced_dof": ["Flap"], "wave_direction": [0.0]})
+    >>> hydro = from_capytaine(bem, hydrostatic_stiffness=400.0)
+    >>> hydro["excitation_torque"].values.tolist()  # diffraction + Froude-Krylov
+    [(20+2j), (30+1j)]
+    >>> float(hydro["added_inertia_infinite"])  # the ω = ∞ row
+    40.0
     """
     from flumekit.hydro.bem_layout import (
         excitation_of,
@@ -626,6 +694,20 @@ def infinite_frequency_inertia(hydro: xr.Dataset, *, duration: float | None = No
         [-].
 
     %(references_ogilvie1964)s.
+
+    Examples
+    --------
+    Coefficients of a damped-cosine kernel built with A∞ = 10 kg m2 (:func:`from_kernel`,
+    exactly causal): every frequency gives back A∞ from A(ω) and B(ω) alone.
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.coefficients import from_kernel, infinite_frequency_inertia
+    >>> w = np.linspace(0.2, 20.0, 100)
+    >>> hydro = from_kernel(w, 50.0, 1.0, 3.0, added_inertia_infinite=10.0,
+    ...                     excitation_torque=np.ones(w.size), hydrostatic_stiffness=100.0)
+    >>> est = infinite_frequency_inertia(hydro)
+    >>> round(float(est["added_inertia_infinite"]), 3), est.attrs["spread"] < 0.001
+    (10.0, True)
     """
     from flumekit.hydro.radiation import impulse_response, sine_transform
 
@@ -662,7 +744,8 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         Instead of the median, take the estimate at this angular frequency [rad s-1]
         (interpolated): the time-domain model then reproduces A and B exactly at that
         frequency even if the coefficients are not causal (e.g. a constant added inertia),
-        which is what a regular-wave comparison needs. The spread is still reported.
+        which is what a regular-wave comparison needs. The spread is still reported and
+        checked against ``max_spread``: for such coefficients pass ``max_spread=None`` too.
     **irf_options
         Passed to :func:`flumekit.hydro.radiation.impulse_response`.
 
@@ -679,6 +762,30 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
         ``at_frequency`` lies outside the coefficients' range.
 
     %(references_ogilvie1964)s.
+
+    Examples
+    --------
+    A constant added inertia with frequency-dependent damping is not causal: the Ogilvie
+    estimates disagree and the check refuses them.
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.coefficients import hydro_dataset, with_infinite_frequency_inertia
+    >>> w = np.linspace(0.5, 10.0, 39)  # every 0.25 rad/s
+    >>> hydro = hydro_dataset(w, np.full(w.size, 50.0), 100.0 * w * np.exp(-w),
+    ...                       np.ones(w.size), 400.0)
+    >>> with_infinite_frequency_inertia(hydro)
+    Traceback (most recent call last):
+    ...
+    flumekit.hydro.coefficients.HydroError: the Ogilvie estimates ... spread by 17.0% ...
+
+    Matched at the frequency of a regular-wave test instead, the memory of the time-domain
+    model gives back A(2 rad/s) = 50 kg m2 there (A∞ − S(ω)/ω, Ogilvie):
+
+    >>> from flumekit.hydro.radiation import impulse_response, sine_transform
+    >>> matched = with_infinite_frequency_inertia(hydro, max_spread=None, at_frequency=2.0)
+    >>> a_inf = float(matched["added_inertia_infinite"])
+    >>> round(a_inf, 1), round(a_inf - float(sine_transform(impulse_response(hydro), 2.0)) / 2, 6)
+    (60.8, 50.0)
     """
     check_passive(hydro)
     est = infinite_frequency_inertia(hydro, **irf_options)
@@ -691,8 +798,9 @@ def with_infinite_frequency_inertia(hydro: xr.Dataset, *, max_spread: float | No
             f"{float(e.min()):.4g} to {float(e.max()):.4g} kg m2, median "
             f"{float(est['added_inertia_infinite']):.4g}) over the frequencies, more than "
             f"{max_spread:.1%}: the added inertia and damping are not consistent (Kramers-Kronig), "
-            "or the frequency range is too short. Widen the range, check the data, pass "
-            "at_frequency= to match one frequency, or max_spread=None to accept it.")
+            "or the frequency range is too short. Widen the range, check the data, or pass "
+            "max_spread=None to accept the median (max_spread=None with at_frequency= to "
+            "match one frequency instead).")
     if at_frequency is not None:
         w = hydro[DIM].values
         if not w[0] <= at_frequency <= w[-1]:

@@ -514,6 +514,18 @@ def state_space_dataset(ss: StateSpace) -> xr.Dataset:
     xarray.Dataset
         Real and imaginary parts of the poles [s-1] and residues [N m], with the fit errors
         [-], the realisation step [s] and the number of reflected poles in ``attrs``.
+
+    Examples
+    --------
+    The kernel K(t) = 50 e^{−t} cos 3t is one pole pair λ = −1 ± 3i with residue 50 N m:
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.radiation import StateSpace, state_space_dataset
+    >>> ds = state_space_dataset(StateSpace(np.array([-1 + 3j]), np.array([50 + 0j])))
+    >>> dict(ds.sizes), ds["radiation_residue_real"].values.tolist()
+    ({'radiation_mode': 1}, [50.0])
+    >>> ds["radiation_pole_real"].values.tolist(), ds["radiation_pole_imag"].values.tolist()
+    ([-1.0], [3.0])
     """
     p, r = np.asarray(ss.poles, complex), np.asarray(ss.residues, complex)
     dim = "radiation_mode"
@@ -547,6 +559,30 @@ def state_space_from_dataset(ds: xr.Dataset) -> StateSpace:
     -------
     StateSpace
         The model.
+
+    Examples
+    --------
+    A model through a netCDF file and back, K(0) = 50 N m before and after:
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.hydro.radiation import (StateSpace, state_space_dataset,
+    ...                                       state_space_from_dataset)
+    >>> model = StateSpace(np.array([-1 + 3j, -0.5]), np.array([40 + 10j, 10 + 0j]))
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     path = Path(tmp) / "radiation.nc"
+    ...     state_space_dataset(model).to_netcdf(path)
+    ...     back = state_space_from_dataset(xr.load_dataset(path))
+    >>> back.order, back.poles.tolist(), float(back.impulse(0.0))
+    (3, [(-1+3j), (-0.5+0j)], 50.0)
+
+    The complex form that :func:`~flumekit.hydro.coefficients.merge_complex` makes reads alike:
+
+    >>> from flumekit.hydro.coefficients import merge_complex
+    >>> state_space_from_dataset(merge_complex(state_space_dataset(model))).residues.tolist()
+    [(40+10j), (10+0j)]
     """
 
     def get(name):

@@ -127,6 +127,22 @@ def rigid_body_dataset(angular_frequency, added_mass, radiation_damping, excitat
     HydroError
         An array of the wrong shape, frequencies not finite or not positive, or a non-finite
         stiffness matrix.
+
+    Examples
+    --------
+    A sphere of radius 1 m deep below the surface, about its centre: added mass ½ ρ V in each
+    translation, as in unbounded fluid, and none in rotation; frequencies in any order:
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.rigid_body import rigid_body_dataset
+    >>> a = np.diag([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]) * 1000.0 * 2 / 3 * np.pi  # ½ ρ (4/3 π R³)
+    >>> sphere = rigid_body_dataset([2.0, 1.0], [a, a], np.zeros((2, 6, 6)), np.zeros((2, 6)),
+    ...                             np.zeros((6, 6)), reference_point=(0.0, 0.0, -10.0))
+    >>> sphere["added_mass"].dims, sphere["angular_frequency"].values.tolist()
+    (('angular_frequency', 'radiating_dof', 'influenced_dof'), [1.0, 2.0])
+    >>> heave = sphere["added_mass"].sel(radiating_dof="Heave", influenced_dof="Heave")
+    >>> np.round(heave.values, 1).tolist(), sphere.attrs["reference_point"]
+    ([2094.4, 2094.4], [0.0, 0.0, -10.0])
     """
     w = np.asarray(angular_frequency, dtype=float).ravel()
     a = np.asarray(added_mass, dtype=float)
@@ -356,6 +372,28 @@ def about_hinge(ds: xr.Dataset, hinge_point, axis=(0.0, 1.0, 0.0), *, mass: floa
     ----------
     Newman, J. N. (1977). Marine Hydrodynamics. MIT Press, §7.1.
     Falnes, J. (2002). Ocean Waves and Oscillating Systems. Cambridge University Press, §5.7.
+
+    Examples
+    --------
+    A flap whose reference point r₀ lies 5 m above the hinge, with a surge force of 10 N m-1
+    and a pitch moment of 3 N m m-1 about r₀: about the hinge the moment is 3 + (r₀ − H) × F
+    = 3 + 5 × 10, and the surge added mass counts with the lever squared.
+
+    >>> import numpy as np
+    >>> from flumekit.hydro.rigid_body import about_hinge, rigid_body_dataset
+    >>> a = np.zeros((2, 6, 6))
+    >>> a[:, 0, 0], a[:, 4, 4] = 100.0, 20.0  # surge [kg], pitch [kg m2]
+    >>> f = np.zeros((2, 6), dtype=complex)
+    >>> f[:, 0], f[:, 4] = 10.0, 3.0  # surge force, pitch moment
+    >>> body = rigid_body_dataset([1.0, 2.0], a, 0.1 * a, f, np.zeros((6, 6)),
+    ...                           reference_point=(0.0, 0.0, 5.0))
+    >>> flap = about_hinge(body, (0.0, 0.0, 0.0), mass=500.0, displaced_volume=1.0)
+    >>> flap["excitation_torque"].values.real.tolist()  # M + r × F
+    [53.0, 53.0]
+    >>> flap["added_inertia"].values.tolist()  # A₅₅ + 5² A₁₁
+    [2520.0, 2520.0]
+    >>> float(flap["hydrostatic_stiffness"])  # 5 m × (ρ g V − m g), C about r₀ zero here
+    24525.0
     """
     r0 = reference_point if reference_point is not None else ds.attrs.get("reference_point")
     if r0 is None:

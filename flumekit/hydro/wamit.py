@@ -60,7 +60,7 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
                g: float = 9.81, body: int = 1, wave_direction: float = 0.0,
                reference_point=(0.0, 0.0, 0.0), water_depth: float = np.inf,
                first_column: str = "period") -> xr.Dataset:
-    """Read the six-dof coefficients of one body from ``<stem>.1``, ``.3`` and ``.hst``.
+    r"""Read the six-dof coefficients of one body from ``<stem>.1``, ``.3`` and ``.hst``.
 
     Parameters
     ----------
@@ -101,6 +101,35 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
     References
     ----------
     WAMIT, Inc. (2016). WAMIT User Manual, Version 7, §4.2-4.3 and §4.9.
+
+    Examples
+    --------
+    Non-dimensional files of one period T = 2π s (ω = 1 rad/s), run with ULEN L = 2 m: Ā = 1
+    and B̄ = 0.5 on the diagonal, X̄ = −i in every mode (WAMIT's e^{+iωt}), C̄₃₃ = 1.
+
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> from flumekit.hydro.wamit import read_wamit
+    >>> per, pairs = 2 * np.pi, [(i, j) for i in range(1, 7) for j in range(1, 7)]
+    >>> files = {".1": [f"{per} {i} {j} {float(i == j)} {0.5 * (i == j)}" for i, j in pairs],
+    ...          ".3": [f"{per} 0.0 {i} 1.0 -90.0 0.0 -1.0" for i in range(1, 7)],
+    ...          ".hst": [f"{i} {j} {float(i == j == 3)}" for i, j in pairs]}
+    >>> with tempfile.TemporaryDirectory() as tmp:
+    ...     stem = Path(tmp) / "buoy"
+    ...     for ext, lines in files.items():
+    ...         _ = stem.with_suffix(ext).write_text("\n".join(lines) + "\n")
+    ...     body = read_wamit(stem, length_scale=2.0)
+    >>> body["angular_frequency"].values.tolist()  # 2π / T
+    [1.0]
+    >>> np.diag(body["added_mass"].values[0]).tolist()  # ρ L³ Ā, rotations ρ L⁵ Ā
+    [8000.0, 8000.0, 8000.0, 32000.0, 32000.0, 32000.0]
+    >>> float(body["radiation_damping"].sel(radiating_dof="Heave", influenced_dof="Heave")[0])
+    4000.0
+    >>> complex(body["excitation_force"].sel(influenced_dof="Heave")[0])  # ρ g L² (+i)
+    39240j
+    >>> float(body["hydrostatic_stiffness"].sel(influenced_dof="Heave", radiating_dof="Heave"))
+    39240.0
     """
     stem = Path(stem)
     p1, p3, ph = (stem.with_name(stem.name + ext) for ext in (".1", ".3", ".hst"))

@@ -59,6 +59,15 @@ def test_inconsistent_added_inertia_is_reported_with_numbers():
     assert a_td == pytest.approx(120.0, rel=1e-3)
 
 
+def test_spread_error_advises_a_call_that_passes_the_check():
+    hy = analytic(n=100)
+    hy["added_inertia"] = hy["added_inertia"] * 0 + 120.0  # constant: not causal with B(ω)
+    # at_frequency alone does not lift the spread check: the advice must say so
+    with pytest.raises(H.HydroError) as err:
+        H.with_infinite_frequency_inertia(hy, at_frequency=1.8, duration=30.0)
+    assert "max_spread=None with at_frequency=" in str(err.value)
+
+
 def test_passivity_check_reports_and_fix_is_explicit():
     hy = analytic(n=60)
     b = hy["radiation_damping"].values.copy()
