@@ -168,7 +168,8 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.uvp.geometry", "flumekit.uvp.decomposition",
                                     "flumekit.uvp.turbulence", "flumekit.uvp.phase",
                                     "flumekit.uvp.field", "flumekit.flap.friction",
-                                    "flumekit.flap.analysis",
+                                    "flumekit.flap.analysis", "flumekit.hydro.capytaine",
+                                    "flumekit.hydro.wamit",
                                     "flumekit.uncertainty.propagation"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
