@@ -68,7 +68,8 @@ def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
     References
     ----------
     IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
-    Part 100: Electricity producing wave energy converters - Power performance assessment.
+    Part 100: Electricity producing wave energy converters - Power performance assessment
+    (the power matrix: the runs binned by Hm0 and Te).
 
     Examples
     --------
