@@ -446,7 +446,7 @@ def figure_9(flaps, models: dict | None = None, axes=None):
 
     Examples
     --------
-    Two runs given as a list: (a) shows |θ|/π, (b) C_f:
+    Two runs given as a list: (a) shows the amplitude of θ over π, (b) the capture factor:
 
     >>> import numpy as np
     >>> import xarray as xr
