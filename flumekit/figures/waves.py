@@ -194,7 +194,8 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     with style():
         ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        shown = (_COUNTS[n_waves] if n_waves < len(_COUNTS) else f"{n_waves} waves").capitalize()
+        shown = (_COUNTS[n_waves] if 0 <= n_waves < len(_COUNTS) else f"{n_waves} waves"
+                 ).capitalize()
         _elevation_axes(fig, ax, (start, stop), waves, shown, p, scale, period)
     return fig
 
