@@ -147,6 +147,24 @@ def figure_5b(flap: xr.Dataset, ax=None):
         θ/θ_s [-] against t/T [-].
 
     %(references_brito2020)s, Fig. 5b.
+
+    Examples
+    --------
+    A flap leaning 0.05 rad seaward and swinging 0.2 rad about that mean, steady after 10 s:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_5b
+    >>> t, phase = np.arange(0.0, 30.0, 0.05), np.arange(40) / 40
+    >>> theta = -0.05 + 0.2 * np.minimum(t / 10.0, 1.0) * np.sin(np.pi * t)
+    >>> flap = xr.Dataset({"theta": ("time", theta), "theta_amplitude": 0.2,
+    ...                    "theta_phase_mean": ("phase", -0.05 + 0.2 * np.sin(2 * np.pi * phase)),
+    ...                    "measured_period": 2.0, "steady_start": 10.0},
+    ...                   coords={"time": t, "phase": phase})
+    >>> fig = figure_5b(flap)
+    >>> crest, trough = (float(line.get_ydata()[0]) for line in fig.axes[0].lines[1:3])
+    >>> round(crest, 2), round(trough, 2)  # (-0.05 ± 0.2) / 0.2: off-centre like the flap
+    (0.75, -1.25)
     """
     _require(flap, "theta", "theta_amplitude", "theta_phase_mean", "measured_period",
              "steady_start")
@@ -170,7 +188,7 @@ def figure_5b(flap: xr.Dataset, ax=None):
 @register("fig06bcd")
 @_doc
 def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=None):
-    """Draw normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
+    r"""Draw normalised θ, P_int and θ̇ over ``n_waves`` periods from t/T = ``start`` (Fig. 6b-d).
 
     Panels (a)-(c) of this figure are the paper's Fig. 6b-d. Each signal is divided by its
     amplitude scale (half the range of its phase average over the quasi-steady window; for
@@ -191,6 +209,29 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
         Normalised θ, P_int and θ̇ [-] against t/T [-].
 
     %(references_brito2020)s, Fig. 6b-d.
+
+    Examples
+    --------
+    Each panel's scale is stated in its title; the chamber pressure, clamped at -10 kPa on its
+    suction side, is scaled by its crest (40 kPa):
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_6bcd
+    >>> t, phase = np.arange(0.0, 20.0, 0.02), np.arange(40) / 40
+    >>> def signals(angle):  # θ [rad], P_int [Pa], θ̇ [rad/s] of a period of 2 s
+    ...     return {"theta": 0.2 * np.sin(angle), "theta_dot": 0.2 * np.pi * np.cos(angle),
+    ...             "chamber_pressure": np.maximum(4e4 * np.sin(angle), -1e4)}
+    >>> flap = xr.Dataset(
+    ...     {**{k: ("time", v) for k, v in signals(np.pi * t).items()},
+    ...      **{f"{k}_phase_mean": ("phase", v) for k, v in signals(2 * np.pi * phase).items()},
+    ...      "measured_period": 2.0}, coords={"time": t, "phase": phase})
+    >>> fig = figure_6bcd(flap, start=4.0, n_waves=3)
+    >>> for ax in fig.axes:
+    ...     print(ax.get_title(loc="left"))
+    (a) Flap rotation angle, $\theta_s$ = 11.5°
+    (b) Gauge pressure in the PTO cylinder chamber, $P_s$ = 40 kPa
+    (c) Flap angular velocity, $\dot\theta_s$ = 0.63 rad/s
     """
     _require(flap, "theta", "chamber_pressure", "theta_dot", "theta_phase_mean",
              "chamber_pressure_phase_mean", "theta_dot_phase_mean", "measured_period")
@@ -247,6 +288,25 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
         Pressure torque [N m] against t/T [-], one panel per run.
 
     %(references_brito2020)s, Fig. 7 and Eq. (13).
+
+    Examples
+    --------
+    Two runs whose fitted torque is 0.9 times the measured, so R² = 1 - 0.1² = 0.99:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_7
+    >>> t = np.arange(0.0, 24.0, 0.04)
+    >>> def run(period):
+    ...     tp = 800.0 * np.sin(2 * np.pi * t / period)  # [N m]
+    ...     return xr.Dataset({"torque_pressure": ("time", tp),
+    ...                        "torque_pressure_fitted": ("time", 0.9 * tp),
+    ...                        "pressure_fit_r2": 0.99, "steady_start": 4 * period,
+    ...                        "measured_period": period},
+    ...                       coords={"time": t, "wave_period": period, "wave_height": 0.2})
+    >>> fig = figure_7([run(2.0), run(3.0)], n_waves=2)
+    >>> [ax.get_title(loc="left") for ax in fig.axes]
+    ['(a) T = 2 s, H = 0.2 m, R² = 0.990', '(b) T = 3 s, H = 0.2 m, R² = 0.990']
     """
     runs = runs_of(flaps)
     if axes is None:
@@ -329,6 +389,25 @@ def figure_8(flaps, models: dict | None = None, ax=None):
         T_h amplitude [N m] against T [s].
 
     %(references_brito2020)s, Fig. 8.
+
+    Examples
+    --------
+    Four runs stacked along ``run``, as the comparison stage gives them, and a model 10 %
+    above them: one series of markers per wave height, sorted by period, then the model's
+    lines:
+
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_8
+    >>> runs = xr.Dataset({"torque_amplitude": ("run", [180.0, 120.0, 260.0, 150.0])},
+    ...                   coords={"wave_period": ("run", [3.0, 2.0, 3.0, 2.0]),
+    ...                           "wave_height": ("run", [0.1, 0.1, 0.2, 0.2])})
+    >>> fig = figure_8(runs, models={"analytical": runs * 1.1})
+    >>> for line in fig.axes[0].lines:
+    ...     print(line.get_xdata().tolist(), line.get_ydata().round(1).tolist())
+    [2.0, 3.0] [120.0, 180.0]
+    [2.0, 3.0] [150.0, 260.0]
+    [2.0, 3.0] [132.0, 198.0]
+    [2.0, 3.0] [165.0, 286.0]
     """
     groups = by_height(flaps, "torque_amplitude")
     heights = _heights(flaps, models)
@@ -364,6 +443,20 @@ def figure_9(flaps, models: dict | None = None, axes=None):
         (a) θ amplitude / π [-] and (b) C_f [-] against T [s].
 
     %(references_brito2020)s, Fig. 9.
+
+    Examples
+    --------
+    Two runs given as a list: (a) shows the amplitude of θ over π, (b) the capture factor:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_9
+    >>> runs = [xr.Dataset({"theta_amplitude": np.pi * a, "capture_factor": cf,
+    ...                     "wave_period": period, "wave_height": 0.2})
+    ...         for period, a, cf in ((2.0, 0.1, 0.3), (3.0, 0.2, 0.4))]
+    >>> rotation, capture = figure_9(runs).axes
+    >>> rotation.lines[0].get_ydata().tolist(), capture.lines[0].get_ydata().tolist()
+    ([0.1, 0.2], [0.3, 0.4])
     """
     groups = by_height(flaps, "theta_amplitude", "capture_factor")
     heights = _heights(flaps, models)
@@ -391,7 +484,7 @@ def figure_9(flaps, models: dict | None = None, axes=None):
 @_doc
 def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | None = None,
               axes=None):
-    """Draw the normalised phase averages over the quasi-steady window (Fig. 10).
+    r"""Draw the normalised phase averages over the quasi-steady window (Fig. 10).
 
     Panels: ⟨η⟩/H (only with ``eta``), ⟨θ⟩/π, ⟨W_out⟩/W_I with its mean over the cycle
     dotted, ⟨θ̇⟩/(π ω), ω = 2π/T, lettered from (a) in the order shown; each panel's title
@@ -420,6 +513,31 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
         The normalised phase averages [-] against t/T [-].
 
     %(references_brito2020)s, Fig. 10.
+
+    Examples
+    --------
+    A sinusoidal motion θ = A sin 2πt/T against a linear damper P = ν θ̇²: dividing θ̇ by π ω
+    gives it the amplitude of θ/π, A/π:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_10
+    >>> period, amplitude, nu = 2.0, 0.3, 50.0  # [s], [rad], [N m s]
+    >>> phase = np.arange(40) / 40
+    >>> theta_dot = amplitude * 2 * np.pi / period * np.cos(2 * np.pi * phase)
+    >>> flap = xr.Dataset(
+    ...     {"theta_phase_mean": ("phase", amplitude * np.sin(2 * np.pi * phase)),
+    ...      "theta_dot_phase_mean": ("phase", theta_dot),
+    ...      "power_phase_mean": ("phase", nu * theta_dot**2),
+    ...      "mean_power": nu * np.mean(theta_dot**2), "incident_power": 40.0,
+    ...      "incident_height": 0.2, "steady_start": 10.0, "steady_cycles": 5,
+    ...      "measured_period": period}, coords={"phase": phase})
+    >>> fig = figure_10(flap)  # without eta: three panels, θ, W_out and θ̇
+    >>> rotation, power, velocity = fig.axes
+    >>> [round(float(max(ax.lines[0].get_ydata())), 4) for ax in (rotation, velocity)]
+    [0.0955, 0.0955]
+    >>> fig.legends[0].get_texts()[0].get_text()  # ν A² ω² / 2 = 22.2 W over W_I = 40 W
+    'experiment, $\\overline{W}_{out}/W_I$ = 0.56'
     """
     _require(flap, "theta_phase_mean", "theta_dot_phase_mean", "power_phase_mean",
              "incident_power", "mean_power", "incident_height", "steady_start",

@@ -47,7 +47,7 @@ def _edges(bounds: xr.DataArray) -> np.ndarray:
 
 @register("power_matrix")
 def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
-    """Draw the power matrix, one panel per source (experiment and models).
+    r"""Draw the power matrix, one panel per source (experiment and models).
 
     Cells are coloured by the mean of ``quantity`` over their runs, with the count and the
     mean written in each cell.
@@ -68,7 +68,23 @@ def figure_power_matrix(ds: xr.Dataset, quantity: str = "capture_width_ratio"):
     References
     ----------
     IEC TS 62600-100:2012, Marine energy - Wave, tidal and other water current converters -
-    Part 100: Electricity producing wave energy converters - Power performance assessment.
+    Part 100: Electricity producing wave energy converters - Power performance assessment
+    (the power matrix: the runs binned by Hm0 and Te).
+
+    Examples
+    --------
+    Three runs in two cells of the matrix, measured only (one panel and its colour bar):
+
+    >>> from flumekit.figures import figure_power_matrix
+    >>> from flumekit.performance import power_matrix
+    >>> ds = power_matrix([0.05, 0.07, 0.12], [1.5, 1.6, 2.4],
+    ...                   {"capture_width_ratio": [0.2, 0.4, 0.5]},
+    ...                   hm0_edges=[0.0, 0.1, 0.2], te_edges=[1.0, 2.0, 3.0])
+    >>> fig = figure_power_matrix(ds)
+    >>> len(fig.axes), [text.get_text() for text in fig.axes[0].texts]  # cell mean, count
+    (2, ['0.3\nn = 2', '0.5\nn = 1'])
+    >>> fig.axes[1].get_ylabel()
+    'Cell mean capture width ratio [-]'
     """
     from flumekit.conventions import VARIABLES
 
@@ -127,6 +143,27 @@ def figure_capture_width_ratio(ds: xr.Dataset):
     ----------
     Babarit, A. (2015). A database of capture width ratio of wave energy converters.
     Renewable Energy 80, 610-628.
+
+    Examples
+    --------
+    The power-matrix product with its per-run values, as the power_matrix stage writes it, of
+    three runs and a model. The lines: per Hm0 bin (about 0.05 m, then 0.15 m) the
+    experiment's markers and the model's line, each in order of Te:
+
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_capture_width_ratio
+    >>> from flumekit.performance import power_matrix
+    >>> hm0, te = [0.07, 0.05, 0.12], [1.6, 1.5, 2.4]  # [m], [s]
+    >>> cwr = xr.DataArray([[0.4, 0.45], [0.2, 0.25], [0.5, 0.6]], dims=("run", "source"),
+    ...                    coords={"source": ["experiment", "analytical"]})
+    >>> ds = power_matrix(hm0, te, {"capture_width_ratio": cwr}, [0.0, 0.1, 0.2], [1.0, 3.0])
+    >>> ds = ds.assign(run_hm0=("run", hm0), run_te=("run", te), run_capture_width_ratio=cwr)
+    >>> for line in figure_capture_width_ratio(ds).axes[0].lines:
+    ...     print(line.get_xdata().tolist(), line.get_ydata().tolist())
+    [1.5, 1.6] [0.2, 0.4]
+    [1.5, 1.6] [0.25, 0.45]
+    [2.4] [0.5]
+    [2.4] [0.6]
     """
     _require(ds, "run_hm0", "run_te", "run_capture_width_ratio", "hm0_bin_bounds")
     he = _edges(ds.hm0_bin_bounds)

@@ -171,6 +171,30 @@ def figure_qc(probes, flap=None, *, probes_raw=None, flap_raw=None, uvp=None):
     ----------
     U.S. Integrated Ocean Observing System (2020). Manual for Real-Time Quality Control of
     In-situ Data: a guide to QARTOD, Version 1.0.
+
+    Examples
+    --------
+    A probe record with one spike, through the QC of the qc stage: the panel names the tests
+    that flagged it and draws the record as read (grey) where QC changed it:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_qc
+    >>> from flumekit.qc import Thresholds, qc_dataset
+    >>> t = np.arange(2000) / 100.0  # [s]
+    >>> volts = np.sin(np.pi * t)
+    >>> volts[700] += 1.0
+    >>> raw = xr.Dataset({"probe_voltage": (("probe", "time"), [volts])},
+    ...                  coords={"probe": ["WP1"], "time": t})
+    >>> probes = qc_dataset(raw, "probe_voltage", Thresholds(), channel_dim="probe")
+    >>> named = probes.assign_coords(run="T2.00_H0.100_r0")  # products carry no run name
+    >>> fig = figure_qc(named, probes_raw=raw)
+    >>> fig.get_suptitle()
+    'Quality control of run T2.00_H0.100_r0'
+    >>> print(fig.axes[0].get_title(loc="left"))
+    WP1: 1 suspect, 1 fail, 0 missing; flagged by spike 1, rate_of_change 2 (steep step)
+    >>> [text.get_text() for text in fig.legends[0].get_texts()]
+    ['as read', 'after QC', 'suspect', 'fail']
     """
     chans = _channels(probes, flap, probes_raw, flap_raw)
     rows = len(chans) + (2 if uvp is not None else 0)

@@ -42,6 +42,9 @@ _doc = filler(
             "    Axes to draw into; default a new two-column figure."))
 
 _TIME_OVER_PERIOD = label(text="Time over wave period $t/T$", units="1")
+#: the number of waves of Fig. 6a in its title, in words up to ten (the paper's "five waves")
+_COUNTS = ("no waves", "one wave", *(f"{n} waves" for n in (
+    "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten")))
 
 
 def _probe(waves: xr.Dataset, probe) -> str:
@@ -100,6 +103,25 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
         (the separated reflection settled too).
 
     %(references_brito2020)s, Fig. 5a.
+
+    Examples
+    --------
+    Ten periods of a regular wave (T = 2 s, amplitude 0.05 m) ramped up over its first two:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_5a
+    >>> t = np.arange(0.0, 20.0, 0.05)
+    >>> eta = 0.05 * np.minimum(t / 4.0, 1.0) * np.sin(np.pi * t)
+    >>> waves = xr.Dataset({"eta": (("probe", "time"), [eta]), "measured_period": 2.0,
+    ...                     "amplitude_scale": ("probe", [0.05]), "steady_start": 4.0},
+    ...                    coords={"probe": ["WP1"], "x": ("probe", [0.0]), "time": t})
+    >>> fig = figure_5a(waves)
+    >>> fig.axes[0].get_xlabel()
+    'Time over wave period $t/T$ [-]'
+    >>> measured, scale, steady = fig.axes[0].lines
+    >>> float(max(measured.get_ydata())), float(steady.get_xdata()[0])  # η/A_s; 4 s / 2 s
+    (1.0, 2.0)
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
@@ -138,6 +160,29 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
         η/A_s = 1.
 
     %(references_brito2020)s, Fig. 6a.
+
+    Examples
+    --------
+    The paper's window (t/T = 65 to 70) lies beyond a record of 15 periods; another is chosen:
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.figures import figure_6a
+    >>> t = np.linspace(0.0, 30.0, 601)  # T = 2 s, 40 samples per period
+    >>> eta = xr.DataArray([0.04 * np.sin(np.pi * t)], dims=("probe", "time"),
+    ...                    coords={"probe": ["WP2"], "x": ("probe", [-1.5]), "time": t})
+    >>> waves = eta.to_dataset(name="eta").assign(
+    ...     amplitude_scale=eta.max("time"), measured_period=2.0, steady_start=6.0)
+    >>> figure_6a(waves)
+    Traceback (most recent call last):
+    ...
+    ValueError: t/T = 65..70 lies outside the record (t/T = 0.0..15.0)
+    >>> fig = figure_6a(waves, start=10.0, n_waves=3)
+    >>> ax = fig.axes[0]
+    >>> [float(v) for v in ax.get_xlim()], len(ax.lines[0].get_xdata())  # 3 x 40 + 1 samples
+    ([10.0, 13.0], 121)
+    >>> fig.get_suptitle().split(",")[0]
+    'Three waves'
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     stop = start + n_waves
@@ -149,7 +194,9 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
     with style():
         ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
         ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        _elevation_axes(fig, ax, (start, stop), waves, "Five waves", p, scale, period)
+        shown = (_COUNTS[n_waves] if 0 <= n_waves < len(_COUNTS) else f"{n_waves} waves"
+                 ).capitalize()
+        _elevation_axes(fig, ax, (start, stop), waves, shown, p, scale, period)
     return fig
 
 

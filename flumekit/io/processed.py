@@ -65,8 +65,9 @@ def open_processed(processed: str | Path, name: str | None = None) -> xr.Dataset
     >>> waves = flumekit.open_processed("processed/default", "waves")  # doctest: +SKIP
     """
     path = Path(processed) if name is None else Path(processed) / name
-    if path.suffix != ".nc" and path.with_suffix(".nc").is_file():
-        path = path.with_suffix(".nc")
+    # ".nc" appended, not put for a suffix: a run id's dots ("T3.50_H0.250_r0") are no suffix
+    if path.suffix != ".nc" and path.with_name(f"{path.name}.nc").is_file():
+        path = path.with_name(f"{path.name}.nc")
     if path.is_file():
         return read_dataset(path)
     files = sorted(path.glob("*.nc")) if path.is_dir() else []

@@ -511,3 +511,11 @@ def test_pdf_fonts_are_subset_without_layout_tables_and_say_nothing(tmp_path, ca
         (pdf,) = save(_figure(), tmp_path / "f.pdf")
     assert not caplog.records, caplog.records
     assert b"FontFile2" in pdf.read_bytes()
+
+
+def test_figure_6a_title_counts_the_waves_shown(waves):
+    # the paper's five waves by default; another count is named as such, not as "Five waves"
+    assert wave_figs.figure_6a(waves, start=40).get_suptitle().startswith("Five waves,")
+    fig = wave_figs.figure_6a(waves, start=40, n_waves=3)
+    assert fig.get_suptitle().startswith("Three waves,")
+    assert wave_figs.figure_6a(waves, start=40, n_waves=12).get_suptitle().startswith("12 waves,")

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from flumekit.errors import InputError
 from flumekit.io.netcdf import read_dataset
 from flumekit.io.processed import open_processed
 from flumekit.io.run_files import Hdf5Runs, Netcdf4Runs, open_runs
@@ -227,3 +228,14 @@ def test_text_attributes_read_as_the_netcdf_library_does(tmp_path):
         with netCDF4.Dataset(p) as nc:
             expected.append(getattr(nc, "note", None))
     assert text_attributes(paths, "note") == expected == [t for t in texts for _ in range(2)]
+
+
+def test_one_run_is_opened_by_its_id_though_the_id_holds_dots(tmp_path):
+    # run ids hold the condition ("T3.50_H0.250_r0"): the dots are no file suffix
+    (files,) = [_write(tmp_path / "waves", [_run(0, 5, np.arange(3) * 0.1, False)])]
+    files[0].rename(tmp_path / "waves" / "T3.50_H0.250_r0.nc")
+    ds = open_processed(tmp_path, "waves/T3.50_H0.250_r0")
+    assert "run" not in ds.dims and ds["record0"].shape == (5,)
+    assert open_processed(tmp_path, "waves/T3.50_H0.250_r0.nc").identical(ds)
+    with pytest.raises(InputError, match="no processed dataset here"):
+        open_processed(tmp_path, "waves/T3.50_H0.250_r1")
