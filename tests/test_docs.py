@@ -169,7 +169,9 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.uvp.turbulence", "flumekit.uvp.phase",
                                     "flumekit.uvp.field", "flumekit.flap.friction",
                                     "flumekit.flap.analysis", "flumekit.hydro.capytaine",
-                                    "flumekit.hydro.wamit",
+                                    "flumekit.hydro.wamit", "flumekit.figures",
+                                    "flumekit.figures.waves", "flumekit.figures.flap",
+                                    "flumekit.figures.uvp", "flumekit.figures.performance",
                                     "flumekit.uncertainty.propagation"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
