@@ -36,6 +36,10 @@ _doc = filler(
                    "    Targets to rebuild regardless of the state."),
     graph=("graph : Graph\n"
            "    The pipeline's rules."),
+    raises_missing_input=("Raises\n"
+                          "------\n"
+                          "flumekit.errors.InputError\n"
+                          "    When an input is missing and no rule makes it."),
     state=("state : State\n"
            "    The build state."),
     targets=("targets : list of str\n"
@@ -254,6 +258,7 @@ def provenance(rule: Rule, state: State, root: Path | None) -> dict:
     return {"inputs": inputs, "paths": dict(sorted(paths.items(), key=lambda kv: -len(kv[0])))}
 
 
+@_doc
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Return the reason to rebuild a rule, or None when it is up to date.
 
@@ -276,10 +281,7 @@ def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) 
         A short reason (``"never built"``, ``"parameters changed"``, ...); None when the rule
         is up to date.
 
-    Raises
-    ------
-    flumekit.errors.InputError
-        When an input the rule needs is missing and no rule makes it.
+    %(raises_missing_input)s
 
     Examples
     --------
@@ -423,10 +425,7 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
     list of tuple of (str, str)
         ``(target, reason)`` in the order they would run.
 
-    Raises
-    ------
-    flumekit.errors.InputError
-        When an input the targets need is missing and no rule makes it.
+    %(raises_missing_input)s
 
     Examples
     --------

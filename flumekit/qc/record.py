@@ -230,10 +230,7 @@ def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresh
     dict of str to numpy.ndarray
         Test name (``gap``, ``gross_range`` when tested, ``goring_nikora``) -> its flags.
 
-    References
-    ----------
-    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
-    J. Hydraul. Eng. 128(1), 117-126.
+    %(references_goring_nikora2002)s.
 
     Examples
     --------
