@@ -50,6 +50,9 @@ REFERENCES: dict[str, str] = {
     "holthuijsen2007": (
         "Holthuijsen, L. H. (2007). Waves in oceanic and coastal waters. Cambridge University "
         "Press"),
+    "goring_nikora2002": (
+        "Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.\n"
+        "J. Hydraul. Eng. 128(1), 117-126"),
     "ogilvie1964": (
         "Ogilvie, T. F. (1964). Recent progress toward the understanding and prediction of "
         "ship\nmotions. Proc. 5th Symposium on Naval Hydrodynamics, Bergen, 3-128"),

@@ -25,6 +25,21 @@ def processed_names(processed: str | Path) -> list[str]:
     list of str
         Campaign datasets (``waves_summary``, ``calibration``, ...) and stage folders of
         per-run datasets (``waves``, ``flap``, ...), sorted.
+
+    Examples
+    --------
+    A campaign dataset, a stage folder with one run and a folder of figures, which holds no
+    dataset and so is no name:
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     root = Path(folder)
+    ...     for name in ("waves_summary.nc", "waves/T2.00_H0.150_r0.nc", "figures/fig10.png"):
+    ...         (root / name).parent.mkdir(exist_ok=True)
+    ...         (root / name).touch()
+    ...     names = processed_names(root)
+    >>> names
+    ['waves', 'waves_summary']
     """
     root = Path(processed)
     files = [p.stem for p in root.glob("*.nc")]

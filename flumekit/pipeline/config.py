@@ -132,7 +132,7 @@ def check_outside_raw(raw: Path, processed: Path, source: Path, key: str) -> Non
 
 
 def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipeline:
-    """Read a pipeline file.
+    r"""Read a pipeline file.
 
     Relative paths in it are relative to the file's folder; a file that ``extends`` another
     is merged over it (tables merge key by key).
@@ -154,6 +154,26 @@ def load_pipeline(path: str | Path, processed: str | Path | None = None) -> Pipe
     flumekit.errors.InputError
         For a missing or malformed key (named with its file and field), an ``extends``
         cycle, or a processed folder among the raw files (:func:`check_outside_raw`).
+
+    Examples
+    --------
+    A tank's pipeline that extends the lab's: its folders are relative to its own file, the
+    ones it does not set come from the lab's, and its ``[stages.flap]`` is merged key by key
+    over the lab's.
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     lab = Path(folder).resolve()
+    ...     _ = (lab / "lab.toml").write_text(
+    ...         '[pipeline]\nname = "lab"\nraw = "raw"\nprocessed = "processed/lab"\n'
+    ...         '[stages.flap]\ncutoff = 4.0\nn_phase = 50\n')
+    ...     _ = (lab / "tank2.toml").write_text(
+    ...         'extends = "lab.toml"\n[pipeline]\nname = "tank2"\nprocessed = "tank2"\n'
+    ...         '[stages.flap]\ncutoff = 3.0\n')
+    ...     pipe = load_pipeline(lab / "tank2.toml")
+    ...     folders = [p.relative_to(lab).as_posix() for p in (pipe.raw, pipe.processed)]
+    >>> pipe.name, folders, pipe.stages["flap"]
+    ('tank2', ['raw', 'tank2'], {'cutoff': 3.0, 'n_phase': 50})
     """
     path = Path(path)
     data = _read(path)

@@ -36,6 +36,10 @@ _doc = filler(
                    "    Targets to rebuild regardless of the state."),
     graph=("graph : Graph\n"
            "    The pipeline's rules."),
+    raises_missing_input=("Raises\n"
+                          "------\n"
+                          "flumekit.errors.InputError\n"
+                          "    When an input is missing and no rule makes it."),
     state=("state : State\n"
            "    The build state."),
     targets=("targets : list of str\n"
@@ -254,6 +258,7 @@ def provenance(rule: Rule, state: State, root: Path | None) -> dict:
     return {"inputs": inputs, "paths": dict(sorted(paths.items(), key=lambda kv: -len(kv[0])))}
 
 
+@_doc
 def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) -> str | None:
     """Return the reason to rebuild a rule, or None when it is up to date.
 
@@ -276,10 +281,37 @@ def why(rule: Rule, state: State, force: bool, rebuilt: set[str], graph: Graph) 
         A short reason (``"never built"``, ``"parameters changed"``, ...); None when the rule
         is up to date.
 
-    Raises
-    ------
-    flumekit.errors.InputError
-        When an input the rule needs is missing and no rule makes it.
+    %(raises_missing_input)s
+
+    Examples
+    --------
+    The reasons of a run's wave analysis as its files appear, then within a make that has
+    rebuilt the elevation it reads (no action runs here: the names are made up):
+
+    >>> import tempfile
+    >>> from flumekit.pipeline.rules import Rule
+    >>> from flumekit.pipeline.state import State
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     lab = Path(folder)
+    ...     eta = Rule("eta/r1", "lab:eta", {"raw": lab / "probes.csv"}, {"out": lab / "eta.nc"})
+    ...     waves = Rule("waves/r1", "lab:waves", {"eta": lab / "eta.nc"}, {"out": lab / "w.nc"})
+    ...     graph, state = Graph([eta, waves]), State(lab / "state.json")
+    ...     reasons = []
+    ...     for name in ("eta.nc", "w.nc"):
+    ...         _ = (lab / name).write_text("0.0")
+    ...         reasons.append(why(waves, state, False, set(), graph))
+    ...     reasons += [why(waves, state, False, {"eta/r1"}, graph),
+    ...                 why(waves, state, True, set(), graph)]
+    >>> reasons
+    ['output out missing', 'never built', 'input from eta/r1 is rebuilt', 'forced']
+
+    An input that is missing and that no rule makes is an error naming it:
+
+    >>> lost = Rule("eta/r2", "lab:eta", {"raw": "no/such/r2.csv"}, {"out": "no/such/eta.nc"})
+    >>> why(lost, State(Path("no/such/state.json")), False, set(), Graph([lost]))
+    Traceback (most recent call last):
+    ...
+    flumekit.errors.InputError: no/such/r2.csv: input 'raw' of target 'eta/r2' is missing
     """
     exists = state.exists
     missing = [n for n, p in rule.outputs.items() if not exists(p)]
@@ -376,7 +408,7 @@ class Events:
 @_doc
 def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
          force_targets: Iterable[str] = ()) -> list[tuple[str, str]]:
-    """Return what a make would run and why (a dry run).
+    r"""Return what a make would run and why (a dry run).
 
     Assumes every rebuilt input changes, so everything downstream of a rebuild is listed.
 
@@ -393,10 +425,30 @@ def plan(graph: Graph, targets: list[str], state: State, force: bool = False,
     list of tuple of (str, str)
         ``(target, reason)`` in the order they would run.
 
-    Raises
-    ------
-    flumekit.errors.InputError
-        When an input the targets need is missing and no rule makes it.
+    %(raises_missing_input)s
+
+    Examples
+    --------
+    A run's elevation, then its wave analysis from it, never built: both would run, the
+    elevation first. Planning imports no action (the names here are made up) and writes
+    nothing.
+
+    >>> import tempfile
+    >>> from flumekit.pipeline.rules import Rule
+    >>> from flumekit.pipeline.state import State
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     lab = Path(folder)
+    ...     _ = (lab / "probes.csv").write_text("time,WP1\n0.0,2.51\n")
+    ...     graph = Graph([
+    ...         Rule("waves/r1", "lab:waves", {"eta": lab / "eta.nc"}, {"out": lab / "w.nc"}),
+    ...         Rule("eta/r1", "lab:eta", {"raw": lab / "probes.csv"}, {"out": lab / "eta.nc"})])
+    ...     steps = plan(graph, ["waves/r1"], State(lab / "state.json"))
+    ...     only_eta = plan(graph, ["eta/r1"], State(lab / "state.json"))
+    ...     untouched = sorted(p.name for p in lab.iterdir())
+    >>> steps
+    [('eta/r1', 'output out missing'), ('waves/r1', 'output out missing')]
+    >>> only_eta, untouched
+    ([('eta/r1', 'output out missing')], ['probes.csv'])
     """
     rebuilt: set[str] = set()
     forced = set(force_targets)
@@ -484,7 +536,7 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
          log: Callable[[str], None] | None = None, *, force_targets: Iterable[str] = (),
          keep_going: bool = False, events: Events | None = None,
          root: Path | None = None, interrupted: Callable[[], bool] = lambda: False) -> Report:
-    """Build ``targets``; rules run on ``executor`` as soon as their inputs are up to date.
+    r"""Build ``targets``; rules run on ``executor`` as soon as their inputs are up to date.
 
     A rule is judged just before it would run, with the real hashes of freshly built inputs, so
     an upstream rebuild that reproduces identical content rebuilds nothing downstream.
@@ -527,6 +579,34 @@ def make(graph: Graph, targets: list[str], state: State, executor: Executor, for
         The first failure, naming its rule and run, unless ``keep_going``.
     KeyboardInterrupt
         When interrupted, after the state of finished rules is saved.
+
+    Examples
+    --------
+    ``flumekit make calibration`` on a small virtual campaign, in a temporary folder: the
+    first make synthesises the campaign-wide raw files and fits the probes' calibration, the
+    second finds nothing to do.
+
+    >>> import tempfile
+    >>> from flumekit.pipeline import load_pipeline
+    >>> from flumekit.pipeline.executors import SerialExecutor
+    >>> from flumekit.pipeline.state import State
+    >>> from flumekit.stages.plan import pipeline_graph
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "tank.toml").write_text(
+    ...         '[pipeline]\nname = "tank"\nraw = "raw"\nprocessed = "out"\n'
+    ...         '[synth]\nsize = "small"\n')
+    ...     pipe = load_pipeline(Path(folder) / "tank.toml")
+    ...     graph = pipeline_graph(pipe)
+    ...     first = make(graph, ["calibration"], State(pipe.state_file), SerialExecutor(),
+    ...                  log=lambda line: None)
+    ...     again = make(graph, ["calibration"], State(pipe.state_file), SerialExecutor())
+    ...     written = (pipe.processed / "calibration.nc").is_file()
+    >>> for target, reason, seconds in first.ran:
+    ...     print(f"{target}: {reason}")
+    synth/campaign: output calibration/probes.csv missing
+    calibration: output dataset missing
+    >>> written, again.ran, again.skipped
+    (True, [], ['synth/campaign', 'calibration'])
     """
     events = events or Events(log or (lambda s: print(s, file=sys.stderr)))
     forced = set(force_targets)

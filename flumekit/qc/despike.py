@@ -42,10 +42,7 @@ def goring_nikora(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     numpy.ndarray
         Boolean array of u's shape, True at spikes.
 
-    References
-    ----------
-    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
-    J. Hydraul. Eng. 128(1), 117-126.
+    %(references_goring_nikora2002)s.
 
     Wahl, T. L. (2003). Discussion of "Despiking acoustic Doppler velocimeter data".
     J. Hydraul. Eng. 129(6), 484-487.
@@ -93,10 +90,7 @@ def despike_flags(u: np.ndarray, floor: float | np.ndarray = 0.0, max_iterations
     numpy.ndarray
         QARTOD flags (uint8) of u's shape (:mod:`flumekit.qc.flags`).
 
-    References
-    ----------
-    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
-    J. Hydraul. Eng. 128(1), 117-126.
+    %(references_goring_nikora2002)s.
 
     Examples
     --------

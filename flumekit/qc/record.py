@@ -230,10 +230,28 @@ def check_beam(v: np.ndarray, time: np.ndarray, sampling_rate: float, th: Thresh
     dict of str to numpy.ndarray
         Test name (``gap``, ``gross_range`` when tested, ``goring_nikora``) -> its flags.
 
-    References
-    ----------
-    Goring, D. G. and Nikora, V. I. (2002). Despiking acoustic Doppler velocimeter data.
-    J. Hydraul. Eng. 128(1), 117-126.
+    %(references_goring_nikora2002)s.
+
+    Examples
+    --------
+    Two channels of an oscillating velocity quantised to the UVP's 0.7 mm s-1, 50 profiles a
+    second; channel 1 has one spike, and the echo of channel 0 rises far above its usual level
+    for 0.1 s, as when the flap crosses the beam. The spike fails (4); the samples at the
+    boundary and one profile either side are not evaluated (2).
+
+    >>> import numpy as np
+    >>> from flumekit.qc import Thresholds, check_beam
+    >>> t = np.arange(500) / 50.0
+    >>> phase = np.array([[0.0], [1.0]])
+    >>> v = np.round(0.1 * np.sin(2 * np.pi * t / 3.5 + phase) / 0.7e-3) * 0.7e-3
+    >>> v[1, 200] = 0.5
+    >>> echo = 40.0 + np.random.default_rng(1).integers(-3, 4, v.shape)
+    >>> echo[0, 300:305] = 200.0
+    >>> f = check_beam(v, t, 50.0, Thresholds(), floor=0.7e-3, amplitude=echo)
+    >>> sorted(f), np.argwhere(f["goring_nikora"] == 4).tolist()
+    (['gap', 'goring_nikora'], [[1, 200]])
+    >>> np.flatnonzero(f["goring_nikora"][0] == 2).tolist()
+    [299, 300, 301, 302, 303, 304, 305]
     """
     gap = qartod.gap_test(time, sampling_rate, th.gap_tolerance)
     out = {"gap": np.broadcast_to(choose(gap == FAIL, FAIL, GOOD), v.shape)}
@@ -424,6 +442,25 @@ def unfilled_gaps(ds: xr.Dataset, name: str) -> list[str]:
     -------
     list of str
         One text per run ("<channel> <start>-<end> s"), empty when every gap was filled.
+        Samples missing from the record as read are not among them (their flag says missing).
+
+    Examples
+    --------
+    Two probes at 100 Hz; WP2 reads 0.5 m for 0.03 s (spikes: failed, then interpolated,
+    ``max_gap`` being 0.2 s), then holds its value for a second (a dropout: failed, too long
+    to interpolate, left NaN):
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.qc import Thresholds, qc_dataset, unfilled_gaps
+    >>> t = np.arange(1000) / 100.0
+    >>> eta = np.cos(2 * np.pi * t / 2.5) * [[0.05], [0.04]]
+    >>> eta[1, 200:203] = 0.5
+    >>> eta[1, 500:600] = eta[1, 500]
+    >>> ds = xr.Dataset({"eta": (("probe", "time"), eta)},
+    ...                 coords={"time": t, "probe": ["WP1", "WP2"]})
+    >>> unfilled_gaps(qc_dataset(ds, "eta", Thresholds(), channel_dim="probe"), "eta")
+    ['WP2 5.000-6.000 s']
     """
     text = ds.attrs.get(f"{name}_unfilled_gaps", "")
     return [s for s in text.split("; ") if s]
@@ -462,6 +499,26 @@ def beam_flags(beams: dict[str, xr.Dataset], span: tuple[float, float], th: Thre
         ``span`` (each beam keeps its own time axis: beams may differ in profile count), the
         samples per flag of each beam's evaluated span (``beam_velocity_qc_count`` on (beam,
         flag_meaning)) and the ``evaluated_span`` [s].
+
+    Examples
+    --------
+    A beam of three channels, 20 profiles a second for 10 s, on a clock 0.5 s behind the
+    probes'. The span 2-4 s of the probes' clock keeps the beam's profiles of 1.5-3.5 s (41 of
+    them); of its two spikes, the one at 2.5 s fails, the one at 8 s is not even looked at.
+
+    >>> import numpy as np
+    >>> import xarray as xr
+    >>> from flumekit.qc import Thresholds, beam_flags
+    >>> t = np.arange(200) / 20.0
+    >>> u = np.round(np.cos(np.pi * t) * np.array([[0.05], [0.08], [0.1]]), 3)
+    >>> u[2, [50, 160]] = 0.9
+    >>> beam = xr.Dataset({"beam_velocity": (("channel", "time"), u)}, coords={"time": t},
+    ...                   attrs={"velocity_resolution": 1e-3})
+    >>> qc = beam_flags({"UP1": beam}, (2.0, 4.0), Thresholds(), time_offset=0.5)
+    >>> qc["time_UP1"].values[[0, -1]].tolist(), qc.sizes["time_UP1"]
+    ([1.5, 3.5], 41)
+    >>> qc["flag_meaning"].values.tolist(), qc["beam_velocity_qc_count"].values.tolist()
+    (['pass', 'not_evaluated', 'suspect', 'fail', 'missing_data'], [[122, 0, 0, 1, 0]])
     """
     lo, hi = span
     names = sorted(beams)

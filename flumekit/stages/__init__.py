@@ -66,6 +66,21 @@ def build_rules(ctx: Context) -> list[Rule]:
         When the campaign has no run.
     flumekit.errors.FlumekitError
         For an unknown parameter of a stage.
+
+    Examples
+    --------
+    The rules of the small virtual campaign, planned without writing anything, with a lower
+    cut-off for the flap: one run's targets, stage by stage, and the flap rules' parameter.
+
+    >>> from pathlib import Path
+    >>> from flumekit.stages.context import Context
+    >>> from flumekit.synth.campaign import virtual_campaign
+    >>> campaign = virtual_campaign("raw/small", "small", 2020)
+    >>> rules = build_rules(Context(campaign, Path("processed"), {"flap": {"cutoff": 3.0}}))
+    >>> [r.target.rsplit("/", 1)[0] for r in rules if r.run == "T2.00_H0.150_r0"]
+    ['qc/probes', 'qc/flap', 'eta', 'waves', 'flap', 'comparison', 'uncertainty']
+    >>> {r.params["cutoff"] for r in rules if r.target.startswith("flap/")}
+    {3.0}
     """
     import importlib
 

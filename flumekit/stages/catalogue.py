@@ -57,6 +57,20 @@ def check_stage_params(stages: dict, path: Path) -> None:
     ------
     flumekit.errors.InputError
         Listing every unknown stage and parameter.
+
+    Examples
+    --------
+    A good table passes in silence; a bad one is refused with all its problems at once, each
+    with the name it probably meant:
+
+    >>> check_stage_params({"flap": {"cutoff": 3.0}}, Path("pipeline.toml"))
+    >>> check_stage_params({"flap": {"cutof": 3.0, "n_phase": 50}, "wave": {}},
+    ...                    Path("pipeline.toml"))
+    Traceback (most recent call last):
+    ...
+    flumekit.errors.InputError: pipeline.toml: 2 problems:
+      pipeline.toml, key 'stages.flap.cutof': unknown parameter; known: ...; did you mean 'cutoff'?
+      pipeline.toml, key 'stages.wave': unknown stage ...; did you mean 'waves'?
     """
     from flumekit.schema import Problem, raise_problems, suggest
 
@@ -87,6 +101,17 @@ def parameters_markdown() -> str:
     -------
     str
         One table per stage: parameter, default, meaning.
+
+    Examples
+    --------
+    The row of the flap's cut-off, its default that of the stage's ``DEFAULTS``:
+
+    >>> from flumekit.stages.flap import DEFAULTS
+    >>> md = parameters_markdown()
+    >>> md.splitlines()[0], DEFAULTS["cutoff"]
+    ('# Stage parameters', 4.0)
+    >>> next(row for row in md.splitlines() if row.startswith("| `cutoff`"))
+    '| `cutoff` | `4.0` | ... [Hz] |'
     """
     lines = ["# Stage parameters", "",
              "Set in a pipeline file under `[stages.<stage>]`; `flumekit params STAGE` prints "

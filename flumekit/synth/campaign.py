@@ -272,6 +272,36 @@ def write_campaign(root: str | Path, size: str = "small", seed: int = DEFAULT_SE
     ----------
     Brito, M. et al. (2020). Experimental investigation on the power capture of an oscillating
     wave surge converter in unidirectional waves. Energies 13, 5417 (§2, Table 1).
+
+    Examples
+    --------
+    The small campaign takes several seconds to synthesise, so it is not run here; what it
+    writes:
+
+    >>> campaign = write_campaign("raw/small", "small")  # doctest: +SKIP
+    >>> len(campaign.runs), campaign.runs[1].id  # doctest: +SKIP
+    (5, 'T2.00_H0.150_r0')
+    >>> sorted(p.name for p in campaign.root.iterdir())  # doctest: +SKIP
+    ['.flumekit-virtual.json', 'calibration', 'campaign.toml', 'runs', 'truth']
+    >>> sorted(p.name for p in (campaign.root / "runs" / "T2.00_H0.150_r0").iterdir())
+    ... # doctest: +SKIP
+    ['flap.csv', 'probes.csv', 'run.toml']
+    >>> sorted(p.name for p in (campaign.root / "truth" / "T2.00_H0.150_r0").iterdir())
+    ... # doctest: +SKIP
+    ['flap.nc', 'waves.nc']
+
+    A folder that holds anything is refused before a file is written:
+
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "notes.txt").write_text("tank 2, May")
+    ...     try:
+    ...         write_campaign(folder, "small")
+    ...     except InputError as e:
+    ...         refused = "nothing was changed" in str(e)
+    ...     left = sorted(p.name for p in Path(folder).iterdir())
+    >>> refused, left
+    (True, ['notes.txt'])
     """
     root = Path(root)
 

@@ -136,6 +136,27 @@ def resolve_inputs(components, *, calibration: xr.Dataset | None = None,
     ----------
     JCGM 100:2008 (GUM), §4.3 (Type B evaluation; 4.3.7 rectangular distribution) and H.3
     (calibration of a linear fit).
+
+    Examples
+    --------
+    Probe noise and gain uncertainty declared (no calibration.nc at hand to derive them),
+    the rest at the defaults, and an encoder of 12 000 counts per metre: half a count is a
+    rectangular half-width, u = 0.5 / 12000 / √3 m; the pressure sensor's 0.2 % of its 1 MPa
+    rated output is 2 kPa.
+
+    >>> from flumekit.campaign import uncertainty_components
+    >>> declared = uncertainty_components({"probe_noise": {"value": 0.5e-3},
+    ...                                    "calibration": {"value": 0.01}})
+    >>> inputs = {i.name: i for i in resolve_inputs(declared, counts_per_metre=12000.0)}
+    >>> inputs["probe_noise"].source, round(inputs["encoder_resolution"].u * 1e6, 2)  # [μm]
+    ('declared', 24.06)
+    >>> inputs["pressure_accuracy"].u, inputs["pressure_accuracy"].units
+    (2000.0, 'Pa')
+
+    A campaign of probes alone leaves out the flap's components:
+
+    >>> [i.name for i in resolve_inputs(declared, flap=False)]
+    ['probe_noise', 'probe_resolution', 'calibration', 'probe_position', 'water_depth']
     """
     from flumekit.campaign import UNCERTAINTY_COMPONENTS
 
