@@ -172,6 +172,7 @@ def test_irregular_sea_example_recovers_the_target_sea_state(monkeypatch):
                                     "flumekit.hydro.wamit", "flumekit.figures",
                                     "flumekit.figures.waves", "flumekit.figures.flap",
                                     "flumekit.figures.uvp", "flumekit.figures.performance",
+                                    "flumekit.pipeline.config", "flumekit.stages.catalogue",
                                     "flumekit.uncertainty.propagation"])
 def test_docstring_examples(module):
     result = doctest.testmod(importlib.import_module(module), optionflags=doctest.ELLIPSIS)
