@@ -762,6 +762,7 @@ def _layout_once(fig):
     try:
         with style(), _mathtext_cached():
             engine.execute(fig)
+            _boxes_rounded(fig)
             placed = _titles_placed(fig)
             fixed = _ticks_fixed(fig)
     except BaseException:
@@ -904,6 +905,28 @@ def _fixed_labels():
             return self.offset
 
     return FixedLabels
+
+
+#: decimals of the figure's width and height to which a laid-out axes box is rounded
+LAYOUT_DECIMALS = 9
+
+
+def _boxes_rounded(fig) -> None:
+    """Round every axes box the layout engine placed to :data:`LAYOUT_DECIMALS` decimals.
+
+    kiwisolver, the solver of the constrained layout, keys its variables by their address in
+    memory, so the order in which it sums their terms depends on the process's history: the
+    same figure laid out in two processes can differ in the last bit of a box (2e-16 of the
+    figure), enough to change the coordinates a PDF writes with ten decimals. Rounded, the
+    boxes are a function of the figure alone; none moves by more than 5e-10 of the figure.
+    """
+    import numpy as np
+    from matplotlib.transforms import Bbox
+
+    for ax in fig.get_axes():
+        for original, which in ((True, "original"), (False, "active")):
+            box = np.round(ax.get_position(original=original).bounds, LAYOUT_DECIMALS)
+            ax._set_position(Bbox.from_bounds(*box), which=which)
 
 
 def _titles_placed(fig) -> list:

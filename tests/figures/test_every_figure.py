@@ -315,6 +315,34 @@ def test_same_figure_same_bytes_in_every_format(tmp_path):
     assert not list(tmp_path.rglob(".*tmp*"))  # no temporary file left
 
 
+def test_a_layout_off_in_its_last_digits_gives_the_same_bytes(tmp_path, monkeypatch):
+    """The constrained layout's solver can place a box a few ulps apart in two processes (it
+    orders its variables by address); the laid-out boxes are rounded to a 1e-9 grid of the
+    figure, so such noise never reaches the PDF's ten-decimal coordinates."""
+    from matplotlib.layout_engine import ConstrainedLayoutEngine
+    from matplotlib.transforms import Bbox
+
+    from flumekit.figures import style
+
+    (clean,) = style.save(_figure(), tmp_path / "clean.pdf")
+    solve = ConstrainedLayoutEngine.execute
+
+    def noisy(self, fig):  # the solver's answer, 1e-11 of the figure off
+        out = solve(self, fig)
+        for ax in fig.get_axes():
+            x0, y0, w, h = ax.get_position(original=True).bounds
+            ax._set_position(Bbox.from_bounds(x0 + 1e-11, y0 - 1e-11, w, h))
+        return out
+
+    monkeypatch.setattr(ConstrainedLayoutEngine, "execute", noisy)
+    fig = _figure()
+    (off,) = style.save(fig, tmp_path / "off.pdf")
+    assert off.read_bytes() == clean.read_bytes()
+    for ax in fig.get_axes():  # every box on the grid
+        bounds = np.array(ax.get_position().bounds)
+        assert np.array_equal(bounds, np.round(bounds, style.LAYOUT_DECIMALS))
+
+
 def test_png_at_300_dpi_and_print_size(tmp_path):
     import struct
 
