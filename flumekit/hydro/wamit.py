@@ -87,8 +87,10 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
     Returns
     -------
     xarray.Dataset
-        Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset` (NaN where a
-        frequency lacks a coefficient, see :func:`flumekit.hydro.rigid_body.drop_failed`).
+        Dataset of :func:`flumekit.hydro.rigid_body.rigid_body_dataset`. A coefficient the
+        files leave out is zero where WAMIT omits it by symmetry (both modes listed at that
+        period, in ``.1`` on the diagonal); it is NaN where a period or a mode is missing
+        altogether (see :func:`flumekit.hydro.rigid_body.drop_failed`).
 
     Raises
     ------
@@ -159,6 +161,12 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
     # WAMIT's A_ij is the force in mode i from a motion in mode j: (radiating j, influenced i)
     a[idx, j[rows] - lo - 1, i[rows] - lo - 1] = t1[rows, 3] * scale[rows]
     b[idx, j[rows] - lo - 1, i[rows] - lo - 1] = t1[rows, 4] * scale[rows] * omega[idx]
+    # WAMIT leaves out the pairs that the body's symmetry makes zero (18 of the 36 for a body
+    # symmetric about y = 0): a pair absent at a period where both modes' diagonal is listed
+    # is zero; a mode the file never lists stays NaN (not computed)
+    listed = np.isfinite(np.diagonal(a, axis1=1, axis2=2))
+    zero = listed[:, :, None] & listed[:, None, :]
+    a, b = np.where(np.isnan(a) & zero, 0.0, a), np.where(np.isnan(b) & zero, 0.0, b)
     inf_rows = (t1[:, 0] == 0) & mine if first_column == "period" else np.zeros_like(mine)
     a_inf = None
     if inf_rows.any():
@@ -179,6 +187,10 @@ def read_wamit(stem: str | Path, *, length_scale: float = 1.0, rho: float = 1000
     # WAMIT's e^{+iωt} -> flumekit's e^{-iωt}: complex conjugate
     x = (t3[rows, 5] - 1j * t3[rows, 6]) * rho * g * length_scale ** m.astype(float)
     f[idx[ok], i3[rows][ok] - lo - 1] = x[ok]
+    # likewise a listed mode absent at a period the heading has: no excitation by symmetry
+    seen = np.zeros(n, dtype=bool)
+    seen[idx[ok]] = True
+    f = np.where(np.isnan(f) & seen[:, None] & listed, 0.0, f)
 
     c = np.zeros((6, 6))
     ih, jh = th[:, 0].astype(int), th[:, 1].astype(int)

@@ -108,8 +108,14 @@ def test_capytaine_reader_errors_name_the_file(tmp_path):
         read_capytaine(OSWEC)
 
 
-def write_wamit(stem, rigid, length):
-    """WAMIT-format files (manual §4.2-4.9, e^{+iwt}) from a six-dof dataset."""
+#: the pairs of modes a body symmetric about y = 0 couples: (surge, heave, pitch) and
+#: (sway, roll, yaw); WAMIT writes only these 18 of the 36
+SYMMETRIC_PAIRS = {(i, j) for group in ((0, 2, 4), (1, 3, 5)) for i in group for j in group}
+
+
+def write_wamit(stem, rigid, length, pairs=None, excited=range(6)):
+    """WAMIT-format files (manual §4.2-4.9, e^{+iwt}) from a six-dof dataset: every pair of
+    modes, or only ``pairs`` in ``.1`` and the modes ``excited`` in ``.3``."""
     rho, g = rigid.attrs["rho"], rigid.attrs["g"]
     w = rigid["angular_frequency"].values
     rot = np.array([d in ("Roll", "Pitch", "Yaw") for d in DOFS])
@@ -117,11 +123,13 @@ def write_wamit(stem, rigid, length):
     for n, om in enumerate(w):
         for i in range(6):
             for j in range(6):
+                if pairs is not None and (i, j) not in pairs:
+                    continue
                 k = 3 + rot[i] + rot[j]
                 a = rigid["added_mass"].values[n, j, i] / (rho * length**k)
                 b = rigid["radiation_damping"].values[n, j, i] / (rho * length**k * om)
                 lines1.append(f"{2 * np.pi / om:.9E} {i + 1} {j + 1} {a:.9E} {b:.9E}")
-        for i in range(6):
+        for i in excited:
             x = np.conj(rigid["excitation_force"].values[n, i]) / (rho * g * length ** (2 + rot[i]))
             lines3.append(f"{2 * np.pi / om:.9E} 0.0 {i + 1} {abs(x):.9E} "
                           f"{np.degrees(np.angle(x)):.9E} {x.real:.9E} {x.imag:.9E}")
@@ -148,6 +156,35 @@ def test_wamit_reader_restores_dimensional_values(tmp_path, rigid):
     hw = about_hinge(back, HINGE, mass=MASS, displaced_volume=297.38, passivity="clip")
     hc = about_hinge(sub, HINGE, mass=MASS, displaced_volume=297.38, passivity="clip")
     np.testing.assert_allclose(hw["added_inertia"].values, hc["added_inertia"].values, rtol=1e-8)
+
+
+def test_wamit_pairs_left_out_by_symmetry_are_zero_and_unlisted_modes_nan(tmp_path, rigid):
+    """A symmetric body's files as WAMIT writes them: 18 pairs in .1, surge, heave and pitch
+    in .3 for head seas. What WAMIT leaves out is zero, and the flap's hinge coefficients are
+    those of the full files; a mode never listed is not computed, so it stays NaN."""
+    sub = rigid.isel(angular_frequency=slice(3, 12))
+    write_wamit(tmp_path / "sym", sub, length=1.0, pairs=SYMMETRIC_PAIRS, excited=(0, 2, 4))
+    back = read_wamit(tmp_path / "sym", reference_point=COG)
+    keep = np.array([[(i, j) in SYMMETRIC_PAIRS for i in range(6)] for j in range(6)])
+    for name in ("added_mass", "radiation_damping"):
+        want = np.where(keep, sub[name].values, 0.0)
+        np.testing.assert_allclose(back[name].values, want, rtol=1e-8,
+                                   atol=1e-9 * float(np.abs(sub[name]).max()))
+    f = back["excitation_force"].values
+    assert np.all(f[:, [1, 3, 5]] == 0) and np.all(np.isfinite(f))
+    full = sub.copy(deep=True)
+    full["added_mass"].values[:] = np.where(keep, sub["added_mass"].values, 0.0)
+    hinge = dict(mass=MASS, displaced_volume=297.38, passivity="clip")
+    np.testing.assert_allclose(about_hinge(back, HINGE, **hinge)["added_inertia"].values,
+                               about_hinge(full, HINGE, **hinge)["added_inertia"].values,
+                               rtol=1e-8)
+    # only surge, heave and pitch computed (the other modes never listed)
+    write_wamit(tmp_path / "three", sub, length=1.0,
+                pairs={p for p in SYMMETRIC_PAIRS if p[0] % 2 == 0}, excited=(0, 2, 4))
+    part = read_wamit(tmp_path / "three", reference_point=COG)
+    a = part["added_mass"].values
+    assert np.isnan(a[:, 1, 1]).all() and np.isnan(a[:, 0, 1]).all()
+    assert np.isfinite(a[:, 0, 4]).all() and np.isnan(part["excitation_force"].values[:, 1]).all()
 
 
 def test_wamit_reader_errors(tmp_path):
