@@ -23,20 +23,20 @@ Each function's own example draws it from a small dataset built on the spot.
 
 Examples
 --------
-Fig. 5a of the paper's run, drawn and saved as ``flumekit make`` does: in the package style
-(:func:`flumekit.figures.style.style`, which not every function applies to all it draws), as
-PNG at 300 dpi and PDF, with the registry's description as the caption the campaign report
-reads. The files are those of ``flumekit make``, byte for byte:
+Fig. 5a of the paper's run, drawn and saved as ``flumekit make`` does: every figure function
+builds its figure in the package style (:func:`flumekit.figures.style.styled`), and
+:func:`~flumekit.figures.style.save` writes PNG at 300 dpi and PDF, with the registry's
+description as the caption the campaign report reads. The files are those of
+``flumekit make``, byte for byte:
 
 >>> from flumekit import open_processed
 >>> from flumekit.figures import figure_5a
 >>> from flumekit.figures.registry import figure
->>> from flumekit.figures.style import save, style
+>>> from flumekit.figures.style import save
 >>> figure("fig05a").function is figure_5a
 True
 >>> waves = open_processed("processed/default", "waves/T3.50_H0.250_r0")  # doctest: +SKIP
->>> with style():  # doctest: +SKIP
-...     fig = figure_5a(waves)
+>>> fig = figure_5a(waves)  # doctest: +SKIP
 >>> save(fig, "fig05a.png", "fig05a.pdf",
 ...      description=figure("fig05a").description)  # doctest: +SKIP
 
@@ -46,8 +46,7 @@ the pipeline does (for Fig. 10: the probe nearest the flap, the models of the co
 >>> from flumekit.io.netcdf import read_dataset
 >>> data = {stage: read_dataset(f"processed/default/{stage}/T3.50_H0.250_r0.nc")
 ...         for stage in ("flap", "waves", "comparison")}  # doctest: +SKIP
->>> with style():  # doctest: +SKIP
-...     fig = figure("fig10").draw(data)
+>>> fig = figure("fig10").draw(data)  # doctest: +SKIP
 """
 
 

@@ -129,7 +129,9 @@ def register(name: str, prepare: Prepare = one_dataset,
     Returns
     -------
     callable
-        The decorator, which returns the function unchanged.
+        The decorator. It returns, and registers, the function built in the package style
+        (:func:`flumekit.figures.style.styled`), so that a figure drawn by hand looks as the
+        pipeline draws it.
 
     Raises
     ------
@@ -137,13 +139,16 @@ def register(name: str, prepare: Prepare = one_dataset,
         When the decorator is applied, if another function is registered under ``name``.
     """
     def decorate(function: Callable) -> Callable:
+        from flumekit.figures.style import styled
+
         known = FIGURES.get(name)
-        if known is not None and known.function is not function:
+        if known is not None and known.function.__wrapped__ is not function:
             raise ValueError(f"figure '{name}' registered twice ({known.function.__module__}."
                              f"{known.function.__name__} and {function.__module__}."
                              f"{function.__name__})")
-        FIGURES[name] = Figure(name, function, prepare, stacked)
-        return function
+        drawn = known.function if known is not None else styled(function)
+        FIGURES[name] = Figure(name, drawn, prepare, stacked)
+        return drawn
 
     return decorate
 

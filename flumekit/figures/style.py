@@ -77,6 +77,39 @@ def style():
         yield
 
 
+def styled(function):
+    """Make a figure function build its figure in the package style (:func:`style`).
+
+    Text, titles and axes take their fonts and places from the style in force when they are
+    made, so a figure drawn outside :func:`style` (in a notebook) would differ from the
+    pipeline's. :func:`flumekit.figures.registry.register` applies this to every figure.
+
+    Parameters
+    ----------
+    function : callable
+        Returns a :class:`matplotlib.figure.Figure`.
+
+    Returns
+    -------
+    callable
+        ``function`` called within :func:`style`; same name, docstring and signature.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> from flumekit.figures.style import STYLE, styled
+    >>> size = styled(lambda: matplotlib.rcParams["font.size"])
+    >>> size() == STYLE["font.size"]
+    True
+    """
+    @functools.wraps(function)
+    def in_style(*args, **kwargs):
+        with style():
+            return function(*args, **kwargs)
+
+    return in_style
+
+
 def new_figure(nrows: int = 1, ncols: int = 1, width: float = TWO_COLUMNS,
                height: float | None = None, row_height: float = 2.2, **kw):
     """Create a figure of ``nrows`` x ``ncols`` axes, not registered with pyplot.

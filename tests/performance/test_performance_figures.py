@@ -36,6 +36,21 @@ def test_figures_pass_the_figure_test(draw, tmp_path):
     save(fig, tmp_path / f"{draw.__name__}.png")
 
 
+@pytest.mark.parametrize("draw", [figure_power_matrix, figure_capture_width_ratio])
+def test_a_figure_drawn_by_hand_is_the_pipelines(draw, tmp_path):
+    """Outside ``style()`` (a notebook) a registered figure is built in the package style all
+    the same: the same PNG bytes as drawn within it, as the figures stage draws."""
+    from flumekit.figures.registry import FIGURES
+    from flumekit.figures.style import save, style
+
+    assert any(f.function is draw for f in FIGURES.values())  # what the pipeline calls
+    (by_hand,) = save(draw(matrix()), tmp_path / "by_hand.png")
+    with style():
+        fig = draw(matrix())
+    (pipeline,) = save(fig, tmp_path / "pipeline.png")
+    assert by_hand.read_bytes() == pipeline.read_bytes()
+
+
 def test_power_matrix_figure_writes_counts_in_cells():
     fig = figure_power_matrix(matrix())
     texts = [t.get_text() for t in fig.axes[0].texts]
