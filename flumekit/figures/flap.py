@@ -38,7 +38,6 @@ from flumekit.figures.style import (
     new_figure,
     run_title,
     runs_title,
-    style,
     thin,
     title,
     value_label,
@@ -171,17 +170,16 @@ def figure_5b(flap: xr.Dataset, ax=None):
     period = float(flap.measured_period)
     scale = float(flap.theta_amplitude)
     fig, ax = figure_axes(ax, height=2.4)
-    with style():
-        ax.plot(*thin(flap.time.values / period, flap.theta.values / scale, fig.get_figwidth()),
-                color=COLOURS["experiment"], lw=0.5, label="measured")
-        _crest_trough(ax, _levels(flap.theta_phase_mean.values, scale))
-        ax.axvline(float(flap.steady_start) / period, color="tab:red", lw=0.9,
-                   label="start of the quasi-steady window")
-        ax.set_xlabel(_TIME_OVER_PERIOD)
-        ax.set_ylabel(label(text=r"$\theta/\theta_s$", units="1"))
-        title(fig, run_title(flap, "Normalised flap rotation")
-              + rf", $\theta_s$ = {np.degrees(scale):.1f}°")
-        legend(fig)
+    ax.plot(*thin(flap.time.values / period, flap.theta.values / scale, fig.get_figwidth()),
+            color=COLOURS["experiment"], lw=0.5, label="measured")
+    _crest_trough(ax, _levels(flap.theta_phase_mean.values, scale))
+    ax.axvline(float(flap.steady_start) / period, color="tab:red", lw=0.9,
+               label="start of the quasi-steady window")
+    ax.set_xlabel(_TIME_OVER_PERIOD)
+    ax.set_ylabel(label(text=r"$\theta/\theta_s$", units="1"))
+    title(fig, run_title(flap, "Normalised flap rotation")
+          + rf", $\theta_s$ = {np.degrees(scale):.1f}°")
+    legend(fig)
     return fig
 
 
@@ -251,17 +249,16 @@ def figure_6bcd(flap: xr.Dataset, start: float = 65.0, n_waves: int = 5, axes=No
         fig, grid = new_figure(3, 1, width=TWO_COLUMNS, row_height=1.6, sharex=True)
         axes = grid[:, 0]
     fig = axes[0].figure
-    with style():
-        for ax, (name, scale, sym, pm, stated), tag in zip(axes, rows, "abc"):
-            ax.plot(tt[sel], flap[name].values[sel] / scale, color=COLOURS["experiment"],
-                    label="measured")
-            _crest_trough(ax, _levels(pm, scale))
-            ax.set_ylabel(label(text=sym, units="1"))
-            ax.set_title(f"({tag}) {long_name(name)}, {stated}")
-        axes[-1].set_xlabel(_TIME_OVER_PERIOD)
-        axes[-1].set_xlim(start, start + n_waves)
-        title(fig, run_title(flap, "Flap rotation, chamber pressure and angular velocity"))
-        legend(fig)
+    for ax, (name, scale, sym, pm, stated), tag in zip(axes, rows, "abc"):
+        ax.plot(tt[sel], flap[name].values[sel] / scale, color=COLOURS["experiment"],
+                label="measured")
+        _crest_trough(ax, _levels(pm, scale))
+        ax.set_ylabel(label(text=sym, units="1"))
+        ax.set_title(f"({tag}) {long_name(name)}, {stated}")
+    axes[-1].set_xlabel(_TIME_OVER_PERIOD)
+    axes[-1].set_xlim(start, start + n_waves)
+    title(fig, run_title(flap, "Flap rotation, chamber pressure and angular velocity"))
+    legend(fig)
     return fig
 
 
@@ -318,24 +315,23 @@ def figure_7(flaps, n_waves: int = 3, axes=None):
             fig.delaxes(ax)
     fig = axes[0].figure
     wide = axes[0].get_position().width > 0.5
-    with style():
-        for ax, ds, tag in zip(axes, runs, "abcdefghijklmnop"):
-            _require(ds, "torque_pressure", "torque_pressure_fitted", "pressure_fit_r2",
-                     "steady_start", "measured_period")
-            t0 = float(ds.steady_start) / float(ds.measured_period)
-            tt, sel, _ = _window(ds, t0, n_waves)
-            ax.plot(tt[sel] - t0, ds.torque_pressure.values[sel], color=COLOURS["experiment"],
-                    label="measured")
-            ax.plot(tt[sel] - t0, ds.torque_pressure_fitted.values[sel],
-                    color=COLOURS["analytical"], ls="--", label="fitted, Eq. (13)")
-            cond = f"T = {period_of(ds):g} s, H = {height_of(ds):g} m"
-            if "run" in ds.variables:  # a narrow panel names the run only (its id tells T, H)
-                cond = f"run {ds['run'].values}" + (f": {cond}" if wide else "")
-            ax.set_title(f"({tag}) {cond}, R² = {float(ds.pressure_fit_r2):.3f}")
-            ax.set_ylabel(label("torque_pressure", "$T_p$", text="Pressure torque"))
-            ax.set_xlabel(label(text="$t/T$ from the steady start", units="1"))
-        title(fig, runs_title(runs, "Torque of the cylinder pressure force"))
-        legend(fig)
+    for ax, ds, tag in zip(axes, runs, "abcdefghijklmnop"):
+        _require(ds, "torque_pressure", "torque_pressure_fitted", "pressure_fit_r2",
+                 "steady_start", "measured_period")
+        t0 = float(ds.steady_start) / float(ds.measured_period)
+        tt, sel, _ = _window(ds, t0, n_waves)
+        ax.plot(tt[sel] - t0, ds.torque_pressure.values[sel], color=COLOURS["experiment"],
+                label="measured")
+        ax.plot(tt[sel] - t0, ds.torque_pressure_fitted.values[sel],
+                color=COLOURS["analytical"], ls="--", label="fitted, Eq. (13)")
+        cond = f"T = {period_of(ds):g} s, H = {height_of(ds):g} m"
+        if "run" in ds.variables:  # a narrow panel names the run only (its id tells T, H)
+            cond = f"run {ds['run'].values}" + (f": {cond}" if wide else "")
+        ax.set_title(f"({tag}) {cond}, R² = {float(ds.pressure_fit_r2):.3f}")
+        ax.set_ylabel(label("torque_pressure", "$T_p$", text="Pressure torque"))
+        ax.set_xlabel(label(text="$t/T$ from the steady start", units="1"))
+    title(fig, runs_title(runs, "Torque of the cylinder pressure force"))
+    legend(fig)
     return fig
 
 
@@ -412,14 +408,13 @@ def figure_8(flaps, models: dict | None = None, ax=None):
     groups = by_height(flaps, "torque_amplitude")
     heights = _heights(flaps, models)
     fig, ax = figure_axes(ax, width=ONE_COLUMN, height=3.9)
-    with style():
-        _experiment_points(ax, groups, heights, lambda v: v["torque_amplitude"])
-        for source, runs in (models or {}).items():
-            add_figure_8(ax, runs, label=source, heights=heights)
-        ax.set_xlabel(_PERIOD)
-        ax.set_ylabel(label("torque_amplitude", "$|T_h|$", text="Hydrodynamic torque"))
-        title(fig, runs_title(flaps, "Torque amplitude"))
-        legend(fig, _source_handles(heights, ["experiment", *(models or {})]), ncols=2)
+    _experiment_points(ax, groups, heights, lambda v: v["torque_amplitude"])
+    for source, runs in (models or {}).items():
+        add_figure_8(ax, runs, label=source, heights=heights)
+    ax.set_xlabel(_PERIOD)
+    ax.set_ylabel(label("torque_amplitude", "$|T_h|$", text="Hydrodynamic torque"))
+    title(fig, runs_title(flaps, "Torque amplitude"))
+    legend(fig, _source_handles(heights, ["experiment", *(models or {})]), ncols=2)
     return fig
 
 
@@ -464,19 +459,18 @@ def figure_9(flaps, models: dict | None = None, axes=None):
         fig, grid = new_figure(1, 2, width=TWO_COLUMNS, height=3.0)
         axes = grid[0, :]
     fig = axes[0].figure
-    with style():
-        _experiment_points(axes[0], groups, heights, lambda v: v["theta_amplitude"] / np.pi)
-        _experiment_points(axes[1], groups, heights, lambda v: v["capture_factor"])
-        for source, runs in (models or {}).items():
-            add_figure_9(axes, runs, label=source, heights=heights)
-        axes[0].set_ylabel(label(text=r"Rotation amplitude $|\theta|/\pi$", units="1"))
-        axes[1].set_ylabel(label("capture_factor", "$C_f$", text="Capture factor"))
-        for ax, tag in zip(axes, "ab"):
-            ax.set_xlabel(_PERIOD)
-            ax.set_title(f"({tag})")
-        title(fig, runs_title(flaps, "Flap rotation and capture factor"))
-        handles = _source_handles(heights, ["experiment", *(models or {})])
-        legend(fig, handles, where="right")
+    _experiment_points(axes[0], groups, heights, lambda v: v["theta_amplitude"] / np.pi)
+    _experiment_points(axes[1], groups, heights, lambda v: v["capture_factor"])
+    for source, runs in (models or {}).items():
+        add_figure_9(axes, runs, label=source, heights=heights)
+    axes[0].set_ylabel(label(text=r"Rotation amplitude $|\theta|/\pi$", units="1"))
+    axes[1].set_ylabel(label("capture_factor", "$C_f$", text="Capture factor"))
+    for ax, tag in zip(axes, "ab"):
+        ax.set_xlabel(_PERIOD)
+        ax.set_title(f"({tag})")
+    title(fig, runs_title(flaps, "Flap rotation and capture factor"))
+    handles = _source_handles(heights, ["experiment", *(models or {})])
+    legend(fig, handles, where="right")
     return fig
 
 
@@ -555,37 +549,36 @@ def figure_10(flap: xr.Dataset, eta: xr.DataArray | None = None, models: dict | 
     fig = next(ax for ax in axes if ax is not None).figure
     w_i = float(flap.incident_power)
     exp = dict(color=COLOURS["experiment"], lw=1.6, zorder=3)
-    with style():
-        if eta is not None and axes[0] is not None:
-            if "time" not in eta.coords:
-                raise ValueError("eta needs a 'time' coordinate")
-            pa = sig.phase_average(eta.values, eta["time"].values, period,
-                                   float(flap.steady_start), int(flap.steady_cycles),
-                                   n_phase=phase.size)
-            axes[0].plot(pa.phase, pa.mean / float(flap.incident_height), **exp)
-            probe = f", probe {eta['probe'].values}" if "probe" in eta.coords else ""
-            axes[0].set_ylabel(label(text=r"$\langle\eta\rangle/H$" + probe, units="1"))
-        axes[1].plot(phase, flap.theta_phase_mean.values / np.pi, **exp)
-        axes[1].set_ylabel(label(text=r"$\langle\theta\rangle/\pi$", units="1"))
-        mean = float(flap.mean_power) / w_i
-        axes[2].plot(phase, flap.power_phase_mean.values / w_i,
-                     label=rf"experiment, $\overline{{W}}_{{out}}/W_I$ = {mean:.2f}", **exp)
-        axes[2].axhline(mean, color=COLOURS["experiment"], ls=":", lw=1.0)
-        axes[2].set_ylabel(label(text=r"$\langle W_{out}\rangle/W_I$", units="1"))
-        omega = 2 * np.pi / period
-        axes[3].plot(phase, flap.theta_dot_phase_mean.values / (np.pi * omega), **exp)
-        axes[3].set_ylabel(label(text=r"$\langle\dot\theta\rangle/(\pi\omega)$", units="1"))
-        for source, summary in (models or {}).items():
-            add_figure_10(axes, summary, label=source)
-        h_i = float(flap.incident_height)
-        scales = (f"$H$ = {h_i:.3f} m", None, f"$W_I$ = {w_i:.3g} W",
-                  rf"$\omega$ = {omega:.2f} rad/s")
-        shown = [(ax, s) for ax, s in zip(axes, scales) if ax is not None]
-        for (ax, stated), tag in zip(shown, "abcd"):
-            ax.set_title(f"({tag})" + (f" {stated}" if stated else ""))
-            ax.set_xlim(0, 1)
-            ax.set_xlabel(_TIME_OVER_PERIOD)
-        title(fig, run_title(flap, "Phase averages") + "; dotted: mean over the cycle")
-        # one entry per source, with its mean power, from panel (c)
-        legend(fig, *axes[2].get_legend_handles_labels(), ncols=2)
+    if eta is not None and axes[0] is not None:
+        if "time" not in eta.coords:
+            raise ValueError("eta needs a 'time' coordinate")
+        pa = sig.phase_average(eta.values, eta["time"].values, period,
+                               float(flap.steady_start), int(flap.steady_cycles),
+                               n_phase=phase.size)
+        axes[0].plot(pa.phase, pa.mean / float(flap.incident_height), **exp)
+        probe = f", probe {eta['probe'].values}" if "probe" in eta.coords else ""
+        axes[0].set_ylabel(label(text=r"$\langle\eta\rangle/H$" + probe, units="1"))
+    axes[1].plot(phase, flap.theta_phase_mean.values / np.pi, **exp)
+    axes[1].set_ylabel(label(text=r"$\langle\theta\rangle/\pi$", units="1"))
+    mean = float(flap.mean_power) / w_i
+    axes[2].plot(phase, flap.power_phase_mean.values / w_i,
+                 label=rf"experiment, $\overline{{W}}_{{out}}/W_I$ = {mean:.2f}", **exp)
+    axes[2].axhline(mean, color=COLOURS["experiment"], ls=":", lw=1.0)
+    axes[2].set_ylabel(label(text=r"$\langle W_{out}\rangle/W_I$", units="1"))
+    omega = 2 * np.pi / period
+    axes[3].plot(phase, flap.theta_dot_phase_mean.values / (np.pi * omega), **exp)
+    axes[3].set_ylabel(label(text=r"$\langle\dot\theta\rangle/(\pi\omega)$", units="1"))
+    for source, summary in (models or {}).items():
+        add_figure_10(axes, summary, label=source)
+    h_i = float(flap.incident_height)
+    scales = (f"$H$ = {h_i:.3f} m", None, f"$W_I$ = {w_i:.3g} W",
+              rf"$\omega$ = {omega:.2f} rad/s")
+    shown = [(ax, s) for ax, s in zip(axes, scales) if ax is not None]
+    for (ax, stated), tag in zip(shown, "abcd"):
+        ax.set_title(f"({tag})" + (f" {stated}" if stated else ""))
+        ax.set_xlim(0, 1)
+        ax.set_xlabel(_TIME_OVER_PERIOD)
+    title(fig, run_title(flap, "Phase averages") + "; dotted: mean over the cycle")
+    # one entry per source, with its mean power, from panel (c)
+    legend(fig, *axes[2].get_legend_handles_labels(), ncols=2)
     return fig

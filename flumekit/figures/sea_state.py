@@ -18,7 +18,6 @@ from flumekit.figures.style import (
     legend,
     new_figure,
     run_title,
-    style,
     title,
 )
 
@@ -75,45 +74,44 @@ def separation(waves: xr.Dataset, n_waves: int = 12):
     fig, axes = new_figure(1, 3, width=TWO_COLUMNS, height=2.9,
                            gridspec_kw={"width_ratios": [1.3, 1.2, 1.0]})
     ax_t, ax_f, ax_h = axes[0]
-    with style():
-        separated_elevations(ax_t, t[shown], inc[shown], ref[shown], f"at x = {x_ref:g} m",
-                             lw=0.7)
+    separated_elevations(ax_t, t[shown], inc[shown], ref[shown], f"at x = {x_ref:g} m",
+                         lw=0.7)
 
-        good = np.isfinite(s_i) & np.isfinite(s_r)
-        for name, s in (("incident", s_i), ("reflected", s_r)):
-            ax_f.plot(f[good], s[good], color=COLOURS[name])
-        ax_f.set_xlabel(label("frequency", "$f$"))
-        ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
-        ax_f.set_title("(b) spectra" + (f", {int(dof)} degrees of freedom" if dof else ""))
-        ax_f.set_xlim(f[0], f[-1])
-        ax_f.set_ylim(bottom=0)
-        # Kr(f) where the incident wave has energy: elsewhere the ratio of two noises
-        energy = np.cumsum(np.where(good, s_i, 0.0))
-        energy = energy / energy[-1] if energy[-1] > 0 else energy
-        held = good & (energy >= 0.005) & (energy <= 0.995)
-        ax_k = ax_f.twinx()
-        ax_k.plot(f[held], kr[held], "o", ms=2.5, color="0.3", label="$K_r(f)$")
-        ax_k.axhline(float(waves["reflection_coefficient"]), color="0.3", ls="--", lw=0.8,
-                     label="bulk $K_r$")
-        ax_k.set_ylim(0, max(1.0, float(np.nanmax(kr[held])) * 1.1) if held.any() else 1.0)
-        ax_k.set_ylabel(label("reflection_coefficient_spectrum", "$K_r(f)$", text=" "))
-        ax_k.grid(False)
+    good = np.isfinite(s_i) & np.isfinite(s_r)
+    for name, s in (("incident", s_i), ("reflected", s_r)):
+        ax_f.plot(f[good], s[good], color=COLOURS[name])
+    ax_f.set_xlabel(label("frequency", "$f$"))
+    ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
+    ax_f.set_title("(b) spectra" + (f", {int(dof)} degrees of freedom" if dof else ""))
+    ax_f.set_xlim(f[0], f[-1])
+    ax_f.set_ylim(bottom=0)
+    # Kr(f) where the incident wave has energy: elsewhere the ratio of two noises
+    energy = np.cumsum(np.where(good, s_i, 0.0))
+    energy = energy / energy[-1] if energy[-1] > 0 else energy
+    held = good & (energy >= 0.005) & (energy <= 0.995)
+    ax_k = ax_f.twinx()
+    ax_k.plot(f[held], kr[held], "o", ms=2.5, color="0.3", label="$K_r(f)$")
+    ax_k.axhline(float(waves["reflection_coefficient"]), color="0.3", ls="--", lw=0.8,
+                 label="bulk $K_r$")
+    ax_k.set_ylim(0, max(1.0, float(np.nanmax(kr[held])) * 1.1) if held.any() else 1.0)
+    ax_k.set_ylabel(label("reflection_coefficient_spectrum", "$K_r(f)$", text=" "))
+    ax_k.grid(False)
 
-        h = waves["individual_wave_height"].values
-        h = np.sort(h[np.isfinite(h)])[::-1]
-        exceed = np.arange(1, h.size + 1) / (h.size + 1)
-        ax_h.semilogy(h / hm0, exceed, ".", ms=2.5, color=COLOURS["incident"],
-                      label="incident waves")
-        x = np.linspace(0, max(float(h[0] / hm0) * 1.05, 1.0), 100) if h.size else np.array([0])
-        ax_h.semilogy(x, np.exp(-2 * x ** 2), color="k", lw=0.8, label="Rayleigh")
-        ax_h.set_ylim(bottom=0.5 / (h.size + 1) if h.size else 1e-3, top=1.0)
-        ax_h.set_xlabel(label(text="$H/H_{m0}$", units="1"))
-        ax_h.set_ylabel(label(text="Exceedance probability", units="1"))
-        ax_h.set_title(f"(c) {h.size} waves")
+    h = waves["individual_wave_height"].values
+    h = np.sort(h[np.isfinite(h)])[::-1]
+    exceed = np.arange(1, h.size + 1) / (h.size + 1)
+    ax_h.semilogy(h / hm0, exceed, ".", ms=2.5, color=COLOURS["incident"],
+                  label="incident waves")
+    x = np.linspace(0, max(float(h[0] / hm0) * 1.05, 1.0), 100) if h.size else np.array([0])
+    ax_h.semilogy(x, np.exp(-2 * x ** 2), color="k", lw=0.8, label="Rayleigh")
+    ax_h.set_ylim(bottom=0.5 / (h.size + 1) if h.size else 1e-3, top=1.0)
+    ax_h.set_xlabel(label(text="$H/H_{m0}$", units="1"))
+    ax_h.set_ylabel(label(text="Exceedance probability", units="1"))
+    ax_h.set_title(f"(c) {h.size} waves")
 
-        title(fig, run_title(waves, "Wave separation, irregular sea") + "\n"
-              + f"$H_{{m0}}$ = {hm0:.3f} m, $T_p$ = {tp:.2f} s, $T_e$ = "
-              f"{float(waves['te']):.2f} s, bulk $K_r$ = "
-              f"{float(waves['reflection_coefficient']):.3f}")
-        legend(fig, ncols=6)
+    title(fig, run_title(waves, "Wave separation, irregular sea") + "\n"
+          + f"$H_{{m0}}$ = {hm0:.3f} m, $T_p$ = {tp:.2f} s, $T_e$ = "
+          f"{float(waves['te']):.2f} s, bulk $K_r$ = "
+          f"{float(waves['reflection_coefficient']):.3f}")
+    legend(fig, ncols=6)
     return fig

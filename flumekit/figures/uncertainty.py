@@ -12,7 +12,7 @@ import numpy as np
 import xarray as xr
 
 from flumekit.figures.registry import register
-from flumekit.figures.style import TWO_COLUMNS, label, legend, new_figure, style, title
+from flumekit.figures.style import TWO_COLUMNS, label, legend, new_figure, title
 
 #: the results whose budgets the figure shows, with their symbols
 BUDGET_RESULTS = (("incident_height", "$H_I$"), ("reflection_coefficient", "$K_r$"),
@@ -78,35 +78,34 @@ def figure_budget(budget: xr.Dataset, axes=None):
         fig, axes = new_figure(nrow, 2, width=TWO_COLUMNS, row_height=2.3, sharex=True)
     fig = np.ravel(axes)[0].figure
     x = np.arange(len(labels))
-    with style():
-        for ax, (q, sym) in zip(np.ravel(axes), shown, strict=False):
-            c = budget[f"{q}_contribution"].values  # (condition, component)
-            parts = [c[:, j] for j in major] + ([c[:, minor].sum(axis=1)] if minor else [])
-            # one collection of bars per component (hundreds of bar patches, each its own
-            # artist, cost more to create and draw than the rest of the figure)
-            top = np.cumsum(parts, axis=0)
-            for part, high, colour, name in zip(parts, top, colours, names, strict=True):
-                low = high - part
-                bars = np.stack([np.column_stack([x - 0.4, low]), np.column_stack([x + 0.4, low]),
-                                 np.column_stack([x + 0.4, high]),
-                                 np.column_stack([x - 0.4, high])], axis=1)
-                ax.add_collection(PolyCollection(bars, facecolors=colour, edgecolors="none",
-                                                 linewidths=0, label=name))
-            ax.autoscale_view()
-            ax.set_ylim(0, 100)
-            ax.set_title(sym, fontsize=9)
-            ax.set_ylabel(label(text="Share of variance", units="percent"))
-            # a tick per condition, a label on every step-th: at 8 pt, about 20 rotated labels
-            # fit the axis side by side
-            step = -(-len(labels) // 20)
-            ax.set_xticks(x, [t if i % step == 0 else "" for i, t in enumerate(labels)],
-                          rotation=90 if len(labels) > 6 else 0)
-        for ax in np.ravel(axes)[-2:]:
-            ax.set_xlabel(label(text="Condition T / H", units="s / m"))
-        for ax in np.ravel(axes)[len(shown):]:
-            ax.set_visible(False)
-        n = int(budget.sizes["condition"])
-        title(fig, f"Uncertainty budgets of {n} condition{'s' if n != 1 else ''}: share of each "
-                   "component in the combined variance")
-        legend(fig, ncols=min(len(names), 4))
+    for ax, (q, sym) in zip(np.ravel(axes), shown, strict=False):
+        c = budget[f"{q}_contribution"].values  # (condition, component)
+        parts = [c[:, j] for j in major] + ([c[:, minor].sum(axis=1)] if minor else [])
+        # one collection of bars per component (hundreds of bar patches, each its own
+        # artist, cost more to create and draw than the rest of the figure)
+        top = np.cumsum(parts, axis=0)
+        for part, high, colour, name in zip(parts, top, colours, names, strict=True):
+            low = high - part
+            bars = np.stack([np.column_stack([x - 0.4, low]), np.column_stack([x + 0.4, low]),
+                             np.column_stack([x + 0.4, high]),
+                             np.column_stack([x - 0.4, high])], axis=1)
+            ax.add_collection(PolyCollection(bars, facecolors=colour, edgecolors="none",
+                                             linewidths=0, label=name))
+        ax.autoscale_view()
+        ax.set_ylim(0, 100)
+        ax.set_title(sym, fontsize=9)
+        ax.set_ylabel(label(text="Share of variance", units="percent"))
+        # a tick per condition, a label on every step-th: at 8 pt, about 20 rotated labels
+        # fit the axis side by side
+        step = -(-len(labels) // 20)
+        ax.set_xticks(x, [t if i % step == 0 else "" for i, t in enumerate(labels)],
+                      rotation=90 if len(labels) > 6 else 0)
+    for ax in np.ravel(axes)[-2:]:
+        ax.set_xlabel(label(text="Condition T / H", units="s / m"))
+    for ax in np.ravel(axes)[len(shown):]:
+        ax.set_visible(False)
+    n = int(budget.sizes["condition"])
+    title(fig, f"Uncertainty budgets of {n} condition{'s' if n != 1 else ''}: share of each "
+               "component in the combined variance")
+    legend(fig, ncols=min(len(names), 4))
     return fig

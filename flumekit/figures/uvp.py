@@ -21,7 +21,6 @@ from flumekit.figures.style import (
     label,
     legend,
     new_figure,
-    style,
     title,
 )
 
@@ -178,38 +177,37 @@ def fig11(field: xr.Dataset, phases=PHASES, levels=None, n_arrows: int = 9,
                            sharex=True, sharey=True)
     for ax in axes.flat[len(phases):]:
         fig.delaxes(ax)
-    with style():
-        cs = q = None
-        for ax, f, tag in zip(axes.flat, shown, "abcdefgh"):
-            u = f["u_normalised"].values
-            w = f["w_normalised"].values
-            if np.any(np.isfinite(u)):
-                cs = ax.contourf(x, z, u, levels=levels, cmap="RdBu_r", extend=extend)
-            sl = (slice(None, None, sz), slice(None, None, sx))
-            q = ax.quiver(x[::sx], z[::sz], u[sl], w[sl], angles="xy", scale_units="xy",
-                          scale=scale, width=0.007, headwidth=3.5, headlength=4,
-                          headaxislength=3.5, pivot="middle")
-            ax.set_title(f"({tag}) t/T = {float(f['phase']):.2f}")
-            # half a lattice spacing around the field: the arrows (centred on their points)
-            # of the outer rows and columns stay inside the panel
-            ax.set_xlim(x.min() - spacing / 2, x.max() + spacing / 2)
-            ax.set_ylim(z.min() - spacing / 2, z.max() + spacing / 2)
-            ax.set_aspect("equal")
-            ax.set_xlabel(label(text="$x/h$", units="1"))
-            ax.set_ylabel(label(text="$z/h$", units="1"))
-        for ax in axes.flat[:len(phases)]:
-            ax.label_outer()
-        if cs is not None:  # ticks at the contour levels: round numbers
-            fig.colorbar(cs, ax=axes, shrink=0.8,
-                         label=label(text=r"$\langle u\rangle/U_0$", units="1"))
-        if q is not None:  # the reference arrow, in a strip kept free below the panels
-            ref = _reference_length(vmax)
-            strip = 0.35 / fig.get_size_inches()[1]
-            fig.get_layout_engine().set(rect=(0, strip, 1, 1 - strip))
-            axes.flat[0].quiverkey(q, 0.06, strip / 2, ref,
-                                   rf"reference arrow: velocity = {ref:g} $U_0$",
-                                   labelpos="E", coordinates="figure")
-        title(fig, _field_title(field, "Phase-averaged velocity field in front of the flap"))
+    cs = q = None
+    for ax, f, tag in zip(axes.flat, shown, "abcdefgh"):
+        u = f["u_normalised"].values
+        w = f["w_normalised"].values
+        if np.any(np.isfinite(u)):
+            cs = ax.contourf(x, z, u, levels=levels, cmap="RdBu_r", extend=extend)
+        sl = (slice(None, None, sz), slice(None, None, sx))
+        q = ax.quiver(x[::sx], z[::sz], u[sl], w[sl], angles="xy", scale_units="xy",
+                      scale=scale, width=0.007, headwidth=3.5, headlength=4,
+                      headaxislength=3.5, pivot="middle")
+        ax.set_title(f"({tag}) t/T = {float(f['phase']):.2f}")
+        # half a lattice spacing around the field: the arrows (centred on their points)
+        # of the outer rows and columns stay inside the panel
+        ax.set_xlim(x.min() - spacing / 2, x.max() + spacing / 2)
+        ax.set_ylim(z.min() - spacing / 2, z.max() + spacing / 2)
+        ax.set_aspect("equal")
+        ax.set_xlabel(label(text="$x/h$", units="1"))
+        ax.set_ylabel(label(text="$z/h$", units="1"))
+    for ax in axes.flat[:len(phases)]:
+        ax.label_outer()
+    if cs is not None:  # ticks at the contour levels: round numbers
+        fig.colorbar(cs, ax=axes, shrink=0.8,
+                     label=label(text=r"$\langle u\rangle/U_0$", units="1"))
+    if q is not None:  # the reference arrow, in a strip kept free below the panels
+        ref = _reference_length(vmax)
+        strip = 0.35 / fig.get_size_inches()[1]
+        fig.get_layout_engine().set(rect=(0, strip, 1, 1 - strip))
+        axes.flat[0].quiverkey(q, 0.06, strip / 2, ref,
+                               rf"reference arrow: velocity = {ref:g} $U_0$",
+                               labelpos="E", coordinates="figure")
+    title(fig, _field_title(field, "Phase-averaged velocity field in front of the flap"))
     return fig
 def _column(field: xr.Dataset, name: str, x: float):
     """Return the values of ``name`` (phase, z) at x, linearly interpolated, and that x.
@@ -297,22 +295,21 @@ def fig12(field: xr.Dataset, x_over_h: float = -0.11, phases=PHASES,
     fig, axes = new_figure(nrows, ncols, width=TWO_COLUMNS, row_height=2.1, sharey=True)
     for ax in axes.flat[len(shown):]:
         fig.delaxes(ax)
-    with style():
-        for ax, p, tag in zip(axes.flat, shown, "abcdefgh"):
-            for c in "uw":
-                col, xc = cols[c]
-                k = _phase_index(col, p)
-                ax.plot(col.values[k], z, "-o", ms=2.5, color=colour[c],
-                        label=rf"$\langle {c}\rangle/U_0$ at x/h = {xc / h:.2f}")
-                if c in tcols:
-                    tc, _ = tcols[c]
-                    ax.plot(tc.values[k], tc["z"].values / h, "--", color=COLOURS["truth"],
-                            label="truth")
-            ax.axvline(0.0, color="0.5", lw=0.6)
-            ax.set_title(f"({tag}) t/T = {p:.2f}")
-            ax.set_xlabel(label(text="Velocity over $U_0$", units="1"))
-        for ax in axes[:, 0]:
-            ax.set_ylabel(label(text="$z/h$", units="1"))
-        title(fig, _field_title(field, f"Velocity profiles at x/h = {x_over_h:g}"))
-        legend(fig)
+    for ax, p, tag in zip(axes.flat, shown, "abcdefgh"):
+        for c in "uw":
+            col, xc = cols[c]
+            k = _phase_index(col, p)
+            ax.plot(col.values[k], z, "-o", ms=2.5, color=colour[c],
+                    label=rf"$\langle {c}\rangle/U_0$ at x/h = {xc / h:.2f}")
+            if c in tcols:
+                tc, _ = tcols[c]
+                ax.plot(tc.values[k], tc["z"].values / h, "--", color=COLOURS["truth"],
+                        label="truth")
+        ax.axvline(0.0, color="0.5", lw=0.6)
+        ax.set_title(f"({tag}) t/T = {p:.2f}")
+        ax.set_xlabel(label(text="Velocity over $U_0$", units="1"))
+    for ax in axes[:, 0]:
+        ax.set_ylabel(label(text="$z/h$", units="1"))
+    title(fig, _field_title(field, f"Velocity profiles at x/h = {x_over_h:g}"))
+    legend(fig)
     return fig

@@ -23,7 +23,6 @@ from flumekit.figures.style import (
     legend,
     new_figure,
     run_title,
-    style,
     thin,
     title,
 )
@@ -125,19 +124,18 @@ def figure_5a(waves: xr.Dataset, probe=None, ax=None):
     """
     p, tt, eta, period, scale = _normalised(waves, probe)
     fig, ax = figure_axes(ax, height=2.4)
-    with style():
-        ax.plot(*thin(tt, eta, fig.get_figwidth()), color=COLOURS["experiment"], lw=0.5,
-                label=f"measured, {p}")
-        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        crest = float(waves["crest_steady_start"]) if "crest_steady_start" in waves else None
-        ax.axvline((float(waves.steady_start) if crest is None else crest) / period,
-                   color="tab:red", lw=0.9, label="quasi-steady from (crests within "
-                   f"{float(waves.attrs.get('tolerance', 0.02)):.0%})")
-        if crest is not None and float(waves.steady_start) > crest + 0.5 * period:
-            ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9, ls="--",
-                       label="analysis window from (reflection settled)")
-        _elevation_axes(fig, ax, (tt[0], tt[-1]), waves, "Normalised surface elevation", p,
-                        scale, period)
+    ax.plot(*thin(tt, eta, fig.get_figwidth()), color=COLOURS["experiment"], lw=0.5,
+            label=f"measured, {p}")
+    ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
+    crest = float(waves["crest_steady_start"]) if "crest_steady_start" in waves else None
+    ax.axvline((float(waves.steady_start) if crest is None else crest) / period,
+               color="tab:red", lw=0.9, label="quasi-steady from (crests within "
+               f"{float(waves.attrs.get('tolerance', 0.02)):.0%})")
+    if crest is not None and float(waves.steady_start) > crest + 0.5 * period:
+        ax.axvline(float(waves.steady_start) / period, color="tab:red", lw=0.9, ls="--",
+                   label="analysis window from (reflection settled)")
+    _elevation_axes(fig, ax, (tt[0], tt[-1]), waves, "Normalised surface elevation", p,
+                    scale, period)
     return fig
 
 
@@ -191,12 +189,11 @@ def figure_6a(waves: xr.Dataset, start: float = 65.0, n_waves: int = 5, probe=No
                          f"(t/T = {tt[0]:.1f}..{tt[-1]:.1f})")
     sel = (tt >= start) & (tt <= stop)
     fig, ax = figure_axes(ax, height=2.2)
-    with style():
-        ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
-        ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
-        shown = (_COUNTS[n_waves] if 0 <= n_waves < len(_COUNTS) else f"{n_waves} waves"
-                 ).capitalize()
-        _elevation_axes(fig, ax, (start, stop), waves, shown, p, scale, period)
+    ax.plot(tt[sel], eta[sel], color=COLOURS["experiment"], label=f"measured, {p}")
+    ax.axhline(1.0, color="0.3", ls="-.", lw=0.9, label="amplitude scale $A_s$")
+    shown = (_COUNTS[n_waves] if 0 <= n_waves < len(_COUNTS) else f"{n_waves} waves"
+             ).capitalize()
+    _elevation_axes(fig, ax, (start, stop), waves, shown, p, scale, period)
     return fig
 
 
@@ -259,42 +256,41 @@ def separation(waves: xr.Dataset, n_waves: int = 5, n_bins: int = 4):
     fig, axes = new_figure(1, 2, width=TWO_COLUMNS, height=2.8)
     ax_t, ax_f = axes[0]
     x_ref = float(waves.attrs.get("x_ref", 0.0))
-    with style():
-        separated_elevations(ax_t, t[shown], inc[shown], ref[shown],
-                             f"at the reference point x = {x_ref:g} m")
-        from flumekit.waves.irregular import band_average
+    separated_elevations(ax_t, t[shown], inc[shown], ref[shown],
+                         f"at the reference point x = {x_ref:g} m")
+    from flumekit.waves.irregular import band_average
 
-        # masked bins stay out of the bands: their separation is not defined
-        n_bins = int(max(1, min(n_bins, f.size)))
-        fb, *bands = band_average(f, waves["spectrum_incident"].values,
-                                  waves["spectrum_reflected"].values, n_bins=n_bins,
-                                  valid=~masked)
-        peak = 0.0
-        for name, s in zip(("incident", "reflected"), bands):
-            pos = np.isfinite(s) & (s > 0)
-            ax_f.semilogy(fb[pos], s[pos], ".-", ms=2, lw=0.7, color=COLOURS[name])
-            peak = max(peak, float(s[pos].max())) if pos.any() else peak
-        if masked.any():
-            df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
-            for i, j in _spans(masked):
-                ax_f.axvspan(f[i] - df / 2, f[j] + df / 2, color="0.8", lw=0,
-                             label="masked (ill-conditioned)")
-        band = waves.attrs.get("band")
-        if band is not None:
-            for edge in np.ravel(band):
-                ax_f.axvline(float(edge), color="0.4", ls=":", lw=0.9, label="analysis band")
-        if peak > 0:  # seven decades below the peak: the noise floor, not the round-off
-            ax_f.set_ylim(bottom=peak * 1e-7)
-        ax_f.set_xlabel(label("frequency", "$f$"))
-        ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
-        ax_f.set_title(f"(b) spectra, bands of {n_bins} bins, {2 * n_bins} degrees of freedom"
-                       if n_bins > 1 else "(b) periodograms, 2 degrees of freedom")
-        kr = float(waves["reflection_coefficient"])
-        h_i = float(waves["incident_height"])
-        extra = ""
-        if "masked_energy_fraction" in waves.variables:
-            extra = f", masked energy {100 * float(waves['masked_energy_fraction']):.1f} %"
-        title(fig, run_title(waves, "Wave separation") + "\n"
-              + f"$K_r$ = {kr:.3f}, $H_I$ = {h_i:.3f} m{extra}")
-        legend(fig, ncols=4)
+    # masked bins stay out of the bands: their separation is not defined
+    n_bins = int(max(1, min(n_bins, f.size)))
+    fb, *bands = band_average(f, waves["spectrum_incident"].values,
+                              waves["spectrum_reflected"].values, n_bins=n_bins,
+                              valid=~masked)
+    peak = 0.0
+    for name, s in zip(("incident", "reflected"), bands):
+        pos = np.isfinite(s) & (s > 0)
+        ax_f.semilogy(fb[pos], s[pos], ".-", ms=2, lw=0.7, color=COLOURS[name])
+        peak = max(peak, float(s[pos].max())) if pos.any() else peak
+    if masked.any():
+        df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
+        for i, j in _spans(masked):
+            ax_f.axvspan(f[i] - df / 2, f[j] + df / 2, color="0.8", lw=0,
+                         label="masked (ill-conditioned)")
+    band = waves.attrs.get("band")
+    if band is not None:
+        for edge in np.ravel(band):
+            ax_f.axvline(float(edge), color="0.4", ls=":", lw=0.9, label="analysis band")
+    if peak > 0:  # seven decades below the peak: the noise floor, not the round-off
+        ax_f.set_ylim(bottom=peak * 1e-7)
+    ax_f.set_xlabel(label("frequency", "$f$"))
+    ax_f.set_ylabel(label(text="Variance density $S$", units="m2 s"))
+    ax_f.set_title(f"(b) spectra, bands of {n_bins} bins, {2 * n_bins} degrees of freedom"
+                   if n_bins > 1 else "(b) periodograms, 2 degrees of freedom")
+    kr = float(waves["reflection_coefficient"])
+    h_i = float(waves["incident_height"])
+    extra = ""
+    if "masked_energy_fraction" in waves.variables:
+        extra = f", masked energy {100 * float(waves['masked_energy_fraction']):.1f} %"
+    title(fig, run_title(waves, "Wave separation") + "\n"
+          + f"$K_r$ = {kr:.3f}, $H_I$ = {h_i:.3f} m{extra}")
+    legend(fig, ncols=4)
     return fig
