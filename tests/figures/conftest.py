@@ -8,9 +8,6 @@ not the physics).
 
 from __future__ import annotations
 
-import shutil
-from importlib import resources
-
 import numpy as np
 import pytest
 import xarray as xr
@@ -26,31 +23,8 @@ def _run_coords(ds, period, height, kind="T"):
 
 
 @pytest.fixture(scope="session")
-def campaign(tmp_path_factory):
-    from flumekit.campaign import load_campaign
-
-    root = tmp_path_factory.mktemp("figcampaign")
-    src = resources.files("flumekit.data").joinpath("default_campaign.toml")
-    with resources.as_file(src) as path:
-        shutil.copy(path, root / "campaign.toml")
-    return load_campaign(root)
-
-
-@pytest.fixture(scope="session")
-def waves():
-    from flumekit.synth.waves import regular_wave_field
-    from flumekit.waves import analyse_run, probe_spacing
-
-    period = 2.0
-    x12, x23 = probe_spacing(period, DEPTH)
-    x = np.array([-7.0, -7.0 + x12, -7.0 + x12 + x23, -1.0])
-    t = np.arange(int(80 * period * 25)) / 25.0
-    f = regular_wave_field(t, x, period=period, height=0.15, depth=DEPTH)
-    da = xr.DataArray(f.eta.values, dims=("probe", "time"),
-                      coords={"probe": ["WP1", "WP2", "WP3", "WP4"], "x": ("probe", x),
-                              "time": t})
-    ds = analyse_run(da, DEPTH, period, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
-    return _run_coords(ds, period, 0.15)
+def waves(regular_waves):
+    return _run_coords(regular_waves, 2.0, 0.15)
 
 
 def _ramp(t, period, start=5.0, n=8):

@@ -3,25 +3,16 @@
 from __future__ import annotations
 
 import functools
-import shutil
-from importlib import resources
 
 import numpy as np
 import pytest
 
-from flumekit.campaign import load_campaign
 from flumekit.waves.theory import stokes2_coefficient, wavenumber
 
 DEPTH = 0.825
-
-
-@pytest.fixture(scope="session")
-def campaign(tmp_path_factory):
-    root = tmp_path_factory.mktemp("flapcampaign")
-    src = resources.files("flumekit.data").joinpath("default_campaign.toml")
-    with resources.as_file(src) as path:
-        shutil.copy(path, root / "campaign.toml")
-    return load_campaign(root)
+#: the default flap in the default flume: the hydrodynamics stage's geometry parameters
+GEOMETRY = {"depth": DEPTH, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,
+            "stiffness": 605.0, "inertia": 14.74, "thickness": 0.17}
 
 
 def ramped_wave(time: np.ndarray, period: float, height: float, ramp_periods: float = 8.0,
@@ -73,3 +64,24 @@ def record(campaign):
         return _record(campaign, period, height, n_waves, seed, model)
 
     return make
+
+
+@pytest.fixture(scope="session")
+def geometry():
+    """The default flap's geometry parameters of the hydrodynamics stage (a copy)."""
+    return dict(GEOMETRY)
+
+
+@pytest.fixture(scope="session")
+def hydro(tmp_path_factory):
+    """The coefficient container of the default flap, through the stage: the file the
+    comparison reads."""
+    from flumekit.io.netcdf import read_dataset
+    from flumekit.stages import models as stage
+
+    out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
+    params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
+                             ("coefficients", "omega_min", "omega_max", "n_omega",
+                              "irf_duration")}}
+    stage.hydro({}, {"dataset": out}, params)
+    return read_dataset(out)

@@ -10,20 +10,6 @@ from flumekit.hydro.coefficients import split_complex
 from flumekit.io.netcdf import read_dataset
 from flumekit.stages import models as stage
 
-GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,
-            "stiffness": 605.0, "inertia": 14.74, "thickness": 0.17}
-
-
-@pytest.fixture(scope="module")
-def hydro(tmp_path_factory):
-    # through the stage: the file the comparison reads
-    out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
-    params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
-                             ("coefficients", "omega_min", "omega_max", "n_omega",
-                              "irf_duration")}}
-    stage.hydro({}, {"dataset": out}, params)
-    return read_dataset(out)
-
 
 def test_the_stage_writes_the_one_channel_container(hydro):
     """The virtual flume and the stage share rd.channel_container: the file holds it exactly."""
@@ -86,10 +72,10 @@ def test_energy_equivalent_damping_reproduces_the_mean_power():
     assert cmp.energy_equivalent_damping(flap) == pytest.approx(nu, rel=1e-12)
 
 
-def test_bem_container(tmp_path):
+def test_bem_container(tmp_path, geometry):
     pytest.importorskip("capytaine")
     out = tmp_path / "bem.nc"
-    params = {**GEOMETRY, "coefficients": "bem", "bem_omega_min": 1.5, "bem_omega_max": 4.0,
+    params = {**geometry, "coefficients": "bem", "bem_omega_min": 1.5, "bem_omega_max": 4.0,
               "bem_n_omega": 6, "bem_panel_size": 0.1}
     stage.hydro({}, {"dataset": out}, params)
     h = read_dataset(out)

@@ -7,23 +7,11 @@ import xarray as xr
 
 from flumekit.flap import comparison as cmp
 from flumekit.hydro.response import response
-from flumekit.io.netcdf import read_dataset
-from flumekit.stages import models as stage
 from flumekit.waves.theory import G, group_velocity
 
-GEOMETRY = {"depth": 0.825, "flap_width": 1.31, "hinge_height": 0.10, "channel_width": 1.5,
-            "stiffness": 605.0, "inertia": 14.74, "thickness": 0.17}
-INERTIA, C = GEOMETRY["inertia"], GEOMETRY["stiffness"]
-
-
-@pytest.fixture(scope="module")
-def hydro(tmp_path_factory):
-    out = tmp_path_factory.mktemp("hydro") / "hydro.nc"
-    params = {**GEOMETRY, **{k: stage.DEFAULTS[k] for k in
-                             ("coefficients", "omega_min", "omega_max", "n_omega",
-                              "irf_duration")}}
-    stage.hydro({}, {"dataset": out}, params)
-    return read_dataset(out)
+#: the default flap's inertia [kg m2], buoyancy stiffness [N m rad-1] and the depth [m] of the
+#: ``hydro`` fixture (tests/flap/conftest.py)
+INERTIA, C, DEPTH = 14.74, 605.0, 0.825
 
 
 def _spectrum(f, s):
@@ -77,7 +65,7 @@ def linear_flap(hydro):
     theta = np.real((theta_c[:, None] * e).sum(0))
     theta_dot = np.real((-1j * w * theta_c[:, None] * e).sum(0))
     power = float(np.sum(0.5 * nu * (2 * np.pi * f) ** 2 * np.abs(theta_c) ** 2))
-    flux = float(np.sum(1000.0 * G * a**2 / 2 * group_velocity(1 / f, GEOMETRY["depth"])))
+    flux = float(np.sum(1000.0 * G * a**2 / 2 * group_velocity(1 / f, DEPTH)))
     fg = np.arange(1, 400) / span  # the spectrum on the span's grid: a_j^2 / 2 = S df
     s = np.zeros_like(fg)
     s[k - 1] = a**2 / 2 * span

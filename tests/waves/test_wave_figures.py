@@ -14,15 +14,8 @@ H = 0.825
 
 
 @pytest.fixture(scope="module")
-def waves():
-    T = 2.0
-    x12, x23 = probe_spacing(T, H)
-    x = np.array([-7.0, -7.0 + x12, -7.0 + x12 + x23, -1.0])
-    t = np.arange(int(80 * T * 25)) / 25.0
-    f = regular_wave_field(t, x, period=T, height=0.15, depth=H)
-    da = xr.DataArray(f.eta.values, dims=("probe", "time"),
-                      coords={"probe": ["WP1", "WP2", "WP3", "WP4"], "x": ("probe", x), "time": t})
-    return analyse_run(da, H, T, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+def waves(regular_waves):
+    return regular_waves
 
 
 def test_figure_5a_normalised_series_scale_line_and_steady_start(waves):
