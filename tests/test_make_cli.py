@@ -1,4 +1,4 @@
-"""`flumekit make` end to end on the small virtual-flume campaign (issue 2 acceptance)."""
+"""`flumekit make` end to end on the small virtual-flume campaign."""
 
 import hashlib
 import os
@@ -173,7 +173,7 @@ def test_list_shows_scenes_and_state(project):
     assert "1 of 1 to build" in result.stdout and "output dataset missing" in result.stdout
 
 
-# --- safety of the engine (issue 12, point 0) ---------------------------------------------------
+# --- safety of the engine ---------------------------------------------------
 
 def _popen(project, *args, **kw):
     return subprocess.Popen([sys.executable, "-m", "flumekit.cli", "make", "--pipeline",
@@ -375,7 +375,7 @@ def test_unreachable_dask_scheduler_is_a_clear_error_within_its_timeout(project)
     assert elapsed < 30, elapsed
 
 
-# --- determinism, cascade stop, provenance (issue 12, points 1-2) -------------------------------
+# --- determinism, cascade stop, provenance -------------------------------
 
 def test_two_builds_in_different_folders_give_identical_bytes(tmp_path, built_once, small_raw):
     other = _project(tmp_path, small_raw)
@@ -425,7 +425,7 @@ def test_provenance_names_rule_parameters_inputs_and_versions(built_once):
     assert str(built_once) not in json.dumps(attrs)  # no absolute path
 
 
-# --- lazy synthesis (issue 12, point 3) ---------------------------------------------------------
+# --- lazy synthesis ---------------------------------------------------------
 
 def _fresh(tmp_path):
     (tmp_path / "pipelines").mkdir()
@@ -466,7 +466,7 @@ def test_one_run_synthesised_alone_is_the_run_of_the_whole_campaign(tmp_path, sm
         write_virtual_run(root, "T2.00_H0.150_r0")
 
 
-# --- analyst-ready datasets (issue 12, point 6) -------------------------------------------------
+# --- analyst-ready datasets -------------------------------------------------
 
 def _readme_snippet() -> str:
     text = (ROOT / "README.md").read_text()
@@ -534,7 +534,7 @@ def test_flap_records_are_stored_as_they_are(built_once):
                     f.name, var.name)
 
 
-# --- CF (issue 12, point 7) ---------------------------------------------------------------------
+# --- CF ---------------------------------------------------------------------
 
 def _cf_errors(paths) -> dict[str, list[str]]:
     """The CF 1.8 errors compliance-checker finds in each file (tests/cf_check.py)."""

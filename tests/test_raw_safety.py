@@ -1,5 +1,5 @@
 """Raw data is sacred: no command deletes, moves or rewrites a file under a raw folder that it did
-not create in the same call (issue 12, point 0)."""
+not create in the same call."""
 
 import hashlib
 import shutil

@@ -94,10 +94,10 @@ def test_uvp_field_against_truth(built):
 
 
 def test_experiment_simulator_and_linear_model_differ(built):
-    """Issue 16: the virtual flume has losses the simulator and the linear model lack (vortex
+    """The virtual flume has losses the simulator and the linear model lack (vortex
     drag, overtopping, bearing friction, check valve), so the comparison shows three distinct
     curves, the experiment's motion below both models'. The simulator's numerics against a
-    flume of its own physics (issue 7) are tested in tests/flap/test_flap_synth.py."""
+    flume of its own physics are tested in tests/flap/test_flap_synth.py."""
     processed, truth = built
     for run in runs(truth):
         with xr.open_dataset(processed / "comparison" / f"{run}.nc", decode_times=False) as c:
@@ -109,7 +109,7 @@ def test_experiment_simulator_and_linear_model_differ(built):
 
 
 def test_main_condition_reproduces_the_papers_numbers(built):
-    """Issue 16 calibration, on this build's T = 3.5 s, H = 0.25 m run (its own repeat draw):
+    """The losses calibrated on this build's T = 3.5 s, H = 0.25 m run (its own repeat draw):
     the numbers Brito et al. (2020) state that the virtual flume reproduces, within the
     precision the paper gives them (flumekit.bench.flume.STATED; the full table, with the
     numbers it does not reach, is `flumekit bench flume`)."""

@@ -1,5 +1,5 @@
-"""The ball-screw reference scenario against every result Senatore & De Simone (2022) state
-(issue 15, point 4), and the efficiency stage's knobs as pipeline parameters."""
+"""The ball-screw reference scenario against every result Senatore & De Simone (2022) state,
+and the efficiency stage's knobs as pipeline parameters."""
 
 import dataclasses
 

@@ -1,4 +1,4 @@
-"""analyse_run against the virtual flume's truth (issue 4 acceptance), power and torque pieces."""
+"""analyse_run against the virtual flume's truth, power and torque pieces."""
 
 import dataclasses
 

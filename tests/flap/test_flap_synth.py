@@ -343,7 +343,7 @@ def test_flume_truth_closes_the_torque_balance(campaign, hydrodynamics):
 
 
 def test_flume_vapour_cavity_holds_the_refill_deficit(campaign, hydrodynamics):
-    # issue 16: the single-acting cylinder's cavity (synth/flume.py) opens only when the
+    # the single-acting cylinder's cavity (synth/flume.py) opens only when the
     # suction outruns the refill θ̇_r = sqrt((P_atm - P_v)/K_p), holds φ times that deficit and
     # collapses at the refill plus the compression rate: over every cavity the volume grown,
     # recomputed from the recorded θ̇ and lever arm, is the volume collapsed within one step's
@@ -389,7 +389,7 @@ def test_flume_vapour_cavity_holds_the_refill_deficit(campaign, hydrodynamics):
 
 
 def test_flume_moves_less_than_the_simulator(campaign, hydrodynamics):
-    # issue 16: the flume's losses reduce the motion the comparison's simulator predicts
+    # the flume's losses reduce the motion the comparison's simulator predicts
     t = np.arange(0, 60, 0.01)
     eta = 0.125 * np.clip(t / 10, 0, 1) * np.cos(2 * np.pi * t / 3.5)
 
@@ -402,7 +402,7 @@ def test_flume_moves_less_than_the_simulator(campaign, hydrodynamics):
 
 
 def test_stage_simulator_reproduces_a_flume_of_its_own_physics(campaign, hydrodynamics):
-    # issue 7 (formerly on the pipeline's small campaign): the comparison stage's simulator
+    # the comparison stage's simulator
     # path (periodic extension of the steady incident wave, K_p and I_p fitted by the flap
     # stage, LuGre, Renzi-Dias coefficients, C sin θ) reproduces a flume whose flap is that
     # same simulator within 2 % RMS of the θ amplitude over the steady window, and its

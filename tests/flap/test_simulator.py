@@ -1,5 +1,5 @@
 """Time-domain simulator against the frequency-domain solution, energy balance and exact
-linear solutions (acceptance of issue 7); tolerances are stated per test."""
+linear solutions; tolerances are stated per test."""
 
 from importlib import resources
 

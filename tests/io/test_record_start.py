@@ -1,5 +1,5 @@
 """The record's start, from the raw file or the run, is the origin of every product's time axis
-(issue 12, point 7): ``seconds since <start>`` instead of a stand-in, which stays only when
+``seconds since <start>`` instead of a stand-in, which stays only when
 nothing says when the record started, and then says so."""
 
 import importlib.util

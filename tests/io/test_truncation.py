@@ -1,5 +1,5 @@
 """A file cut inside its last field is refused whatever the number format; a complete last
-line without a final line end is accepted (issue 13, point 6).
+line without a final line end is accepted.
 
 Each format writes a 100 Hz record of a wave (a slowly varying signal with noise, as loggers
 write) with 2000 rows and no final line end. The complete file must read back; every cut of

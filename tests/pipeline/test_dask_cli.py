@@ -1,5 +1,5 @@
 """`flumekit make --scheduler` on a real dask.distributed cluster that loses every worker while
-the build runs (issue 12, point 0): a clear error within the stated timeout, no traceback,
+the build runs: a clear error within the stated timeout, no traceback,
 nothing partial."""
 
 import json

@@ -1,4 +1,4 @@
-"""The dependency graph cached between makes (issue 12, point 5): used only while nothing it is
+"""The dependency graph cached between makes: used only while nothing it is
 made of changed; a changed or added run file, pipeline parameter or code rebuilds it."""
 
 import os

@@ -1,4 +1,4 @@
-"""`flumekit graph` and `flumekit clean` (issue 12, point 8) on the ball-screw scene, which
+"""`flumekit graph` and `flumekit clean` on the ball-screw scene, which
 needs no raw campaign: planning writes nothing, clean removes exactly the named outputs."""
 
 import shutil

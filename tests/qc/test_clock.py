@@ -1,4 +1,4 @@
-"""Clock check with one run per wave condition (issue 13): a 0.3 s offset between the probes
+"""Clock check with one run per wave condition: a 0.3 s offset between the probes
 and the flap of a run alone in its condition is found from the neighbouring conditions.
 
 Runs of nine conditions (T = 2.75, 3.0, 3.25 s; H = 0.15, 0.2, 0.25 m), one run each, are written as

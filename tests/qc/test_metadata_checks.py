@@ -1,4 +1,4 @@
-"""Metadata checked against the records (issue 13, point 6): each error names the file and the
+"""Metadata checked against the records: each error names the file and the
 key or channel. The stage actions run on small files written here."""
 
 from pathlib import Path

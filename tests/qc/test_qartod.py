@@ -1,6 +1,6 @@
 """QC tests on records with a known truth: virtual-flume-like probe, encoder and velocity
 records with injected faults. Recall >= 95 % of the faulty samples, no false flag on the clean
-records (issue 13 acceptance: <= 0.1 %)."""
+records (<= 0.1 %)."""
 
 import numpy as np
 import pytest

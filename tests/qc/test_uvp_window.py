@@ -1,4 +1,4 @@
-"""A long probe fault in a UVP run (issue 13): the UVP average stays where it was, and a UVP
+"""A long probe fault in a UVP run: the UVP average stays where it was, and a UVP
 dropout with no clean window left is an error naming the run, the beam and the span.
 
 One UVP run of the small virtual campaign is built twice, clean and with a 1 s dropout on WP1

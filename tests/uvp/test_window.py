@@ -1,4 +1,4 @@
-"""Where the UVP phase average lies (issue 13): a probe fault does not move it; a UVP or flap
+"""Where the UVP phase average lies: a probe fault does not move it; a UVP or flap
 fault does, and where no clean window exists the error names the run, the instrument and the
 flagged span. Synthetic records here; tests/qc/test_uvp_window.py builds a virtual run."""
 
