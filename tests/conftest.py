@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 from importlib import resources
+from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 
+#: the project's root (the shipped pipelines are in its pipelines/)
+ROOT = Path(__file__).resolve().parents[1]
 #: still-water depth of the default campaign's flume [m]
 DEPTH = 0.825
 
@@ -41,3 +45,31 @@ def regular_waves():
                       coords={"probe": ["WP1", "WP2", "WP3", "WP4"], "x": ("probe", x),
                               "time": t})
     return analyse_run(da, DEPTH, period, x_ref=0.0, separation_probes=["WP1", "WP2", "WP3"])
+
+
+@pytest.fixture
+def action_module(tmp_path, monkeypatch):
+    """Write a module of rule actions, importable here and in the processes a make starts.
+
+    Returns ``write(name, source)``: the module ``name`` with ``source`` in ``tmp_path/mods``,
+    on ``sys.path`` and ``PYTHONPATH`` for the test's duration.
+    """
+    folder = tmp_path / "mods"
+    folder.mkdir()
+    monkeypatch.syspath_prepend(str(folder))
+    monkeypatch.setenv("PYTHONPATH", str(folder) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+
+    def write(name: str, source: str) -> None:
+        (folder / f"{name}.py").write_text(source)
+
+    return write
+
+
+@pytest.fixture
+def fresh_project(tmp_path):
+    """A project folder as a fresh clone has it before its first make: the shipped default and
+    small pipelines, no raw or processed data."""
+    (tmp_path / "pipelines").mkdir()
+    for name in ("default.toml", "small.toml"):
+        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
+    return tmp_path

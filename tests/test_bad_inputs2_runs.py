@@ -158,7 +158,7 @@ def test_campaign_mistakes_are_clear_input_errors(campaign, tmp_path, capsys, fa
     assert _hashes(root) == before
 
 
-def test_a_domain_error_escaping_a_rule_names_the_rule_run_and_inputs(tmp_path, monkeypatch):
+def test_a_domain_error_escaping_a_rule_names_the_rule_run_and_inputs(tmp_path, action_module):
     """A numpy message with an array in it: one line, at most 200 characters of it."""
     from flumekit.errors import FlumekitError
     from flumekit.pipeline.engine import Graph
@@ -167,13 +167,10 @@ def test_a_domain_error_escaping_a_rule_names_the_rule_run_and_inputs(tmp_path, 
     from flumekit.pipeline.rules import Rule
     from flumekit.pipeline.state import State
 
-    mods = tmp_path / "mods"
-    mods.mkdir()
-    (mods / "flumekit_corpus_actions.py").write_text(
+    action_module("flumekit_corpus_actions", (
         "import numpy as np\n"
         "def hydro(inputs, outputs, params):\n"
-        "    raise FloatingPointError(f'singular at T = {np.linspace(0.25, 15.7, 60)} s')\n")
-    monkeypatch.syspath_prepend(str(mods))
+        "    raise FloatingPointError(f'singular at T = {np.linspace(0.25, 15.7, 60)} s')\n"))
     (tmp_path / "campaign.toml").write_text("")
     g = Graph([Rule("models/hydro", "flumekit_corpus_actions:hydro",
                     {"campaign": tmp_path / "campaign.toml"},

@@ -427,23 +427,16 @@ def test_provenance_names_rule_parameters_inputs_and_versions(built_once):
 
 # --- lazy synthesis ---------------------------------------------------------
 
-def _fresh(tmp_path):
-    (tmp_path / "pipelines").mkdir()
-    for name in ("default.toml", "small.toml"):
-        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
-    return tmp_path
-
-
-def test_a_scene_that_reads_no_raw_data_synthesises_nothing(tmp_path):
-    project = _fresh(tmp_path)
+def test_a_scene_that_reads_no_raw_data_synthesises_nothing(fresh_project):
+    project = fresh_project
     result = make(project, "figure/bs_fig11")
     assert result.returncode == 0, result.stderr
     assert not (project / "raw").exists()
     assert (project / "processed/small/figures/bs_fig11.png").exists()
 
 
-def test_fig10_plans_the_synthesis_of_one_run(tmp_path):
-    project = _fresh(tmp_path)
+def test_fig10_plans_the_synthesis_of_one_run(fresh_project):
+    project = fresh_project
     result = make(project, "-n", "fig10")
     steps = [line.split()[2].rstrip(":") for line in result.stdout.splitlines()]
     assert [s for s in steps if s.startswith("synth/")] == ["synth/campaign",
@@ -572,10 +565,10 @@ def test_every_kind_of_file_has_no_cf_error(built_once):
 
 
 @pytest.mark.parametrize("name", sorted(p.name for p in (ROOT / "pipelines").glob("*.toml")))
-def test_every_shipped_pipeline_plans_on_a_fresh_clone(tmp_path, name):
+def test_every_shipped_pipeline_plans_on_a_fresh_clone(fresh_project, name):
     """Each pipeline plans its whole build without writing anything (the small one is built by
     the tests above)."""
-    project = _fresh(tmp_path)
+    project = fresh_project
     shutil.copy(ROOT / "pipelines" / name, project / "pipelines" / name)
     result = flumekit("make", "-n", "--pipeline", f"pipelines/{name}", cwd=project)
     assert result.returncode == 0, result.stderr

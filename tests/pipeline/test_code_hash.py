@@ -1,7 +1,6 @@
 """A rule's key holds the hash of the code its action runs (flumekit.pipeline.code): a change of
 that code rebuilds the target, a change elsewhere does not."""
 
-import os
 import textwrap
 from pathlib import Path
 
@@ -115,12 +114,8 @@ TOY = textwrap.dedent('''
 ''')
 
 
-def test_the_engine_rebuilds_a_target_whose_code_changed(tmp_path, monkeypatch):
-    mod = tmp_path / "mods"
-    mod.mkdir()
-    (mod / "flumekit_code_actions.py").write_text(TOY)
-    monkeypatch.syspath_prepend(str(mod))
-    monkeypatch.setenv("PYTHONPATH", str(mod) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def test_the_engine_rebuilds_a_target_whose_code_changed(tmp_path, monkeypatch, action_module):
+    action_module("flumekit_code_actions", TOY)
     (tmp_path / "a.txt").write_text("1")
     source = {"hash": "A"}
     monkeypatch.setattr(code, "code_hash", lambda action: source["hash"])

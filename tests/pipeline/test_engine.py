@@ -29,12 +29,8 @@ TOY = textwrap.dedent('''
 
 
 @pytest.fixture
-def toy(tmp_path, monkeypatch):
-    mod = tmp_path / "mods"
-    mod.mkdir()
-    (mod / "flumekit_toy_actions.py").write_text(TOY)
-    monkeypatch.syspath_prepend(str(mod))
-    monkeypatch.setenv("PYTHONPATH", str(mod) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def toy(tmp_path, action_module):
+    action_module("flumekit_toy_actions", TOY)
     raw = tmp_path / "raw"
     raw.mkdir()
     for name, v in (("a", 1), ("b", 2)):

@@ -202,15 +202,8 @@ def flumekit(*args, cwd):
                           capture_output=True, text=True)
 
 
-def project(tmp_path) -> Path:
-    (tmp_path / "pipelines").mkdir()
-    for name in ("default.toml", "small.toml"):
-        shutil.copy(ROOT / "pipelines" / name, tmp_path / "pipelines" / name)
-    return tmp_path
-
-
-def test_lazy_synthesis_completes_but_a_deleted_run_is_an_error(tmp_path):
-    p = project(tmp_path)
+def test_lazy_synthesis_completes_but_a_deleted_run_is_an_error(fresh_project):
+    p = fresh_project
     raw = p / "raw" / "small"
     r = flumekit("make", "--pipeline", "pipelines/small.toml", "synth/T2.00_H0.150_r0", cwd=p)
     assert r.returncode == 0, r.stderr

@@ -42,12 +42,8 @@ TOY = textwrap.dedent('''
 
 
 @pytest.fixture
-def toy(tmp_path, monkeypatch):
-    mod = tmp_path / "mods"
-    mod.mkdir()
-    (mod / "flumekit_written_actions.py").write_text(TOY)
-    monkeypatch.syspath_prepend(str(mod))
-    monkeypatch.setenv("PYTHONPATH", str(mod) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+def toy(tmp_path, action_module):
+    action_module("flumekit_written_actions", TOY)
     (tmp_path / "raw").mkdir()
     (tmp_path / "raw/a.txt").write_text("42")
     (tmp_path / "processed").mkdir()
