@@ -264,7 +264,8 @@ class PTOCoefficients:
     Raises
     ------
     ValueError
-        For a negative coefficient.
+        For a negative coefficient (a damping, an inertia and a mass are all ≥ 0; zero
+        leaves the term out).
 
     %(references_senatore2022)s, Eq. (3).
 
