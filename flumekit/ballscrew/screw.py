@@ -212,6 +212,20 @@ class Lubricant:
         0 ≤ ``friction_full_film`` ≤ ``friction_boundary``.
 
     %(references_senatore2022)s, Fig. 8 and §3.1.
+
+    Examples
+    --------
+    The defaults, and the friction of the Stribeck curve where film and asperities carry half
+    the load each (λ = √3): the mean of the boundary and full-film coefficients:
+
+    >>> from flumekit.ballscrew.ehl import stribeck_friction
+    >>> from flumekit.ballscrew.screw import Lubricant
+    >>> oil = Lubricant()
+    >>> oil.viscosity, oil.friction_boundary, oil.friction_full_film
+    (0.07, 0.13, 0.002)
+    >>> f = stribeck_friction(3 ** 0.5, oil.friction_boundary, oil.friction_full_film)
+    >>> round(float(f), 6)  # (0.13 + 0.002) / 2
+    0.066
     """
 
     viscosity: float = 0.07
@@ -250,9 +264,22 @@ class PTOCoefficients:
     Raises
     ------
     ValueError
-        For a negative coefficient.
+        For a negative coefficient (a damping, an inertia and a mass are all ≥ 0; zero
+        leaves the term out).
 
     %(references_senatore2022)s, Eq. (3).
+
+    Examples
+    --------
+    The force of Eq. (3) on a nut sliding at 0.1 m/s (damping and viscous losses, (60 000 +
+    600) × 0.1 N), then starting from rest at 1 m/s² (the rotor reflected through the 20 mm
+    lead, 0.01 (2π/0.02)² + 30 kg), without friction:
+
+    >>> from flumekit.ballscrew.screw import PTOCoefficients, pto_force
+    >>> pto = PTOCoefficients()
+    >>> pto_force([0.1, 0.0], [0.0, 1.0], 0.0, pto.damping, pto.viscous,
+    ...           pto.inertia(0.02)).round(1).tolist()
+    [-6060.0, -1017.0]
     """
 
     damping: float = 6.0e4

@@ -41,7 +41,28 @@ __doc__ = fill(__doc__)
 
 
 class WireAngle(NamedTuple):
-    """Flap angle from the wire and the flag of samples outside the domain of Eq. (1)."""
+    """Flap angle from the wire and the flag of samples outside the domain of Eq. (1).
+
+    What :func:`angle_from_wire` returns.
+
+    Attributes
+    ----------
+    theta : numpy.ndarray
+        Flap angle θ [rad], positive towards the beach; the flagged samples hold the nearest
+        end of the branch (never NaN).
+    out_of_domain : numpy.ndarray of bool
+        True where the wire length has no flap angle (abs(c/R) > 1 in Eq. (1)).
+
+    Examples
+    --------
+    0.1 m of wire reeled in (the flap leans towards the wavemaker, θ < 0), then a glitch of
+    2 m, more than the 1.48 m of wire there is: its angle is clipped, and flagged:
+
+    >>> from flumekit.flap.encoder import angle_from_wire
+    >>> theta, flagged = angle_from_wire([0.1, 2.0], 1.53, 1.48)
+    >>> theta.round(4).tolist(), flagged.tolist()
+    ([-0.0654, -0.7688], [False, True])
+    """
 
     theta: np.ndarray  # flap angle [rad]; flagged samples hold the nearest end of the branch
     out_of_domain: np.ndarray  # bool, True where |c/R| > 1

@@ -91,8 +91,36 @@ _doc = filler(
                    "tau_hm=0.2, tau_h0=20.0)"))
 
 
+@_doc
 class FrictionState(NamedTuple):
-    """State of the modified LuGre model."""
+    """State of the modified LuGre model.
+
+    The default is the state at rest: straight bristles, no film.
+
+    Attributes
+    ----------
+    z : float or numpy.ndarray
+        Mean bristle deflection z [m].
+    h : float or numpy.ndarray
+        Dimensionless lubricant film thickness h [-].
+
+    Examples
+    --------
+    The state carries a record's friction across its chunks: a series resumed from the state
+    at the last sample of the first half is the series of the whole record:
+
+    >>> import numpy as np
+    %(model_example)s
+    >>> from flumekit.flap.friction import FrictionState, friction_series
+    >>> FrictionState()
+    FrictionState(z=0.0, h=0.0)
+    >>> v = 0.16 * np.sin(np.linspace(0.0, 4 * np.pi, 401))  # two cycles at 100 Hz [m s-1]
+    >>> whole = friction_series(v, 0.01, model)[0]
+    >>> first, z, h = friction_series(v[:201], 0.01, model)
+    >>> second = friction_series(v[200:], 0.01, model, state=FrictionState(z[-1], h[-1]))[0]
+    >>> bool(np.array_equal(np.concatenate([first, second[1:]]), whole))
+    True
+    """
 
     z: float = 0.0  # mean bristle deflection [m]
     h: float = 0.0  # dimensionless lubricant film thickness [-]
@@ -122,6 +150,22 @@ class LuGre:
         Velocity v_b of the minimum steady friction [m s-1], > 0.
     tau_hp, tau_hm, tau_h0 : float
         Film time constants for acceleration, deceleration and dwell [s].
+
+    Examples
+    --------
+    The model of the default campaign's cylinder, from its ``[pto.friction]`` table, and the
+    largest film it builds, h_max = 1 − F_c/F_s = 1 − 40/70:
+
+    >>> import pathlib, tempfile
+    >>> from flumekit.campaign import load_campaign
+    >>> from flumekit.flap.friction import LuGre
+    >>> from flumekit.synth.campaign import campaign_toml
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (pathlib.Path(folder) / "campaign.toml").write_text(campaign_toml("demo"))
+    ...     campaign = load_campaign(folder, runs=False)
+    >>> model = LuGre.from_campaign(campaign.pto.friction)
+    >>> model.coulomb_force, model.static_force, round(model.film_max, 4)
+    (40.0, 70.0, 0.4286)
     """
 
     sigma0: float

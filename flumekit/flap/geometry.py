@@ -134,7 +134,37 @@ def flap_point(point, theta) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class RodKinematics:
-    """Rod length, extension rate, angle to the lever and signed lever arm (numpy arrays)."""
+    """Rod length, extension rate, angle to the lever and signed lever arm (numpy arrays).
+
+    What :func:`rod_kinematics` returns.
+
+    Attributes
+    ----------
+    length : numpy.ndarray
+        Rod length ℓ [m].
+    velocity : numpy.ndarray
+        Extension rate ℓ̇ = m θ̇ [m s-1], positive when the rod extends.
+    beta : numpy.ndarray
+        Angle β between the rod and the hinge-to-anchor line, in (0, π) [rad].
+    lever_arm : numpy.ndarray
+        Signed lever arm m [m]: the torque towards the beach per newton of extending force,
+        abs(m) = r sin β.
+
+    Examples
+    --------
+    A right-angled layout: the bed anchor 1 m towards the beach, the flap anchor 1 m above
+    the hinge. The rod is the hypotenuse √2 m at 45° to the flap; the lever arm is
+    r sin β = 1/√2 m, negative as an extending rod pushes the flap towards the wavemaker;
+    leaning to the beach at 0.2 rad/s shortens the rod at m θ̇:
+
+    >>> import numpy as np
+    >>> from flumekit.flap.geometry import rod_kinematics
+    >>> rod = rod_kinematics(0.0, 0.2, (1.0, 0.0), (0.0, 1.0))
+    >>> round(float(rod.length), 4), round(float(np.degrees(rod.beta)), 6)
+    (1.4142, 45.0)
+    >>> round(float(rod.lever_arm), 4), round(float(rod.velocity), 4)
+    (-0.7071, -0.1414)
+    """
 
     length: np.ndarray  # ℓ [m]
     velocity: np.ndarray  # ℓ̇, positive when the rod extends [m s-1]

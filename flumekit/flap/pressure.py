@@ -128,7 +128,42 @@ def chamber_pressure_model(theta_dot, theta_ddot, pressure_loss_coefficient: flo
 
 
 class PressureFit(NamedTuple):
-    """Least-squares fit of Eq. (13)."""
+    """Least-squares fit of Eq. (13).
+
+    What :func:`fit_pressure_model` returns.
+
+    Attributes
+    ----------
+    pressure_loss_coefficient : float
+        K_p [Pa s2 rad-2].
+    fluid_inertia : float
+        I_p [Pa s2 rad-1].
+    r2 : float
+        Coefficient of determination over all samples used [-].
+    cavitating : numpy.ndarray of bool
+        The samples on the cavitation branch of the fitted model.
+    fitted : numpy.ndarray
+        Fitted chamber (gauge) pressure [Pa].
+    bounded : bool
+        True when a coefficient is held at its bound 0 (the free fit was unphysical).
+
+    Examples
+    --------
+    One cycle of a flap swinging at 0.8 rad/s: on the suction stroke K_p θ̇² exceeds the
+    99 kPa between the atmosphere and the vapour pressure, and the chamber cavitates. A
+    record made by the model is fitted exactly, cavitation included:
+
+    >>> import numpy as np
+    >>> from flumekit.flap.pressure import chamber_pressure_model, fit_pressure_model
+    >>> t = np.linspace(0.0, 2.0, 201)  # [s]
+    >>> w, a = 0.8 * np.sin(np.pi * t), 0.8 * np.pi * np.cos(np.pi * t)
+    >>> record = chamber_pressure_model(w, a, 2.0e5, 300.0)
+    >>> fit = fit_pressure_model(record, w, a)
+    >>> round(fit.pressure_loss_coefficient), round(fit.fluid_inertia, 6), fit.bounded
+    (200000, 300.0, False)
+    >>> int(fit.cavitating.sum()), bool(np.allclose(fit.fitted, record))  # samples of 201
+    (31, True)
+    """
 
     pressure_loss_coefficient: float  # K_p [Pa s2 rad-2]
     fluid_inertia: float  # I_p [Pa s2 rad-1]

@@ -40,7 +40,7 @@ PIPELINE = {
 
 @dataclass(frozen=True)
 class Pipeline:
-    """A parsed pipeline file (:func:`load_pipeline`).
+    r"""A parsed pipeline file (:func:`load_pipeline`).
 
     Attributes
     ----------
@@ -58,6 +58,23 @@ class Pipeline:
         Stage name -> its parameters (``[stages.<stage>]``).
     scenes : dict
         Scene name -> target names or patterns.
+
+    Examples
+    --------
+    A pipeline that synthesises a small virtual campaign when its raw folder is missing and
+    names a scene; the build state lives in the processed folder:
+
+    >>> import pathlib, tempfile
+    >>> from flumekit.pipeline.config import load_pipeline
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     root = pathlib.Path(folder).resolve()
+    ...     _ = (root / "flume.toml").write_text(
+    ...         '[pipeline]\nname = "flume"\nraw = "raw"\nprocessed = "out"\n'
+    ...         '[synth]\nsize = "small"\n[scenes]\nwaves = ["waves/*"]\n')
+    ...     pipe = load_pipeline(root / "flume.toml")
+    ...     state = pipe.state_file.relative_to(root).as_posix()
+    >>> pipe.synth, pipe.scenes, pipe.stages, state
+    ({'size': 'small'}, {'waves': ['waves/*']}, {}, 'out/.flumekit-state.json')
     """
 
     path: Path

@@ -80,6 +80,18 @@ class Input:
     References
     ----------
     JCGM 100:2008 (GUM), §4.3 (Type B evaluation of standard uncertainty).
+
+    Examples
+    --------
+    A probe read in steps of 1 mm: the rounding is rectangular over ±0.5 mm, of standard
+    uncertainty 0.5/√3 mm, and one draw of it perturbs every sample of every probe:
+
+    >>> import math
+    >>> from flumekit.uncertainty.propagation import Input
+    >>> step = Input("probe_resolution", 0.5e-3 / math.sqrt(3.0), "m", "rectangular",
+    ...              "declared")
+    >>> round(step.u * 1e3, 4), step.shape  # [mm]
+    (0.2887, 'probe_time')
     """
 
     name: str
@@ -218,6 +230,25 @@ class RunModel:
         ``time`` [s], ``encoder_counts`` [-], ``chamber_pressure`` [Pa] of the run.
     flap_kw : dict, optional
         Keyword arguments of :func:`flumekit.flap.analyse_run` (flap, pto, encoder, cutoff...).
+
+    Examples
+    --------
+    A 2 s, 0.08 m wave in 0.825 m on three probes (as in :func:`flumekit.waves.analyse_run`),
+    unperturbed, then with every probe's gain 1 % high: the incident height reads 1 % high
+    and the energy flux, ∝ H², 2 %:
+
+    >>> import numpy as np
+    >>> from flumekit.uncertainty.propagation import RunModel
+    >>> from flumekit.waves import probe_record, probe_spacing, wavenumber
+    >>> x = -4.0 + np.cumsum([0.0, *probe_spacing(2.0, 0.825)])  # [m]
+    >>> k, t = float(wavenumber(np.pi, 0.825)), np.arange(1200) / 20.0
+    >>> eta = probe_record(0.04 * np.cos(np.pi * t - k * x[:, None]), x=x, sampling_rate=20.0)
+    >>> model = RunModel(eta, 0.825, 2.0, {})
+    >>> model.results
+    ('incident_height', 'reflection_coefficient', 'measured_period', 'energy_flux')
+    >>> base, high = model({}), model({"calibration": np.full(3, 0.01)})
+    >>> round(float(base[0]), 4), (high / base)[[0, 3]].round(4).tolist()
+    (0.08, [1.01, 1.0201])
     """
 
     def __init__(self, eta: xr.DataArray, depth: float, period: float, waves_kw: dict,

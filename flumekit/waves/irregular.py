@@ -31,7 +31,33 @@ BAND = (0.5, 4.0)
 
 
 class LowFrequencyWarning(UserWarning):
-    """The records hold energy below half the peak frequency (bound long waves, seiching)."""
+    """The records hold energy below half the peak frequency (bound long waves, seiching).
+
+    Examples
+    --------
+    A sea of 90 components at 0.3-0.6 Hz, 2 mm each, and a 20 s seiche of 1 cm: the seiche
+    holds 1² / (1² + 90 × 0.2²) = 22 % of the variance, outside the analysis band, and
+    :func:`analyse_irregular_run` says so:
+
+    >>> import warnings
+    >>> import numpy as np
+    >>> from flumekit.waves import analyse_irregular_run, wavenumber
+    >>> from flumekit.waves.irregular import LowFrequencyWarning
+    >>> t, x = np.arange(3000) / 10.0, np.array([-3.0, -2.4, -2.0])  # 300 s at 10 Hz [s], [m]
+    >>> f = np.append(np.arange(90, 180) / 300.0, 0.05)  # [Hz]
+    >>> a = np.append(np.full(90, 0.002), 0.01)  # [m]
+    >>> phase = np.random.default_rng(1).uniform(0.0, 2 * np.pi, f.size)
+    >>> arg = 2 * np.pi * f * t[:, None, None] - wavenumber(2 * np.pi * f, 0.8) * x[:, None]
+    >>> eta = (a * np.cos(arg + phase)).sum(-1).T  # (probe, time)
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     r = analyse_irregular_run(eta, 0.8, x=x, sampling_rate=10.0, peak_period=2.2,
+    ...                               span=(0.0, 300.0))
+    >>> caught[0].category is LowFrequencyWarning, round(float(r.low_frequency_energy_fraction), 3)
+    (True, 0.217)
+    >>> print(caught[0].message)
+    21.7% of the records' variance lies below fp/2 = 0.227 Hz (bound long waves or seiching)...
+    """
 
 
 def active_span(values: np.ndarray, time: np.ndarray, peak_frequency: float,
@@ -70,12 +96,16 @@ def active_span(values: np.ndarray, time: np.ndarray, peak_frequency: float,
 
     Examples
     --------
+    A unit sine ramped over 50 s, 40 s windows: the established variance is 0.5 m², and the
+    first window whose mean variance reaches a quarter of it ends at 42.3 s, before the ramp
+    does (the threshold lets a wave group's lull pass):
+
     >>> import numpy as np
     >>> t = np.arange(0, 400, 0.04)
     >>> eta = np.minimum(t / 50, 1) * np.sin(2 * np.pi * 0.5 * t)
-    >>> start, end = active_span(eta, t, 0.5)   # a 50 s ramp, 40 s windows
+    >>> start, end = active_span(eta, t, 0.5)
     >>> round(start, 1), round(end, 1)
-    (44.7, 400.0)
+    (42.3, 400.0)
     """
     v = np.atleast_2d(np.asarray(values, dtype=float))
     v = v - v.mean(axis=1, keepdims=True)

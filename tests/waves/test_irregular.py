@@ -128,3 +128,17 @@ def test_too_short_a_record_is_an_error():
     eta, _ = record(7, duration=60.0, ramp=5.0)
     with pytest.raises(ValueError, match="fewer than 20 peak periods"):
         analyse_irregular_run(eta, DEPTH)
+
+
+def test_active_span_example_holds():
+    """The example of active_span's docstring holds as written: a unit sine ramped over 50 s,
+    40 s windows; the first window whose mean variance reaches a quarter of the established
+    0.5 m2 ends at 42.3 s, before the ramp's end (the threshold allows a wave group's lull)."""
+    import doctest
+
+    from flumekit.waves import irregular
+
+    test, = doctest.DocTestFinder().find(irregular.active_span, "active_span",
+                                         globs=dict(vars(irregular)))
+    result = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS, verbose=False).run(test)
+    assert result.attempted == 5 and result.failed == 0
